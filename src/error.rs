@@ -1,0 +1,93 @@
+//! The one error type of the crate. Every variant carries the offending name and value, so a
+//! message can be shown to a CLI user or an FMI logger as it is.
+
+use thiserror::Error;
+
+/// Result alias used across the crate.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// Everything that can go wrong, from a scenario field to a log file.
+#[derive(Debug, Error)]
+pub enum Error {
+    /// A scenario parameter breaks its rule, e.g. `upper.length must be > 0 m, got -3`.
+    #[error("{name} must be {rule}, got {value}")]
+    InvalidParameter {
+        /// Dotted parameter name as in the scenario file and the FMU (`upper.length`).
+        name: &'static str,
+        /// The rule, with the unit (`> 0 m`).
+        rule: String,
+        /// The offending value, as given.
+        value: String,
+    },
+    /// A time step above the stability limit of the linear acceleration method.
+    #[error(
+        "{name} = {step:e} s is above the stability limit of the linear acceleration method: \
+         dt * omega_max = {product:.3} > sqrt(12) = 3.464 (omega_max = {omega_max:.1} rad/s {stage}); \
+         use {name} <= {limit:e} s"
+    )]
+    UnstableStep {
+        /// `step_free` or `step_contact`.
+        name: &'static str,
+        /// The requested step, s.
+        step: f64,
+        /// Highest natural frequency of the stage, rad/s.
+        omega_max: f64,
+        /// `step * omega_max`.
+        product: f64,
+        /// Largest stable step, s.
+        limit: f64,
+        /// Which stage ("out of contact", "in contact").
+        stage: &'static str,
+    },
+    /// A parameter name that the scenario does not have.
+    #[error("unknown parameter `{0}`")]
+    UnknownParameter(String),
+    /// The scenario file could not be read or parsed.
+    #[error("scenario {path}: {message}")]
+    Scenario {
+        /// File path.
+        path: String,
+        /// What went wrong, from the TOML parser.
+        message: String,
+    },
+    /// A numerical breakdown (a factorization failed): the model is not well posed.
+    #[error("numerical failure in {what}: {detail}")]
+    Numerical {
+        /// The routine that failed.
+        what: &'static str,
+        /// Why.
+        detail: String,
+    },
+    /// Writing or reading a log, a figure or a result file.
+    #[error("{action} {path}: {source}")]
+    Io {
+        /// What was being done ("cannot create").
+        action: &'static str,
+        /// The file.
+        path: String,
+        /// The operating system's reason.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The MCAP writer or reader failed.
+    #[error("MCAP {path}: {message}")]
+    Mcap {
+        /// The file.
+        path: String,
+        /// The mcap crate's message.
+        message: String,
+    },
+    /// A serialized FMU state that cannot be restored.
+    #[error("FMU state: {0}")]
+    State(String),
+    /// Anything else, with its explanation.
+    #[error("{0}")]
+    Other(String),
+}
+
+impl Error {
+    /// Shorthand for [`Error::InvalidParameter`].
+    pub fn invalid(name: &'static str, rule: impl Into<String>, value: impl std::fmt::Display) -> Self {
+        Error::InvalidParameter { name, rule: rule.into(), value: value.to_string() }
+    }
+}

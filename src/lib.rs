@@ -1,0 +1,23 @@
+//! beam-impact: the elastic impact of two beams (Čatipović, Vladimir, Reljić, "Numerical
+//! Procedure for Two Beam Elastic Impact Analysis", Brodogradnja 2008), solved with
+//! Euler-Bernoulli finite elements and the modified linear acceleration method, exported
+//! as an FMI 2.0 / 3.0 co-simulation FMU that records every step to MCAP.
+//!
+//! Data flows one way: [`model::Scenario`] -> [`model::Model`] -> [`solver`] ->
+//! [`results::StepResult`] -> [`record::Recorder`] and the FMI getters.
+
+#![warn(missing_docs)]
+
+pub mod compare;
+pub mod error;
+pub mod fmi;
+pub mod model;
+pub mod paper;
+pub mod record;
+pub mod results;
+pub mod simulation;
+pub mod solver;
+
+pub use error::{Error, Result};
+pub use model::Scenario;
+pub use simulation::Simulation;

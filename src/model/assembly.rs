@@ -1,0 +1,105 @@
+//! Global mass and stiffness matrices and gravity loads of one beam (paper Eqs. 1-2, 12-13).
+
+use nalgebra::{DMatrix, DVector, RowVector4};
+
+use super::beam::{self, Section};
+use super::mesh::Mesh;
+
+/// One assembled beam: mesh, section and its global matrices over the free DOFs.
+#[derive(Clone, Debug)]
+pub struct Beam {
+    /// Nodes and DOF numbering.
+    pub mesh: Mesh,
+    /// Section and material.
+    pub section: Section,
+    /// Consistent mass matrix M, kg (kg m^2 on rotations), lumped tip mass included.
+    pub mass: DMatrix<f64>,
+    /// Stiffness matrix K, N/m.
+    pub stiffness: DMatrix<f64>,
+    /// Consistent nodal loads of the self-weight (Eqs. 12-13) and of a lumped tip mass, N (up positive).
+    pub gravity_load: DVector<f64>,
+    /// Total mass, kg (distributed plus lumped).
+    pub total_mass: f64,
+}
+
+impl Beam {
+    /// Assembles a beam of `mass` kg spread uniformly over the mesh, with `tip_mass` kg lumped
+    /// on the free end's deflection DOF, under gravity `gravity` m/s^2 (acting downward).
+    pub fn assemble(mesh: Mesh, bending_stiffness: f64, mass: f64, tip_mass: f64, gravity: f64) -> Beam {
+        let length = mesh.tip().x - mesh.nodes[0].x;
+        let section = Section { bending_stiffness, mass_per_length: mass / length };
+        let n = mesh.dofs;
+        let mut m = DMatrix::zeros(n, n);
+        let mut k = DMatrix::zeros(n, n);
+        let mut f = DVector::zeros(n);
+        for e in 0..mesh.elements() {
+            let le = mesh.element_length(e);
+            let ke = beam::stiffness(&section, le);
+            let me = beam::consistent_mass(&section, le);
+            let fe = beam::uniform_load(-section.mass_per_length * gravity, le);
+            let dofs = mesh.element_dofs(e);
+            for (a, da) in dofs.iter().enumerate() {
+                let Some(i) = *da else { continue };
+                f[i] += fe[a];
+                for (b, db) in dofs.iter().enumerate() {
+                    let Some(j) = *db else { continue };
+                    m[(i, j)] += me[(a, b)];
+                    k[(i, j)] += ke[(a, b)];
+                }
+            }
+        }
+        if let Some(tip) = mesh.tip().w {
+            m[(tip, tip)] += tip_mass;
+            f[tip] -= tip_mass * gravity;
+        }
+        Beam { mesh, section, mass: m, stiffness: k, gravity_load: f, total_mass: mass + tip_mass }
+    }
+
+    /// Number of free DOFs.
+    pub fn dofs(&self) -> usize {
+        self.mesh.dofs
+    }
+
+    /// Unit functional picking the deflection of `node` (zero vector if the node is supported).
+    pub fn deflection_functional(&self, node: usize) -> DVector<f64> {
+        let mut r = DVector::zeros(self.dofs());
+        if let Some(i) = self.mesh.nodes[node].w {
+            r[i] = 1.0;
+        }
+        r
+    }
+
+    /// The linear functional `row . (k_e u_e)` of element `e` over the beam's DOFs: an element
+    /// end force as a dot product with the global displacement vector.
+    pub fn element_force_functional(&self, e: usize, row: usize, scale: f64) -> DVector<f64> {
+        let ke = beam::stiffness(&self.section, self.mesh.element_length(e));
+        let kr: RowVector4<f64> = ke.row(row).into_owned();
+        let mut r = DVector::zeros(self.dofs());
+        for (a, d) in self.mesh.element_dofs(e).iter().enumerate() {
+            if let Some(i) = *d {
+                r[i] += scale * kr[a];
+            }
+        }
+        r
+    }
+
+    /// Internal bending moment (sagging positive) at the start of element `e`, as a functional: -f[1].
+    pub fn start_moment_functional(&self, e: usize) -> DVector<f64> {
+        self.element_force_functional(e, 1, -1.0)
+    }
+
+    /// Internal bending moment (sagging positive) at the end of element `e`, as a functional: f[3].
+    pub fn end_moment_functional(&self, e: usize) -> DVector<f64> {
+        self.element_force_functional(e, 3, 1.0)
+    }
+
+    /// Internal shear force (dM/dx) at the start of element `e`, as a functional: f[0].
+    pub fn start_shear_functional(&self, e: usize) -> DVector<f64> {
+        self.element_force_functional(e, 0, 1.0)
+    }
+
+    /// Bending strain energy 1/2 u^T K u of a displacement vector, J (Eq. 36 for the Hermite field).
+    pub fn strain_energy(&self, u: &DVector<f64>) -> f64 {
+        0.5 * u.dot(&(&self.stiffness * u))
+    }
+}

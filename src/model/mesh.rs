@@ -1,0 +1,89 @@
+//! Node positions and DOF numbering of one beam (paper Fig. 5).
+
+/// One node: its position and the indices of its free DOFs (None = constrained).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Node {
+    /// Distance from the beam's first node (the clamp or the hinge), m.
+    pub x: f64,
+    /// Index of the deflection DOF w (up positive), if free.
+    pub w: Option<usize>,
+    /// Index of the rotation DOF theta = dw/dx, if free.
+    pub theta: Option<usize>,
+}
+
+/// The nodes of a beam and its number of free DOFs. Element e joins nodes e and e + 1.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mesh {
+    /// Nodes from the first (supported) end to the free end.
+    pub nodes: Vec<Node>,
+    /// Number of free DOFs.
+    pub dofs: usize,
+}
+
+/// How the first node is supported.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Support {
+    /// Deflection and rotation fixed (the arrestor's clamp).
+    Clamped,
+    /// Deflection fixed, rotation free (the bridge's hinge).
+    Hinged,
+}
+
+impl Mesh {
+    /// A beam from node positions `x` (ascending, first = support), numbering free DOFs node by node.
+    pub fn new(x: &[f64], support: Support) -> Mesh {
+        let mut dofs = 0;
+        let mut next = || {
+            dofs += 1;
+            Some(dofs - 1)
+        };
+        let nodes = x
+            .iter()
+            .enumerate()
+            .map(|(i, &x)| {
+                let (w, theta) = match (i, support) {
+                    (0, Support::Clamped) => (None, None),
+                    (0, Support::Hinged) => (None, next()),
+                    _ => (next(), next()),
+                };
+                Node { x, w, theta }
+            })
+            .collect();
+        Mesh { nodes, dofs }
+    }
+
+    /// A clamped-free beam of `elements` equal elements.
+    pub fn cantilever(length: f64, elements: usize) -> Mesh {
+        let x: Vec<f64> = (0..=elements).map(|i| length * i as f64 / elements as f64).collect();
+        Mesh::new(&x, Support::Clamped)
+    }
+
+    /// A hinged-free beam with a node at `contact_position`: `inner` equal elements up to it and
+    /// `outer` equal elements beyond it. The contact node is node `inner`.
+    pub fn hinged_free(length: f64, contact_position: f64, inner: usize, outer: usize) -> Mesh {
+        let mut x: Vec<f64> = (0..=inner).map(|i| contact_position * i as f64 / inner as f64).collect();
+        x.extend((1..=outer).map(|i| contact_position + (length - contact_position) * i as f64 / outer as f64));
+        Mesh::new(&x, Support::Hinged)
+    }
+
+    /// Number of elements.
+    pub fn elements(&self) -> usize {
+        self.nodes.len() - 1
+    }
+
+    /// Length of element `e`, m.
+    pub fn element_length(&self, e: usize) -> f64 {
+        self.nodes[e + 1].x - self.nodes[e].x
+    }
+
+    /// Global DOF indices of element `e` in the order (w1, theta1, w2, theta2).
+    pub fn element_dofs(&self, e: usize) -> [Option<usize>; 4] {
+        let (a, b) = (self.nodes[e], self.nodes[e + 1]);
+        [a.w, a.theta, b.w, b.theta]
+    }
+
+    /// The free end's node.
+    pub fn tip(&self) -> &Node {
+        &self.nodes[self.nodes.len() - 1]
+    }
+}

@@ -1,0 +1,13 @@
+//! The physical model: beams, mesh, assembly, damping and the scenario. No I/O, no unsafe.
+
+pub mod assembly;
+pub mod beam;
+pub mod damping;
+pub mod mesh;
+pub mod parameters;
+pub mod scenario;
+pub mod system;
+
+pub use assembly::Beam;
+pub use scenario::Scenario;
+pub use system::{Model, Probe};

@@ -1,0 +1,113 @@
+//! The scenario's parameters as a flat, named table: the one place the FMU's parameter
+//! variables and the CLI's messages take names, units and descriptions from.
+
+use super::scenario::Scenario;
+use crate::error::{Error, Result};
+
+/// Whether a parameter is a real number or a count.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// A real value in the given unit.
+    Real,
+    /// A whole number (element counts).
+    Integer,
+}
+
+/// One scenario parameter with its accessors.
+#[derive(Clone, Copy)]
+pub struct Parameter {
+    /// Dotted name, as in the TOML file and the FMU (`upper.length`).
+    pub name: &'static str,
+    /// SI unit ("" for dimensionless).
+    pub unit: &'static str,
+    /// What it is.
+    pub description: &'static str,
+    /// Real or integer.
+    pub kind: Kind,
+    /// Reads the value (integers as exact f64).
+    pub get: fn(&Scenario) -> f64,
+    /// Writes the value (integers are checked by [`set`]).
+    pub put: fn(&mut Scenario, f64),
+}
+
+impl std::fmt::Debug for Parameter {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Parameter").field("name", &self.name).field("unit", &self.unit).finish()
+    }
+}
+
+macro_rules! real {
+    ($name:literal, $unit:literal, $desc:literal, $($field:ident).+) => {
+        Parameter {
+            name: $name,
+            unit: $unit,
+            description: $desc,
+            kind: Kind::Real,
+            get: |s| s.$($field).+,
+            put: |s, v| s.$($field).+ = v,
+        }
+    };
+}
+
+macro_rules! integer {
+    ($name:literal, $desc:literal, $($field:ident).+) => {
+        Parameter {
+            name: $name,
+            unit: "",
+            description: $desc,
+            kind: Kind::Integer,
+            get: |s| f64::from(s.$($field).+),
+            put: |s, v| s.$($field).+ = v as u32,
+        }
+    };
+}
+
+/// Every scenario parameter, in the order of the FMU's value references.
+pub const PARAMETERS: &[Parameter] = &[
+    real!("drop_height", "m", "Drop height h of the bridge's centre of gravity before impact (Eq. 20)", drop_height),
+    real!("contact_position", "m", "Distance d from the hinge to the bridge's contact point", contact_position),
+    real!("damping_ratio", "1", "Modal damping ratio on every mode of each beam (Eq. 34)", damping_ratio),
+    real!("rayleigh_alpha", "1/s", "Rayleigh mass-proportional damping added per beam", rayleigh_alpha),
+    real!("rayleigh_beta", "s", "Rayleigh stiffness-proportional damping added per beam", rayleigh_beta),
+    real!("step_free", "s", "Time step out of contact", step_free),
+    real!("step_contact", "s", "Time step in contact", step_contact),
+    real!("duration", "s", "Simulated time of a CLI run", duration),
+    real!("gravity", "m/s2", "Acceleration of gravity", gravity),
+    real!("upper.length", "m", "Bridge length l_u", upper.length),
+    real!("upper.mass", "kg", "Bridge mass m_u, uniformly distributed", upper.mass),
+    real!("upper.elastic_modulus", "Pa", "Bridge Young's modulus", upper.elastic_modulus),
+    real!("upper.second_moment", "m4", "Bridge second moment of area", upper.second_moment),
+    real!("upper.section_modulus", "m3", "Bridge section modulus for M/W", upper.section_modulus),
+    integer!("upper.elements_to_contact", "Bridge elements from the hinge to the contact node", upper.elements_to_contact),
+    integer!(
+        "upper.elements_beyond_contact",
+        "Bridge elements from the contact node to the free end",
+        upper.elements_beyond_contact
+    ),
+    real!("lower.length", "m", "Arrestor length l_l", lower.length),
+    real!("lower.mass", "kg", "Arrestor distributed mass m_l", lower.mass),
+    real!("lower.tip_mass", "kg", "Lumped mass at the arrestor's free end", lower.tip_mass),
+    real!("lower.elastic_modulus", "Pa", "Arrestor Young's modulus", lower.elastic_modulus),
+    real!("lower.second_moment", "m4", "Arrestor second moment of area", lower.second_moment),
+    real!("lower.section_modulus", "m3", "Arrestor section modulus for M/W", lower.section_modulus),
+    real!("lower.shear_area", "m2", "Arrestor shear area for Q/A_s", lower.shear_area),
+    integer!("lower.elements", "Arrestor elements from the clamp to the free end", lower.elements),
+    real!("contact.area", "m2", "Contact bar cross-section A_c", contact.area),
+    real!("contact.length", "m", "Contact bar length l_c", contact.length),
+    real!("contact.elastic_modulus", "Pa", "Contact bar Young's modulus", contact.elastic_modulus),
+];
+
+/// Looks a parameter up by name.
+pub fn find(name: &str) -> Result<&'static Parameter> {
+    PARAMETERS.iter().find(|p| p.name == name).ok_or_else(|| Error::UnknownParameter(name.to_string()))
+}
+
+/// Sets a parameter, checking that integers are whole and in range (the rest is checked by
+/// [`Scenario::validate`]).
+pub fn set(scenario: &mut Scenario, parameter: &Parameter, value: f64) -> Result<()> {
+    if parameter.kind == Kind::Integer && !(value.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&value)) {
+        return Err(Error::invalid(parameter.name, "a whole number >= 1", value));
+    }
+    (parameter.put)(scenario, value);
+    Ok(())
+}

@@ -1,0 +1,308 @@
+//! Every input of a run in one serde struct, with the paper scenario as [`Default`]
+//! (see `SCENARIO.md` beside the paper for where each number comes from).
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+
+/// The bridge (upper beam): hinged at x = 0 (rotation free), free at x = `length`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct UpperBeam {
+    /// Length l_u, m. Paper: 29 m.
+    pub length: f64,
+    /// Total mass m_u, kg, uniformly distributed (Eq. 12). Paper: 12 t.
+    pub mass: f64,
+    /// Young's modulus E_b, Pa. Paper: 2.1e5 MPa.
+    pub elastic_modulus: f64,
+    /// Second moment of area I_b, m^4. Paper: 0.01831 m^4.
+    pub second_moment: f64,
+    /// Section modulus W_b, m^3, for the bending stress M/W. Paper: 0.009978 m^3.
+    pub section_modulus: f64,
+    /// Equal elements from the hinge to the contact node. Paper (Fig. 5): 7.
+    pub elements_to_contact: u32,
+    /// Equal elements from the contact node to the free end. Paper (Fig. 5): 7.
+    pub elements_beyond_contact: u32,
+    /// Constant vertical force at the free end, N, up positive (the FMU overrides it as an input).
+    pub tip_force: f64,
+}
+
+impl Default for UpperBeam {
+    fn default() -> Self {
+        UpperBeam {
+            length: 29.0,
+            mass: 12_000.0,
+            elastic_modulus: 2.1e11,
+            second_moment: 0.01831,
+            section_modulus: 0.009978,
+            elements_to_contact: 7,
+            elements_beyond_contact: 7,
+            tip_force: 0.0,
+        }
+    }
+}
+
+/// The arrestor (lower beam): clamped at x = 0, free at x = `length` with a lumped tip mass.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LowerBeam {
+    /// Length l_l, m. Paper: 12 m.
+    pub length: f64,
+    /// Mass of the uniform beam m_l, kg (Eq. 13): the two longitudinal I-beams, 2 x 0.05374 m^2 x 12 m x 7850 kg/m^3.
+    pub mass: f64,
+    /// Lumped mass at the free end, kg: the transverse beam, so that the total is the paper's 11.7 t.
+    pub tip_mass: f64,
+    /// Young's modulus E_a, Pa. Paper: 2.1e5 N/mm^2.
+    pub elastic_modulus: f64,
+    /// Second moment of area I_a, m^4. Paper: 0.002075 m^4.
+    pub second_moment: f64,
+    /// Section modulus W_a, m^3. Paper: 0.01384 m^3.
+    pub section_modulus: f64,
+    /// Shear area A_s,a, m^2, for the shear stress Q/A_s. Paper: 0.012 m^2.
+    pub shear_area: f64,
+    /// Equal elements from the clamp to the free end. Paper (Fig. 5): 7.
+    pub elements: u32,
+    /// Constant vertical force at the free end, N, up positive (the FMU overrides it as an input).
+    pub tip_force: f64,
+}
+
+impl Default for LowerBeam {
+    fn default() -> Self {
+        LowerBeam {
+            length: 12.0,
+            mass: 10_124.0,
+            tip_mass: 1_576.0,
+            elastic_modulus: 2.1e11,
+            second_moment: 0.002075,
+            section_modulus: 0.01384,
+            shear_area: 0.012,
+            elements: 7,
+            tip_force: 0.0,
+        }
+    }
+}
+
+/// The contact bar (Eq. 3) between the arrestor's end and the bridge's contact node.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ContactBar {
+    /// Cross-section area A_c, m^2. Paper: 0.04 m^2.
+    pub area: f64,
+    /// Length l_c, m. Paper: 0.3 m.
+    pub length: f64,
+    /// Young's modulus, Pa. Paper: 2.1e11 Pa (stiffness E A_c / l_c = 2.8e10 N/m).
+    pub elastic_modulus: f64,
+}
+
+impl Default for ContactBar {
+    fn default() -> Self {
+        ContactBar { area: 0.04, length: 0.3, elastic_modulus: 2.1e11 }
+    }
+}
+
+impl ContactBar {
+    /// Axial stiffness E A_c / l_c, N/m (Eq. 3).
+    pub fn stiffness(&self) -> f64 {
+        self.elastic_modulus * self.area / self.length
+    }
+}
+
+/// A whole run: the two beams, the contact bar, the drop, damping and time stepping.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Scenario {
+    /// Drop height h of the bridge's centre of gravity before impact, m (Eq. 20).
+    /// 0.567 m reproduces the whole energy column of Table 1.
+    pub drop_height: f64,
+    /// Distance d from the hinge to the contact point on the bridge, m. 13 m reproduces Table 2's coupled column.
+    pub contact_position: f64,
+    /// Modal damping ratio gamma on every mode of each beam's own modes (Eq. 34). Paper: 0.03.
+    pub damping_ratio: f64,
+    /// Rayleigh mass coefficient alpha, 1/s, added to the modal damping (C += alpha M per beam). Default 0.
+    pub rayleigh_alpha: f64,
+    /// Rayleigh stiffness coefficient beta, s, added to the modal damping (C += beta K per beam). Default 0.
+    pub rayleigh_beta: f64,
+    /// Time step out of contact, s. Paper: 5e-5 s.
+    pub step_free: f64,
+    /// Time step in contact, s. Paper: 2.5e-5 s.
+    pub step_contact: f64,
+    /// Simulated time from the impact, s. Paper: 3 s.
+    pub duration: f64,
+    /// Acceleration of gravity g, m/s^2.
+    pub gravity: f64,
+    /// The bridge.
+    pub upper: UpperBeam,
+    /// The arrestor.
+    pub lower: LowerBeam,
+    /// The contact bar.
+    pub contact: ContactBar,
+}
+
+impl Default for Scenario {
+    fn default() -> Self {
+        Scenario {
+            drop_height: 0.567,
+            contact_position: 13.0,
+            damping_ratio: 0.03,
+            rayleigh_alpha: 0.0,
+            rayleigh_beta: 0.0,
+            step_free: 5e-5,
+            step_contact: 2.5e-5,
+            duration: 3.0,
+            gravity: 9.81,
+            upper: UpperBeam::default(),
+            lower: LowerBeam::default(),
+            contact: ContactBar::default(),
+        }
+    }
+}
+
+/// Largest element count accepted per beam segment: far beyond any useful mesh, it keeps
+/// the dense eigen solution of the model in seconds.
+pub const MAX_ELEMENTS: u32 = 400;
+
+/// Smallest time step: the stepper counts time in integer nanoseconds.
+pub const MIN_STEP: f64 = 1e-9;
+
+fn positive(name: &'static str, unit: &str, value: f64) -> Result<()> {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid(name, format!("> 0 {unit}").trim_end().to_string(), value))
+    }
+}
+
+fn non_negative(name: &'static str, unit: &str, value: f64) -> Result<()> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid(name, format!(">= 0 {unit}").trim_end().to_string(), value))
+    }
+}
+
+fn finite(name: &'static str, value: f64) -> Result<()> {
+    if value.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::invalid(name, "a finite number", value))
+    }
+}
+
+fn elements(name: &'static str, value: u32) -> Result<()> {
+    if (1..=MAX_ELEMENTS).contains(&value) {
+        Ok(())
+    } else {
+        Err(Error::invalid(name, format!("between 1 and {MAX_ELEMENTS}"), value))
+    }
+}
+
+impl Scenario {
+    /// Parses a scenario from TOML text; missing fields take the paper's values.
+    pub fn from_toml(text: &str, path: &str) -> Result<Self> {
+        let scenario: Scenario =
+            toml::from_str(text).map_err(|e| Error::Scenario { path: path.to_string(), message: one_line(&e.to_string()) })?;
+        scenario.validate()?;
+        Ok(scenario)
+    }
+
+    /// Reads and validates a scenario file.
+    pub fn from_file(path: &std::path::Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
+            action: "cannot read scenario",
+            path: path.display().to_string(),
+            source,
+        })?;
+        Self::from_toml(&text, &path.display().to_string())
+    }
+
+    /// The scenario as TOML, with every field.
+    pub fn to_toml(&self) -> String {
+        toml::to_string(self).unwrap_or_else(|e| format!("# cannot serialize scenario: {e}\n"))
+    }
+
+    /// True when this is the paper's scenario (the comparison with the paper applies).
+    pub fn is_paper(&self) -> bool {
+        *self == Scenario::default()
+    }
+
+    /// Checks every field that can be checked without assembling the model. The stability of
+    /// the time steps needs the natural frequencies and is checked by [`crate::model::Model::new`].
+    pub fn validate(&self) -> Result<()> {
+        // A zero drop height is legal: the bridge touches the arrestor at rest.
+        non_negative("drop_height", "m", self.drop_height)?;
+        positive("contact_position", "m", self.contact_position)?;
+        non_negative("damping_ratio", "", self.damping_ratio)?;
+        if self.damping_ratio >= 1.0 {
+            return Err(Error::invalid("damping_ratio", "< 1 (under-critical)", self.damping_ratio));
+        }
+        non_negative("rayleigh_alpha", "1/s", self.rayleigh_alpha)?;
+        non_negative("rayleigh_beta", "s", self.rayleigh_beta)?;
+        positive("step_free", "s", self.step_free)?;
+        positive("step_contact", "s", self.step_contact)?;
+        if self.step_free < MIN_STEP {
+            return Err(Error::invalid("step_free", format!(">= {MIN_STEP:e} s (time is counted in ns)"), self.step_free));
+        }
+        if self.step_contact < MIN_STEP {
+            return Err(Error::invalid(
+                "step_contact",
+                format!(">= {MIN_STEP:e} s (time is counted in ns)"),
+                self.step_contact,
+            ));
+        }
+        positive("duration", "s", self.duration)?;
+        if self.duration > 1e6 {
+            return Err(Error::invalid("duration", "<= 1e6 s", self.duration));
+        }
+        positive("gravity", "m/s^2", self.gravity)?;
+
+        let u = &self.upper;
+        positive("upper.length", "m", u.length)?;
+        positive("upper.mass", "kg", u.mass)?;
+        positive("upper.elastic_modulus", "Pa", u.elastic_modulus)?;
+        positive("upper.second_moment", "m^4", u.second_moment)?;
+        positive("upper.section_modulus", "m^3", u.section_modulus)?;
+        elements("upper.elements_to_contact", u.elements_to_contact)?;
+        elements("upper.elements_beyond_contact", u.elements_beyond_contact)?;
+        finite("upper.tip_force", u.tip_force)?;
+        if self.contact_position >= u.length {
+            return Err(Error::invalid(
+                "contact_position",
+                format!("inside the upper beam, 0 < d < upper.length = {} m", u.length),
+                self.contact_position,
+            ));
+        }
+
+        let l = &self.lower;
+        positive("lower.length", "m", l.length)?;
+        positive("lower.mass", "kg", l.mass)?;
+        non_negative("lower.tip_mass", "kg", l.tip_mass)?;
+        positive("lower.elastic_modulus", "Pa", l.elastic_modulus)?;
+        positive("lower.second_moment", "m^4", l.second_moment)?;
+        positive("lower.section_modulus", "m^3", l.section_modulus)?;
+        positive("lower.shear_area", "m^2", l.shear_area)?;
+        elements("lower.elements", l.elements)?;
+        finite("lower.tip_force", l.tip_force)?;
+
+        let c = &self.contact;
+        positive("contact.area", "m^2", c.area)?;
+        positive("contact.length", "m", c.length)?;
+        positive("contact.elastic_modulus", "Pa", c.elastic_modulus)?;
+        Ok(())
+    }
+
+    /// Time step of a stage in integer nanoseconds (time is counted in ns, so communication
+    /// points are hit exactly).
+    pub fn step_ns(&self, contact: bool) -> u64 {
+        let dt = if contact { self.step_contact } else { self.step_free };
+        (dt * 1e9).round().max(1.0) as u64
+    }
+
+    /// Duration in integer nanoseconds.
+    pub fn duration_ns(&self) -> u64 {
+        (self.duration * 1e9).round() as u64
+    }
+}
+
+fn one_line(text: &str) -> String {
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
+}

@@ -1,0 +1,165 @@
+//! The two beams and the contact bar as one model (paper Eqs. 2-4). Global DOFs: the arrestor's
+//! first, then the bridge's. Outputs are linear functionals of the global displacement vector.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::assembly::Beam;
+use super::mesh::Mesh;
+use super::scenario::Scenario;
+use crate::error::Result;
+
+/// Index of each probe (a linear functional of the displacements) in [`Model::probes`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Probe {
+    /// Deflection of the arrestor's free end y_k,l (node 8 in the paper), m.
+    LowerTipDeflection = 0,
+    /// Deflection of the bridge's contact node y_k,u (node 16), m.
+    UpperContactDeflection = 1,
+    /// Deflection of the bridge's free end, m.
+    UpperTipDeflection = 2,
+    /// y_k,u - y_k,l: the contact bar's shortening with sign (Eq. 6); negative means contact.
+    Gap = 3,
+    /// Internal bending moment at the clamp (node 1), N m, sagging positive.
+    ClampMoment = 4,
+    /// Internal shear force at the clamp, N.
+    ClampShear = 5,
+    /// Internal bending moment at the bridge's contact node (mean of the two adjacent elements), N m.
+    UpperContactMoment = 6,
+}
+
+/// Number of probes.
+pub const PROBES: usize = 7;
+
+/// The assembled two-beam model.
+#[derive(Clone, Debug)]
+pub struct Model {
+    /// The validated scenario it was built from.
+    pub scenario: Scenario,
+    /// The arrestor.
+    pub lower: Beam,
+    /// The bridge.
+    pub upper: Beam,
+    /// Index of the bridge's contact node in `upper.mesh.nodes`.
+    pub contact_node: usize,
+    /// Contact bar stiffness E A_c / l_c, N/m (Eq. 3).
+    pub bar_stiffness: f64,
+    /// Probe functionals as rows over the global DOFs, indexed by [`Probe`].
+    pub probes: DMatrix<f64>,
+}
+
+impl Model {
+    /// Validates the scenario and assembles both beams.
+    pub fn new(scenario: &Scenario) -> Result<Model> {
+        scenario.validate()?;
+        let s = scenario;
+        let lower = Beam::assemble(
+            Mesh::cantilever(s.lower.length, s.lower.elements as usize),
+            s.lower.elastic_modulus * s.lower.second_moment,
+            s.lower.mass,
+            s.lower.tip_mass,
+            s.gravity,
+        );
+        let inner = s.upper.elements_to_contact as usize;
+        let upper = Beam::assemble(
+            Mesh::hinged_free(s.upper.length, s.contact_position, inner, s.upper.elements_beyond_contact as usize),
+            s.upper.elastic_modulus * s.upper.second_moment,
+            s.upper.mass,
+            0.0,
+            s.gravity,
+        );
+        let (nl, nu) = (lower.dofs(), upper.dofs());
+        let n = nl + nu;
+        let mut probes = DMatrix::zeros(PROBES, n);
+        let mut put = |probe: Probe, lower_part: Option<DVector<f64>>, upper_part: Option<DVector<f64>>| {
+            if let Some(r) = lower_part {
+                probes.view_mut((probe as usize, 0), (1, nl)).copy_from(&r.transpose());
+            }
+            if let Some(r) = upper_part {
+                probes.view_mut((probe as usize, nl), (1, nu)).copy_from(&r.transpose());
+            }
+        };
+        let lower_tip = lower.mesh.nodes.len() - 1;
+        let upper_tip = upper.mesh.nodes.len() - 1;
+        put(Probe::LowerTipDeflection, Some(lower.deflection_functional(lower_tip)), None);
+        put(Probe::UpperContactDeflection, None, Some(upper.deflection_functional(inner)));
+        put(Probe::UpperTipDeflection, None, Some(upper.deflection_functional(upper_tip)));
+        put(Probe::Gap, Some(-lower.deflection_functional(lower_tip)), Some(upper.deflection_functional(inner)));
+        put(Probe::ClampMoment, Some(lower.start_moment_functional(0)), None);
+        put(Probe::ClampShear, Some(lower.start_shear_functional(0)), None);
+        let contact_moment = (upper.end_moment_functional(inner - 1) + upper.start_moment_functional(inner)) * 0.5;
+        put(Probe::UpperContactMoment, None, Some(contact_moment));
+        Ok(Model {
+            scenario: scenario.clone(),
+            bar_stiffness: s.contact.stiffness(),
+            contact_node: inner,
+            lower,
+            upper,
+            probes,
+        })
+    }
+
+    /// Number of global DOFs.
+    pub fn dofs(&self) -> usize {
+        self.lower.dofs() + self.upper.dofs()
+    }
+
+    /// The contact vector b with y_k,u - y_k,l = b . delta; the bar adds k_c b b^T to K (Eq. 4).
+    pub fn contact_vector(&self) -> DVector<f64> {
+        self.probes.row(Probe::Gap as usize).transpose()
+    }
+
+    /// Block-diagonal global matrix of two per-beam matrices (Eq. 2).
+    pub fn block_diagonal(&self, lower: &DMatrix<f64>, upper: &DMatrix<f64>) -> DMatrix<f64> {
+        let (nl, n) = (self.lower.dofs(), self.dofs());
+        let mut a = DMatrix::zeros(n, n);
+        a.view_mut((0, 0), (nl, nl)).copy_from(lower);
+        a.view_mut((nl, nl), (n - nl, n - nl)).copy_from(upper);
+        a
+    }
+
+    /// Stacks per-beam vectors into a global one.
+    pub fn stack(&self, lower: &DVector<f64>, upper: &DVector<f64>) -> DVector<f64> {
+        let mut v = DVector::zeros(self.dofs());
+        v.rows_mut(0, self.lower.dofs()).copy_from(lower);
+        v.rows_mut(self.lower.dofs(), self.upper.dofs()).copy_from(upper);
+        v
+    }
+
+    /// Global mass matrix.
+    pub fn mass(&self) -> DMatrix<f64> {
+        self.block_diagonal(&self.lower.mass, &self.upper.mass)
+    }
+
+    /// Global stiffness of the two beams without the bar (out of contact, Eq. 2).
+    pub fn stiffness(&self) -> DMatrix<f64> {
+        self.block_diagonal(&self.lower.stiffness, &self.upper.stiffness)
+    }
+
+    /// Global stiffness with the bar (in contact, Eq. 4).
+    pub fn coupled_stiffness(&self) -> DMatrix<f64> {
+        let b = self.contact_vector();
+        self.stiffness() + &b * b.transpose() * self.bar_stiffness
+    }
+
+    /// Global gravity load vector, N.
+    pub fn gravity_load(&self) -> DVector<f64> {
+        self.stack(&self.lower.gravity_load, &self.upper.gravity_load)
+    }
+
+    /// Global load vector of unit vertical forces at the bridge's free end and the arrestor's end:
+    /// F_ext = upper_tip * `.0` + lower_tip * `.1`.
+    pub fn tip_force_vectors(&self) -> (DVector<f64>, DVector<f64>) {
+        (
+            self.probes.row(Probe::UpperTipDeflection as usize).transpose(),
+            self.probes.row(Probe::LowerTipDeflection as usize).transpose(),
+        )
+    }
+
+    /// Positions of the bridge's nodes and of the arrestor's nodes, m, from each beam's support.
+    pub fn node_positions(&self) -> (Vec<f64>, Vec<f64>) {
+        (
+            self.lower.mesh.nodes.iter().map(|n| n.x).collect(),
+            self.upper.mesh.nodes.iter().map(|n| n.x).collect(),
+        )
+    }
+}

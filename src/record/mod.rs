@@ -1,0 +1,93 @@
+//! Where results go: the [`Recorder`] the simulation writes into. The physics never sees a
+//! file format; the MCAP recorder lives in [`mcap`], an in-memory one in [`MemoryRecorder`].
+
+use nalgebra::DMatrix;
+
+use crate::error::Result;
+use crate::model::Scenario;
+use crate::results::{ContactEvent, StepResult};
+
+/// What a recorder learns once, before the first step.
+#[derive(Clone, Debug)]
+pub struct RunInfo<'a> {
+    /// The scenario of the run.
+    pub scenario: &'a Scenario,
+    /// Node positions of the arrestor from the clamp, m.
+    pub lower_nodes: &'a [f64],
+    /// Node positions of the bridge from the hinge, m.
+    pub upper_nodes: &'a [f64],
+    /// Maps the modal coordinates of a step to the nodal deflections of the arrestor's nodes
+    /// followed by the bridge's nodes, m: w = shapes * q (rows of supported nodes are zero).
+    pub nodal_shapes: &'a DMatrix<f64>,
+}
+
+/// Receives every internal step of a run.
+pub trait Recorder {
+    /// Called once before the first step (the initial state at t = 0 follows as step 0).
+    fn start(&mut self, info: &RunInfo<'_>) -> Result<()>;
+    /// One internal step, with the modal coordinates from which the deflected shapes follow.
+    fn step(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()>;
+    /// A contact stage starts or ends.
+    fn contact_event(&mut self, event: &ContactEvent) -> Result<()>;
+    /// Completes the record (for a file: summary and footer). Must be called and checked.
+    fn finish(&mut self) -> Result<()>;
+}
+
+/// A recorder that keeps nothing.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NullRecorder;
+
+impl Recorder for NullRecorder {
+    fn start(&mut self, _: &RunInfo<'_>) -> Result<()> {
+        Ok(())
+    }
+    fn step(&mut self, _: &StepResult, _: &[f64]) -> Result<()> {
+        Ok(())
+    }
+    fn contact_event(&mut self, _: &ContactEvent) -> Result<()> {
+        Ok(())
+    }
+    fn finish(&mut self) -> Result<()> {
+        Ok(())
+    }
+}
+
+/// A recorder that keeps everything in memory, for tests.
+#[derive(Clone, Debug, Default)]
+pub struct MemoryRecorder {
+    /// Whether `start` was called.
+    pub started: bool,
+    /// Every step, in order.
+    pub steps: Vec<StepResult>,
+    /// Modal coordinates of every step.
+    pub coordinates: Vec<Vec<f64>>,
+    /// Contact events, in order.
+    pub events: Vec<ContactEvent>,
+    /// Whether `finish` was called.
+    pub finished: bool,
+    /// The nodal shape matrix given at start.
+    pub nodal_shapes: Option<DMatrix<f64>>,
+}
+
+impl Recorder for MemoryRecorder {
+    fn start(&mut self, info: &RunInfo<'_>) -> Result<()> {
+        self.started = true;
+        self.nodal_shapes = Some(info.nodal_shapes.clone());
+        Ok(())
+    }
+    fn step(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()> {
+        self.steps.push(*result);
+        self.coordinates.push(modal_coordinates.to_vec());
+        Ok(())
+    }
+    fn contact_event(&mut self, event: &ContactEvent) -> Result<()> {
+        self.events.push(*event);
+        Ok(())
+    }
+    fn finish(&mut self) -> Result<()> {
+        self.finished = true;
+        Ok(())
+    }
+}
+
+pub mod mcap;

@@ -1,0 +1,153 @@
+//! What a run produces: one [`StepResult`] per internal step, contact events, and the summary.
+
+use serde::{Deserialize, Serialize};
+
+/// The energy account of Section 2 at one instant, J. The residual is what the discrete
+/// balance misses: kinetic + strain + gravity + dissipated - external work - initial total.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct EnergyAccount {
+    /// 1/2 v^T M v of both beams.
+    pub kinetic: f64,
+    /// Strain energy of both beams and of the bar while in contact.
+    pub strain: f64,
+    /// -F_g^T delta, from the undeformed horizontal position.
+    pub gravity_potential: f64,
+    /// Work done by the two external tip forces since t = 0.
+    pub external_work: f64,
+    /// Energy dissipated by damping since t = 0 (trapezoidal integral of v^T C v).
+    pub damping_dissipation: f64,
+    /// Balance residual.
+    pub residual: f64,
+}
+
+/// Running peaks max |.| since t = 0 of the Table 1 quantities (and the contact force).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Peaks {
+    /// Arrestor end deflection w_din,a, m.
+    pub lower_tip_deflection: f64,
+    /// Bending stress at the clamp sigma_din,a, Pa.
+    pub lower_clamp_bending_stress: f64,
+    /// Shear stress at the clamp tau_din,a, Pa.
+    pub lower_clamp_shear_stress: f64,
+    /// Bending stress at the bridge's contact node sigma_din,b, Pa.
+    pub upper_contact_bending_stress: f64,
+    /// Contact bar force, N.
+    pub contact_force: f64,
+}
+
+impl Peaks {
+    /// The five peak quantities in a fixed order (for loops over them).
+    pub fn as_array(&self) -> [f64; 5] {
+        [
+            self.lower_tip_deflection,
+            self.lower_clamp_bending_stress,
+            self.lower_clamp_shear_stress,
+            self.upper_contact_bending_stress,
+            self.contact_force,
+        ]
+    }
+
+    /// Mutable access in the order of [`Peaks::as_array`].
+    pub fn as_mut_array(&mut self) -> [&mut f64; 5] {
+        [
+            &mut self.lower_tip_deflection,
+            &mut self.lower_clamp_bending_stress,
+            &mut self.lower_clamp_shear_stress,
+            &mut self.upper_contact_bending_stress,
+            &mut self.contact_force,
+        ]
+    }
+}
+
+/// Results at the end of one internal step (y up: deflections are negative downward).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct StepResult {
+    /// Steps taken since t = 0 (0 is the initial state).
+    pub step: u64,
+    /// Simulated time since impact, ns (integer: the time base of the logs).
+    pub time_ns: u64,
+    /// Simulated time since impact, s.
+    pub time: f64,
+    /// Size of the step that ended here, s (0 for the initial state).
+    pub step_size: f64,
+    /// Whether that step was taken in contact (Eq. 6 at its start).
+    pub contact: bool,
+    /// Deflection of the arrestor's end (node 8), m.
+    pub lower_tip_deflection: f64,
+    /// Deflection of the bridge's contact node (node 16), m.
+    pub upper_contact_deflection: f64,
+    /// Deflection of the bridge's free end, m.
+    pub upper_tip_deflection: f64,
+    /// Bending stress M/W at the clamp (node 1), Pa, sagging positive.
+    pub lower_clamp_bending_stress: f64,
+    /// Shear stress Q/A_s at the clamp, Pa.
+    pub lower_clamp_shear_stress: f64,
+    /// Bending stress M/W at the bridge's contact node, Pa, sagging positive.
+    pub upper_contact_bending_stress: f64,
+    /// Contact bar force F_c (Eq. 5), N: negative in compression, 0 when apart.
+    pub contact_force: f64,
+    /// Contact bar stress F_c / A_c, Pa.
+    pub contact_stress: f64,
+    /// Energy account.
+    pub energy: EnergyAccount,
+    /// Running peaks.
+    pub peaks: Peaks,
+}
+
+/// The start or the end of a contact stage.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ContactEvent {
+    /// True when contact starts, false when the beams separate.
+    pub start: bool,
+    /// Time at which Eq. (6) changed, ns (start of the first step in the new stage).
+    pub time_ns: u64,
+    /// Index of the first step in the new stage.
+    pub step: u64,
+    /// Relative velocity of the contact points d(y_k,u - y_k,l)/dt, m/s (negative approaching).
+    pub relative_velocity: f64,
+}
+
+/// One interval of contact, s.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ContactWindow {
+    /// Start, s.
+    pub start: f64,
+    /// End, s (the run's end if still in contact).
+    pub end: f64,
+}
+
+/// Natural frequencies of Table 2, rad/s, the first five (or fewer) of each column.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ModeTable {
+    /// Arrestor alone.
+    pub lower: Vec<f64>,
+    /// Bridge alone.
+    pub upper: Vec<f64>,
+    /// Coupled through an always-active bar.
+    pub coupled: Vec<f64>,
+}
+
+/// The whole run's summary: what the CLI prints and `--json` writes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Summary {
+    /// Internal steps taken.
+    pub steps: u64,
+    /// Simulated time reached, s.
+    pub time: f64,
+    /// Running peaks at the end.
+    pub peaks: Peaks,
+    /// Times at which each peak was reached, s (same order as the peaks).
+    pub peak_times: Peaks,
+    /// Bridge strain energy at the instant of the largest arrestor deflection, J (E_def,b, Eq. 36).
+    pub upper_strain_at_peak_deflection: f64,
+    /// Contact intervals.
+    pub contact_windows: Vec<ContactWindow>,
+    /// Energy balance residual at the end, J.
+    pub final_energy_residual: f64,
+    /// Largest |residual| during the run, J.
+    pub max_energy_residual: f64,
+    /// Energy approach of Section 3.
+    pub energy_method: crate::solver::EnergyMethod,
+    /// Natural frequencies (Table 2).
+    pub modes: ModeTable,
+}

@@ -1,0 +1,357 @@
+//! The pipeline: scenario -> validated model -> stepper -> step results -> recorder.
+//! Time is counted in integer nanoseconds, so communication points and log stamps are exact.
+
+use nalgebra::DMatrix;
+use serde::{Deserialize, Serialize};
+
+use crate::error::Result;
+use crate::model::system::PROBES;
+use crate::model::{Model, Probe, Scenario};
+use crate::record::{Recorder, RunInfo};
+use crate::results::{ContactEvent, ContactWindow, EnergyAccount, ModeTable, Peaks, StepResult, Summary};
+use crate::solver::contact::{self, Stage};
+use crate::solver::initial::initial_state;
+use crate::solver::{DenseStepper, EnergyMethod, Kinematics, ModalStepper, ModalSystem, Stepper, TipForces};
+
+/// Everything that changes during a run: enough to restore it exactly (FMU state, rollback).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RunState {
+    /// The stepper's state (modal coordinates for the production stepper).
+    pub kinematics: Kinematics,
+    /// Results of the latest step (step 0: the initial state).
+    pub result: StepResult,
+    /// Tip forces applied from now on (FMU inputs).
+    pub forces: TipForces,
+    /// Tip forces of the latest step (for the trapezoidal external work).
+    pub last_forces: TipForces,
+    /// Total energy at t = 0, J.
+    pub initial_energy: f64,
+    /// v^T C v at the latest state, W.
+    pub dissipation_rate: f64,
+    /// When each running peak was reached, s.
+    pub peak_times: Peaks,
+    /// Bridge strain energy at the largest arrestor deflection so far, J.
+    pub upper_strain_at_peak: f64,
+    /// Contact intervals so far (the last one may still be open).
+    pub contact_windows: Vec<ContactWindow>,
+    /// Largest |energy residual| so far, J.
+    pub max_residual: f64,
+}
+
+/// How an [`Simulation::advance_to`] call ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Advance {
+    /// The target time was reached.
+    Reached,
+    /// Stopped early at a contact change (only when asked to).
+    ContactChanged,
+}
+
+/// A running two-beam impact simulation.
+#[derive(Clone, Debug)]
+pub struct Simulation<S: Stepper = ModalStepper> {
+    model: Model,
+    modal: ModalSystem,
+    stepper: S,
+    energy_method: EnergyMethod,
+    nodal_shapes: DMatrix<f64>,
+    state: RunState,
+}
+
+impl Simulation<ModalStepper> {
+    /// Validates `scenario`, assembles the model, computes the modes, checks the time steps and
+    /// sets the initial conditions, with the production stepper.
+    pub fn new(scenario: &Scenario) -> Result<Self> {
+        let model = Model::new(scenario)?;
+        let modal = ModalSystem::new(&model)?;
+        let stepper = ModalStepper::new(&model, modal.clone());
+        Self::with_stepper(model, modal, stepper)
+    }
+}
+
+impl Simulation<DenseStepper> {
+    /// The same run with the dense oracle of Eqs. (7)-(11) (tests and benchmarks).
+    pub fn new_dense(scenario: &Scenario) -> Result<Self> {
+        let model = Model::new(scenario)?;
+        let modal = ModalSystem::new(&model)?;
+        let stepper = DenseStepper::new(&model, &modal);
+        Self::with_stepper(model, modal, stepper)
+    }
+}
+
+impl<S: Stepper> Simulation<S> {
+    fn with_stepper(model: Model, modal: ModalSystem, stepper: S) -> Result<Self> {
+        let forces = TipForces { upper: model.scenario.upper.tip_force, lower: model.scenario.lower.tip_force };
+        let physical = initial_state(&model, &modal, forces)?;
+        let kinematics = stepper.from_physical(&physical);
+        let shapes = modal.shapes(&model);
+        let nodal_shapes = nodal_shapes(&model, &shapes);
+        let energy_method = EnergyMethod::new(&model.scenario);
+        let state = RunState {
+            kinematics,
+            result: StepResult::default(),
+            forces,
+            last_forces: forces,
+            initial_energy: 0.0,
+            dissipation_rate: 0.0,
+            peak_times: Peaks::default(),
+            upper_strain_at_peak: 0.0,
+            contact_windows: Vec::new(),
+            max_residual: 0.0,
+        };
+        let mut simulation = Simulation { model, modal, stepper, energy_method, nodal_shapes, state };
+        simulation.evaluate_initial();
+        Ok(simulation)
+    }
+
+    fn evaluate_initial(&mut self) {
+        let probes = self.stepper.probes(&self.state.kinematics.displacement);
+        let energies = self.stepper.energies(&self.state.kinematics);
+        let mut result = self.outputs(&probes, Stage::Free);
+        result.energy.kinetic = energies.kinetic;
+        result.energy.strain = energies.beam_strain;
+        result.energy.gravity_potential = energies.gravity_potential;
+        self.state.initial_energy = energies.kinetic + energies.beam_strain + energies.gravity_potential;
+        self.state.dissipation_rate = energies.dissipation_rate;
+        self.state.result = result;
+        self.update_peaks(energies.upper_strain);
+    }
+
+    /// The outputs of the current displacement probes, without time or energy.
+    fn outputs(&self, probes: &[f64; PROBES], stage: Stage) -> StepResult {
+        let s = &self.model.scenario;
+        let force = contact::bar_force(self.model.bar_stiffness, probes[Probe::Gap as usize], stage);
+        StepResult {
+            contact: stage.is_contact(),
+            lower_tip_deflection: probes[Probe::LowerTipDeflection as usize],
+            upper_contact_deflection: probes[Probe::UpperContactDeflection as usize],
+            upper_tip_deflection: probes[Probe::UpperTipDeflection as usize],
+            lower_clamp_bending_stress: probes[Probe::ClampMoment as usize] / s.lower.section_modulus,
+            lower_clamp_shear_stress: probes[Probe::ClampShear as usize] / s.lower.shear_area,
+            upper_contact_bending_stress: probes[Probe::UpperContactMoment as usize] / s.upper.section_modulus,
+            contact_force: force,
+            contact_stress: force / s.contact.area,
+            ..StepResult::default()
+        }
+    }
+
+    fn update_peaks(&mut self, upper_strain: f64) {
+        let r = &mut self.state.result;
+        let values = [
+            r.lower_tip_deflection,
+            r.lower_clamp_bending_stress,
+            r.lower_clamp_shear_stress,
+            r.upper_contact_bending_stress,
+            r.contact_force,
+        ];
+        let time = r.time;
+        for (k, (peak, when)) in r.peaks.as_mut_array().into_iter().zip(self.state.peak_times.as_mut_array()).enumerate()
+        {
+            if values[k].abs() > *peak || r.step == 0 {
+                *peak = values[k].abs();
+                *when = time;
+                if k == 0 {
+                    self.state.upper_strain_at_peak = upper_strain;
+                }
+            }
+        }
+    }
+
+    /// Stage of the next step, by Eq. (6) on the current state.
+    pub fn next_stage(&self) -> Stage {
+        let gap = self.stepper.probes(&self.state.kinematics.displacement)[Probe::Gap as usize];
+        contact::stage(gap)
+    }
+
+    /// Takes one internal step of at most `max_step_ns` (the stage's own step otherwise) and
+    /// returns the contact event if the stage changed.
+    pub fn step(&mut self, max_step_ns: u64) -> Option<ContactEvent> {
+        let stage = self.next_stage();
+        let previous = self.state.result;
+        let step_ns = self.model.scenario.step_ns(stage.is_contact()).min(max_step_ns).max(1);
+        let dt = step_ns as f64 * 1e-9;
+        let event = (previous.step == 0 && stage.is_contact() || previous.step > 0 && previous.contact != stage.is_contact())
+            .then(|| {
+                let rate = self.stepper.probes(&self.state.kinematics.velocity)[Probe::Gap as usize];
+                ContactEvent { start: stage.is_contact(), time_ns: previous.time_ns, step: previous.step + 1, relative_velocity: rate }
+            });
+        let forces = self.state.forces;
+        self.stepper.step(&mut self.state.kinematics, stage, dt, forces);
+
+        let probes = self.stepper.probes(&self.state.kinematics.displacement);
+        let energies = self.stepper.energies(&self.state.kinematics);
+        let mut result = self.outputs(&probes, stage);
+        result.step = previous.step + 1;
+        result.time_ns = previous.time_ns + step_ns;
+        result.time = result.time_ns as f64 * 1e-9;
+        result.step_size = dt;
+        result.peaks = previous.peaks;
+        let last = self.state.last_forces;
+        let work = 0.5 * (last.upper + forces.upper) * (result.upper_tip_deflection - previous.upper_tip_deflection)
+            + 0.5 * (last.lower + forces.lower) * (result.lower_tip_deflection - previous.lower_tip_deflection);
+        let bar = if stage.is_contact() { contact::bar_energy(self.model.bar_stiffness, probes[Probe::Gap as usize]) } else { 0.0 };
+        let mut energy = EnergyAccount {
+            kinetic: energies.kinetic,
+            strain: energies.beam_strain + bar,
+            gravity_potential: energies.gravity_potential,
+            external_work: previous.energy.external_work + work,
+            damping_dissipation: previous.energy.damping_dissipation
+                + 0.5 * dt * (self.state.dissipation_rate + energies.dissipation_rate),
+            residual: 0.0,
+        };
+        energy.residual = energy.kinetic + energy.strain + energy.gravity_potential + energy.damping_dissipation
+            - energy.external_work
+            - self.state.initial_energy;
+        result.energy = energy;
+        self.state.max_residual = self.state.max_residual.max(energy.residual.abs());
+        self.state.dissipation_rate = energies.dissipation_rate;
+        self.state.last_forces = forces;
+        self.state.result = result;
+        self.update_peaks(energies.upper_strain);
+
+        let windows = &mut self.state.contact_windows;
+        if let Some(e) = &event {
+            if e.start {
+                windows.push(ContactWindow { start: e.time_ns as f64 * 1e-9, end: result.time });
+            }
+        }
+        if stage.is_contact() {
+            if let Some(w) = windows.last_mut() {
+                w.end = result.time;
+            }
+        }
+        event
+    }
+
+    /// Steps until `target_ns`, landing on it exactly (the last step is shortened), sending every
+    /// step to `recorder`. With `stop_at_contact_change`, returns early after the first step of a
+    /// new stage.
+    pub fn advance_to(
+        &mut self,
+        target_ns: u64,
+        recorder: &mut dyn Recorder,
+        stop_at_contact_change: bool,
+    ) -> Result<Advance> {
+        while self.state.result.time_ns < target_ns {
+            let event = self.step(target_ns - self.state.result.time_ns);
+            if let Some(e) = &event {
+                recorder.contact_event(e)?;
+            }
+            recorder.step(&self.state.result, self.state.kinematics.displacement.as_slice())?;
+            if event.is_some() && stop_at_contact_change {
+                return Ok(Advance::ContactChanged);
+            }
+        }
+        Ok(Advance::Reached)
+    }
+
+    /// Sends the run's description and the initial state (step 0) to `recorder`.
+    pub fn start_recording(&self, recorder: &mut dyn Recorder) -> Result<()> {
+        let (lower_nodes, upper_nodes) = self.model.node_positions();
+        recorder.start(&RunInfo {
+            scenario: &self.model.scenario,
+            lower_nodes: &lower_nodes,
+            upper_nodes: &upper_nodes,
+            nodal_shapes: &self.nodal_shapes,
+        })?;
+        recorder.step(&self.state.result, self.state.kinematics.displacement.as_slice())
+    }
+
+    /// Runs the scenario's whole duration into `recorder` (start, every step, finish).
+    pub fn run(&mut self, recorder: &mut dyn Recorder) -> Result<Summary> {
+        self.start_recording(recorder)?;
+        self.advance_to(self.model.scenario.duration_ns(), recorder, false)?;
+        recorder.finish()?;
+        Ok(self.summary())
+    }
+
+    /// Sets the two external tip forces, N (up positive), applied from the next step on.
+    pub fn set_tip_forces(&mut self, forces: TipForces) {
+        self.state.forces = forces;
+    }
+
+    /// Results of the latest step.
+    pub fn result(&self) -> &StepResult {
+        &self.state.result
+    }
+
+    /// The run state, for saving (FMU state, rollback).
+    pub fn state(&self) -> &RunState {
+        &self.state
+    }
+
+    /// Restores a state saved from a simulation of the same scenario.
+    pub fn restore(&mut self, state: RunState) -> Result<()> {
+        let n = self.model.dofs();
+        let k = &state.kinematics;
+        if k.displacement.len() != n || k.velocity.len() != n || k.acceleration.len() != n {
+            return Err(crate::error::Error::State(format!(
+                "the state has {} coordinates, this model has {n}",
+                k.displacement.len()
+            )));
+        }
+        self.state = state;
+        Ok(())
+    }
+
+    /// The scenario.
+    pub fn scenario(&self) -> &Scenario {
+        &self.model.scenario
+    }
+
+    /// The assembled model.
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+
+    /// Modes of the beams and of the coupled system.
+    pub fn modal(&self) -> &ModalSystem {
+        &self.modal
+    }
+
+    /// The energy approach of Section 3 for this scenario.
+    pub fn energy_method(&self) -> &EnergyMethod {
+        &self.energy_method
+    }
+
+    /// Modal coordinates to nodal deflections (arrestor nodes, then bridge nodes), m.
+    pub fn nodal_shapes(&self) -> &DMatrix<f64> {
+        &self.nodal_shapes
+    }
+
+    /// Natural frequencies, the first `count` of each column of Table 2, rad/s.
+    pub fn mode_table(&self, count: usize) -> ModeTable {
+        let first = |m: &crate::solver::Modes| m.omega.iter().take(count).copied().collect();
+        ModeTable { lower: first(&self.modal.lower), upper: first(&self.modal.upper), coupled: first(&self.modal.coupled) }
+    }
+
+    /// The summary of the run so far.
+    pub fn summary(&self) -> Summary {
+        let s = &self.state;
+        Summary {
+            steps: s.result.step,
+            time: s.result.time,
+            peaks: s.result.peaks,
+            peak_times: s.peak_times,
+            upper_strain_at_peak_deflection: s.upper_strain_at_peak,
+            contact_windows: s.contact_windows.clone(),
+            final_energy_residual: s.result.energy.residual,
+            max_energy_residual: s.max_residual,
+            energy_method: self.energy_method,
+            modes: self.mode_table(5),
+        }
+    }
+}
+
+/// Rows: every node of the arrestor, then of the bridge; columns: global modal coordinates.
+fn nodal_shapes(model: &Model, shapes: &DMatrix<f64>) -> DMatrix<f64> {
+    let nodes: Vec<Option<usize>> = model
+        .lower
+        .mesh
+        .nodes
+        .iter()
+        .map(|n| n.w)
+        .chain(model.upper.mesh.nodes.iter().map(|n| n.w.map(|i| i + model.lower.dofs())))
+        .collect();
+    DMatrix::from_fn(nodes.len(), shapes.ncols(), |r, c| nodes[r].map_or(0.0, |i| shapes[(i, c)]))
+}

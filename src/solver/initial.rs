@@ -1,0 +1,101 @@
+//! Initial conditions at the instant of impact (paper Eqs. 14-26) with the compatibility
+//! convention of SCENARIO.md: time 0 is the impact, the bridge is horizontal and rotating
+//! rigidly, the arrestor rests in its self-weight deflection, and the beams touch.
+
+use nalgebra::DVector;
+
+use super::kinematics::{Kinematics, TipForces};
+use super::modal::ModalSystem;
+use crate::error::{Error, Result};
+use crate::model::{Model, Probe};
+
+/// The rigid pitching of the bridge before impact (Eqs. 15-22).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pitching {
+    /// Initial inclination alpha_u0 = atan(h / (l_u / 2)), rad (Eq. 20).
+    pub initial_angle: f64,
+    /// Angular acceleration epsilon_u = 3 g / (2 l_u), rad/s^2 (Eq. 17).
+    pub angular_acceleration: f64,
+    /// Time t_0 from release to the horizontal position, s (Eq. 21).
+    pub fall_time: f64,
+    /// Angular velocity omega_u0 at impact, rad/s (Eq. 22).
+    pub angular_velocity: f64,
+}
+
+impl Pitching {
+    /// Eqs. (17), (20)-(22).
+    pub fn new(drop_height: f64, length: f64, gravity: f64) -> Pitching {
+        let initial_angle = (drop_height / (length / 2.0)).atan();
+        let angular_acceleration = 1.5 * gravity / length;
+        let fall_time = (4.0 / 3.0 * length / gravity * initial_angle).sqrt();
+        Pitching { initial_angle, angular_acceleration, fall_time, angular_velocity: angular_acceleration * fall_time }
+    }
+}
+
+/// Physical displacements, velocities and accelerations at t = 0 (global DOFs).
+pub fn initial_state(model: &Model, modal: &ModalSystem, forces: TipForces) -> Result<Kinematics> {
+    let s = &model.scenario;
+    let (upper_tip, lower_tip) = model.tip_force_vectors();
+    let external = &upper_tip * forces.upper + &lower_tip * forces.lower;
+    let nl = model.lower.dofs();
+    let nu = model.upper.dofs();
+    let load_lower = model.lower.gravity_load.clone() + external.rows(0, nl);
+    let load_upper = model.upper.gravity_load.clone() + external.rows(nl, nu);
+
+    // Arrestor, Eqs. (25)-(26): at rest in its static deflection.
+    let lower_displacement = model.lower.stiffness.clone().cholesky().map(|c| c.solve(&load_lower)).ok_or_else(|| {
+        Error::Numerical { what: "initial conditions", detail: "the arrestor's stiffness matrix is singular".into() }
+    })?;
+
+    // Bridge, Eq. (23): rigid rotation about the hinge, pitching down (w = -x alpha, theta = -alpha).
+    let pitching = Pitching::new(s.drop_height, s.upper.length, s.gravity);
+    let mut rotation = DVector::zeros(nu);
+    for node in &model.upper.mesh.nodes {
+        if let Some(i) = node.w {
+            rotation[i] = -node.x;
+        }
+        if let Some(i) = node.theta {
+            rotation[i] = -1.0;
+        }
+    }
+    let upper_velocity = &rotation * pitching.angular_velocity;
+    let mut upper_acceleration = &rotation * pitching.angular_acceleration;
+
+    // Eq. (24) in the bridge's modes: each elastic mode is in quasi-static balance with
+    // F - C v - M a. The rigid mode (omega = 0) takes the out-of-balance moment of any tip force
+    // into its acceleration, and its amplitude is set so that the contact node meets the arrestor's end.
+    let damping = crate::model::damping::physical_matrix(&model.upper.mass, &modal.upper.shapes, &{
+        let w = &modal.upper.omega;
+        crate::model::damping::modal_coefficients(w, s.damping_ratio, s.rayleigh_alpha, s.rayleigh_beta)
+    });
+    let residual = &load_upper - &damping * &upper_velocity - &model.upper.mass * &upper_acceleration;
+    let phi = &modal.upper.shapes;
+    let modal_residual = phi.transpose() * residual;
+    let mut q = DVector::zeros(nu);
+    for i in 0..nu {
+        let omega = modal.upper.omega[i];
+        if omega > 0.0 {
+            q[i] = modal_residual[i] / (omega * omega);
+        } else {
+            upper_acceleration += phi.column(i) * modal_residual[i];
+        }
+    }
+    let contact_w = model.upper.mesh.nodes[model.contact_node].w.expect("contact node is not the hinge");
+    let lower_tip_w = model.lower.mesh.tip().w.expect("arrestor tip is free");
+    let target = lower_displacement[lower_tip_w];
+    let rigid = (0..nu).find(|&i| modal.upper.omega[i] == 0.0).ok_or_else(|| Error::Numerical {
+        what: "initial conditions",
+        detail: "the hinged bridge has no rigid-body mode".into(),
+    })?;
+    let elastic_at_contact = (phi.row(contact_w) * &q)[0];
+    q[rigid] = (target - elastic_at_contact) / phi[(contact_w, rigid)];
+    let upper_displacement = phi * q;
+
+    let state = Kinematics {
+        displacement: model.stack(&lower_displacement, &upper_displacement),
+        velocity: model.stack(&DVector::zeros(nl), &upper_velocity),
+        acceleration: model.stack(&DVector::zeros(nl), &upper_acceleration),
+    };
+    debug_assert!((model.probes.row(Probe::Gap as usize) * &state.displacement)[0].abs() < 1e-9);
+    Ok(state)
+}

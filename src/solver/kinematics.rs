@@ -1,0 +1,56 @@
+//! The integrator's state and the interface shared by the production stepper and the dense oracle.
+
+use nalgebra::DVector;
+use serde::{Deserialize, Serialize};
+
+use super::contact::Stage;
+use crate::model::system::PROBES;
+
+/// Displacements, velocities and accelerations at one instant (delta, delta', delta'' of Eq. 11),
+/// in the stepper's own coordinates (modal for the production stepper, physical for the oracle).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Kinematics {
+    /// Displacements, m and rad (or modal coordinates).
+    pub displacement: DVector<f64>,
+    /// Velocities.
+    pub velocity: DVector<f64>,
+    /// Accelerations.
+    pub acceleration: DVector<f64>,
+}
+
+/// The two external vertical forces for co-simulation, N, up positive.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct TipForces {
+    /// At the bridge's free end.
+    pub upper: f64,
+    /// At the arrestor's free end.
+    pub lower: f64,
+}
+
+/// Energy terms that depend on the state alone.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Energies {
+    /// 1/2 v^T M v, J.
+    pub kinetic: f64,
+    /// 1/2 delta^T K delta of both beams (bar excluded), J.
+    pub beam_strain: f64,
+    /// 1/2 delta_u^T K_u delta_u of the bridge alone (Eq. 36), J.
+    pub upper_strain: f64,
+    /// -F_g^T delta: potential of gravity from the undeformed horizontal position, J.
+    pub gravity_potential: f64,
+    /// v^T C v: power dissipated by damping, W.
+    pub dissipation_rate: f64,
+}
+
+/// One integration method for Eqs. (7)-(11) over a model.
+pub trait Stepper {
+    /// Advances `state` by `dt` in `stage`, with the tip forces at the end of the step (F_{i+1}).
+    fn step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, forces: TipForces);
+    /// The model's probes (see [`crate::model::Probe`]) applied to a displacement vector (or to
+    /// a velocity vector, for rates), in the stepper's coordinates.
+    fn probes(&self, displacement: &DVector<f64>) -> [f64; PROBES];
+    /// Energy terms of the state.
+    fn energies(&self, state: &Kinematics) -> Energies;
+    /// The stepper's state from physical kinematics.
+    fn from_physical(&self, physical: &Kinematics) -> Kinematics;
+}

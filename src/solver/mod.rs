@@ -1,0 +1,19 @@
+//! Solution methods: natural modes, the linear acceleration stepper (production and dense
+//! oracle), the contact stage, initial conditions and the energy approach. No I/O, no unsafe.
+
+pub mod contact;
+pub mod dense;
+pub mod eigen;
+pub mod energy_method;
+pub mod initial;
+pub mod kinematics;
+pub mod modal;
+pub mod stepper;
+
+pub use contact::Stage;
+pub use dense::DenseStepper;
+pub use eigen::{natural_modes, Modes};
+pub use energy_method::EnergyMethod;
+pub use kinematics::{Energies, Kinematics, Stepper, TipForces};
+pub use modal::ModalSystem;
+pub use stepper::ModalStepper;

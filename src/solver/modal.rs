@@ -1,0 +1,115 @@
+//! The two-beam system in the beams' own mass-normalised modal coordinates: out of contact
+//! M = I, C and K are diagonal; the contact bar adds k_c b b^T, a rank-one term.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::eigen::{natural_modes, Modes};
+use crate::error::{Error, Result};
+use crate::model::{damping, Model};
+
+/// Largest stable step of the linear acceleration method: dt * omega_max <= sqrt(12).
+pub const STABILITY_LIMIT: f64 = 3.464_101_615_137_754_6;
+
+/// Modes of each beam, of the coupled system, and the modal form of the model.
+#[derive(Clone, Debug)]
+pub struct ModalSystem {
+    /// Arrestor alone (clamped-free with tip mass): Table 2, column 1.
+    pub lower: Modes,
+    /// Bridge alone (hinged-free): Table 2, column 2.
+    pub upper: Modes,
+    /// Both beams joined by an always-active bar: Table 2, column 3.
+    pub coupled: Modes,
+    /// omega_i^2 of all modal coordinates (arrestor's first), 1/s^2.
+    pub omega2: DVector<f64>,
+    /// Modal damping coefficients c_i, 1/s.
+    pub damping: DVector<f64>,
+    /// Contact vector in modal coordinates, Phi^T b.
+    pub contact: DVector<f64>,
+    /// Gravity load in modal coordinates, Phi^T F_g.
+    pub gravity: DVector<f64>,
+    /// Unit upper tip force in modal coordinates.
+    pub upper_tip: DVector<f64>,
+    /// Unit lower tip force in modal coordinates.
+    pub lower_tip: DVector<f64>,
+    /// Probe functionals in modal coordinates (probes Phi).
+    pub probes: DMatrix<f64>,
+    /// Number of arrestor modes (the first block of coordinates).
+    pub lower_dofs: usize,
+    /// Contact bar stiffness, N/m.
+    pub bar_stiffness: f64,
+}
+
+impl ModalSystem {
+    /// Computes the modes of both beams and of the coupled system, the modal damping, and checks
+    /// both time steps against the stability limit.
+    pub fn new(model: &Model) -> Result<ModalSystem> {
+        let s = &model.scenario;
+        let lower = natural_modes(&model.lower.stiffness, &model.lower.mass)?;
+        let upper = natural_modes(&model.upper.stiffness, &model.upper.mass)?;
+        let shapes = model.block_diagonal(&lower.shapes, &upper.shapes);
+        let omega: Vec<f64> = lower.omega.iter().chain(upper.omega.iter()).copied().collect();
+        let omega = DVector::from_vec(omega);
+        let omega2 = omega.map(|w| w * w);
+        let damping = damping::modal_coefficients(&omega, s.damping_ratio, s.rayleigh_alpha, s.rayleigh_beta);
+        let contact = shapes.transpose() * model.contact_vector();
+        let (upper_tip, lower_tip) = model.tip_force_vectors();
+        let bar_stiffness = model.bar_stiffness;
+        // Coupled modes: in modal coordinates M = I and K = diag(omega^2) + k b b^T.
+        let coupled_k = DMatrix::from_diagonal(&omega2) + &contact * contact.transpose() * bar_stiffness;
+        let coupled_modal = natural_modes(&coupled_k, &DMatrix::identity(omega.len(), omega.len()))?;
+        let coupled = Modes { shapes: &shapes * &coupled_modal.shapes, omega: coupled_modal.omega };
+        let system = ModalSystem {
+            gravity: shapes.transpose() * model.gravity_load(),
+            upper_tip: shapes.transpose() * upper_tip,
+            lower_tip: shapes.transpose() * lower_tip,
+            probes: &model.probes * &shapes,
+            lower_dofs: lower.omega.len(),
+            lower,
+            upper,
+            coupled,
+            omega2,
+            damping,
+            contact,
+            bar_stiffness,
+        };
+        system.check_stability("step_free", s.step_free, false)?;
+        system.check_stability("step_contact", s.step_contact, true)?;
+        Ok(system)
+    }
+
+    /// Number of modal coordinates (= physical DOFs).
+    pub fn dofs(&self) -> usize {
+        self.omega2.len()
+    }
+
+    /// Highest natural frequency of a stage, rad/s.
+    pub fn omega_max(&self, contact: bool) -> f64 {
+        if contact {
+            self.coupled.omega_max()
+        } else {
+            self.lower.omega_max().max(self.upper.omega_max())
+        }
+    }
+
+    /// Rejects `step` if dt * omega_max > sqrt(12) in the given stage.
+    pub fn check_stability(&self, name: &'static str, step: f64, contact: bool) -> Result<()> {
+        let omega_max = self.omega_max(contact);
+        let product = step * omega_max;
+        if product > STABILITY_LIMIT {
+            return Err(Error::UnstableStep {
+                name,
+                step,
+                omega_max,
+                product,
+                limit: STABILITY_LIMIT / omega_max,
+                stage: if contact { "in contact" } else { "out of contact" },
+            });
+        }
+        Ok(())
+    }
+
+    /// Global block-diagonal matrix of mode shapes (physical = shapes * modal).
+    pub fn shapes(&self, model: &Model) -> DMatrix<f64> {
+        model.block_diagonal(&self.lower.shapes, &self.upper.shapes)
+    }
+}

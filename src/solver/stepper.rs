@@ -1,0 +1,136 @@
+//! The production stepper: the modified linear acceleration method (Eqs. 7-11) in the beams'
+//! own modal coordinates. Out of contact S, P, Q and R are diagonal; in contact the bar adds
+//! k_c b b^T to K, and S^-1 follows from Sherman-Morrison. Every step costs O(n).
+
+use nalgebra::DVector;
+
+use super::contact::Stage;
+use super::kinematics::{Energies, Kinematics, Stepper, TipForces};
+use super::modal::ModalSystem;
+use crate::model::system::PROBES;
+use crate::model::Model;
+
+/// S^-1 of one (stage, dt): diagonal part and the Sherman-Morrison correction.
+#[derive(Clone, Debug)]
+struct StageInverse {
+    dt: f64,
+    /// 1 / (1 + dt/2 c_i + dt^2/6 omega_i^2).
+    diagonal_inverse: DVector<f64>,
+    /// D^-1 b.
+    corrected: DVector<f64>,
+    /// beta / (1 + beta b^T D^-1 b), beta = k_c dt^2 / 6 (0 out of contact).
+    factor: f64,
+}
+
+/// Linear acceleration method in modal coordinates, O(n) per step.
+#[derive(Clone, Debug)]
+pub struct ModalStepper {
+    system: ModalSystem,
+    /// Phi^T M: physical to modal coordinates.
+    projector: nalgebra::DMatrix<f64>,
+    /// The most recent S^-1 of each stage (index 0 free, 1 contact).
+    cache: [Option<StageInverse>; 2],
+    work: DVector<f64>,
+}
+
+impl ModalStepper {
+    /// A stepper over the modal form of `model`.
+    pub fn new(model: &Model, system: ModalSystem) -> ModalStepper {
+        let projector = system.shapes(model).transpose() * model.mass();
+        let n = system.dofs();
+        ModalStepper { system, projector, cache: [None, None], work: DVector::zeros(n) }
+    }
+
+    /// The modal system (modes, damping, modal probes).
+    pub fn system(&self) -> &ModalSystem {
+        &self.system
+    }
+
+    /// Makes sure the cache holds S^-1 for (stage, dt); O(n) when it does not.
+    fn prepare(&mut self, contact: bool, dt: f64) {
+        let slot = usize::from(contact);
+        if matches!(&self.cache[slot], Some(c) if c.dt == dt) {
+            return;
+        }
+        let s = &self.system;
+        let diagonal_inverse = s.omega2.zip_map(&s.damping, |w2, c| 1.0 / (1.0 + 0.5 * dt * c + dt * dt / 6.0 * w2));
+        let corrected = diagonal_inverse.component_mul(&s.contact);
+        let beta = if contact { s.bar_stiffness * dt * dt / 6.0 } else { 0.0 };
+        let factor = beta / (1.0 + beta * s.contact.dot(&corrected));
+        self.cache[slot] = Some(StageInverse { dt, diagonal_inverse, corrected, factor });
+    }
+}
+
+impl Stepper for ModalStepper {
+    fn step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, forces: TipForces) {
+        let contact = stage.is_contact();
+        self.prepare(contact, dt);
+        let Some(inv) = &self.cache[usize::from(contact)] else { return };
+        let s = &self.system;
+        let kappa = if contact { s.bar_stiffness } else { 0.0 };
+        let (q, v, a) = (&mut state.displacement, &mut state.velocity, &mut state.acceleration);
+        let n = q.len();
+        let (dt2_3, dt_2) = (dt * dt / 3.0, 0.5 * dt);
+
+        // Eq. (8): f = F - (P q + Q v + R a) = F - K (q + dt v + dt^2/3 a) - C (v + dt/2 a),
+        // with K = diag(omega^2) + kappa b b^T. First the rank-one part b . z.
+        let mut bz = 0.0;
+        for i in 0..n {
+            bz += s.contact[i] * (q[i] + dt * v[i] + dt2_3 * a[i]);
+        }
+        // Eq. (7) with Sherman-Morrison: a+ = D^-1 f - D^-1 b * factor * (b . D^-1 f).
+        let y = &mut self.work;
+        let mut by = 0.0;
+        for i in 0..n {
+            let z = q[i] + dt * v[i] + dt2_3 * a[i];
+            let f = s.gravity[i] + forces.upper * s.upper_tip[i] + forces.lower * s.lower_tip[i]
+                - s.omega2[i] * z
+                - kappa * s.contact[i] * bz
+                - s.damping[i] * (v[i] + dt_2 * a[i]);
+            y[i] = inv.diagonal_inverse[i] * f;
+            by += s.contact[i] * y[i];
+        }
+        let correction = inv.factor * by;
+        let dt2_6 = dt * dt / 6.0;
+        // Eq. (11).
+        for i in 0..n {
+            let a_next = y[i] - inv.corrected[i] * correction;
+            q[i] += dt * v[i] + dt2_3 * a[i] + dt2_6 * a_next;
+            v[i] += dt_2 * (a[i] + a_next);
+            a[i] = a_next;
+        }
+    }
+
+    fn probes(&self, displacement: &DVector<f64>) -> [f64; PROBES] {
+        let mut out = [0.0; PROBES];
+        for (k, value) in out.iter_mut().enumerate() {
+            *value = self.system.probes.row(k).transpose().dot(displacement);
+        }
+        out
+    }
+
+    fn energies(&self, state: &Kinematics) -> Energies {
+        let s = &self.system;
+        let (q, v) = (&state.displacement, &state.velocity);
+        let mut e = Energies::default();
+        for i in 0..q.len() {
+            let strain = 0.5 * s.omega2[i] * q[i] * q[i];
+            e.beam_strain += strain;
+            if i >= s.lower_dofs {
+                e.upper_strain += strain;
+            }
+            e.kinetic += 0.5 * v[i] * v[i];
+            e.gravity_potential -= s.gravity[i] * q[i];
+            e.dissipation_rate += s.damping[i] * v[i] * v[i];
+        }
+        e
+    }
+
+    fn from_physical(&self, physical: &Kinematics) -> Kinematics {
+        Kinematics {
+            displacement: &self.projector * &physical.displacement,
+            velocity: &self.projector * &physical.velocity,
+            acceleration: &self.projector * &physical.acceleration,
+        }
+    }
+}
