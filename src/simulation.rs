@@ -145,7 +145,8 @@ impl<S: Stepper> Simulation<S> {
             r.contact_force,
         ];
         let time = r.time;
-        for (k, (peak, when)) in r.peaks.as_mut_array().into_iter().zip(self.state.peak_times.as_mut_array()).enumerate()
+        for (k, (peak, when)) in
+            r.peaks.as_mut_array().into_iter().zip(self.state.peak_times.as_mut_array()).enumerate()
         {
             if values[k].abs() > *peak || r.step == 0 {
                 *peak = values[k].abs();
@@ -170,11 +171,17 @@ impl<S: Stepper> Simulation<S> {
         let previous = self.state.result;
         let step_ns = self.model.scenario.step_ns(stage.is_contact()).min(max_step_ns).max(1);
         let dt = step_ns as f64 * 1e-9;
-        let event = (previous.step == 0 && stage.is_contact() || previous.step > 0 && previous.contact != stage.is_contact())
-            .then(|| {
-                let rate = self.stepper.probes(&self.state.kinematics.velocity)[Probe::Gap as usize];
-                ContactEvent { start: stage.is_contact(), time_ns: previous.time_ns, step: previous.step + 1, relative_velocity: rate }
-            });
+        let event = (previous.step == 0 && stage.is_contact()
+            || previous.step > 0 && previous.contact != stage.is_contact())
+        .then(|| {
+            let rate = self.stepper.probes(&self.state.kinematics.velocity)[Probe::Gap as usize];
+            ContactEvent {
+                start: stage.is_contact(),
+                time_ns: previous.time_ns,
+                step: previous.step + 1,
+                relative_velocity: rate,
+            }
+        });
         let forces = self.state.forces;
         self.stepper.step(&mut self.state.kinematics, stage, dt, forces);
 
@@ -189,7 +196,11 @@ impl<S: Stepper> Simulation<S> {
         let last = self.state.last_forces;
         let work = 0.5 * (last.upper + forces.upper) * (result.upper_tip_deflection - previous.upper_tip_deflection)
             + 0.5 * (last.lower + forces.lower) * (result.lower_tip_deflection - previous.lower_tip_deflection);
-        let bar = if stage.is_contact() { contact::bar_energy(self.model.bar_stiffness, probes[Probe::Gap as usize]) } else { 0.0 };
+        let bar = if stage.is_contact() {
+            contact::bar_energy(self.model.bar_stiffness, probes[Probe::Gap as usize])
+        } else {
+            0.0
+        };
         let mut energy = EnergyAccount {
             kinetic: energies.kinetic,
             strain: energies.beam_strain + bar,
@@ -322,7 +333,11 @@ impl<S: Stepper> Simulation<S> {
     /// Natural frequencies, the first `count` of each column of Table 2, rad/s.
     pub fn mode_table(&self, count: usize) -> ModeTable {
         let first = |m: &crate::solver::Modes| m.omega.iter().take(count).copied().collect();
-        ModeTable { lower: first(&self.modal.lower), upper: first(&self.modal.upper), coupled: first(&self.modal.coupled) }
+        ModeTable {
+            lower: first(&self.modal.lower),
+            upper: first(&self.modal.upper),
+            coupled: first(&self.modal.coupled),
+        }
     }
 
     /// The summary of the run so far.

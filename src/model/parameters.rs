@@ -78,7 +78,11 @@ pub const PARAMETERS: &[Parameter] = &[
     real!("upper.elastic_modulus", "Pa", "Bridge Young's modulus", upper.elastic_modulus),
     real!("upper.second_moment", "m4", "Bridge second moment of area", upper.second_moment),
     real!("upper.section_modulus", "m3", "Bridge section modulus for M/W", upper.section_modulus),
-    integer!("upper.elements_to_contact", "Bridge elements from the hinge to the contact node", upper.elements_to_contact),
+    integer!(
+        "upper.elements_to_contact",
+        "Bridge elements from the hinge to the contact node",
+        upper.elements_to_contact
+    ),
     integer!(
         "upper.elements_beyond_contact",
         "Bridge elements from the contact node to the free end",

@@ -199,8 +199,8 @@ fn elements(name: &'static str, value: u32) -> Result<()> {
 impl Scenario {
     /// Parses a scenario from TOML text; missing fields take the paper's values.
     pub fn from_toml(text: &str, path: &str) -> Result<Self> {
-        let scenario: Scenario =
-            toml::from_str(text).map_err(|e| Error::Scenario { path: path.to_string(), message: one_line(&e.to_string()) })?;
+        let scenario: Scenario = toml::from_str(text)
+            .map_err(|e| Error::Scenario { path: path.to_string(), message: one_line(&e.to_string()) })?;
         scenario.validate()?;
         Ok(scenario)
     }
@@ -240,7 +240,11 @@ impl Scenario {
         positive("step_free", "s", self.step_free)?;
         positive("step_contact", "s", self.step_contact)?;
         if self.step_free < MIN_STEP {
-            return Err(Error::invalid("step_free", format!(">= {MIN_STEP:e} s (time is counted in ns)"), self.step_free));
+            return Err(Error::invalid(
+                "step_free",
+                format!(">= {MIN_STEP:e} s (time is counted in ns)"),
+                self.step_free,
+            ));
         }
         if self.step_contact < MIN_STEP {
             return Err(Error::invalid(

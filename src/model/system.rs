@@ -157,9 +157,6 @@ impl Model {
 
     /// Positions of the bridge's nodes and of the arrestor's nodes, m, from each beam's support.
     pub fn node_positions(&self) -> (Vec<f64>, Vec<f64>) {
-        (
-            self.lower.mesh.nodes.iter().map(|n| n.x).collect(),
-            self.upper.mesh.nodes.iter().map(|n| n.x).collect(),
-        )
+        (self.lower.mesh.nodes.iter().map(|n| n.x).collect(), self.upper.mesh.nodes.iter().map(|n| n.x).collect())
     }
 }

@@ -32,8 +32,8 @@ impl DenseStepper {
             let c = damping::modal_coefficients(&modes.omega, s.damping_ratio, s.rayleigh_alpha, s.rayleigh_beta);
             damping::physical_matrix(&beam.mass, &modes.shapes, &c)
         };
-        let c = model
-            .block_diagonal(&beam_damping(&model.lower, &modal.lower), &beam_damping(&model.upper, &modal.upper));
+        let c =
+            model.block_diagonal(&beam_damping(&model.lower, &modal.lower), &beam_damping(&model.upper, &modal.upper));
         let (upper_tip, lower_tip) = model.tip_force_vectors();
         DenseStepper {
             mass: model.mass(),

@@ -43,9 +43,11 @@ pub fn initial_state(model: &Model, modal: &ModalSystem, forces: TipForces) -> R
     let load_upper = model.upper.gravity_load.clone() + external.rows(nl, nu);
 
     // Arrestor, Eqs. (25)-(26): at rest in its static deflection.
-    let lower_displacement = model.lower.stiffness.clone().cholesky().map(|c| c.solve(&load_lower)).ok_or_else(|| {
-        Error::Numerical { what: "initial conditions", detail: "the arrestor's stiffness matrix is singular".into() }
-    })?;
+    let lower_displacement =
+        model.lower.stiffness.clone().cholesky().map(|c| c.solve(&load_lower)).ok_or_else(|| Error::Numerical {
+            what: "initial conditions",
+            detail: "the arrestor's stiffness matrix is singular".into(),
+        })?;
 
     // Bridge, Eq. (23): rigid rotation about the hinge, pitching down (w = -x alpha, theta = -alpha).
     let pitching = Pitching::new(s.drop_height, s.upper.length, s.gravity);
