@@ -1,1 +1,194 @@
 //! Text tables of a run beside the paper's values (what `run` and `report` print).
+
+use std::fmt::Write;
+
+use crate::paper;
+use crate::results::{ContactWindow, Summary};
+
+/// Separations between contact windows longer than `min` s, as (start, end) in s.
+pub fn separations(windows: &[ContactWindow], min: f64) -> Vec<(f64, f64)> {
+    windows.windows(2).map(|w| (w[0].end, w[1].start)).filter(|(a, b)| b - a >= min).collect()
+}
+
+/// Contact windows with gaps shorter than `gap` s merged: the stages as a reader sees them,
+/// without the chatter of millisecond bounces.
+pub fn merged_windows(windows: &[ContactWindow], gap: f64) -> Vec<ContactWindow> {
+    let mut out: Vec<ContactWindow> = Vec::new();
+    for w in windows {
+        match out.last_mut() {
+            Some(last) if w.start - last.end < gap => last.end = w.end,
+            _ => out.push(*w),
+        }
+    }
+    out
+}
+
+/// The longest separation (start, end), s, if the beams ever separate and touch again.
+pub fn longest_separation(windows: &[ContactWindow]) -> Option<(f64, f64)> {
+    separations(windows, 0.0).into_iter().max_by(|a, b| (a.1 - a.0).total_cmp(&(b.1 - b.0)))
+}
+
+fn ratio(value: f64, reference: f64) -> String {
+    if reference.is_finite() && reference != 0.0 {
+        format!("{:6.3}", value / reference)
+    } else {
+        "     -".to_string()
+    }
+}
+
+/// Table 1 (FEM peaks and the energy approach), with the paper's values and ratios when `paper`.
+pub fn table1(summary: &Summary, paper: bool) -> String {
+    let mut s = String::new();
+    let p = &summary.peaks;
+    let e = &summary.energy_method;
+    let rows = [
+        ("w_din,a   arrestor end deflection  [m]  ", p.lower_tip_deflection, e.tip_deflection, 1.0),
+        ("sigma_din,a clamp bending stress [MPa]  ", p.lower_clamp_bending_stress, e.clamp_bending_stress, 1e-6),
+        ("tau_din,a clamp shear stress     [MPa]  ", p.lower_clamp_shear_stress, e.clamp_shear_stress, 1e-6),
+        ("sigma_din,b bridge bending, contact [MPa]", p.upper_contact_bending_stress, f64::NAN, 1e-6),
+    ];
+    let _ = writeln!(s, "Table 1. Results comparison (peaks max |.| over the run)");
+    if paper {
+        let _ = writeln!(
+            s,
+            "{:42} {:>9} {:>9} {:>6}   {:>9} {:>9} {:>6}",
+            "", "FEM", "paper", "ratio", "energy", "paper", "ratio"
+        );
+    } else {
+        let _ = writeln!(s, "{:42} {:>9} {:>9}", "", "FEM", "energy");
+    }
+    for (k, (name, fem, energy, scale)) in rows.iter().enumerate() {
+        let energy_text = if energy.is_finite() { format!("{:9.3}", energy * scale) } else { format!("{:>9}", "-") };
+        if paper {
+            let (pf, pe) = (paper::TABLE1_FEM[k], paper::TABLE1_ENERGY[k]);
+            let _ = writeln!(
+                s,
+                "{name:42} {:9.3} {:9.3} {}   {energy_text} {:9.3} {}",
+                fem * scale,
+                pf * scale,
+                ratio(*fem, pf),
+                pe * scale,
+                if energy.is_finite() { ratio(*energy, pe) } else { "     -".into() }
+            );
+        } else {
+            let _ = writeln!(s, "{name:42} {:9.3} {energy_text}", fem * scale);
+        }
+    }
+    let times = &summary.peak_times;
+    let _ = writeln!(
+        s,
+        "peaks reached at t = {:.4} s (deflection), {:.4} s (clamp bending), {:.4} s (shear), {:.4} s (bridge)",
+        times.lower_tip_deflection,
+        times.lower_clamp_bending_stress,
+        times.lower_clamp_shear_stress,
+        times.upper_contact_bending_stress
+    );
+    let _ = writeln!(
+        s,
+        "energy approach: k_f = 3EI/l^3 = {:.1} kN/m, F_din = {:.1} kN, E_def,a = {:.1} kJ{}",
+        e.flexion_stiffness / 1e3,
+        e.force / 1e3,
+        e.strain_energy / 1e3,
+        if paper { format!(" (paper {:.1} kJ)", paper::ARRESTOR_STRAIN_ENERGY / 1e3) } else { String::new() }
+    );
+    let _ = writeln!(
+        s,
+        "bridge strain energy at the largest arrestor deflection E_def,b = {:.2} kJ{}",
+        summary.upper_strain_at_peak_deflection / 1e3,
+        if paper { format!(" (paper {:.1} kJ)", paper::BRIDGE_STRAIN_ENERGY / 1e3) } else { String::new() }
+    );
+    s
+}
+
+/// Tables 2 and 3 (natural frequencies and periods), beside the paper's when `paper`.
+pub fn tables23(summary: &Summary, paper: bool) -> String {
+    let mut s = String::new();
+    let m = &summary.modes;
+    let columns = [("arrestor", &m.lower), ("bridge", &m.upper), ("coupled", &m.coupled)];
+    for (title, periods) in [("Table 2. Natural frequencies [rad/s]", false), ("Table 3. Natural periods [s]", true)] {
+        let _ = writeln!(s, "{title}");
+        let _ = write!(s, " n");
+        for (name, _) in &columns {
+            if paper {
+                let _ = write!(s, " | {name:>8} {:>8} {:>6}", "paper", "ratio");
+            } else {
+                let _ = write!(s, " | {name:>8}");
+            }
+        }
+        let _ = writeln!(s);
+        for n in 0..5 {
+            let _ = write!(s, "{:2}", n + 1);
+            for (c, (_, values)) in columns.iter().enumerate() {
+                let omega = values.get(n).copied().unwrap_or(f64::NAN);
+                let value = if periods { period(omega) } else { omega };
+                let digits = if periods { 3 } else { 1 };
+                let text = if value.is_finite() { format!("{value:8.digits$}") } else { format!("{:>8}", "/") };
+                if paper {
+                    let reference = if periods { paper::TABLE3[c][n] } else { paper::TABLE2[c][n] };
+                    let ref_text =
+                        if reference.is_finite() { format!("{reference:8.digits$}") } else { format!("{:>8}", "/") };
+                    let _ = write!(s, " | {text} {ref_text} {}", ratio(value, reference));
+                } else {
+                    let _ = write!(s, " | {text}");
+                }
+            }
+            let _ = writeln!(s);
+        }
+    }
+    s
+}
+
+fn period(omega: f64) -> f64 {
+    if omega > 0.0 {
+        2.0 * std::f64::consts::PI / omega
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// Contact windows (bounces closer than 10 ms merged) and the longest separation.
+pub fn contact_windows(summary: &Summary, paper: bool) -> String {
+    let mut s = String::new();
+    let merged = merged_windows(&summary.contact_windows, 0.01);
+    let _ = writeln!(
+        s,
+        "Contact: {} windows ({} after merging bounces closer than 10 ms):",
+        summary.contact_windows.len(),
+        merged.len()
+    );
+    for w in &merged {
+        let _ = writeln!(s, "  {:7.4} s .. {:7.4} s", w.start, w.end);
+    }
+    if let Some((a, b)) = longest_separation(&summary.contact_windows) {
+        let _ = write!(s, "longest separation: {a:.4} s .. {b:.4} s");
+        if paper {
+            let (pa, pb) = paper::SEPARATION;
+            let _ = write!(s, " (paper, Figure 6: {pa:.2} s .. {pb:.2} s)");
+        }
+        let _ = writeln!(s);
+        let long: Vec<String> =
+            separations(&summary.contact_windows, 0.05).iter().map(|(a, b)| format!("{a:.3}..{b:.3} s")).collect();
+        let _ = writeln!(s, "separations longer than 50 ms: {}", long.join(", "));
+    }
+    s
+}
+
+/// Everything: Table 1, Tables 2-3, contact windows, steps and the energy balance.
+pub fn comparison(summary: &Summary, paper: bool) -> String {
+    let mut s = String::new();
+    s.push_str(&table1(summary, paper));
+    s.push('\n');
+    s.push_str(&tables23(summary, paper));
+    s.push('\n');
+    s.push_str(&contact_windows(summary, paper));
+    let _ = write!(s, "steps: {} to t = {:.4} s", summary.steps, summary.time);
+    if paper {
+        let _ = write!(s, " (paper: about {} for 3 s)", paper::STEPS);
+    }
+    let _ = writeln!(
+        s,
+        "\nenergy balance residual: {:.1} J at the end, {:.1} J at most",
+        summary.final_energy_residual, summary.max_energy_residual
+    );
+    s
+}

@@ -1,26 +1,214 @@
-fn main() {
-    let mut s = beam_impact::Scenario::default();
-    let args: Vec<String> = std::env::args().collect();
-    if args.len() > 1 {
-        s.damping_ratio = args[1].parse().unwrap();
+//! `beam-impact`: run the paper scenario or a user scenario, print the comparison with the
+//! paper, write FMUs, replay logs, benchmark. Thin: everything happens in the library.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use clap::{Args, Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressStyle};
+
+use beam_impact::record::mcap::McapRecorder;
+use beam_impact::record::{NullRecorder, Recorder, RunInfo};
+use beam_impact::results::{ContactEvent, StepResult};
+use beam_impact::{compare, Error, Result, Scenario, Simulation};
+
+/// Elastic impact of two beams (Catipovic, Vladimir, Reljic 2008): FEM + linear acceleration method.
+#[derive(Parser)]
+#[command(name = "beam-impact", version, about)]
+#[command(args_conflicts_with_subcommands = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+    /// With no subcommand: `run` with these options.
+    #[command(flatten)]
+    run: RunArgs,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a scenario (default: the paper's) and print Tables 1-3 beside the paper.
+    Run(RunArgs),
+    /// Print the default (paper) scenario as TOML, to start a scenario file from.
+    Scenario,
+    /// Write the FMI 2.0 and FMI 3.0 co-simulation FMUs.
+    Pack {
+        /// Output directory; the FMUs go to DIR/fmi2/BeamImpact.fmu and DIR/fmi3/BeamImpact.fmu.
+        #[arg(long, default_value = "target/fmu")]
+        out: PathBuf,
+        /// The shared library to pack (default: libbeam_impact.so next to this executable).
+        #[arg(long)]
+        library: Option<PathBuf>,
+    },
+    /// Read an MCAP log: print its summary and write Figures 6-9 (SVG and PNG).
+    Report {
+        /// The log.
+        file: PathBuf,
+        /// Directory for the figures (default: <log stem>-figures next to the log).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Time the production stepper against the dense oracle, the per-step cost at finer
+    /// meshes, and the recorded run.
+    Bench {
+        /// Runs per measurement (the median is reported).
+        #[arg(long, default_value_t = 5)]
+        runs: usize,
+    },
+}
+
+#[derive(Args)]
+struct RunArgs {
+    /// Scenario file (TOML); missing fields take the paper's values. Default: the paper scenario.
+    file: Option<PathBuf>,
+    /// Write the summary as JSON to this file.
+    #[arg(long)]
+    json: Option<PathBuf>,
+    /// Record every step to this MCAP file.
+    #[arg(long, default_value = "paper.mcap", conflicts_with = "no_mcap")]
+    mcap: PathBuf,
+    /// Do not record.
+    #[arg(long)]
+    no_mcap: bool,
+}
+
+fn main() -> ExitCode {
+    std::panic::set_hook(Box::new(|info| {
+        eprintln!("beam-impact: internal error: {info}");
+    }));
+    let cli = Cli::parse();
+    let outcome = match cli.command.unwrap_or(Command::Run(cli.run)) {
+        Command::Run(args) => run(&args),
+        Command::Scenario => {
+            print!("{}", Scenario::default().to_toml());
+            Ok(())
+        }
+        Command::Pack { out, library } => pack(&out, library),
+        Command::Report { file, out } => report(&file, out),
+        Command::Bench { runs } => bench(runs),
+    };
+    match outcome {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("beam-impact: {e}");
+            ExitCode::from(2)
+        }
     }
-    let mut sim = beam_impact::Simulation::new(&s).unwrap();
-    let mut rec = beam_impact::record::MemoryRecorder::default();
-    let sum = sim.run(&mut rec).unwrap();
-    for r in rec.steps.iter().filter(|r| r.time_ns % 20_000_000 == 0) {
-        println!(
-            "{:.3} yl={:.4} yu={:.4} c={} sa={:.0} tau={:.1} sb={:.0} F={:.0} res={:.1} ub={:.0}",
-            r.time,
-            r.lower_tip_deflection,
-            r.upper_contact_deflection,
-            r.contact as u8,
-            r.lower_clamp_bending_stress / 1e6,
-            r.lower_clamp_shear_stress / 1e6,
-            r.upper_contact_bending_stress / 1e6,
-            r.contact_force / 1e3,
-            r.energy.residual,
-            r.upper_tip_deflection
+}
+
+fn run(args: &RunArgs) -> Result<()> {
+    let scenario = match &args.file {
+        Some(path) => Scenario::from_file(path)?,
+        None => Scenario::default(),
+    };
+    let paper = scenario.is_paper();
+    let started = Instant::now();
+    let mut simulation = Simulation::new(&scenario)?;
+    let mut recorder: Box<dyn Recorder> =
+        if args.no_mcap { Box::new(NullRecorder) } else { Box::new(McapRecorder::create(&args.mcap)?) };
+    let mut progress = Progress::new(recorder.as_mut(), scenario.duration_ns());
+    simulation.run(&mut progress)?;
+    progress.bar.finish_and_clear();
+    let wall = started.elapsed();
+    let summary = simulation.summary();
+
+    println!(
+        "beam-impact: {} scenario, {} + {} elements, {:.3} s simulated",
+        if paper { "paper" } else { "user" },
+        scenario.lower.elements,
+        scenario.upper.elements_to_contact + scenario.upper.elements_beyond_contact,
+        scenario.duration
+    );
+    println!();
+    print!("{}", compare::comparison(&summary, paper));
+    println!("wall time: {:.1} ms (assembly, modes and stepping{})", wall.as_secs_f64() * 1e3, {
+        if args.no_mcap {
+            String::new()
+        } else {
+            format!(", recorded to {}", args.mcap.display())
+        }
+    });
+    if let Some(path) = &args.json {
+        let doc = serde_json::json!({
+            "scenario": scenario,
+            "summary": summary,
+            "wall_time_s": wall.as_secs_f64(),
+        });
+        let text = serde_json::to_string_pretty(&doc).map_err(|e| Error::Other(format!("JSON: {e}")))?;
+        std::fs::write(path, text + "\n").map_err(|source| Error::Io {
+            action: "cannot write JSON",
+            path: path.display().to_string(),
+            source,
+        })?;
+        println!("results written to {}", path.display());
+    }
+    Ok(())
+}
+
+/// Shows a progress bar (on a terminal) while passing every step on to the real recorder.
+struct Progress<'a> {
+    inner: &'a mut dyn Recorder,
+    bar: ProgressBar,
+}
+
+impl<'a> Progress<'a> {
+    fn new(inner: &'a mut dyn Recorder, end_ns: u64) -> Self {
+        let bar = ProgressBar::new(end_ns / 1_000_000);
+        bar.set_style(
+            ProgressStyle::with_template("{bar:40} {pos}/{len} ms simulated, {elapsed} ({eta} left)")
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
         );
+        Progress { inner, bar }
     }
-    println!("{:?} {:?} {}", sum.peaks, sum.peak_times, sum.upper_strain_at_peak_deflection);
+}
+
+impl Recorder for Progress<'_> {
+    fn start(&mut self, info: &RunInfo<'_>) -> Result<()> {
+        self.inner.start(info)
+    }
+    fn step(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()> {
+        if result.step % 1000 == 0 {
+            self.bar.set_position(result.time_ns / 1_000_000);
+        }
+        self.inner.step(result, modal_coordinates)
+    }
+    fn contact_event(&mut self, event: &ContactEvent) -> Result<()> {
+        self.inner.contact_event(event)
+    }
+    fn finish(&mut self) -> Result<()> {
+        self.inner.finish()
+    }
+}
+
+fn pack(out: &Path, library: Option<PathBuf>) -> Result<()> {
+    let library = match library {
+        Some(path) => path,
+        None => std::env::current_exe()
+            .map_err(|source| Error::Io { action: "cannot locate", path: "the running executable".into(), source })?
+            .with_file_name("libbeam_impact.so"),
+    };
+    // WIRE: beam_impact::fmi::pack::pack(&library, out)
+    let _ = (library, out);
+    Err(Error::Other("pack: not wired yet".into()))
+}
+
+fn report(file: &Path, out: Option<PathBuf>) -> Result<()> {
+    let out = out.unwrap_or_else(|| {
+        let stem = file.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "log".into());
+        file.with_file_name(format!("{stem}-figures"))
+    });
+    let stdout = std::io::stdout();
+    let mut lock = stdout.lock();
+    // WIRE: beam_impact::record::report::report(file, &out, &mut lock)
+    let _ = (file, out);
+    lock.flush().ok();
+    Err(Error::Other("report: not wired yet".into()))
+}
+
+fn bench(runs: usize) -> Result<()> {
+    let runs = runs.max(1);
+    print!("{}", beam_impact::bench::stepper_benchmark(runs)?);
+    // WIRE: beam_impact::record::bench::recording_benchmark(runs)
+    Ok(())
 }

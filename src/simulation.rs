@@ -56,6 +56,8 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     energy_method: EnergyMethod,
     nodal_shapes: DMatrix<f64>,
     state: RunState,
+    /// The state before the current step, to retake it when a stage change is located.
+    backup: Kinematics,
 }
 
 impl Simulation<ModalStepper> {
@@ -99,7 +101,8 @@ impl<S: Stepper> Simulation<S> {
             contact_windows: Vec::new(),
             max_residual: 0.0,
         };
-        let mut simulation = Simulation { model, modal, stepper, energy_method, nodal_shapes, state };
+        let backup = state.kinematics.clone();
+        let mut simulation = Simulation { model, modal, stepper, energy_method, nodal_shapes, state, backup };
         simulation.evaluate_initial();
         Ok(simulation)
     }
@@ -169,8 +172,8 @@ impl<S: Stepper> Simulation<S> {
     pub fn step(&mut self, max_step_ns: u64) -> Option<ContactEvent> {
         let stage = self.next_stage();
         let previous = self.state.result;
-        let step_ns = self.model.scenario.step_ns(stage.is_contact()).min(max_step_ns).max(1);
-        let dt = step_ns as f64 * 1e-9;
+        let mut step_ns = self.model.scenario.step_ns(stage.is_contact()).min(max_step_ns).max(1);
+        let mut dt = step_ns as f64 * 1e-9;
         let event = (previous.step == 0 && stage.is_contact()
             || previous.step > 0 && previous.contact != stage.is_contact())
         .then(|| {
@@ -183,7 +186,13 @@ impl<S: Stepper> Simulation<S> {
             }
         });
         let forces = self.state.forces;
+        self.backup.copy_from(&self.state.kinematics);
         self.stepper.step(&mut self.state.kinematics, stage, dt, forces);
+        let gap = self.stepper.probes(&self.state.kinematics.displacement)[Probe::Gap as usize];
+        if contact::stage(gap) != stage && step_ns > 1 {
+            step_ns = self.locate_stage_change(stage, step_ns, gap, forces);
+            dt = step_ns as f64 * 1e-9;
+        }
 
         let probes = self.stepper.probes(&self.state.kinematics.displacement);
         let energies = self.stepper.energies(&self.state.kinematics);
@@ -232,6 +241,50 @@ impl<S: Stepper> Simulation<S> {
             }
         }
         event
+    }
+
+    /// The step from `backup` ended in the other stage (gap `gap_end` after `step_ns`): retakes it
+    /// with the shortest whole-nanosecond step after which Eq. (6) has changed, so that every stage
+    /// starts where the gap crosses zero, whatever the step phase. Regula falsi on the nearly linear
+    /// gap(t), checked against the neighbouring nanosecond, with bisection as the fallback.
+    /// Returns the step taken, ns; the state is left at its end.
+    fn locate_stage_change(&mut self, stage: Stage, step_ns: u64, gap_end: f64, forces: TipForces) -> u64 {
+        let threshold = -contact::GAP_TOLERANCE;
+        let gap_start = self.stepper.probes(&self.backup.displacement)[Probe::Gap as usize];
+        let (mut lo, mut hi) = (0u64, step_ns);
+        let (mut f_lo, mut f_hi) = (gap_start - threshold, gap_end - threshold);
+        let mut state_at_hi = false;
+        let retake = |simulation: &mut Self, ns: u64| {
+            simulation.state.kinematics.copy_from(&simulation.backup);
+            simulation.stepper.step(&mut simulation.state.kinematics, stage, ns as f64 * 1e-9, forces);
+            simulation.stepper.probes(&simulation.state.kinematics.displacement)[Probe::Gap as usize] - threshold
+        };
+        let mut bisect = false;
+        while hi - lo > 1 {
+            let guess = if bisect || f_lo == f_hi {
+                lo + (hi - lo) / 2
+            } else {
+                let t = f_lo / (f_lo - f_hi);
+                (lo + (t * (hi - lo) as f64).round() as u64).clamp(lo + 1, hi - 1)
+            };
+            let f = retake(self, guess);
+            let changed = contact::stage(f + threshold) != stage;
+            if changed {
+                hi = guess;
+                f_hi = f;
+                state_at_hi = true;
+            } else {
+                lo = guess;
+                f_lo = f;
+                state_at_hi = false;
+            }
+            // Next try the neighbour of the guess: a near-linear gap puts the change right there.
+            bisect = !bisect && hi - lo > 2;
+        }
+        if !state_at_hi {
+            retake(self, hi);
+        }
+        hi
     }
 
     /// Steps until `target_ns`, landing on it exactly (the last step is shortened), sending every

@@ -18,6 +18,15 @@ pub struct Kinematics {
     pub acceleration: DVector<f64>,
 }
 
+impl Kinematics {
+    /// Copies `other` into `self` without allocating (same sizes).
+    pub fn copy_from(&mut self, other: &Kinematics) {
+        self.displacement.copy_from(&other.displacement);
+        self.velocity.copy_from(&other.velocity);
+        self.acceleration.copy_from(&other.acceleration);
+    }
+}
+
 /// The two external vertical forces for co-simulation, N, up positive.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct TipForces {

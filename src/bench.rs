@@ -1,0 +1,100 @@
+//! Benchmarks of the production stepper against the dense oracle, and of the per-step cost at
+//! growing element counts (`beam-impact bench`). Speed is measured here, never in tests.
+
+use std::fmt::Write;
+use std::time::{Duration, Instant};
+
+use crate::error::Result;
+use crate::record::NullRecorder;
+use crate::simulation::Simulation;
+use crate::solver::{modal::STABILITY_LIMIT, Stepper};
+use crate::Scenario;
+
+fn median(mut samples: Vec<Duration>) -> Duration {
+    samples.sort();
+    samples[samples.len() / 2]
+}
+
+fn time_run<S: Stepper>(make: impl Fn() -> Result<Simulation<S>>, runs: usize) -> Result<(Duration, u64)> {
+    let mut samples = Vec::with_capacity(runs);
+    let mut steps = 0;
+    for _ in 0..runs {
+        let mut simulation = make()?;
+        let start = Instant::now();
+        let summary = simulation.run(&mut NullRecorder)?;
+        samples.push(start.elapsed());
+        steps = summary.steps;
+    }
+    Ok((median(samples), steps))
+}
+
+/// The paper scenario with the element counts multiplied by `factor` and both steps at 90 % of
+/// the stability limit (finer meshes have higher frequencies).
+pub fn refined(factor: u32) -> Result<Scenario> {
+    let mut s = Scenario::default();
+    s.lower.elements *= factor;
+    s.upper.elements_to_contact *= factor;
+    s.upper.elements_beyond_contact *= factor;
+    s.step_free = 1e-9;
+    s.step_contact = 1e-9;
+    let probe = Simulation::new(&s)?;
+    let modal = probe.modal();
+    let stable = |contact: bool| (0.9 * STABILITY_LIMIT / modal.omega_max(contact) * 1e9).floor() * 1e-9;
+    s.step_free = stable(false).min(5e-5);
+    s.step_contact = stable(true).min(2.5e-5);
+    Ok(s)
+}
+
+/// Runs the benchmark and returns its report: production vs dense on the paper scenario
+/// (median of `runs`), then the production stepper's cost per step at 1x, 4x and 16x elements.
+pub fn stepper_benchmark(runs: usize) -> Result<String> {
+    let mut out = String::new();
+    let paper = Scenario::default();
+    let setup = Instant::now();
+    Simulation::new(&paper)?;
+    let setup = setup.elapsed();
+    let (fast, steps) = time_run(|| Simulation::new(&paper), runs)?;
+    let (dense, dense_steps) = time_run(|| Simulation::new_dense(&paper), runs.min(3))?;
+    let _ = writeln!(out, "paper scenario, 3 s, median of {runs} runs (dense: {}):", runs.min(3));
+    let _ = writeln!(out, "  model setup (assembly, modes, initial state): {:8.2} ms", setup.as_secs_f64() * 1e3);
+    let per = |d: Duration, n: u64| d.as_secs_f64() * 1e9 / n as f64;
+    let _ = writeln!(
+        out,
+        "  production (modal, O(n)) : {:8.2} ms  {steps} steps  {:7.0} ns/step",
+        fast.as_secs_f64() * 1e3,
+        per(fast, steps)
+    );
+    let _ = writeln!(
+        out,
+        "  dense oracle (Eqs. 7-11) : {:8.2} ms  {dense_steps} steps  {:7.0} ns/step",
+        dense.as_secs_f64() * 1e3,
+        per(dense, dense_steps)
+    );
+    let _ = writeln!(out, "  speed-up: {:.1}x", dense.as_secs_f64() / fast.as_secs_f64());
+    let _ = writeln!(out, "per-step cost of the production stepper vs element count (fixed 20 000 steps):");
+    let mut base = None;
+    for factor in [1, 4, 16] {
+        let s = refined(factor)?;
+        let mut samples = Vec::new();
+        let mut dofs = 0;
+        for _ in 0..runs.max(1) {
+            let mut sim = Simulation::new(&s)?;
+            dofs = sim.model().dofs();
+            let start = Instant::now();
+            for _ in 0..20_000 {
+                sim.step(u64::MAX);
+            }
+            samples.push(start.elapsed());
+        }
+        let ns = median(samples).as_secs_f64() * 1e9 / 20_000.0;
+        let (b_ns, b_dofs) = *base.get_or_insert((ns, dofs));
+        let _ = writeln!(
+            out,
+            "  {factor:2}x elements: {dofs:4} DOFs  {ns:8.0} ns/step  {:6.2} ns/step/DOF  cost x{:.2} for DOFs x{:.2}",
+            ns / dofs as f64,
+            ns / b_ns,
+            dofs as f64 / b_dofs as f64
+        );
+    }
+    Ok(out)
+}
