@@ -105,7 +105,10 @@ pub fn tables23(summary: &Summary, paper: bool) -> String {
     let mut s = String::new();
     let m = &summary.modes;
     let columns = [("arrestor", &m.lower), ("bridge", &m.upper), ("coupled", &m.coupled)];
-    for (title, periods) in [("Table 2. Natural frequencies [rad/s]", false), ("Table 3. Natural periods [s]", true)] {
+    for (title, periods) in [
+        ("Table 2. Natural frequencies [rad/s]", false),
+        ("Table 3. Natural periods [s] (ratios at the paper's 3 decimals)", true),
+    ] {
         let _ = writeln!(s, "{title}");
         let _ = write!(s, " n");
         for (name, _) in &columns {
@@ -121,13 +124,18 @@ pub fn tables23(summary: &Summary, paper: bool) -> String {
             for (c, (_, values)) in columns.iter().enumerate() {
                 let omega = values.get(n).copied().unwrap_or(f64::NAN);
                 let value = if periods { period(omega) } else { omega };
-                let digits = if periods { 3 } else { 1 };
+                let (digits, ref_digits) = if periods { (4, 3) } else { (1, 1) };
                 let text = if value.is_finite() { format!("{value:8.digits$}") } else { format!("{:>8}", "/") };
                 if paper {
                     let reference = if periods { paper::TABLE3[c][n] } else { paper::TABLE2[c][n] };
-                    let ref_text =
-                        if reference.is_finite() { format!("{reference:8.digits$}") } else { format!("{:>8}", "/") };
-                    let _ = write!(s, " | {text} {ref_text} {}", ratio(value, reference));
+                    let ref_text = if reference.is_finite() {
+                        format!("{reference:8.ref_digits$}")
+                    } else {
+                        format!("{:>8}", "/")
+                    };
+                    // Periods are compared at the paper's printed precision (3 decimals).
+                    let compared = if periods { (value * 1e3).round() / 1e3 } else { value };
+                    let _ = write!(s, " | {text} {ref_text} {}", ratio(compared, reference));
                 } else {
                     let _ = write!(s, " | {text}");
                 }

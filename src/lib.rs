@@ -10,6 +10,7 @@
 
 pub mod bench;
 pub mod compare;
+pub mod damping_study;
 pub mod error;
 pub mod fmi;
 pub mod model;

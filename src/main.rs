@@ -32,6 +32,11 @@ enum Command {
     Run(RunArgs),
     /// Print the default (paper) scenario as TOML, to start a scenario file from.
     Scenario,
+    /// The damping study of Appendix A: peaks for damping ratios 0 to 0.04.
+    Damping {
+        /// Scenario file (default: the paper scenario).
+        file: Option<PathBuf>,
+    },
     /// Write the FMI 2.0 and FMI 3.0 co-simulation FMUs.
     Pack {
         /// Output directory; the FMUs go to DIR/fmi2/BeamImpact.fmu and DIR/fmi3/BeamImpact.fmu.
@@ -84,6 +89,7 @@ fn main() -> ExitCode {
             print!("{}", Scenario::default().to_toml());
             Ok(())
         }
+        Command::Damping { file } => damping(file.as_deref()),
         Command::Pack { out, library } => pack(&out, library),
         Command::Report { file, out } => report(&file, out),
         Command::Bench { runs } => bench(runs),
@@ -179,6 +185,16 @@ impl Recorder for Progress<'_> {
     fn finish(&mut self) -> Result<()> {
         self.inner.finish()
     }
+}
+
+fn damping(file: Option<&Path>) -> Result<()> {
+    let scenario = match file {
+        Some(path) => Scenario::from_file(path)?,
+        None => Scenario::default(),
+    };
+    let rows = beam_impact::damping_study::run(&scenario, &beam_impact::damping_study::RATIOS)?;
+    print!("{}", beam_impact::damping_study::table(&rows));
+    Ok(())
 }
 
 fn pack(out: &Path, library: Option<PathBuf>) -> Result<()> {

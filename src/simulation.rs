@@ -85,7 +85,7 @@ impl<S: Stepper> Simulation<S> {
     fn with_stepper(model: Model, modal: ModalSystem, stepper: S) -> Result<Self> {
         let forces = TipForces { upper: model.scenario.upper.tip_force, lower: model.scenario.lower.tip_force };
         let physical = initial_state(&model, &modal, forces)?;
-        let kinematics = stepper.from_physical(&physical);
+        let kinematics = stepper.own_coordinates(&physical);
         let shapes = modal.shapes(&model);
         let nodal_shapes = nodal_shapes(&model, &shapes);
         let energy_method = EnergyMethod::new(&model.scenario);

@@ -92,7 +92,7 @@ impl Stepper for DenseStepper {
         }
     }
 
-    fn from_physical(&self, physical: &Kinematics) -> Kinematics {
+    fn own_coordinates(&self, physical: &Kinematics) -> Kinematics {
         physical.clone()
     }
 }

@@ -61,5 +61,5 @@ pub trait Stepper {
     /// Energy terms of the state.
     fn energies(&self, state: &Kinematics) -> Energies;
     /// The stepper's state from physical kinematics.
-    fn from_physical(&self, physical: &Kinematics) -> Kinematics;
+    fn own_coordinates(&self, physical: &Kinematics) -> Kinematics;
 }

@@ -126,7 +126,7 @@ impl Stepper for ModalStepper {
         e
     }
 
-    fn from_physical(&self, physical: &Kinematics) -> Kinematics {
+    fn own_coordinates(&self, physical: &Kinematics) -> Kinematics {
         Kinematics {
             displacement: &self.projector * &physical.displacement,
             velocity: &self.projector * &physical.velocity,

@@ -1,0 +1,77 @@
+//! Scenario files and validation: every invalid field is rejected with its name and value.
+
+use beam_impact::model::parameters::{self, Kind, PARAMETERS};
+use beam_impact::{Error, Scenario, Simulation};
+
+/// Every parameter set to NaN, to a negative value and (sizes) to zero is rejected by name.
+#[test]
+fn each_invalid_parameter_is_rejected_by_name() {
+    // Parameters for which 0 is legal: no drop, no damping, no tip mass, no external force.
+    let zero_ok = ["drop_height", "damping_ratio", "rayleigh_alpha", "rayleigh_beta", "lower.tip_mass"];
+    for p in PARAMETERS {
+        let mut bad = vec![-3.0];
+        if p.kind == Kind::Real {
+            bad.push(f64::NAN);
+            bad.push(f64::INFINITY);
+        }
+        if !zero_ok.contains(&p.name) {
+            bad.push(0.0);
+        }
+        for value in bad {
+            let mut s = Scenario::default();
+            let message = match parameters::set(&mut s, p, value) {
+                Err(e) => e.to_string(),
+                Ok(()) => match s.validate() {
+                    Err(e) => e.to_string(),
+                    Ok(()) => panic!("{} = {value} accepted", p.name),
+                },
+            };
+            assert!(message.starts_with(p.name), "{} = {value}: {message}", p.name);
+        }
+    }
+}
+
+/// The example message, word for word (with the unit).
+#[test]
+fn negative_length_message_names_field_unit_and_value() {
+    let mut s = Scenario::default();
+    s.upper.length = -3.0;
+    assert_eq!(s.validate().unwrap_err().to_string(), "upper.length must be > 0 m, got -3");
+}
+
+/// The contact point must lie on the bridge, and each segment needs at least one element.
+#[test]
+fn contact_position_beyond_bridge_and_zero_elements_are_rejected() {
+    let s = Scenario { contact_position: 30.0, ..Scenario::default() };
+    let message = Simulation::new(&s).unwrap_err().to_string();
+    assert!(message.starts_with("contact_position must be inside the upper beam"), "{message}");
+    assert!(message.contains("29") && message.contains("30"), "{message}");
+    let mut s = Scenario::default();
+    s.lower.elements = 0;
+    assert!(matches!(s.validate(), Err(Error::InvalidParameter { name: "lower.elements", .. })));
+    let mut s = Scenario::default();
+    s.upper.elements_beyond_contact = 0;
+    assert!(matches!(s.validate(), Err(Error::InvalidParameter { name: "upper.elements_beyond_contact", .. })));
+}
+
+/// `scenario` prints TOML that reads back as the paper scenario; a partial file takes defaults.
+#[test]
+fn toml_round_trip_and_partial_files() {
+    let text = Scenario::default().to_toml();
+    assert_eq!(Scenario::from_toml(&text, "default.toml").unwrap(), Scenario::default());
+    let s = Scenario::from_toml("drop_height = 1.0\n[upper]\nlength = 30.0\n", "partial.toml").unwrap();
+    assert_eq!(s.drop_height, 1.0);
+    assert_eq!(s.upper.length, 30.0);
+    assert_eq!(s.lower, Scenario::default().lower);
+    assert!(!s.is_paper());
+}
+
+/// Unknown fields and wrong types are errors naming the file, on one line.
+#[test]
+fn unknown_fields_and_bad_types_are_reported_on_one_line() {
+    let message = Scenario::from_toml("drop_hieght = 1.0\n", "typo.toml").unwrap_err().to_string();
+    assert!(message.starts_with("scenario typo.toml:") && message.contains("drop_hieght"), "{message}");
+    assert!(!message.contains('\n'), "{message}");
+    let message = Scenario::from_toml("[lower]\nelements = \"seven\"\n", "type.toml").unwrap_err().to_string();
+    assert!(message.contains("type.toml") && !message.contains('\n'), "{message}");
+}

@@ -1,0 +1,204 @@
+//! The linear acceleration method (paper Eqs. 7-11): production stepper against the dense
+//! oracle, energy conservation, convergence order, stability limit, snapshots, and the
+//! independence of the results from communication intervals.
+
+use beam_impact::model::Model;
+use beam_impact::record::{MemoryRecorder, NullRecorder};
+use beam_impact::solver::{Kinematics, ModalStepper, ModalSystem, Stage, Stepper, TipForces};
+use beam_impact::{Error, Scenario, Simulation};
+use nalgebra::DVector;
+
+/// The production (modal, Sherman-Morrison) stepper and the literal dense Eqs. (7)-(11) on the
+/// whole paper run: the same steps and contact windows, and every Table 1 peak equal to 1e-9
+/// relative where it occurs in the first contact (t < 0.75 s). The bridge's whole-run peak
+/// comes at 2.6 s after ~80 bounces: each stiff-bar impact (k = 2.8e10 N/m) roughly doubles a
+/// round-off difference, measured 2.7e-9 relative there, so that one is held to 1e-8.
+#[test]
+fn production_stepper_matches_dense_oracle_to_round_off() {
+    let scenario = Scenario::default();
+    let (mut a, mut b) = (MemoryRecorder::default(), MemoryRecorder::default());
+    let fast = Simulation::new(&scenario).unwrap().run(&mut a).unwrap();
+    let dense = Simulation::new_dense(&scenario).unwrap().run(&mut b).unwrap();
+    assert_eq!(fast.steps, dense.steps);
+    assert_eq!(fast.contact_windows.len(), dense.contact_windows.len());
+    let first_contact = |r: &MemoryRecorder| r.steps.iter().rfind(|s| s.time < 0.75).unwrap().peaks.as_array();
+    for (x, y) in first_contact(&a).iter().zip(first_contact(&b)) {
+        assert!((x - y).abs() <= 1e-9 * y.abs(), "first-contact peak {x} vs oracle {y}");
+    }
+    for (x, y) in fast.peaks.as_array().iter().zip(dense.peaks.as_array()) {
+        assert!((x - y).abs() <= 1e-8 * y.abs(), "peak {x} vs oracle {y}");
+    }
+}
+
+/// Every step of a short run, not only the peaks: deflections and stresses to 1e-9 relative
+/// of their scale.
+#[test]
+fn production_and_oracle_agree_at_every_step() {
+    let scenario = Scenario { duration: 0.1, ..Scenario::default() };
+    let (mut a, mut b) = (MemoryRecorder::default(), MemoryRecorder::default());
+    Simulation::new(&scenario).unwrap().run(&mut a).unwrap();
+    Simulation::new_dense(&scenario).unwrap().run(&mut b).unwrap();
+    assert_eq!(a.steps.len(), b.steps.len());
+    for (x, y) in a.steps.iter().zip(&b.steps) {
+        assert_eq!(x.time_ns, y.time_ns);
+        assert_eq!(x.contact, y.contact);
+        assert!((x.lower_tip_deflection - y.lower_tip_deflection).abs() < 1e-12);
+        assert!((x.upper_contact_bending_stress - y.upper_contact_bending_stress).abs() < 1e-9 * 3e8);
+        assert!((x.lower_clamp_shear_stress - y.lower_clamp_shear_stress).abs() < 1e-9 * 6e7);
+    }
+}
+
+/// Both beams out of contact, undamped, released from their undeformed shapes with the
+/// bridge's impact rotation: a free swing that excites all modes. Returns the largest energy
+/// residual |T + U + V - E0| over each half of `duration`.
+fn free_swing_residual(dt: f64, duration: f64) -> (f64, f64) {
+    // Undamped, so that the energy of the swing is conserved by the exact solution.
+    let scenario = Scenario { damping_ratio: 0.0, ..Scenario::default() };
+    let model = Model::new(&scenario).unwrap();
+    let modal = ModalSystem::new(&model).unwrap();
+    let mut stepper = ModalStepper::new(&model, modal.clone());
+    let physical = beam_impact::solver::initial::initial_state(&model, &modal, TipForces::default()).unwrap();
+    // Undeformed start: zero displacement, the impact velocity, equilibrium acceleration M^-1 F.
+    let mut state = stepper.own_coordinates(&Kinematics {
+        displacement: DVector::zeros(model.dofs()),
+        velocity: physical.velocity.clone(),
+        acceleration: model.mass().lu().solve(&model.gravity_load()).unwrap(),
+    });
+    let energy = |stepper: &ModalStepper, state: &Kinematics| {
+        let e = stepper.energies(state);
+        e.kinetic + e.beam_strain + e.gravity_potential
+    };
+    let e0 = energy(&stepper, &state);
+    let steps = (duration / dt).round() as usize;
+    let (mut first, mut second) = (0.0f64, 0.0f64);
+    for i in 0..steps {
+        stepper.step(&mut state, Stage::Free, dt, TipForces::default());
+        let residual = (energy(&stepper, &state) - e0).abs();
+        if i < steps / 2 {
+            first = first.max(residual);
+        } else {
+            second = second.max(residual);
+        }
+    }
+    (first, second)
+}
+
+/// The method is second order and (gamma = 1/2) free of numerical damping: the energy residual
+/// of a free swing stays bounded (the second half of a 1 s run is no worse than the first,
+/// within 30 %: no drift) and shrinks about 4x when dt halves (3.6 to 4.4; measured 4.02 and
+/// 4.03 for 4e-5 -> 2e-5 -> 1e-5 s; below 1e-5 s the 1e-7 J round-off floor of a 1e5 J energy
+/// sum takes over, so smaller steps would not show the order).
+#[test]
+fn free_undamped_swing_conserves_energy_to_second_order() {
+    let (a1, a2) = free_swing_residual(4e-5, 1.0);
+    assert!(a2 < 1.3 * a1, "drift: first half {a1} J, second half {a2} J");
+    let residuals: Vec<f64> = [4e-5, 2e-5, 1e-5]
+        .iter()
+        .map(|&dt| {
+            let (first, second) = free_swing_residual(dt, 0.2);
+            first.max(second)
+        })
+        .collect();
+    for pair in residuals.windows(2) {
+        let ratio = pair[0] / pair[1];
+        assert!((3.6..4.4).contains(&ratio), "residual ratio for dt/2: {ratio} ({residuals:?})");
+    }
+    assert!(residuals[0] < 1e-3, "a 1e5 J exchange balanced to {} J", residuals[0]);
+}
+
+/// Halving dt shrinks the error about 4x (second order). Richardson form: the differences
+/// x(dt) - x(dt/2) of the arrestor's tip deflection at t = 0.05 s shrink 4x per halving. The
+/// steps are small enough for every mode (omega_max dt < 0.2) to be in the asymptotic range;
+/// at the paper's 5e-5 s the top modes (omega dt ~ 2) are not, and the ratio wanders.
+/// Measured 4.03, 4.01, 4.00; the band 3.8-4.2 fails for a first-order error (ratio 2).
+#[test]
+fn halving_the_step_shrinks_the_error_fourfold() {
+    let scenario = Scenario { damping_ratio: 0.0, ..Scenario::default() };
+    let model = Model::new(&scenario).unwrap();
+    let modal = ModalSystem::new(&model).unwrap();
+    let run = |dt: f64| {
+        let mut stepper = ModalStepper::new(&model, modal.clone());
+        let physical = beam_impact::solver::initial::initial_state(&model, &modal, TipForces::default()).unwrap();
+        let mut state = stepper.own_coordinates(&Kinematics {
+            displacement: DVector::zeros(model.dofs()),
+            velocity: physical.velocity.clone(),
+            acceleration: model.mass().lu().solve(&model.gravity_load()).unwrap(),
+        });
+        for _ in 0..(0.05 / dt).round() as usize {
+            stepper.step(&mut state, Stage::Free, dt, TipForces::default());
+        }
+        stepper.probes(&state.displacement)[0]
+    };
+    let x: Vec<f64> = [4e-6, 2e-6, 1e-6, 5e-7].iter().map(|&dt| run(dt)).collect();
+    let differences: Vec<f64> = x.windows(2).map(|p| p[0] - p[1]).collect();
+    for pair in differences.windows(2) {
+        let ratio = pair[0] / pair[1];
+        assert!((3.8..4.2).contains(&ratio), "error ratio {ratio} ({differences:?})");
+    }
+}
+
+/// dt * omega_max <= sqrt(12): a larger step is rejected with both numbers in the message.
+#[test]
+fn step_above_stability_limit_is_rejected_with_both_numbers() {
+    let scenario = Scenario { step_free: 2e-4, ..Scenario::default() };
+    let error = Simulation::new(&scenario).unwrap_err();
+    let message = error.to_string();
+    assert!(matches!(error, Error::UnstableStep { name: "step_free", .. }), "{message}");
+    assert!(message.contains("2e-4") && message.contains("omega_max") && message.contains("3.464"), "{message}");
+    let scenario = Scenario { step_contact: 1e-3, ..Scenario::default() };
+    let message = Simulation::new(&scenario).unwrap_err().to_string();
+    assert!(message.starts_with("step_contact = 1e-3 s is above the stability limit"), "{message}");
+}
+
+/// Save the run state, step on, restore, step again: identical results (snapshot round trip,
+/// also through serde JSON).
+#[test]
+fn restored_state_continues_identically() {
+    let mut simulation = Simulation::new(&Scenario::default()).unwrap();
+    simulation.advance_to(300_000_000, &mut NullRecorder, false).unwrap();
+    let saved = simulation.state().clone();
+    let json = serde_json::to_string(&saved).unwrap();
+    simulation.advance_to(800_000_000, &mut NullRecorder, false).unwrap();
+    let first = *simulation.result();
+    simulation.restore(serde_json::from_str(&json).unwrap()).unwrap();
+    simulation.advance_to(800_000_000, &mut NullRecorder, false).unwrap();
+    assert_eq!(*simulation.result(), first);
+}
+
+/// Stage changes are located to the nanosecond, so communication intervals of 0.1 ms to 0.1 s
+/// (which shorten steps to land on them) change no Table 1 peak by more than 0.1 % (the
+/// issue's bar is 0.5 %), and the contact force peak of the 2.6 s bounces by less than 1 %.
+#[test]
+fn peaks_do_not_depend_on_communication_interval() {
+    let scenario = Scenario::default();
+    let reference = Simulation::new(&scenario).unwrap().run(&mut NullRecorder).unwrap().peaks;
+    for interval in [100_000u64, 1_000_000, 10_000_000, 100_000_000] {
+        let mut simulation = Simulation::new(&scenario).unwrap();
+        let mut t = 0;
+        while t < scenario.duration_ns() {
+            t += interval;
+            simulation.advance_to(t, &mut NullRecorder, false).unwrap();
+            assert_eq!(simulation.result().time_ns, t, "lands exactly on the communication point");
+        }
+        for (k, (a, b)) in simulation.summary().peaks.as_array().iter().zip(reference.as_array()).enumerate() {
+            let tolerance = if k < 4 { 1e-3 } else { 1e-2 };
+            assert!((a / b - 1.0).abs() < tolerance, "interval {interval} ns, peak {k}: {a} vs {b}");
+        }
+    }
+}
+
+/// The beams touch at t = 0 (gap 0, SCENARIO.md) and every contact stage starts within a
+/// nanosecond's travel of gap = 0 (located stage changes).
+#[test]
+fn contact_starts_where_the_gap_closes() {
+    let mut recorder = MemoryRecorder::default();
+    Simulation::new(&Scenario::default()).unwrap().run(&mut recorder).unwrap();
+    let first = recorder.steps[0];
+    assert!((first.lower_tip_deflection - first.upper_contact_deflection).abs() < 1e-12);
+    for event in recorder.events.iter().filter(|e| e.start) {
+        let before = recorder.steps.iter().find(|s| s.time_ns == event.time_ns).unwrap();
+        let gap = before.upper_contact_deflection - before.lower_tip_deflection;
+        assert!(gap < 0.0 && gap > -1e-9 - 1e-8, "gap {gap} at contact start {}", event.time_ns);
+        assert!(event.relative_velocity < 0.0, "approaching");
+    }
+}
