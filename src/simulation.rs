@@ -20,6 +20,8 @@ pub struct RunState {
     pub kinematics: Kinematics,
     /// Results of the latest step (step 0: the initial state).
     pub result: StepResult,
+    /// y_k,u - y_k,l of the latest state, m (Eq. 6 decides the next stage from it).
+    pub gap: f64,
     /// Tip forces applied from now on (FMU inputs).
     pub forces: TipForces,
     /// Tip forces of the latest step (for the trapezoidal external work).
@@ -92,6 +94,7 @@ impl<S: Stepper> Simulation<S> {
         let state = RunState {
             kinematics,
             result: StepResult::default(),
+            gap: 0.0,
             forces,
             last_forces: forces,
             initial_energy: 0.0,
@@ -111,6 +114,7 @@ impl<S: Stepper> Simulation<S> {
         let probes = self.stepper.probes(&self.state.kinematics.displacement);
         let energies = self.stepper.energies(&self.state.kinematics);
         let mut result = self.outputs(&probes, Stage::Free);
+        self.state.gap = probes[Probe::Gap as usize];
         result.energy.kinetic = energies.kinetic;
         result.energy.strain = energies.beam_strain;
         result.energy.gravity_potential = energies.gravity_potential;
@@ -163,8 +167,7 @@ impl<S: Stepper> Simulation<S> {
 
     /// Stage of the next step, by Eq. (6) on the current state.
     pub fn next_stage(&self) -> Stage {
-        let gap = self.stepper.probes(&self.state.kinematics.displacement)[Probe::Gap as usize];
-        contact::stage(gap)
+        contact::stage(self.state.gap)
     }
 
     /// Takes one internal step of at most `max_step_ns` (the stage's own step otherwise) and
@@ -188,13 +191,13 @@ impl<S: Stepper> Simulation<S> {
         let forces = self.state.forces;
         self.backup.copy_from(&self.state.kinematics);
         self.stepper.step(&mut self.state.kinematics, stage, dt, forces);
-        let gap = self.stepper.probes(&self.state.kinematics.displacement)[Probe::Gap as usize];
-        if contact::stage(gap) != stage && step_ns > 1 {
-            step_ns = self.locate_stage_change(stage, step_ns, gap, forces);
+        let mut probes = self.stepper.probes(&self.state.kinematics.displacement);
+        if contact::stage(probes[Probe::Gap as usize]) != stage && step_ns > 1 {
+            step_ns = self.locate_stage_change(stage, step_ns, probes[Probe::Gap as usize], forces);
             dt = step_ns as f64 * 1e-9;
+            probes = self.stepper.probes(&self.state.kinematics.displacement);
         }
-
-        let probes = self.stepper.probes(&self.state.kinematics.displacement);
+        self.state.gap = probes[Probe::Gap as usize];
         let energies = self.stepper.energies(&self.state.kinematics);
         let mut result = self.outputs(&probes, stage);
         result.step = previous.step + 1;

@@ -28,6 +28,8 @@ pub struct ModalStepper {
     system: ModalSystem,
     /// Phi^T M: physical to modal coordinates.
     projector: nalgebra::DMatrix<f64>,
+    /// The probe functionals as contiguous columns (modal probes transposed), for O(n) dots.
+    probe_columns: nalgebra::DMatrix<f64>,
     /// The most recent S^-1 of each stage (index 0 free, 1 contact).
     cache: [Option<StageInverse>; 2],
     work: DVector<f64>,
@@ -38,7 +40,8 @@ impl ModalStepper {
     pub fn new(model: &Model, system: ModalSystem) -> ModalStepper {
         let projector = system.shapes(model).transpose() * model.mass();
         let n = system.dofs();
-        ModalStepper { system, projector, cache: [None, None], work: DVector::zeros(n) }
+        let probe_columns = system.probes.transpose();
+        ModalStepper { system, projector, probe_columns, cache: [None, None], work: DVector::zeros(n) }
     }
 
     /// The modal system (modes, damping, modal probes).
@@ -104,7 +107,7 @@ impl Stepper for ModalStepper {
     fn probes(&self, displacement: &DVector<f64>) -> [f64; PROBES] {
         let mut out = [0.0; PROBES];
         for (k, value) in out.iter_mut().enumerate() {
-            *value = self.system.probes.row(k).transpose().dot(displacement);
+            *value = self.probe_columns.column(k).dot(displacement);
         }
         out
     }
