@@ -83,17 +83,17 @@ impl Beam {
         r
     }
 
-    /// Internal bending moment (sagging positive) at the start of element `e`, as a functional: -f[1].
+    /// Internal bending moment (sagging positive) at the start of element `e`, as a functional: `-f[1]`.
     pub fn start_moment_functional(&self, e: usize) -> DVector<f64> {
         self.element_force_functional(e, 1, -1.0)
     }
 
-    /// Internal bending moment (sagging positive) at the end of element `e`, as a functional: f[3].
+    /// Internal bending moment (sagging positive) at the end of element `e`, as a functional: `f[3]`.
     pub fn end_moment_functional(&self, e: usize) -> DVector<f64> {
         self.element_force_functional(e, 3, 1.0)
     }
 
-    /// Internal shear force (dM/dx) at the start of element `e`, as a functional: f[0].
+    /// Internal shear force (dM/dx) at the start of element `e`, as a functional: `f[0]`.
     pub fn start_shear_functional(&self, e: usize) -> DVector<f64> {
         self.element_force_functional(e, 0, 1.0)
     }

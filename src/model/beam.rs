@@ -14,7 +14,7 @@ pub struct Section {
     pub mass_per_length: f64,
 }
 
-/// Element stiffness matrix, EI/L^3 [12 6L -12 6L; 6L 4L^2 -6L 2L^2; ...].
+/// Element stiffness matrix, `EI/L^3 [12 6L -12 6L; 6L 4L^2 -6L 2L^2; ...]`.
 pub fn stiffness(section: &Section, length: f64) -> Matrix4<f64> {
     let l = length;
     let k = section.bending_stiffness / (l * l * l);
@@ -38,7 +38,7 @@ pub fn stiffness(section: &Section, length: f64) -> Matrix4<f64> {
     ) * k
 }
 
-/// Consistent mass matrix, m L / 420 [156 22L 54 -13L; ...].
+/// Consistent mass matrix, `m L / 420 [156 22L 54 -13L; ...]`.
 pub fn consistent_mass(section: &Section, length: f64) -> Matrix4<f64> {
     let l = length;
     let m = section.mass_per_length * l / 420.0;
@@ -62,20 +62,20 @@ pub fn consistent_mass(section: &Section, length: f64) -> Matrix4<f64> {
     ) * m
 }
 
-/// Consistent nodal loads of a uniform load q (N/m, up positive): q L [1/2, L/12, 1/2, -L/12].
+/// Consistent nodal loads of a uniform load q (N/m, up positive): `q L [1/2, L/12, 1/2, -L/12]`.
 pub fn uniform_load(q: f64, length: f64) -> Vector4<f64> {
     let l = length;
     Vector4::new(q * l / 2.0, q * l * l / 12.0, q * l / 2.0, -q * l * l / 12.0)
 }
 
 /// Internal bending moment at the element's two ends, N m, sagging positive (M = EI w''),
-/// from the end forces f = k u: M(0) = -f[1], M(L) = f[3].
+/// from the end forces `f = k u`: `M(0) = -f[1]`, `M(L) = f[3]`.
 pub fn end_moments(k: &Matrix4<f64>, u: &Vector4<f64>) -> (f64, f64) {
     let f = k * u;
     (-f[1], f[3])
 }
 
-/// Internal shear force at the element's first end, N (Q = dM/dx), from f = k u: Q(0) = f[0].
+/// Internal shear force at the element's first end, N (Q = dM/dx), from `f = k u`: `Q(0) = f[0]`.
 pub fn start_shear(k: &Matrix4<f64>, u: &Vector4<f64>) -> f64 {
     (k * u)[0]
 }
