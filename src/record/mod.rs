@@ -91,3 +91,8 @@ impl Recorder for MemoryRecorder {
 }
 
 pub mod mcap;
+pub mod bench;
+pub mod figures;
+pub mod report;
+pub mod scene;
+pub mod schema;

@@ -1,0 +1,304 @@
+//! `beam-impact report`: reads a log written by [`super::mcap::McapRecorder`], rebuilds the run's
+//! [`Summary`] from it and writes Figures 6-9.
+//!
+//! The log is read linearly, chunk by chunk, with chunk CRCs checked, so a file cut short by a
+//! killed process still yields every complete chunk; the report then says that it was cut short
+//! and reports what it holds. The modes and the energy approach are recomputed from the scenario
+//! stored in the log (they are functions of it); everything else comes from the messages.
+
+use std::collections::BTreeMap;
+use std::io::Write;
+use std::path::Path;
+
+use ::mcap::read::{ChunkFlattener, Options};
+use ::mcap::records::Record;
+use prost::Message;
+
+use super::mcap::{CONTACT_TOPIC, LOG_TOPIC, MODEL_TOPIC, SCENARIO_ATTACHMENT, SCENARIO_METADATA, STEP_TOPIC};
+use super::schema::{ContactEventMessage, LogMessage, ModelMessage, StepMessage};
+use crate::error::{Error, Result};
+use crate::model::Scenario;
+use crate::results::{ContactEvent, ContactWindow, Peaks, StepResult, Summary};
+use crate::simulation::Simulation;
+
+/// Everything a log holds, decoded.
+#[derive(Clone, Debug, Default)]
+pub struct LogData {
+    /// The scenario's TOML (from the attachment, else from the model message).
+    pub scenario_toml: Option<String>,
+    /// The scenario's Metadata record, flattened keys.
+    pub metadata: BTreeMap<String, String>,
+    /// The one-off model message (nodes and nodal shapes).
+    pub model: Option<ModelMessage>,
+    /// Every step, in order.
+    pub steps: Vec<StepResult>,
+    /// Modal coordinates of the step at which the arrestor's deflection peaked.
+    pub peak_deflection_coordinates: Vec<f64>,
+    /// Contact events, in order.
+    pub events: Vec<ContactEvent>,
+    /// The `foxglove.Log` lines.
+    pub log_lines: Vec<String>,
+    /// Attachments: (name, media type, size in bytes).
+    pub attachments: Vec<(String, String, usize)>,
+    /// Messages per topic.
+    pub messages: BTreeMap<String, u64>,
+    /// Whether log times never decreased, across all channels in file order.
+    pub monotonic: bool,
+    /// Whether the file ended with its summary and footer (a finished log).
+    pub complete: bool,
+    /// Why reading stopped early, for a log cut short.
+    pub problem: Option<String>,
+    /// Size of the file, bytes.
+    pub file_size: u64,
+}
+
+impl LogData {
+    /// The scenario stored in the log.
+    pub fn scenario(&self) -> Result<Scenario> {
+        let text = self.scenario_toml.as_deref().ok_or_else(|| Error::Other("the log holds no scenario".into()))?;
+        Scenario::from_toml(text, SCENARIO_ATTACHMENT)
+    }
+}
+
+fn mcap_err(path: &Path, e: impl std::fmt::Display) -> Error {
+    Error::Mcap { path: path.display().to_string(), message: e.to_string() }
+}
+
+/// Reads every complete chunk of the log at `path`; a log cut short is not an error (see
+/// [`LogData::complete`] and [`LogData::problem`]), an unreadable or foreign file is.
+pub fn read_log(path: &Path) -> Result<LogData> {
+    let bytes = std::fs::read(path).map_err(|source| Error::Io {
+        action: "cannot read MCAP log",
+        path: path.display().to_string(),
+        source,
+    })?;
+    let mut data = LogData { monotonic: true, file_size: bytes.len() as u64, ..LogData::default() };
+    let reader = ChunkFlattener::new_with_options(&bytes, Options::ValidateChunkCrcs | Options::IgnoreEndMagic)
+        .map_err(|e| mcap_err(path, e))?;
+    let mut topics: BTreeMap<u16, String> = BTreeMap::new();
+    let mut step = StepMessage::default();
+    let mut last_time = 0u64;
+    let mut model_toml = None;
+    let mut footer = false;
+    for record in reader {
+        let record = match record {
+            Ok(r) => r,
+            Err(e) => {
+                data.problem = Some(e.to_string());
+                break;
+            }
+        };
+        match record {
+            Record::Channel(c) => {
+                topics.insert(c.id, c.topic);
+            }
+            Record::Message { header, data: bytes } => {
+                let topic = topics.get(&header.channel_id).map(String::as_str).unwrap_or("?");
+                *data.messages.entry(topic.to_string()).or_insert(0) += 1;
+                if header.log_time < last_time || header.publish_time != header.log_time {
+                    data.monotonic = false;
+                }
+                last_time = header.log_time;
+                let bad = |what: &str, e: prost::DecodeError| mcap_err(path, format!("bad {what} message: {e}"));
+                match topic {
+                    STEP_TOPIC => {
+                        step.clear();
+                        step.merge(&bytes[..]).map_err(|e| bad("step", e))?;
+                        let result = step.result();
+                        let previous = data.steps.last().map(|r| r.peaks.lower_tip_deflection);
+                        if previous.is_none_or(|p| result.peaks.lower_tip_deflection != p) {
+                            data.peak_deflection_coordinates.clear();
+                            data.peak_deflection_coordinates
+                                .extend(step.modal_coordinates.iter().map(|&q| f64::from(q)));
+                        }
+                        data.steps.push(result);
+                    }
+                    CONTACT_TOPIC => {
+                        let m = ContactEventMessage::decode(&bytes[..]).map_err(|e| bad("contact", e))?;
+                        data.events.push(ContactEvent::from(&m));
+                    }
+                    LOG_TOPIC => {
+                        let m = LogMessage::decode(&bytes[..]).map_err(|e| bad("log", e))?;
+                        data.log_lines.push(m.message);
+                    }
+                    MODEL_TOPIC => {
+                        let m = ModelMessage::decode(&bytes[..]).map_err(|e| bad("model", e))?;
+                        model_toml = Some(m.scenario_toml.clone());
+                        data.model = Some(m);
+                    }
+                    _ => {}
+                }
+            }
+            Record::Attachment { header, data: bytes, .. } => {
+                if header.name == SCENARIO_ATTACHMENT {
+                    data.scenario_toml = Some(String::from_utf8_lossy(&bytes).into_owned());
+                }
+                data.attachments.push((header.name, header.media_type, bytes.len()));
+            }
+            Record::Metadata(m) if m.name == SCENARIO_METADATA => data.metadata = m.metadata,
+            Record::Footer(_) => footer = true,
+            _ => {}
+        }
+    }
+    data.complete = footer && data.problem.is_none();
+    if !data.complete && data.problem.is_none() {
+        data.problem = Some("the file ends before its summary and footer (the writer never finished)".into());
+    }
+    if data.scenario_toml.is_none() {
+        data.scenario_toml = model_toml;
+    }
+    Ok(data)
+}
+
+/// The run's [`Summary`] rebuilt from the log: peaks and when they were reached from the step
+/// messages, contact windows from the events, residuals from the energy account; modes and
+/// the energy approach recomputed from the stored scenario by `simulation`.
+pub fn summary_from_log(data: &LogData, simulation: &Simulation) -> Result<Summary> {
+    let last = data.steps.last().ok_or_else(|| Error::Other("the log holds no step message".into()))?;
+    let mut peak_times = Peaks::default();
+    let mut previous: Option<Peaks> = None;
+    let mut max_residual = 0.0f64;
+    for r in &data.steps {
+        let now = r.peaks.as_array();
+        let before = previous.map(|p| p.as_array());
+        for (k, when) in peak_times.as_mut_array().into_iter().enumerate() {
+            if before.is_none_or(|b| b[k] != now[k]) {
+                *when = r.time;
+            }
+        }
+        previous = Some(r.peaks);
+        max_residual = max_residual.max(r.energy.residual.abs());
+    }
+    let mut windows: Vec<ContactWindow> = Vec::new();
+    for e in &data.events {
+        let t = e.time_ns as f64 * 1e-9;
+        if e.start {
+            windows.push(ContactWindow { start: t, end: last.time });
+        } else if let Some(w) = windows.last_mut() {
+            w.end = t;
+        }
+    }
+    // A window still open when the log ends closes at the last step taken in contact.
+    if let (Some(w), Some(e)) = (windows.last_mut(), data.events.last()) {
+        if e.start {
+            w.end = data.steps.iter().rev().find(|r| r.contact).map_or(w.start, |r| r.time);
+        }
+    }
+    let modal = simulation.modal();
+    let upper_strain = data
+        .peak_deflection_coordinates
+        .iter()
+        .enumerate()
+        .skip(modal.lower_dofs)
+        .map(|(i, q)| 0.5 * modal.omega2.get(i).copied().unwrap_or(0.0) * q * q)
+        .sum();
+    Ok(Summary {
+        steps: last.step,
+        time: last.time,
+        peaks: last.peaks,
+        peak_times,
+        upper_strain_at_peak_deflection: upper_strain,
+        contact_windows: windows,
+        final_energy_residual: last.energy.residual,
+        max_energy_residual: max_residual,
+        energy_method: *simulation.energy_method(),
+        modes: simulation.mode_table(5),
+    })
+}
+
+fn summary_text(data: &LogData, scenario: &Scenario, summary: &Summary, out: &mut String) {
+    use std::fmt::Write as _;
+    let _ = writeln!(
+        out,
+        "scenario: {}",
+        if scenario.is_paper() { "the paper's (Catipovic, Vladimir, Reljic 2008)" } else { "custom" }
+    );
+    if !scenario.is_paper() {
+        for line in scenario.to_toml().lines().filter(|l| !l.trim().is_empty()) {
+            let _ = writeln!(out, "  {line}");
+        }
+    }
+    let _ = writeln!(
+        out,
+        "steps: {} internal steps to t = {:.6} s of {:.3} s ({} step messages)",
+        summary.steps,
+        summary.time,
+        scenario.duration,
+        data.steps.len()
+    );
+    let names = [
+        ("arrestor end deflection  w_din,a", 1.0, "m  "),
+        ("clamp bending stress     s_din,a", 1e-6, "MPa"),
+        ("clamp shear stress       t_din,a", 1e-6, "MPa"),
+        ("bridge contact bending   s_din,b", 1e-6, "MPa"),
+        ("contact bar force        F_c    ", 1e-3, "kN "),
+    ];
+    let _ = writeln!(out, "peaks max |.| and when reached:");
+    for (k, (name, scale, unit)) in names.iter().enumerate() {
+        let _ = writeln!(
+            out,
+            "  {name} {:10.4} {unit} at t = {:.5} s",
+            summary.peaks.as_array()[k] * scale,
+            summary.peak_times.as_array()[k]
+        );
+    }
+    let _ = writeln!(
+        out,
+        "contact: {} events -> {} windows (merged below); {} log lines",
+        data.events.len(),
+        summary.contact_windows.len(),
+        data.log_lines.len()
+    );
+}
+
+/// Reads the log at `mcap`, prints the summary to `out` and writes Figures 6-9 (SVG and PNG)
+/// into `out_dir` (created if missing).
+pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
+    let data = read_log(mcap)?;
+    let io = |source| Error::Io { action: "cannot write report to", path: "output".into(), source };
+    let mut text = String::new();
+    {
+        use std::fmt::Write as _;
+        let _ = writeln!(text, "MCAP log {} ({} bytes)", mcap.display(), data.file_size);
+        if data.complete {
+            let _ = writeln!(text, "status: complete (finished file, every chunk CRC checked)");
+        } else {
+            let _ = writeln!(
+                text,
+                "status: CUT SHORT: {}; reporting the {} complete step messages it holds",
+                data.problem.as_deref().unwrap_or("unknown"),
+                data.steps.len()
+            );
+        }
+        let counts: Vec<String> = data.messages.iter().map(|(t, n)| format!("{t} {n}")).collect();
+        let _ = writeln!(text, "messages: {}", counts.join(", "));
+        if !data.monotonic {
+            let _ = writeln!(text, "WARNING: log times decrease somewhere in the file");
+        }
+    }
+    let scenario = data.scenario()?;
+    let simulation = Simulation::new(&scenario)?;
+    let summary = summary_from_log(&data, &simulation)?;
+    summary_text(&data, &scenario, &summary, &mut text);
+    text.push('\n');
+    text.push_str(&crate::compare::comparison(&summary, scenario.is_paper()));
+    out.write_all(text.as_bytes()).map_err(io)?;
+    std::fs::create_dir_all(out_dir).map_err(|source| Error::Io {
+        action: "cannot create figure directory",
+        path: out_dir.display().to_string(),
+        source,
+    })?;
+    let files = super::figures::write_figures(&data.steps, &summary, out_dir, !data.complete)?;
+    let mut listing = String::from("\nfigures:\n");
+    for f in files {
+        listing.push_str(&format!("  {}\n", f.display()));
+    }
+    out.write_all(listing.as_bytes()).map_err(io)?;
+    Ok(())
+}
+
+/// The default figure directory: `<stem>-figures` next to the log.
+pub fn default_out_dir(mcap: &Path) -> std::path::PathBuf {
+    let stem = mcap.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "log".into());
+    mcap.with_file_name(format!("{stem}-figures"))
+}
