@@ -218,3 +218,45 @@ pub fn write_figures(steps: &[StepResult], summary: &Summary, dir: &Path, cut_sh
     }
     Ok(files)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The PNG path draws text with the compiled-in font, whatever fonts the machine has: the
+    /// caption band of a rendered figure holds dark pixels (glyphs), and only there above the plot.
+    #[test]
+    fn bitmap_figures_render_text_without_system_fonts() {
+        register_fonts();
+        let (w, h) = SIZE;
+        let mut pixels = vec![0u8; (w * h * 3) as usize];
+        let figure = Figure {
+            stem: "test",
+            caption: "Figure 0. Caption text".into(),
+            y_label: "value",
+            series: vec![Series { name: "a".into(), color: ARRESTOR, points: vec![(0.0, 0.0), (1.0, 1.0)] }],
+        };
+        {
+            let root = BitMapBackend::with_buffer(&mut pixels, SIZE).into_drawing_area();
+            draw(&root, &figure, &[], 1).unwrap();
+        }
+        let dark_in_rows = |rows: std::ops::Range<u32>| {
+            rows.flat_map(|y| (0..w).map(move |x| ((y * w + x) * 3) as usize))
+                .filter(|&i| pixels[i] < 100 && pixels[i + 1] < 100 && pixels[i + 2] < 100)
+                .count()
+        };
+        let caption = dark_in_rows(10..36);
+        assert!(caption > 200, "only {caption} dark pixels where the caption should be");
+    }
+
+    #[test]
+    fn decimation_keeps_extremes_in_time_order() {
+        let points: Vec<(f64, f64)> = (0..10_000).map(|i| (i as f64, ((i * 7919) % 1000) as f64)).collect();
+        let kept = min_max_decimate(&points, 100);
+        assert!(kept.len() <= 200);
+        assert!(kept.windows(2).all(|p| p[0].0 < p[1].0));
+        let max = kept.iter().map(|p| p.1).fold(f64::MIN, f64::max);
+        let min = kept.iter().map(|p| p.1).fold(f64::MAX, f64::min);
+        assert_eq!((min, max), (0.0, 999.0));
+    }
+}

@@ -1,0 +1,136 @@
+//! The MCAP log of the paper run (issue 4).
+//!
+//! Goal: the log holds exactly what the simulation produced: one `beam_impact.Step` message per
+//! internal step (about 92 000 for the paper's 3 s), equal field for field to the in-memory
+//! recorder's copy, contact events on their own channel and as `foxglove.Log` lines, a scene
+//! every 1 ms of simulated time, the scenario as Metadata and attachment, time stamps that never
+//! decrease; and the summary rebuilt from the log alone equals the simulation's own.
+//! Tolerances: step values are compared exactly (f64 round-trips through protobuf); modal
+//! coordinates are stored as f32, so they and E_def,b (quadratic in them) are compared to f32's
+//! relative precision.
+
+use beam_impact::record::mcap::{McapRecorder, RecorderOptions};
+use beam_impact::record::report::{read_log, report, summary_from_log};
+use beam_impact::record::{MemoryRecorder, Recorder, RunInfo};
+use beam_impact::results::{ContactEvent, StepResult};
+use beam_impact::{Scenario, Simulation};
+
+/// Sends everything to two recorders.
+struct Tee<'a>(&'a mut dyn Recorder, &'a mut dyn Recorder);
+
+impl Recorder for Tee<'_> {
+    fn start(&mut self, info: &RunInfo<'_>) -> beam_impact::Result<()> {
+        self.0.start(info)?;
+        self.1.start(info)
+    }
+    fn step(&mut self, result: &StepResult, q: &[f64]) -> beam_impact::Result<()> {
+        self.0.step(result, q)?;
+        self.1.step(result, q)
+    }
+    fn contact_event(&mut self, event: &ContactEvent) -> beam_impact::Result<()> {
+        self.0.contact_event(event)?;
+        self.1.contact_event(event)
+    }
+    fn finish(&mut self) -> beam_impact::Result<()> {
+        self.0.finish()?;
+        self.1.finish()
+    }
+}
+
+#[test]
+fn paper_run_log_holds_every_step_and_rebuilds_the_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("paper.mcap");
+    let scenario = Scenario::default();
+    let mut simulation = Simulation::new(&scenario).unwrap();
+    let mut memory = MemoryRecorder::default();
+    let mut mcap = McapRecorder::create(&path).unwrap();
+    let summary = simulation.run(&mut Tee(&mut memory, &mut mcap)).unwrap();
+
+    let log = read_log(&path).unwrap();
+    assert!(log.complete, "{:?}", log.problem);
+    assert!(log.monotonic);
+    // One message per internal step, plus step 0 (the initial state).
+    assert_eq!(log.steps.len() as u64, summary.steps + 1);
+    assert_eq!(log.steps.len(), memory.steps.len());
+    assert!((85_000..100_000).contains(&log.steps.len()), "{} steps", log.steps.len());
+    for (k, (logged, kept)) in log.steps.iter().zip(&memory.steps).enumerate() {
+        assert_eq!(logged, kept, "step {k}");
+        assert_eq!(logged.step, k as u64);
+    }
+    assert_eq!(log.events, memory.events);
+    assert!(!log.events.is_empty());
+    assert_eq!(log.log_lines.len(), log.events.len());
+    assert_eq!(log.messages["/beam/contact"], log.events.len() as u64);
+    // A scene at t = 0 and every 1 ms to 3 s.
+    assert_eq!(log.messages["/beam/scene"], 3001);
+    assert_eq!(log.messages["/beam/model"], 1);
+    assert_eq!(log.metadata["upper.length"], "29.0");
+    assert_eq!(log.metadata["paper"], "true");
+    assert_eq!(log.scenario().unwrap(), scenario);
+    assert!(log.attachments.iter().any(|(name, media, _)| name == "scenario.toml" && media == "application/toml"));
+
+    // The nodal shapes stored once redraw the probes of any step: the arrestor's end is the
+    // last arrestor node.
+    let model = log.model.as_ref().unwrap();
+    let shapes = memory.nodal_shapes.as_ref().unwrap();
+    assert_eq!((model.shape_rows as usize, model.shape_cols as usize), shapes.shape());
+    let tip_row = model.lower_nodes.len() - 1;
+    let k = memory.steps.len() / 3;
+    let row = &model.nodal_shapes[tip_row * shapes.ncols()..(tip_row + 1) * shapes.ncols()];
+    let tip: f64 = row.iter().zip(&memory.coordinates[k]).map(|(s, q)| s * (*q as f32) as f64).sum();
+    let expected = memory.steps[k].lower_tip_deflection;
+    assert!((tip - expected).abs() <= 1e-6 * expected.abs().max(0.01), "{tip} vs {expected}");
+
+    let rebuilt = summary_from_log(&log, &simulation).unwrap();
+    assert_eq!(rebuilt.steps, summary.steps);
+    assert_eq!(rebuilt.time, summary.time);
+    assert_eq!(rebuilt.peaks, summary.peaks);
+    assert_eq!(rebuilt.peak_times, summary.peak_times);
+    assert_eq!(rebuilt.contact_windows, summary.contact_windows);
+    assert_eq!(rebuilt.final_energy_residual, summary.final_energy_residual);
+    assert_eq!(rebuilt.max_energy_residual, summary.max_energy_residual);
+    assert_eq!(rebuilt.modes, summary.modes);
+    let (a, b) = (rebuilt.upper_strain_at_peak_deflection, summary.upper_strain_at_peak_deflection);
+    assert!((a - b).abs() <= 1e-5 * b.abs(), "E_def,b {a} vs {b}");
+
+    // The report reprints Table 1 and writes the four figures.
+    let figures = dir.path().join("figures");
+    let mut out = Vec::new();
+    report(&path, &figures, &mut out).unwrap();
+    let text = String::from_utf8(out).unwrap();
+    assert!(text.contains("status: complete"), "{text}");
+    assert!(text.contains("Table 1"), "{text}");
+    for stem in ["fig6-deflection", "fig7-bending-stress", "fig8-shear-stress", "fig9-contact-stress"] {
+        for ext in ["svg", "png"] {
+            let file = figures.join(format!("{stem}.{ext}"));
+            let size = std::fs::metadata(&file).map(|m| m.len()).unwrap_or(0);
+            assert!(size > 10_000, "{} is {size} bytes", file.display());
+        }
+    }
+}
+
+#[test]
+fn writer_settings_and_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let missing = dir.path().join("no-such-dir").join("x.mcap");
+    let err = McapRecorder::create(&missing).unwrap_err().to_string();
+    assert!(err.contains("no-such-dir"), "{err}");
+
+    // finish() is idempotent; writing after it is an error naming the file.
+    let path = dir.path().join("short.mcap");
+    let scenario = Scenario { duration: 0.01, ..Scenario::default() };
+    let mut recorder =
+        McapRecorder::with_options(&path, RecorderOptions { scene_interval_ns: 0, ..RecorderOptions::default() })
+            .unwrap();
+    recorder.attach("notes.txt", "text/plain", b"hello").unwrap();
+    let summary = Simulation::new(&scenario).unwrap().run(&mut recorder).unwrap();
+    recorder.finish().unwrap();
+    let err = recorder.step(&StepResult::default(), &[]).unwrap_err().to_string();
+    assert!(err.contains("short.mcap"), "{err}");
+    let log = read_log(&path).unwrap();
+    assert!(log.complete);
+    assert_eq!(log.steps.len() as u64, summary.steps + 1);
+    assert_eq!(log.messages.get("/beam/scene"), None);
+    assert!(log.attachments.iter().any(|(n, _, size)| n == "notes.txt" && *size == 5));
+}
