@@ -1,0 +1,133 @@
+"""The paper run's MCAP log read from Python (issue 4).
+
+Goal: the log written by `beam-impact run` is valid for third-party readers: every CRC checks
+with the `mcap` package's StreamReader(validate_crcs=True); it holds exactly one step message
+per internal step (the summary's step count + 1 for the initial state); time stamps never
+decrease; it loads into numpy (load_log.py) with the same peaks as the run's own summary; and the
+FMU's log holds, at every communication point, the values the FMU returned there.
+Tolerances: peaks and FMU outputs are compared exactly (the same f64 bits travel both ways); the
+paper's Table 1 and Figure 6 values are checked loosely (10 %, 0.1 s: the reconstruction's
+agreement with the paper, see SCENARIO.md).
+"""
+
+from __future__ import annotations
+
+import glob
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from mcap.records import Chunk, DataEnd, Footer, Message
+from mcap.stream_reader import StreamReader
+
+sys.path.insert(0, str(Path(__file__).parent))
+from load_log import load_log  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def binary() -> str:
+    path = os.environ.get("BEAM_IMPACT_BIN", str(ROOT / "target" / "release" / "beam-impact"))
+    assert Path(path).exists(), f"{path} not found: build with `cargo build --release` or set BEAM_IMPACT_BIN"
+    return path
+
+
+@pytest.fixture(scope="module")
+def paper_log(tmp_path_factory):
+    directory = tmp_path_factory.mktemp("mcap")
+    log, summary = directory / "paper.mcap", directory / "summary.json"
+    subprocess.run([binary(), "run", "--mcap", str(log), "--json", str(summary)], check=True, capture_output=True)
+    return log, json.loads(summary.read_text())["summary"]
+
+
+def test_crcs_count_and_time_stamps(paper_log):
+    path, summary = paper_log
+    steps = chunks = 0
+    times = []
+    ended = False
+    with open(path, "rb") as f:
+        for record in StreamReader(f, validate_crcs=True).records:
+            if isinstance(record, Message):
+                times.append(record.log_time)
+                assert record.publish_time == record.log_time
+            elif isinstance(record, Chunk):
+                chunks += 1
+            elif isinstance(record, (DataEnd, Footer)):
+                ended = True
+    assert ended
+    times = np.asarray(times, dtype=np.uint64)
+    assert np.all(np.diff(times.astype(np.int64)) >= 0), "log times decrease"
+    log = load_log(str(path))
+    steps = len(log.steps["step"])
+    assert steps == summary["steps"] + 1
+    assert 85_000 < steps < 100_000
+    assert np.array_equal(log.steps["step"], np.arange(steps, dtype=np.uint64))
+    assert log.counts["/beam/step"] == steps
+    assert log.counts["/beam/scene"] == 3001
+
+
+def test_numpy_arrays_match_the_summary(paper_log):
+    path, summary = paper_log
+    log = load_log(str(path))
+    s = log.steps
+    assert np.all(np.diff(s["time_ns"].astype(np.int64)) > 0)
+    assert np.allclose(s["time"], s["time_ns"] * 1e-9, rtol=0, atol=1e-12)
+    peaks = summary["peaks"]
+    for name in ["lower_tip_deflection", "lower_clamp_bending_stress", "lower_clamp_shear_stress"]:
+        assert np.max(np.abs(s[name])) == peaks[name]
+        assert s[f"peaks.{name}"][-1] == peaks[name]
+    assert s["energy.residual"][-1] == summary["final_energy_residual"]
+    # The paper's Table 1 (FEM) within the reconstruction's 10 %.
+    assert abs(peaks["lower_tip_deflection"] / 0.691 - 1) < 0.10
+    # Figure 6: in contact from impact to ~0.75 s, apart, in contact again by ~1.44 s.
+    starts = [e["time"] for e in log.events if e["start"]]
+    ends = [e["time"] for e in log.events if not e["start"]]
+    assert starts[0] < 1e-3
+    gaps = [(e, min((t for t in starts if t > e), default=np.inf)) for e in ends]
+    longest = max(gaps, key=lambda g: g[1] - g[0])
+    assert abs(longest[0] - 0.77) < 0.1 and 1.2 < longest[1] < 1.5, longest
+    # The stored shapes redraw the probes: the arrestor's end is its last node.
+    k = int(np.argmax(np.abs(s["lower_tip_deflection"])))
+    w = log.nodal_shapes @ log.modal_coordinates[k].astype(np.float64)
+    assert abs(w[len(log.lower_nodes) - 1] - s["lower_tip_deflection"][k]) < 1e-5
+    assert log.metadata["paper"] == "true"
+    assert "drop_height" in log.scenario_toml
+
+
+def test_fmu_log_equals_fmu_outputs(tmp_path):
+    """The FMU's own log (parameter log.path) against the outputs fmpy read at each point."""
+    directory = os.environ.get("BEAM_IMPACT_FMU_DIR", str(ROOT / "target" / "fmu"))
+    fmus = sorted(glob.glob(os.path.join(directory, "*.fmu")))
+    if not fmus:
+        pytest.skip(f"no FMU in {directory} (run `beam-impact pack --out {directory}`)")
+    from fmpy import simulate_fmu
+
+    names = {
+        "lower.tip_deflection": "lower_tip_deflection",
+        "upper.contact_deflection": "upper_contact_deflection",
+        "lower.clamp_bending_stress": "lower_clamp_bending_stress",
+        "lower.clamp_shear_stress": "lower_clamp_shear_stress",
+        "upper.contact_bending_stress": "upper_contact_bending_stress",
+        "contact.stress": "contact_stress",
+        "energy.residual": "energy.residual",
+        "peak.lower.tip_deflection": "peaks.lower_tip_deflection",
+    }
+    for fmu in fmus:
+        log_path = tmp_path / (Path(fmu).stem + ".mcap")
+        result = simulate_fmu(
+            fmu,
+            stop_time=0.5,
+            output_interval=0.01,
+            start_values={"log.path": str(log_path)},
+            output=list(names),
+        )
+        log = load_log(str(log_path))
+        index = {int(t): k for k, t in enumerate(log.steps["time_ns"])}
+        for row in result:
+            k = index[int(round(row["time"] * 1e9))]
+            for fmu_name, log_name in names.items():
+                assert row[fmu_name] == log.steps[log_name][k], (fmu, row["time"], fmu_name)
