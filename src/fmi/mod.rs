@@ -1,1 +1,22 @@
 //! FMI 2.0 and 3.0 co-simulation export: all of the crate's unsafe code lives here.
+//!
+//! - [`boundary`]: the panic boundary every exported body runs in, and the pointer checks.
+//! - [`status`]: status codes, the state enum and the allowed-states table per function.
+//! - [`variables`]: the variable table (value references, names, units, start values).
+//! - [`instance`]: one instance: parameters, simulation, MCAP log, state machine.
+//! - [`fmi2`], [`fmi3`]: the exported C functions; they check arguments and delegate.
+//! - [`state`]: FMU state snapshots and their portable byte format.
+//! - [`resource`]: resource-location parsing.
+//! - [`description`]: the two modelDescription.xml files, generated from the table.
+//! - [`pack`]: writes the two .fmu archives.
+
+pub mod boundary;
+pub mod description;
+pub mod fmi2;
+pub mod fmi3;
+pub mod instance;
+pub mod pack;
+pub mod resource;
+pub mod state;
+pub mod status;
+pub mod variables;

@@ -1,0 +1,246 @@
+//! The two modelDescription.xml files, generated from the variable table ([`super::variables`]).
+//! The committed copies (`modelDescription.xml` for FMI 2.0, `fmu/modelDescription.xml` for
+//! FMI 3.0) are checked against these by `tests/fmi_drift.rs`.
+
+use std::collections::BTreeSet;
+use std::fmt::Write;
+
+use super::variables::{base_units, table, Causality, Type, Variable};
+
+/// The `modelIdentifier`: the binary is `BeamImpact.so`.
+pub const MODEL_IDENTIFIER: &str = "BeamImpact";
+
+/// Start, stop and communication step of the DefaultExperiment, s (the paper's 3 s run).
+pub const DEFAULT_EXPERIMENT: (f64, f64, f64) = (0.0, 3.0, 1e-3);
+
+const DESCRIPTION: &str = "Elastic impact of two beams (Catipovic, Vladimir, Reljic 2008): a hinged bridge dropped \
+                           on a cantilever arrestor through a contact bar, Euler-Bernoulli FEM with the modified linear \
+                           acceleration method";
+
+const CATEGORIES: &[(&str, &str)] = &[
+    ("logEvents", "Contact starts and ends, early returns"),
+    ("logStatusWarning", "Warnings"),
+    ("logStatusDiscard", "Discarded calls"),
+    ("logStatusError", "Errors: invalid parameters, illegal call sequences, bad arguments"),
+    ("logStatusFatal", "Internal errors (the instance can only be freed)"),
+];
+
+/// The instantiation token (FMI 2 `guid`): a GUID-shaped FNV-1a hash of the variable table, so a
+/// description from another build of the table is refused at instantiation.
+pub fn token() -> String {
+    let mut hash: u128 = 0x6c62_272e_07bb_0142_62b8_2175_6295_c58d;
+    for v in table() {
+        let line = format!(
+            "{}|{}|{}|{}|{}|{:?}|{:?}\n",
+            v.name,
+            v.vr,
+            v.ty.fmi2_name(),
+            v.causality.name(),
+            v.variability.name(),
+            v.unit,
+            v.start
+        );
+        for b in line.bytes() {
+            hash ^= u128::from(b);
+            hash = hash.wrapping_mul(0x0000_0000_0100_0000_0000_0000_0000_013b);
+        }
+    }
+    let h = format!("{hash:032x}");
+    format!("{{{}-{}-{}-{}-{}}}", &h[0..8], &h[8..12], &h[12..16], &h[16..20], &h[20..32])
+}
+
+/// Escapes text for an XML attribute.
+fn esc(text: &str) -> String {
+    text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
+fn units(variables: &[Variable]) -> BTreeSet<&'static str> {
+    variables.iter().filter_map(|v| v.unit).collect()
+}
+
+fn unit_definitions(out: &mut String, variables: &[Variable]) {
+    out.push_str("  <UnitDefinitions>\n");
+    for unit in units(variables) {
+        let exponents = base_units(unit).unwrap_or([0; 4]);
+        let base: String = ["kg", "m", "s", "rad"]
+            .iter()
+            .zip(exponents)
+            .filter(|(_, e)| *e != 0)
+            .map(|(name, e)| format!(" {name}=\"{e}\""))
+            .collect();
+        let _ = write!(out, "    <Unit name=\"{}\">\n      <BaseUnit{base}/>\n", esc(unit));
+        if unit == "Pa" {
+            out.push_str("      <DisplayUnit name=\"MPa\" factor=\"1e-06\"/>\n");
+        }
+        out.push_str("    </Unit>\n");
+    }
+    out.push_str("  </UnitDefinitions>\n");
+}
+
+fn log_categories(out: &mut String) {
+    out.push_str("  <LogCategories>\n");
+    for (name, description) in CATEGORIES {
+        let _ = writeln!(out, "    <Category name=\"{name}\" description=\"{}\"/>", esc(description));
+    }
+    out.push_str("  </LogCategories>\n");
+}
+
+fn default_experiment(out: &mut String) {
+    let (start, stop, step) = DEFAULT_EXPERIMENT;
+    let _ = writeln!(out, "  <DefaultExperiment startTime=\"{start:?}\" stopTime=\"{stop:?}\" stepSize=\"{step:?}\"/>");
+}
+
+/// The attributes every variable element shares (name .. initial).
+fn common_attributes(v: &Variable) -> String {
+    let mut a = format!(
+        "name=\"{}\" valueReference=\"{}\" description=\"{}\" causality=\"{}\" variability=\"{}\"",
+        esc(&v.name),
+        v.vr,
+        esc(&v.description),
+        v.causality.name(),
+        v.variability.name()
+    );
+    if v.causality != Causality::Input {
+        match v.exact {
+            Some(true) => a.push_str(" initial=\"exact\""),
+            Some(false) => a.push_str(" initial=\"calculated\""),
+            None => {}
+        }
+    }
+    a
+}
+
+fn is_initial_unknown(v: &Variable) -> bool {
+    v.causality == Causality::CalculatedParameter || (v.causality == Causality::Output && v.exact == Some(false))
+}
+
+/// The FMI 2.0 modelDescription.xml.
+pub fn fmi2() -> String {
+    let variables = table();
+    let mut out = String::new();
+    out.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+    let _ = writeln!(
+        out,
+        "<fmiModelDescription fmiVersion=\"2.0\" modelName=\"{MODEL_IDENTIFIER}\" guid=\"{}\"\n  \
+         description=\"{}\"\n  generationTool=\"beam-impact {}\" variableNamingConvention=\"structured\" \
+         numberOfEventIndicators=\"0\">",
+        token(),
+        esc(DESCRIPTION),
+        env!("CARGO_PKG_VERSION")
+    );
+    let _ = writeln!(
+        out,
+        "  <CoSimulation modelIdentifier=\"{MODEL_IDENTIFIER}\" canHandleVariableCommunicationStepSize=\"true\" \
+         canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\" canNotUseMemoryManagementFunctions=\"true\"/>"
+    );
+    unit_definitions(&mut out, &variables);
+    log_categories(&mut out);
+    default_experiment(&mut out);
+    out.push_str("  <ModelVariables>\n");
+    for (index, v) in variables.iter().enumerate() {
+        let _ = writeln!(out, "    <!-- index {} -->", index + 1);
+        let _ = writeln!(out, "    <ScalarVariable {}>", common_attributes(v));
+        let mut t = format!("      <{}", v.ty.fmi2_name());
+        if let Some(unit) = v.unit {
+            let _ = write!(t, " unit=\"{}\"", esc(unit));
+        }
+        if let Some(display) = v.display_unit() {
+            let _ = write!(t, " displayUnit=\"{display}\"");
+        }
+        if let Some(start) = &v.start {
+            let _ = write!(t, " start=\"{}\"", esc(start));
+        }
+        let _ = writeln!(out, "{t}/>\n    </ScalarVariable>");
+    }
+    out.push_str("  </ModelVariables>\n  <ModelStructure>\n    <Outputs>\n");
+    for (index, v) in variables.iter().enumerate() {
+        if v.causality == Causality::Output {
+            let _ = writeln!(out, "      <Unknown index=\"{}\"/>", index + 1);
+        }
+    }
+    out.push_str("    </Outputs>\n    <InitialUnknowns>\n");
+    for (index, v) in variables.iter().enumerate() {
+        if is_initial_unknown(v) {
+            let _ = writeln!(out, "      <Unknown index=\"{}\"/>", index + 1);
+        }
+    }
+    out.push_str("    </InitialUnknowns>\n  </ModelStructure>\n</fmiModelDescription>\n");
+    out
+}
+
+/// The FMI 3.0 modelDescription.xml.
+pub fn fmi3() -> String {
+    let variables = table();
+    let mut out = String::new();
+    out.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+    let _ = writeln!(
+        out,
+        "<fmiModelDescription fmiVersion=\"3.0\" modelName=\"{MODEL_IDENTIFIER}\" instantiationToken=\"{}\"\n  \
+         description=\"{}\"\n  generationTool=\"beam-impact {}\" variableNamingConvention=\"structured\">",
+        token(),
+        esc(DESCRIPTION),
+        env!("CARGO_PKG_VERSION")
+    );
+    let _ = writeln!(
+        out,
+        "  <CoSimulation modelIdentifier=\"{MODEL_IDENTIFIER}\" canHandleVariableCommunicationStepSize=\"true\" \
+         canGetAndSetFMUState=\"true\" canSerializeFMUState=\"true\" hasEventMode=\"true\" \
+         mightReturnEarlyFromDoStep=\"true\"/>"
+    );
+    unit_definitions(&mut out, &variables);
+    log_categories(&mut out);
+    default_experiment(&mut out);
+    out.push_str("  <ModelVariables>\n");
+    for v in &variables {
+        let mut element = format!("    <{} {}", v.ty.fmi3_name(), common_attributes(v));
+        if let Some(unit) = v.unit {
+            let _ = write!(element, " unit=\"{}\"", esc(unit));
+        }
+        if let Some(display) = v.display_unit() {
+            let _ = write!(element, " displayUnit=\"{display}\"");
+        }
+        match (&v.start, v.ty) {
+            (Some(start), Type::String) => {
+                let _ = write!(element, ">\n      <Start value=\"{}\"/>\n    </String>", esc(start));
+            }
+            (Some(start), _) => {
+                let _ = write!(element, " start=\"{}\"/>", esc(start));
+            }
+            (None, _) => element.push_str("/>"),
+        }
+        out.push_str(&element);
+        out.push('\n');
+    }
+    out.push_str("  </ModelVariables>\n  <ModelStructure>\n");
+    for v in &variables {
+        if v.causality == Causality::Output {
+            let _ = writeln!(out, "    <Output valueReference=\"{}\"/>", v.vr);
+        }
+    }
+    for v in &variables {
+        if is_initial_unknown(v) {
+            let _ = writeln!(out, "    <InitialUnknown valueReference=\"{}\"/>", v.vr);
+        }
+    }
+    out.push_str("  </ModelStructure>\n</fmiModelDescription>\n");
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn token_is_guid_shaped_and_in_both_descriptions() {
+        let t = token();
+        assert_eq!(t.len(), 38, "{t}");
+        assert!(fmi2().contains(&format!("guid=\"{t}\"")));
+        assert!(fmi3().contains(&format!("instantiationToken=\"{t}\"")));
+    }
+
+    #[test]
+    fn stresses_display_in_mpa() {
+        assert!(fmi2().contains("<DisplayUnit name=\"MPa\" factor=\"1e-06\"/>"));
+        assert!(fmi3().contains("name=\"peak.lower.clamp_bending_stress\""));
+    }
+}

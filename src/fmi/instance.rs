@@ -1,0 +1,632 @@
+//! One FMU instance: the scenario being parameterized, the running simulation, the MCAP log and
+//! the FMI state machine. `fmi2.rs` and `fmi3.rs` only translate C arguments and call in here
+//! through [`Instance::guard`], which checks the allowed states, catches panics and logs errors
+//! before the error status is returned.
+
+use std::ffi::{c_char, c_void, CString};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::{Path, PathBuf};
+
+use super::boundary::panic_message;
+use super::description;
+use super::fmi2::Fmi2CallbackLogger;
+use super::fmi3::Fmi3LogMessageCallback;
+use super::state::{fingerprint, Snapshot};
+use super::status::{Mask, State, Status};
+use super::variables::{table, Column, Source, Tip, Type, Variable};
+use crate::error::Error;
+use crate::model::parameters::{self, find};
+use crate::record::mcap::McapRecorder;
+use crate::record::{Recorder, RunInfo};
+use crate::results::{ContactEvent, StepResult};
+use crate::simulation::Advance;
+use crate::solver::TipForces;
+use crate::{Scenario, Simulation};
+
+/// Which standard the instance was created through.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Version {
+    /// FMI 2.0 (`fmi2Instantiate`).
+    Fmi2,
+    /// FMI 3.0 (`fmi3InstantiateCoSimulation`).
+    Fmi3,
+}
+
+/// The importer's logging callback, handed back its environment pointer untouched.
+#[derive(Clone, Copy, Debug)]
+pub enum Logger {
+    /// FMI 2: printf-style, always called with the format `"%s"`.
+    Fmi2 {
+        /// The callback.
+        callback: Fmi2CallbackLogger,
+        /// `componentEnvironment`.
+        environment: *mut c_void,
+    },
+    /// FMI 3: `logMessage(env, status, category, message)`.
+    Fmi3 {
+        /// The callback.
+        callback: Fmi3LogMessageCallback,
+        /// `instanceEnvironment`.
+        environment: *mut c_void,
+    },
+}
+
+/// Turns text into a C string, replacing interior NULs.
+pub fn c_string(text: &str) -> CString {
+    CString::new(text.replace('\0', "\u{fffd}")).unwrap_or_default()
+}
+
+/// Logs a message through a logger without an instance (failed instantiation).
+pub fn log_with(logger: Logger, instance_name: &str, status: Status, category: &str, message: &str) {
+    let (name, category, message) = (c_string(instance_name), c_string(category), c_string(message));
+    match logger {
+        Logger::Fmi2 { callback: Some(f), environment } => {
+            // SAFETY: the importer's callback with NUL-terminated strings that outlive the call;
+            // the format is always "%s" with exactly one string argument.
+            unsafe {
+                f(environment, name.as_ptr(), status, category.as_ptr(), c"%s".as_ptr(), message.as_ptr());
+            }
+        }
+        Logger::Fmi3 { callback: Some(f), environment } => {
+            // SAFETY: the importer's callback with NUL-terminated strings that outlive the call.
+            unsafe { f(environment, status, category.as_ptr(), message.as_ptr()) }
+        }
+        _ => {}
+    }
+}
+
+/// The result of one `DoStep`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepOutcome {
+    /// The step stopped at a contact change before the communication point (FMI 3 only).
+    pub early_return: bool,
+    /// FMU time reached, s.
+    pub last_successful_time: f64,
+}
+
+/// Internal result: the error message is logged by [`Instance::guard`].
+pub type Outcome<T> = std::result::Result<T, String>;
+
+/// An FMU instance (the opaque `fmi2Component` / `fmi3Instance`).
+pub struct Instance {
+    name: String,
+    version: Version,
+    logger: Logger,
+    logging_on: bool,
+    log_events: bool,
+    state: State,
+    variables: Vec<Variable>,
+    scenario: Scenario,
+    log_path: String,
+    simulation: Option<Simulation>,
+    recorder: Option<McapRecorder>,
+    start_time: f64,
+    stop_time: Option<f64>,
+    event_mode_used: bool,
+    early_return_allowed: bool,
+    last_successful_time: f64,
+    strings: Vec<CString>,
+    resources: Option<PathBuf>,
+}
+
+/// Communication points closer than this to the FMU's time are the same point, s (time is kept
+/// in integer nanoseconds; importers accumulate rounding, e.g. steps of 0.009999999999999998).
+pub const TIME_TOLERANCE: f64 = 1e-9;
+
+fn time_tolerance(t: f64) -> f64 {
+    TIME_TOLERANCE + 1e-12 * t.abs()
+}
+
+/// Forwards every step to the MCAP log (if any) and keeps the contact events for `logEvents`.
+struct Tap<'a> {
+    inner: Option<&'a mut McapRecorder>,
+    events: Vec<ContactEvent>,
+}
+
+impl Recorder for Tap<'_> {
+    fn start(&mut self, info: &RunInfo<'_>) -> crate::Result<()> {
+        self.inner.as_mut().map_or(Ok(()), |r| r.start(info))
+    }
+    fn step(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> crate::Result<()> {
+        self.inner.as_mut().map_or(Ok(()), |r| r.step(result, modal_coordinates))
+    }
+    fn contact_event(&mut self, event: &ContactEvent) -> crate::Result<()> {
+        self.events.push(*event);
+        self.inner.as_mut().map_or(Ok(()), |r| r.contact_event(event))
+    }
+    fn finish(&mut self) -> crate::Result<()> {
+        self.inner.as_mut().map_or(Ok(()), |r| r.finish())
+    }
+}
+
+impl Instance {
+    /// A new instance in state Instantiated with the paper scenario.
+    pub fn new(name: &str, version: Version, logger: Logger, logging_on: bool, resources: Option<PathBuf>) -> Self {
+        Instance {
+            name: name.to_string(),
+            version,
+            logger,
+            logging_on,
+            log_events: true,
+            state: State::Instantiated,
+            variables: table(),
+            scenario: Scenario::default(),
+            log_path: "BeamImpact.mcap".to_string(),
+            simulation: None,
+            recorder: None,
+            start_time: 0.0,
+            stop_time: None,
+            event_mode_used: false,
+            early_return_allowed: false,
+            last_successful_time: 0.0,
+            strings: Vec::new(),
+            resources,
+        }
+    }
+
+    /// FMI 3 co-simulation options given at instantiation.
+    pub fn set_cosimulation_options(&mut self, event_mode_used: bool, early_return_allowed: bool) {
+        self.event_mode_used = event_mode_used;
+        self.early_return_allowed = early_return_allowed;
+    }
+
+    /// The resource directory, if the importer gave a local one.
+    pub fn resources(&self) -> Option<&Path> {
+        self.resources.as_deref()
+    }
+
+    /// The current state.
+    pub fn state(&self) -> State {
+        self.state
+    }
+
+    /// Logs a message (errors and warnings always; events only with logging on and the category enabled).
+    pub fn log(&self, status: Status, category: &str, message: &str) {
+        if status == Status::Ok && !(self.logging_on && self.log_events) {
+            return;
+        }
+        log_with(self.logger, &self.name, status, category, message);
+    }
+
+    /// Logs an error and returns [`Status::Error`].
+    pub fn error(&self, message: &str) -> Status {
+        self.log(Status::Error, Status::Error.category(), message);
+        Status::Error
+    }
+
+    /// Runs `work` if the instance is in one of `allowed`'s states; logs an illegal call sequence,
+    /// an error message or a caught panic (which makes the instance Fatal) before returning the status.
+    pub fn guard(&mut self, function: &str, allowed: Mask, work: impl FnOnce(&mut Self) -> Outcome<Status>) -> Status {
+        if !allowed.contains(self.state) {
+            let why = if allowed == Mask::NONE {
+                "is not supported by this FMU".to_string()
+            } else {
+                format!("is not allowed in state {} (illegal call sequence)", self.state.name())
+            };
+            return self.error(&format!("{function} {why}"));
+        }
+        match catch_unwind(AssertUnwindSafe(|| work(self))) {
+            Ok(Ok(status)) => status,
+            Ok(Err(message)) => self.error(&format!("{function}: {message}")),
+            Err(payload) => {
+                self.state = State::Fatal;
+                let message = format!("{function}: internal error: {}", panic_message(payload.as_ref()));
+                self.log(Status::Fatal, Status::Fatal.category(), &message);
+                Status::Fatal
+            }
+        }
+    }
+
+    /// `SetDebugLogging`: an empty category list switches every category.
+    pub fn set_debug_logging(&mut self, on: bool, categories: &[String]) -> Outcome<Status> {
+        self.logging_on = on;
+        for c in categories {
+            match c.as_str() {
+                "logEvents" => self.log_events = on,
+                "logStatusWarning" | "logStatusDiscard" | "logStatusError" | "logStatusFatal" => {}
+                other => {
+                    return Err(format!(
+                        "unknown log category `{other}` (this FMU has logEvents, logStatusWarning, \
+                         logStatusDiscard, logStatusError, logStatusFatal)"
+                    ))
+                }
+            }
+        }
+        if categories.is_empty() {
+            self.log_events = on;
+        }
+        Ok(Status::Ok)
+    }
+
+    /// `SetupExperiment` / the time arguments of FMI 3's `EnterInitializationMode`.
+    pub fn setup_experiment(&mut self, start_time: f64, stop_time: Option<f64>) -> Outcome<Status> {
+        if !start_time.is_finite() {
+            return Err(format!("startTime must be finite, got {start_time}"));
+        }
+        if let Some(stop) = stop_time {
+            if !(stop.is_finite() && stop >= start_time) {
+                return Err(format!("stopTime must be finite and >= startTime = {start_time}, got {stop}"));
+            }
+        }
+        self.start_time = start_time;
+        self.stop_time = stop_time;
+        self.last_successful_time = start_time;
+        Ok(Status::Ok)
+    }
+
+    /// `EnterInitializationMode`.
+    pub fn enter_initialization(&mut self) -> Outcome<Status> {
+        self.state = State::Initialization;
+        Ok(Status::Ok)
+    }
+
+    /// Every invalid parameter, each named with [`Scenario::validate`]'s message: validate, set the
+    /// offending parameter back to the paper's value in a scratch copy, repeat.
+    fn invalid_parameters(&self) -> Vec<String> {
+        let mut scratch = self.scenario.clone();
+        let defaults = Scenario::default();
+        let mut messages = Vec::new();
+        let mut named: Vec<&str> = Vec::new();
+        while let Err(e) = scratch.validate() {
+            messages.push(e.to_string());
+            let Error::InvalidParameter { name, .. } = e else { break };
+            if named.contains(&name) {
+                break;
+            }
+            named.push(name);
+            match find(name) {
+                Ok(p) => (p.put)(&mut scratch, (p.get)(&defaults)),
+                Err(_) if name == "upper.tip_force" => scratch.upper.tip_force = 0.0,
+                Err(_) if name == "lower.tip_force" => scratch.lower.tip_force = 0.0,
+                Err(_) => break,
+            }
+        }
+        messages
+    }
+
+    /// The simulation, built from the parameters on first use (validating them).
+    fn simulation(&mut self) -> Outcome<&mut Simulation> {
+        if self.simulation.is_none() {
+            let invalid = self.invalid_parameters();
+            if let Some((last, others)) = invalid.split_last() {
+                for message in others {
+                    self.error(&format!("invalid parameter: {message}"));
+                }
+                return Err(format!("invalid parameter: {last}"));
+            }
+            let simulation = Simulation::new(&self.scenario).map_err(|e| format!("invalid parameters: {e}"))?;
+            self.simulation = Some(simulation);
+        }
+        self.simulation.as_mut().ok_or_else(|| "no simulation".to_string())
+    }
+
+    /// `ExitInitializationMode`: builds the model, opens the MCAP log and records the initial state.
+    pub fn exit_initialization(&mut self) -> Outcome<Status> {
+        self.simulation()?;
+        if !self.log_path.is_empty() {
+            let path = PathBuf::from(&self.log_path);
+            let mut recorder =
+                McapRecorder::create(&path).map_err(|e| format!("log.path = \"{}\": {e}", self.log_path))?;
+            let xml = match self.version {
+                Version::Fmi2 => description::fmi2(),
+                Version::Fmi3 => description::fmi3(),
+            };
+            recorder
+                .attach("modelDescription.xml", "application/xml", xml.as_bytes())
+                .map_err(|e| format!("log.path = \"{}\": {e}", self.log_path))?;
+            self.recorder = Some(recorder);
+        }
+        let simulation = self.simulation.as_mut().ok_or("no simulation")?;
+        let mut tap = Tap { inner: self.recorder.as_mut(), events: Vec::new() };
+        simulation.start_recording(&mut tap).map_err(|e| format!("MCAP log: {e}"))?;
+        self.last_successful_time = self.start_time;
+        self.state = if self.event_mode_used { State::Event } else { State::Step };
+        Ok(Status::Ok)
+    }
+
+    /// FMI 3 `EnterEventMode`.
+    pub fn enter_event_mode(&mut self) -> Outcome<Status> {
+        if !self.event_mode_used {
+            return Err("the instance was created with eventModeUsed = false".into());
+        }
+        self.state = State::Event;
+        Ok(Status::Ok)
+    }
+
+    /// FMI 3 `EnterStepMode`.
+    pub fn enter_step_mode(&mut self) -> Outcome<Status> {
+        self.state = State::Step;
+        Ok(Status::Ok)
+    }
+
+    /// The FMU's time, s.
+    pub fn time(&self) -> f64 {
+        self.start_time + self.simulation.as_ref().map_or(0, |s| s.result().time_ns) as f64 * 1e-9
+    }
+
+    /// `fmi2LastSuccessfulTime` / FMI 3's `lastSuccessfulTime`, s.
+    pub fn last_successful_time(&self) -> f64 {
+        self.last_successful_time
+    }
+
+    /// `DoStep`: advances to `current + step` in internal steps, landing exactly on it; with
+    /// `early_return` (FMI 3, if allowed) stops at a contact change.
+    pub fn do_step(&mut self, current: f64, step: f64) -> Outcome<StepOutcome> {
+        let now = self.time();
+        if !(current.is_finite() && step.is_finite() && step >= 0.0) {
+            return Err(format!(
+                "the communication step must be finite and >= 0 s, got currentCommunicationPoint = {current}, \
+                 communicationStepSize = {step}"
+            ));
+        }
+        if (current - now).abs() > time_tolerance(now) {
+            return Err(format!(
+                "currentCommunicationPoint = {current} s is not the FMU's time {now} s (tolerance {:e} s)",
+                time_tolerance(now)
+            ));
+        }
+        let end = current + step;
+        if let Some(stop) = self.stop_time {
+            if end > stop + time_tolerance(stop) {
+                return Err(format!("the step ends at {end} s, after stopTime = {stop} s"));
+            }
+        }
+        let target_ns = ((end - self.start_time) * 1e9).round();
+        if !(0.0..=1.8e19).contains(&target_ns) {
+            return Err(format!("the step ends at {end} s, outside the FMU's time range"));
+        }
+        let target_ns = target_ns as u64;
+        let early = self.version == Version::Fmi3 && self.early_return_allowed;
+        let simulation = self.simulation.as_mut().ok_or("no simulation")?;
+        let mut tap = Tap { inner: self.recorder.as_mut(), events: Vec::new() };
+        let advance = simulation.advance_to(target_ns.max(simulation.result().time_ns), &mut tap, early);
+        let events = std::mem::take(&mut tap.events);
+        for e in &events {
+            self.log(
+                Status::Ok,
+                "logEvents",
+                &format!(
+                    "t = {:.9} s (step {}): contact {} (relative velocity {:.4} m/s)",
+                    self.start_time + e.time_ns as f64 * 1e-9,
+                    e.step,
+                    if e.start { "starts" } else { "ends" },
+                    e.relative_velocity
+                ),
+            );
+        }
+        let time = self.time();
+        self.last_successful_time = time;
+        let advance = advance.map_err(|e| format!("MCAP log: {e}"))?;
+        let early_return = advance == Advance::ContactChanged && time < end - time_tolerance(end);
+        if early_return {
+            self.log(Status::Ok, "logEvents", &format!("early return at t = {time:.9} s (contact change)"));
+        }
+        Ok(StepOutcome { early_return, last_successful_time: time })
+    }
+
+    /// Completes the MCAP log; its error is returned (and so logged).
+    fn finish_log(&mut self) -> Outcome<()> {
+        match self.recorder.take() {
+            Some(mut recorder) => recorder
+                .finish()
+                .map_err(|e| format!("cannot complete the MCAP log {}: {e}", recorder.path().display())),
+            None => Ok(()),
+        }
+    }
+
+    /// `Terminate`: completes the MCAP log.
+    pub fn terminate(&mut self) -> Outcome<Status> {
+        self.state = State::Terminated;
+        self.finish_log()?;
+        Ok(Status::Ok)
+    }
+
+    /// `Reset`: back to Instantiated with the paper scenario (completing an open log first).
+    pub fn reset(&mut self) -> Outcome<Status> {
+        let finished = self.finish_log();
+        let (name, version, logger, logging_on, resources) =
+            (self.name.clone(), self.version, self.logger, self.logging_on, self.resources.take());
+        let (event_mode_used, early_return_allowed) = (self.event_mode_used, self.early_return_allowed);
+        *self = Instance::new(&name, version, logger, logging_on, resources);
+        self.set_cosimulation_options(event_mode_used, early_return_allowed);
+        finished?;
+        Ok(Status::Ok)
+    }
+
+    /// Called by `FreeInstance`: completes the log if `Terminate` was not called, logging its error.
+    pub fn free(&mut self) {
+        if let Err(message) = self.finish_log() {
+            self.error(&format!("FreeInstance: {message}"));
+        }
+    }
+
+    fn variable(&self, vr: u32, ty: Type) -> Outcome<Variable> {
+        let v = self
+            .variables
+            .get(vr as usize)
+            .ok_or_else(|| format!("unknown value reference {vr} (this FMU has 0..{})", self.variables.len() - 1))?;
+        if v.ty != ty {
+            let name = |t: Type| if self.version == Version::Fmi2 { t.fmi2_name() } else { t.fmi3_name() };
+            return Err(format!("value reference {vr} is `{}`, a {} variable, not {}", v.name, name(v.ty), name(ty)));
+        }
+        Ok(v.clone())
+    }
+
+    fn forces(&self) -> TipForces {
+        match &self.simulation {
+            Some(s) if self.state != State::Instantiated && self.state != State::Initialization => s.state().forces,
+            _ => TipForces { upper: self.scenario.upper.tip_force, lower: self.scenario.lower.tip_force },
+        }
+    }
+
+    /// Reads a Real / Float64 variable.
+    pub fn get_real(&mut self, vr: u32) -> Outcome<f64> {
+        let v = self.variable(vr, Type::Real)?;
+        Ok(match v.source {
+            Source::Time => self.time(),
+            Source::Parameter(p) => (p.get)(&self.scenario),
+            Source::Input(Tip::Upper) => self.forces().upper,
+            Source::Input(Tip::Lower) => self.forces().lower,
+            Source::Output(get) => get(self.simulation()?.result()),
+            Source::Mode(column, k) => {
+                let table = self.simulation()?.mode_table(super::variables::MODES);
+                let (list, what) = match column {
+                    Column::Lower => (table.lower, "the arrestor"),
+                    Column::Upper => (table.upper, "the bridge"),
+                    Column::Coupled => (table.coupled, "the coupled system"),
+                };
+                *list
+                    .get(k)
+                    .ok_or_else(|| format!("{}: {what} has only {} modes with this mesh", v.name, list.len()))?
+            }
+            Source::EnergyMethod(get) => get(self.simulation()?.energy_method()),
+            Source::LogPath | Source::ContactActive => return Err(format!("`{}` is not Real", v.name)),
+        })
+    }
+
+    /// Reads an Integer / Int32 variable.
+    pub fn get_integer(&mut self, vr: u32) -> Outcome<i32> {
+        let v = self.variable(vr, Type::Integer)?;
+        match v.source {
+            Source::Parameter(p) => Ok((p.get)(&self.scenario) as i32),
+            _ => Err(format!("`{}` is not an Integer", v.name)),
+        }
+    }
+
+    /// Reads a Boolean variable.
+    pub fn get_boolean(&mut self, vr: u32) -> Outcome<bool> {
+        let v = self.variable(vr, Type::Boolean)?;
+        match v.source {
+            Source::ContactActive => Ok(self.simulation()?.result().contact),
+            _ => Err(format!("`{}` is not a Boolean", v.name)),
+        }
+    }
+
+    /// Reads String variables; the returned pointers stay valid until the next string read.
+    pub fn get_strings(&mut self, vrs: &[u32]) -> Outcome<Vec<*const c_char>> {
+        let mut strings = Vec::with_capacity(vrs.len());
+        for &vr in vrs {
+            let v = self.variable(vr, Type::String)?;
+            match v.source {
+                Source::LogPath => strings.push(c_string(&self.log_path)),
+                _ => return Err(format!("`{}` is not a String", v.name)),
+            }
+        }
+        self.strings = strings;
+        Ok(self.strings.iter().map(|s| s.as_ptr()).collect())
+    }
+
+    fn check_settable(&self, v: &Variable) -> Outcome<()> {
+        let parameter = matches!(v.source, Source::Parameter(_) | Source::LogPath);
+        let input = matches!(v.source, Source::Input(_));
+        let allowed = if parameter {
+            super::status::allowed::SET_PARAMETER
+        } else if input {
+            super::status::allowed::SET_INPUT
+        } else {
+            return Err(format!("`{}` is a {} and cannot be set", v.name, v.causality.name()));
+        };
+        if !allowed.contains(self.state) {
+            return Err(format!(
+                "`{}` ({}) cannot be set in state {} (parameters are fixed after initialization)",
+                v.name,
+                v.causality.name(),
+                self.state.name()
+            ));
+        }
+        Ok(())
+    }
+
+    /// Writes a Real / Float64 variable (parameters: finite values only; the rest is checked at
+    /// initialization, where each invalid parameter is named).
+    pub fn set_real(&mut self, vr: u32, value: f64) -> Outcome<()> {
+        let v = self.variable(vr, Type::Real)?;
+        self.check_settable(&v)?;
+        if !value.is_finite() {
+            return Err(format!("{} must be a finite number, got {value}", v.name));
+        }
+        match v.source {
+            Source::Parameter(p) => {
+                parameters::set(&mut self.scenario, p, value).map_err(|e| e.to_string())?;
+                self.simulation = None;
+            }
+            Source::Input(tip) => {
+                let mut forces = self.forces();
+                match tip {
+                    Tip::Upper => forces.upper = value,
+                    Tip::Lower => forces.lower = value,
+                }
+                match self.state {
+                    State::Instantiated | State::Initialization => {
+                        self.scenario.upper.tip_force = forces.upper;
+                        self.scenario.lower.tip_force = forces.lower;
+                        self.simulation = None;
+                    }
+                    _ => self.simulation()?.set_tip_forces(forces),
+                }
+            }
+            _ => return Err(format!("`{}` cannot be set", v.name)),
+        }
+        Ok(())
+    }
+
+    /// Writes an Integer / Int32 variable.
+    pub fn set_integer(&mut self, vr: u32, value: i32) -> Outcome<()> {
+        let v = self.variable(vr, Type::Integer)?;
+        self.check_settable(&v)?;
+        let Source::Parameter(p) = v.source else { return Err(format!("`{}` cannot be set", v.name)) };
+        parameters::set(&mut self.scenario, p, f64::from(value)).map_err(|e| e.to_string())?;
+        self.simulation = None;
+        Ok(())
+    }
+
+    /// Writes a Boolean variable (there is no settable one).
+    pub fn set_boolean(&mut self, vr: u32, _value: bool) -> Outcome<()> {
+        let v = self.variable(vr, Type::Boolean)?;
+        self.check_settable(&v)?;
+        Err(format!("`{}` cannot be set", v.name))
+    }
+
+    /// Writes a String variable.
+    pub fn set_string(&mut self, vr: u32, value: String) -> Outcome<()> {
+        let v = self.variable(vr, Type::String)?;
+        self.check_settable(&v)?;
+        match v.source {
+            Source::LogPath => {
+                self.log_path = value;
+                Ok(())
+            }
+            _ => Err(format!("`{}` cannot be set", v.name)),
+        }
+    }
+
+    /// Error for a type this FMU has no variable of (FMI 3 Float32, Int8, ..., Binary, Clock).
+    pub fn no_variables_of(&self, type_name: &str, vrs: &[u32]) -> Outcome<Status> {
+        match vrs.first() {
+            None => Ok(Status::Ok),
+            Some(vr) => Err(format!("value reference {vr}: this FMU has no {type_name} variables")),
+        }
+    }
+
+    /// `GetFMUState`: a snapshot of the simulation.
+    pub fn snapshot(&mut self) -> Outcome<Snapshot> {
+        let fingerprint = fingerprint(&self.scenario);
+        let run = self.simulation()?.state().clone();
+        Ok(Snapshot { fingerprint, run })
+    }
+
+    /// `SetFMUState`: restores a snapshot taken from an instance of the same scenario.
+    pub fn restore(&mut self, snapshot: &Snapshot) -> Outcome<Status> {
+        let mine = fingerprint(&self.scenario);
+        if snapshot.fingerprint != mine {
+            return Err(format!(
+                "the state belongs to another scenario (fingerprint {:016x}, this instance's parameters give {mine:016x}): \
+                 set the same parameters before restoring",
+                snapshot.fingerprint
+            ));
+        }
+        self.simulation()?.restore(snapshot.run.clone()).map_err(|e| e.to_string())?;
+        self.last_successful_time = self.time();
+        Ok(Status::Ok)
+    }
+}

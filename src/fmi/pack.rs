@@ -1,0 +1,90 @@
+//! Writes the two FMUs: `out_root/fmi2/BeamImpact.fmu` and `out_root/fmi3/BeamImpact.fmu`, each
+//! with its modelDescription.xml, the shared library under the platform directory its standard
+//! names, and `documentation/` (the repository's `fmu/documentation/`).
+
+use std::fs::File;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use zip::write::SimpleFileOptions;
+use zip::{CompressionMethod, ZipWriter};
+
+use super::description::{self, MODEL_IDENTIFIER};
+use crate::error::{Error, Result};
+
+/// The documentation directory: `fmu/documentation/` of the repository this crate was built from,
+/// or of the working directory if that one is gone.
+pub fn documentation_dir() -> PathBuf {
+    let built = Path::new(env!("CARGO_MANIFEST_DIR")).join("fmu").join("documentation");
+    if built.is_dir() {
+        built
+    } else {
+        PathBuf::from("fmu/documentation")
+    }
+}
+
+fn io<'a>(action: &'static str, path: &'a Path) -> impl FnOnce(std::io::Error) -> Error + 'a {
+    move |source| Error::Io { action, path: path.display().to_string(), source }
+}
+
+fn zip_error(path: &Path) -> impl FnOnce(zip::result::ZipError) -> Error + '_ {
+    move |e| Error::Other(format!("cannot write FMU {}: {e}", path.display()))
+}
+
+/// Every file under `dir` as (path inside `documentation/`, absolute path), sorted.
+fn documentation_files(dir: &Path) -> Result<Vec<(String, PathBuf)>> {
+    let mut files = Vec::new();
+    let mut pending = vec![(String::new(), dir.to_path_buf())];
+    while let Some((prefix, path)) = pending.pop() {
+        for entry in std::fs::read_dir(&path).map_err(io("cannot read documentation directory", &path))? {
+            let entry = entry.map_err(io("cannot read documentation directory", &path))?;
+            let name = format!("{prefix}{}", entry.file_name().to_string_lossy());
+            if entry.path().is_dir() {
+                pending.push((format!("{name}/"), entry.path()));
+            } else {
+                files.push((name, entry.path()));
+            }
+        }
+    }
+    files.sort();
+    Ok(files)
+}
+
+fn write_fmu(fmu: &Path, xml: &str, platform: &str, library: &[u8], docs: &[(String, PathBuf)]) -> Result<()> {
+    if let Some(parent) = fmu.parent() {
+        std::fs::create_dir_all(parent).map_err(io("cannot create directory", parent))?;
+    }
+    let file = File::create(fmu).map_err(io("cannot create FMU", fmu))?;
+    let mut zip = ZipWriter::new(file);
+    let options = SimpleFileOptions::default().compression_method(CompressionMethod::Deflated);
+    zip.start_file("modelDescription.xml", options).map_err(zip_error(fmu))?;
+    zip.write_all(xml.as_bytes()).map_err(io("cannot write FMU", fmu))?;
+    zip.start_file(format!("binaries/{platform}/{MODEL_IDENTIFIER}.so"), options.unix_permissions(0o755))
+        .map_err(zip_error(fmu))?;
+    zip.write_all(library).map_err(io("cannot write FMU", fmu))?;
+    for (name, path) in docs {
+        let data = std::fs::read(path).map_err(io("cannot read", path))?;
+        zip.start_file(format!("documentation/{name}"), options).map_err(zip_error(fmu))?;
+        zip.write_all(&data).map_err(io("cannot write FMU", fmu))?;
+    }
+    zip.finish().map_err(zip_error(fmu))?;
+    Ok(())
+}
+
+/// Packs `library` (the crate's `libbeam_impact.so`) into both FMUs under `out_root`; returns
+/// their paths.
+pub fn pack(library: &Path, out_root: &Path) -> Result<Vec<PathBuf>> {
+    let binary = std::fs::read(library).map_err(io("cannot read the shared library to pack", library))?;
+    let docs = documentation_files(&documentation_dir())?;
+    if !docs.iter().any(|(name, _)| name == "index.html") {
+        return Err(Error::Other(format!(
+            "{} has no index.html (the FMU's main documentation page)",
+            documentation_dir().display()
+        )));
+    }
+    let fmi2 = out_root.join("fmi2").join(format!("{MODEL_IDENTIFIER}.fmu"));
+    let fmi3 = out_root.join("fmi3").join(format!("{MODEL_IDENTIFIER}.fmu"));
+    write_fmu(&fmi2, &description::fmi2(), "linux64", &binary, &docs)?;
+    write_fmu(&fmi3, &description::fmi3(), "x86_64-linux", &binary, &docs)?;
+    Ok(vec![fmi2, fmi3])
+}
