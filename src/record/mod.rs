@@ -91,6 +91,7 @@ impl Recorder for MemoryRecorder {
 }
 
 pub mod mcap;
+
 pub mod bench;
 pub mod figures;
 pub mod report;
