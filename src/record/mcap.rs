@@ -48,7 +48,7 @@ pub const SCENARIO_METADATA: &str = "scenario";
 /// Name of the scenario's TOML attachment.
 pub const SCENARIO_ATTACHMENT: &str = "scenario.toml";
 
-/// How the log is written. The defaults are the issue's: zstd, 256 KiB chunks, a flush every
+/// How the log is written. The defaults are the issue's: zstd, chunks up to 256 KiB, a flush every
 /// 1000 steps and at contact events, a scene every 1 ms of simulated time.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RecorderOptions {
@@ -67,7 +67,9 @@ pub struct RecorderOptions {
 impl Default for RecorderOptions {
     fn default() -> Self {
         RecorderOptions {
-            chunk_size: 256 * 1024,
+            // A chunk closes once it passes this size, so it ends at most one message (< 1 KiB)
+            // above it: 255 KiB keeps every chunk within 256 KiB.
+            chunk_size: 255 * 1024,
             compression_level: 1,
             flush_every: 1000,
             scene_interval_ns: 1_000_000,
