@@ -21,6 +21,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from mcap.reader import make_reader
 from mcap.records import Chunk, DataEnd, Footer, Message
 from mcap.stream_reader import StreamReader
 
@@ -101,7 +102,7 @@ def test_numpy_arrays_match_the_summary(paper_log):
 def test_fmu_log_equals_fmu_outputs(tmp_path):
     """The FMU's own log (parameter log.path) against the outputs fmpy read at each point."""
     directory = os.environ.get("BEAM_IMPACT_FMU_DIR", str(ROOT / "target" / "fmu"))
-    fmus = sorted(glob.glob(os.path.join(directory, "*.fmu")))
+    fmus = sorted(glob.glob(os.path.join(directory, "**", "*.fmu"), recursive=True))
     if not fmus:
         pytest.skip(f"no FMU in {directory} (run `beam-impact pack --out {directory}`)")
     from fmpy import simulate_fmu
@@ -117,7 +118,7 @@ def test_fmu_log_equals_fmu_outputs(tmp_path):
         "peak.lower.tip_deflection": "peaks.lower_tip_deflection",
     }
     for fmu in fmus:
-        log_path = tmp_path / (Path(fmu).stem + ".mcap")
+        log_path = tmp_path / f"{Path(fmu).parent.name}-{Path(fmu).stem}.mcap"
         result = simulate_fmu(
             fmu,
             stop_time=0.5,
@@ -126,6 +127,9 @@ def test_fmu_log_equals_fmu_outputs(tmp_path):
             output=list(names),
         )
         log = load_log(str(log_path))
+        with open(log_path, "rb") as f:
+            attachments = [a.name for a in make_reader(f).iter_attachments()]
+        assert "modelDescription.xml" in attachments and "scenario.toml" in attachments, attachments
         index = {int(t): k for k, t in enumerate(log.steps["time_ns"])}
         for row in result:
             k = index[int(round(row["time"] * 1e9))]
