@@ -341,7 +341,7 @@ impl Instance {
 
     /// The FMU's time, s.
     pub fn time(&self) -> f64 {
-        self.start_time + self.simulation.as_ref().map_or(0, |s| s.result().time_ns) as f64 * 1e-9
+        self.start_time + self.simulation.as_ref().map_or(0, |s| s.result().time_ns) as f64 / 1e9
     }
 
     /// `fmi2LastSuccessfulTime` / FMI 3's `lastSuccessfulTime`, s.
@@ -387,7 +387,7 @@ impl Instance {
                 "logEvents",
                 &format!(
                     "t = {:.9} s (step {}): contact {} (relative velocity {:.4} m/s)",
-                    self.start_time + e.time_ns as f64 * 1e-9,
+                    self.start_time + e.time_ns as f64 / 1e9,
                     e.step,
                     if e.start { "starts" } else { "ends" },
                     e.relative_velocity

@@ -4,12 +4,14 @@
 
 use std::path::PathBuf;
 
-/// `libbeam_impact.so` of the profile the tests were built with (cargo builds the cdylib for
-/// integration tests; it sits next to the `deps/` directory of the test executable).
+pub mod importer;
+
+/// `libbeam_impact.so` of the profile the tests were built with: `cargo test` builds the cdylib
+/// into `deps/` beside the test executable (the copy one level up is only refreshed by `cargo build`).
 pub fn library() -> PathBuf {
     let exe = std::env::current_exe().unwrap();
     let deps = exe.parent().unwrap();
-    for candidate in [deps.parent().unwrap().join("libbeam_impact.so"), deps.join("libbeam_impact.so")] {
+    for candidate in [deps.join("libbeam_impact.so"), deps.parent().unwrap().join("libbeam_impact.so")] {
         if candidate.is_file() {
             return candidate;
         }
