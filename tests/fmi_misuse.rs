@@ -1,0 +1,221 @@
+//! Misuse of the C API: every case returns an error status (or null) with the reason logged,
+//! and the host process survives. One test per case of issue 3.
+
+mod fmi_common;
+
+use std::ffi::{c_char, c_int, c_void};
+
+use fmi_common::importer::{load, vr, Fmu2, Fmu3, ERROR, OK};
+
+fn fresh() -> Fmu2 {
+    let fmu = Fmu2::new(&load());
+    assert_eq!(fmu.set_string("log.path", ""), OK);
+    fmu
+}
+
+#[test]
+fn do_step_before_initialization() {
+    let fmu = fresh();
+    assert_eq!(fmu.do_step(0.0, 1e-3), ERROR);
+    assert!(fmu.log.text().contains("fmi2DoStep is not allowed in state Instantiated"), "{}", fmu.log.text());
+    // The instance is still usable.
+    assert_eq!(fmu.initialize(), OK);
+    assert_eq!(fmu.do_step(0.0, 1e-3), OK);
+}
+
+#[test]
+fn unknown_value_reference() {
+    let fmu = fresh();
+    assert_eq!(fmu.get_reals(&[100_000]).0, ERROR);
+    assert!(fmu.log.text().contains("unknown value reference 100000"), "{}", fmu.log.text());
+    // A Real getter on the Boolean variable names it.
+    assert_eq!(fmu.get_reals(&[vr("contact.active")]).0, ERROR);
+    assert!(fmu.log.text().contains("`contact.active`, a Boolean variable, not Real"), "{}", fmu.log.text());
+}
+
+#[test]
+fn nan_parameter_is_refused_when_set() {
+    let fmu = fresh();
+    assert_eq!(fmu.set("upper.mass", f64::NAN), ERROR);
+    assert!(fmu.log.text().contains("upper.mass must be a finite number, got NaN"), "{}", fmu.log.text());
+    assert_eq!(fmu.get("upper.mass"), 12_000.0, "the old value is kept");
+}
+
+#[test]
+fn negative_parameters_are_each_named_at_initialization() {
+    let fmu = fresh();
+    assert_eq!(fmu.set("upper.length", -3.0), OK);
+    assert_eq!(fmu.set("lower.shear_area", -0.1), OK);
+    assert_eq!(fmu.initialize(), ERROR);
+    let log = fmu.log.text();
+    assert!(log.contains("upper.length must be > 0 m, got -3"), "{log}");
+    assert!(log.contains("lower.shear_area must be > 0 m^2, got -0.1"), "{log}");
+    // Fixed in initialization mode, the same instance initializes.
+    assert_eq!(fmu.set("upper.length", 29.0), OK);
+    assert_eq!(fmu.set("lower.shear_area", 0.012), OK);
+    assert_eq!(fmu.call0("fmi2ExitInitializationMode"), OK, "{}", fmu.log.text());
+}
+
+#[test]
+fn contact_position_beyond_the_upper_beam() {
+    let fmu = fresh();
+    assert_eq!(fmu.set("contact_position", 35.0), OK);
+    assert_eq!(fmu.initialize(), ERROR);
+    assert!(fmu.log.text().contains("contact_position must be inside the upper beam"), "{}", fmu.log.text());
+}
+
+#[test]
+fn step_above_the_stability_limit() {
+    let fmu = fresh();
+    assert_eq!(fmu.set("step_contact", 1e-3), OK);
+    assert_eq!(fmu.initialize(), ERROR);
+    let log = fmu.log.text();
+    assert!(log.contains("step_contact = 1e-3 s is above the stability limit"), "{log}");
+}
+
+#[test]
+fn a_wrong_integer_is_refused() {
+    let fmu = fresh();
+    let f: libloading::Symbol<unsafe extern "C" fn(*mut c_void, *const u32, usize, *const c_int) -> c_int> =
+        // SAFETY: the signature of fmi2SetInteger.
+        unsafe { fmu.lib.get(b"fmi2SetInteger\0") }.unwrap();
+    // SAFETY: one value reference and one value.
+    assert_eq!(unsafe { f(fmu.c, [vr("lower.elements")].as_ptr(), 1, [-2].as_ptr()) }, ERROR);
+    assert!(fmu.log.text().contains("lower.elements must be a whole number >= 1, got -2"), "{}", fmu.log.text());
+    // SAFETY: as above.
+    assert_eq!(unsafe { f(fmu.c, [vr("lower.elements")].as_ptr(), 1, [0].as_ptr()) }, OK);
+    assert_eq!(fmu.initialize(), ERROR);
+    assert!(fmu.log.text().contains("lower.elements must be between 1 and 400, got 0"), "{}", fmu.log.text());
+}
+
+#[test]
+fn null_pointers() {
+    let fmu = fresh();
+    let get: libloading::Symbol<unsafe extern "C" fn(*mut c_void, *const u32, usize, *mut f64) -> c_int> =
+        // SAFETY: the signature of fmi2GetReal.
+        unsafe { fmu.lib.get(b"fmi2GetReal\0") }.unwrap();
+    // SAFETY: null arrays are what is being tested; the FMU checks them before use.
+    assert_eq!(unsafe { get(fmu.c, [1u32].as_ptr(), 1, std::ptr::null_mut()) }, ERROR);
+    assert!(fmu.log.text().contains("argument `value` is a null pointer"), "{}", fmu.log.text());
+    // SAFETY: as above.
+    assert_eq!(unsafe { get(fmu.c, std::ptr::null(), 1, [0.0].as_mut_ptr()) }, ERROR);
+    assert!(fmu.log.text().contains("argument `vr` is a null pointer"), "{}", fmu.log.text());
+    // Zero-length arrays may be null.
+    // SAFETY: as above.
+    assert_eq!(unsafe { get(fmu.c, std::ptr::null(), 0, std::ptr::null_mut()) }, OK);
+    // A null instance.
+    // SAFETY: as above.
+    assert_eq!(unsafe { get(std::ptr::null_mut(), [1u32].as_ptr(), 1, [0.0].as_mut_ptr()) }, ERROR);
+    let free: libloading::Symbol<unsafe extern "C" fn(*mut c_void)> =
+        // SAFETY: the signature of fmi2FreeInstance.
+        unsafe { fmu.lib.get(b"fmi2FreeInstance\0") }.unwrap();
+    // SAFETY: freeing null is a no-op.
+    unsafe { free(std::ptr::null_mut()) };
+    // fmi2Instantiate without callbacks.
+    let instantiate: libloading::Symbol<
+        unsafe extern "C" fn(*const c_char, c_int, *const c_char, *const c_char, *const c_void, c_int, c_int) -> *mut c_void,
+    > =
+        // SAFETY: the signature of fmi2Instantiate.
+        unsafe { fmu.lib.get(b"fmi2Instantiate\0") }.unwrap();
+    // SAFETY: null arguments are what is being tested.
+    let c = unsafe { instantiate(c"x".as_ptr(), 1, std::ptr::null(), std::ptr::null(), std::ptr::null(), 0, 0) };
+    assert!(c.is_null());
+    // FMI 3 doStep with null out-arguments.
+    let lib = load();
+    let fmu3 = Fmu3::try_new(&lib, None, false).0.unwrap();
+    assert_eq!(fmu3.set_string("log.path", ""), OK);
+    assert_eq!(fmu3.initialize(), OK);
+    let step: libloading::Symbol<
+        unsafe extern "C" fn(*mut c_void, f64, f64, bool, *mut bool, *mut bool, *mut bool, *mut f64) -> c_int,
+    > =
+        // SAFETY: the signature of fmi3DoStep.
+        unsafe { lib.get(b"fmi3DoStep\0") }.unwrap();
+    let mut flag = false;
+    // SAFETY: a null out-pointer is what is being tested.
+    let status = unsafe { step(fmu3.c, 0.0, 1e-3, true, &mut flag, &mut flag, &mut flag, std::ptr::null_mut()) };
+    assert_eq!(status, ERROR);
+    assert!(fmu3.log.text().contains("argument `lastSuccessfulTime` is a null pointer"), "{}", fmu3.log.text());
+}
+
+#[test]
+fn wrong_instantiation_token() {
+    let lib = load();
+    let (fmu, log) = Fmu2::try_new(&lib, Some("{00000000-0000-0000-0000-000000000000}"), true);
+    assert!(fmu.is_none());
+    assert!(log.text().contains("does not match this binary's"), "{}", log.text());
+    let (fmu, log) = Fmu3::try_new(&lib, Some("wrong"), false);
+    assert!(fmu.is_none());
+    assert!(log.text().contains("instantiationToken \"wrong\" does not match"), "{}", log.text());
+}
+
+#[test]
+fn unwritable_log_path() {
+    let fmu = Fmu2::new(&load());
+    let path = "/nonexistent-directory/sub/BeamImpact.mcap";
+    assert_eq!(fmu.set_string("log.path", path), OK);
+    assert_eq!(fmu.initialize(), ERROR);
+    assert!(fmu.log.text().contains(path), "{}", fmu.log.text());
+}
+
+#[test]
+fn calls_after_terminate() {
+    let fmu = fresh();
+    assert_eq!(fmu.initialize(), OK);
+    assert_eq!(fmu.do_step(0.0, 1e-3), OK);
+    assert_eq!(fmu.call0("fmi2Terminate"), OK);
+    assert_eq!(fmu.do_step(1e-3, 1e-3), ERROR);
+    assert!(fmu.log.text().contains("fmi2DoStep is not allowed in state Terminated"), "{}", fmu.log.text());
+    assert_eq!(fmu.set("upper.tip_force", 1.0), ERROR);
+    assert_eq!(fmu.call0("fmi2Terminate"), ERROR);
+    assert_eq!(fmu.call0("fmi2EnterInitializationMode"), ERROR);
+    // Outputs can still be read, and Reset brings the instance back.
+    assert!(fmu.get("peak.contact.force") > 0.0);
+    assert_eq!(fmu.call0("fmi2Reset"), OK);
+    assert_eq!(fmu.set_string("log.path", ""), OK);
+    assert_eq!(fmu.initialize(), OK);
+}
+
+#[test]
+fn parameters_are_fixed_after_initialization() {
+    let fmu = fresh();
+    assert_eq!(fmu.initialize(), OK);
+    assert_eq!(fmu.set("drop_height", 1.0), ERROR);
+    assert!(
+        fmu.log.text().contains("`drop_height` (parameter) cannot be set in state Step Mode"),
+        "{}",
+        fmu.log.text()
+    );
+    assert_eq!(fmu.set("contact.force", 1.0), ERROR);
+    assert!(fmu.log.text().contains("`contact.force` is a output and cannot be set"), "{}", fmu.log.text());
+}
+
+#[test]
+fn a_communication_point_that_is_not_the_fmus_time() {
+    let fmu = fresh();
+    assert_eq!(fmu.initialize(), OK);
+    assert_eq!(fmu.do_step(0.5, 1e-3), ERROR);
+    assert!(fmu.log.text().contains("is not the FMU's time 0 s"), "{}", fmu.log.text());
+    assert_eq!(fmu.do_step(0.0, -1e-3), ERROR);
+    assert_eq!(fmu.do_step(0.0, 3.5), ERROR, "beyond stopTime = 3");
+    assert!(fmu.log.text().contains("after stopTime = 3 s"), "{}", fmu.log.text());
+    assert_eq!(fmu.do_step(0.0, 1e-3), OK);
+}
+
+#[test]
+fn unsupported_functions_log_why() {
+    let fmu = fresh();
+    assert_eq!(fmu.call0("fmi2CancelStep"), ERROR);
+    assert!(
+        fmu.log.text().contains("fmi2CancelStep (fmi2DoStep never returns fmi2Pending) is not supported"),
+        "{}",
+        fmu.log.text()
+    );
+    let lib = load();
+    let fmu3 = Fmu3::try_new(&lib, None, false).0.unwrap();
+    let f: libloading::Symbol<unsafe extern "C" fn(*mut c_void, f64) -> c_int> =
+        // SAFETY: the signature of fmi3SetTime.
+        unsafe { lib.get(b"fmi3SetTime\0") }.unwrap();
+    // SAFETY: a live instance.
+    assert_eq!(unsafe { f(fmu3.c, 1.0) }, ERROR);
+    assert!(fmu3.log.text().contains("fmi3SetTime (model exchange) is not supported"), "{}", fmu3.log.text());
+}
