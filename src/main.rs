@@ -204,27 +204,25 @@ fn pack(out: &Path, library: Option<PathBuf>) -> Result<()> {
             .map_err(|source| Error::Io { action: "cannot locate", path: "the running executable".into(), source })?
             .with_file_name("libbeam_impact.so"),
     };
-    // WIRE: beam_impact::fmi::pack::pack(&library, out)
-    let _ = (library, out);
-    Err(Error::Other("pack: not wired yet".into()))
+    for path in beam_impact::fmi::pack::pack(&library, out)? {
+        println!("wrote {}", path.display());
+    }
+    Ok(())
 }
 
 fn report(file: &Path, out: Option<PathBuf>) -> Result<()> {
-    let out = out.unwrap_or_else(|| {
-        let stem = file.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "log".into());
-        file.with_file_name(format!("{stem}-figures"))
-    });
+    let out = out.unwrap_or_else(|| beam_impact::record::report::default_out_dir(file));
     let stdout = std::io::stdout();
     let mut lock = stdout.lock();
-    // WIRE: beam_impact::record::report::report(file, &out, &mut lock)
-    let _ = (file, out);
+    beam_impact::record::report::report(file, &out, &mut lock)?;
     lock.flush().ok();
-    Err(Error::Other("report: not wired yet".into()))
+    Ok(())
 }
 
 fn bench(runs: usize) -> Result<()> {
     let runs = runs.max(1);
     print!("{}", beam_impact::bench::stepper_benchmark(runs)?);
-    // WIRE: beam_impact::record::bench::recording_benchmark(runs)
+    println!();
+    print!("{}", beam_impact::record::bench::recording_benchmark(runs)?);
     Ok(())
 }
