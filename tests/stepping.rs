@@ -48,6 +48,19 @@ fn production_and_oracle_agree_at_every_step() {
     }
 }
 
+/// A stepper and a start with both beams undeformed (zero displacement), the bridge's impact
+/// velocity and the equilibrium acceleration M^-1 F: a release that excites every mode.
+fn undeformed_swing(model: &Model, modal: &ModalSystem) -> (ModalStepper, Kinematics) {
+    let stepper = ModalStepper::new(model, modal.clone());
+    let physical = beam_impact::solver::initial::initial_state(model, modal, TipForces::default()).unwrap();
+    let state = stepper.own_coordinates(&Kinematics {
+        displacement: DVector::zeros(model.dofs()),
+        velocity: physical.velocity,
+        acceleration: model.mass().lu().solve(&model.gravity_load()).unwrap(),
+    });
+    (stepper, state)
+}
+
 /// Both beams out of contact, undamped, released from their undeformed shapes with the
 /// bridge's impact rotation: a free swing that excites all modes. Returns the largest energy
 /// residual |T + U + V - E0| over each half of `duration`.
@@ -56,14 +69,7 @@ fn free_swing_residual(dt: f64, duration: f64) -> (f64, f64) {
     let scenario = Scenario { damping_ratio: 0.0, ..Scenario::default() };
     let model = Model::new(&scenario).unwrap();
     let modal = ModalSystem::new(&model).unwrap();
-    let mut stepper = ModalStepper::new(&model, modal.clone());
-    let physical = beam_impact::solver::initial::initial_state(&model, &modal, TipForces::default()).unwrap();
-    // Undeformed start: zero displacement, the impact velocity, equilibrium acceleration M^-1 F.
-    let mut state = stepper.own_coordinates(&Kinematics {
-        displacement: DVector::zeros(model.dofs()),
-        velocity: physical.velocity.clone(),
-        acceleration: model.mass().lu().solve(&model.gravity_load()).unwrap(),
-    });
+    let (mut stepper, mut state) = undeformed_swing(&model, &modal);
     let energy = |stepper: &ModalStepper, state: &Kinematics| {
         let e = stepper.energies(state);
         e.kinetic + e.beam_strain + e.gravity_potential
@@ -117,13 +123,7 @@ fn halving_the_step_shrinks_the_error_fourfold() {
     let model = Model::new(&scenario).unwrap();
     let modal = ModalSystem::new(&model).unwrap();
     let run = |dt: f64| {
-        let mut stepper = ModalStepper::new(&model, modal.clone());
-        let physical = beam_impact::solver::initial::initial_state(&model, &modal, TipForces::default()).unwrap();
-        let mut state = stepper.own_coordinates(&Kinematics {
-            displacement: DVector::zeros(model.dofs()),
-            velocity: physical.velocity.clone(),
-            acceleration: model.mass().lu().solve(&model.gravity_load()).unwrap(),
-        });
+        let (mut stepper, mut state) = undeformed_swing(&model, &modal);
         for _ in 0..(0.05 / dt).round() as usize {
             stepper.step(&mut state, Stage::Free, dt, TipForces::default());
         }
