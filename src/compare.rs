@@ -174,6 +174,21 @@ pub fn contact_windows(summary: &Summary, paper: bool) -> String {
             let _ = write!(s, " (paper, Figure 6: {pa:.2} s .. {pb:.2} s)");
         }
         let _ = writeln!(s);
+        let sustained: Vec<ContactWindow> =
+            merged_windows(&summary.contact_windows, 0.01).into_iter().filter(|w| w.end - w.start >= 0.1).collect();
+        if let [first, second, ..] = sustained.as_slice() {
+            let _ = write!(s, "sustained contact (>= 0.1 s) ends {:.4} s and resumes {:.4} s", first.end, second.start);
+            if paper {
+                let (pa, pb) = paper::SEPARATION;
+                let _ = write!(
+                    s,
+                    " (paper: {pa:.2} s and {pb:.2} s, differences {:+.3} s and {:+.3} s)",
+                    first.end - pa,
+                    second.start - pb
+                );
+            }
+            let _ = writeln!(s);
+        }
         let long: Vec<String> =
             separations(&summary.contact_windows, 0.05).iter().map(|(a, b)| format!("{a:.3}..{b:.3} s")).collect();
         let _ = writeln!(s, "separations longer than 50 ms: {}", long.join(", "));

@@ -85,10 +85,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let outcome = match cli.command.unwrap_or(Command::Run(cli.run)) {
         Command::Run(args) => run(&args),
-        Command::Scenario => {
-            print!("{}", Scenario::default().to_toml());
-            Ok(())
-        }
+        Command::Scenario => emit(&Scenario::default().to_toml()),
         Command::Damping { file } => damping(file.as_deref()),
         Command::Pack { out, library } => pack(&out, library),
         Command::Report { file, out } => report(&file, out),
@@ -111,6 +108,13 @@ fn run(args: &RunArgs) -> Result<()> {
     let paper = scenario.is_paper();
     let started = Instant::now();
     let mut simulation = Simulation::new(&scenario)?;
+    // Open every output before the run, so that a bad path fails at once, not after it.
+    let json_file = match &args.json {
+        Some(path) => {
+            Some((path, std::fs::File::create(path).map_err(|source| io("cannot create JSON", path, source))?))
+        }
+        None => None,
+    };
     let mut recorder: Box<dyn Recorder> =
         if args.no_mcap { Box::new(NullRecorder) } else { Box::new(McapRecorder::create(&args.mcap)?) };
     let mut progress = Progress::new(recorder.as_mut(), scenario.duration_ns());
@@ -119,37 +123,45 @@ fn run(args: &RunArgs) -> Result<()> {
     let wall = started.elapsed();
     let summary = simulation.summary();
 
-    println!(
-        "beam-impact: {} scenario, {} + {} elements, {:.3} s simulated",
+    let mut text = format!(
+        "beam-impact: {} scenario, {} + {} elements, {:.3} s simulated\n\n",
         if paper { "paper" } else { "user" },
         scenario.lower.elements,
         scenario.upper.elements_to_contact + scenario.upper.elements_beyond_contact,
         scenario.duration
     );
-    println!();
-    print!("{}", compare::comparison(&summary, paper));
-    println!("wall time: {:.1} ms (assembly, modes and stepping{})", wall.as_secs_f64() * 1e3, {
-        if args.no_mcap {
-            String::new()
-        } else {
-            format!(", recorded to {}", args.mcap.display())
-        }
-    });
-    if let Some(path) = &args.json {
+    text += &compare::comparison(&summary, paper);
+    text += &format!("wall time: {:.1} ms (assembly, modes and stepping", wall.as_secs_f64() * 1e3);
+    if !args.no_mcap {
+        text += &format!(", recorded to {}", args.mcap.display());
+    }
+    text += ")\n";
+    if let Some((path, mut file)) = json_file {
         let doc = serde_json::json!({
             "scenario": scenario,
             "summary": summary,
             "wall_time_s": wall.as_secs_f64(),
         });
-        let text = serde_json::to_string_pretty(&doc).map_err(|e| Error::Other(format!("JSON: {e}")))?;
-        std::fs::write(path, text + "\n").map_err(|source| Error::Io {
-            action: "cannot write JSON",
-            path: path.display().to_string(),
-            source,
-        })?;
-        println!("results written to {}", path.display());
+        let json = serde_json::to_string_pretty(&doc).map_err(|e| Error::Other(format!("JSON: {e}")))?;
+        writeln!(file, "{json}").map_err(|source| io("cannot write JSON", path, source))?;
+        text += &format!("results written to {}\n", path.display());
     }
-    Ok(())
+    emit(&text)
+}
+
+fn io(action: &'static str, path: &Path, source: std::io::Error) -> Error {
+    Error::Io { action, path: path.display().to_string(), source }
+}
+
+/// Writes to standard output; a reader that went away (`| head`) ends the output quietly.
+fn emit(text: &str) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+            Err(io("cannot write", Path::new("standard output"), e))
+        }
+        _ => Ok(()),
+    }
 }
 
 /// Shows a progress bar (on a terminal) while passing every step on to the real recorder.
@@ -174,7 +186,7 @@ impl Recorder for Progress<'_> {
         self.inner.start(info)
     }
     fn step(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()> {
-        if result.step % 1000 == 0 {
+        if result.step.is_multiple_of(1000) {
             self.bar.set_position(result.time_ns / 1_000_000);
         }
         self.inner.step(result, modal_coordinates)
@@ -193,8 +205,7 @@ fn damping(file: Option<&Path>) -> Result<()> {
         None => Scenario::default(),
     };
     let rows = beam_impact::damping_study::run(&scenario, &beam_impact::damping_study::RATIOS)?;
-    print!("{}", beam_impact::damping_study::table(&rows));
-    Ok(())
+    emit(&beam_impact::damping_study::table(&rows))
 }
 
 fn pack(out: &Path, library: Option<PathBuf>) -> Result<()> {
@@ -205,7 +216,7 @@ fn pack(out: &Path, library: Option<PathBuf>) -> Result<()> {
             .with_file_name("libbeam_impact.so"),
     };
     for path in beam_impact::fmi::pack::pack(&library, out)? {
-        println!("wrote {}", path.display());
+        emit(&format!("wrote {}\n", path.display()))?;
     }
     Ok(())
 }
@@ -221,8 +232,6 @@ fn report(file: &Path, out: Option<PathBuf>) -> Result<()> {
 
 fn bench(runs: usize) -> Result<()> {
     let runs = runs.max(1);
-    print!("{}", beam_impact::bench::stepper_benchmark(runs)?);
-    println!();
-    print!("{}", beam_impact::record::bench::recording_benchmark(runs)?);
-    Ok(())
+    emit(&beam_impact::bench::stepper_benchmark(runs)?)?;
+    emit(&format!("\n{}", beam_impact::record::bench::recording_benchmark(runs)?))
 }

@@ -4,7 +4,7 @@
 use nalgebra::DMatrix;
 use serde::{Deserialize, Serialize};
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::model::system::PROBES;
 use crate::model::{Model, Probe, Scenario};
 use crate::record::{Recorder, RunInfo};
@@ -171,23 +171,13 @@ impl<S: Stepper> Simulation<S> {
     }
 
     /// Takes one internal step of at most `max_step_ns` (the stage's own step otherwise) and
-    /// returns the contact event if the stage changed.
+    /// returns the contact event if Eq. (6) gives the next step the other stage: the change is
+    /// located at the end of this step, which is when the event is reported.
     pub fn step(&mut self, max_step_ns: u64) -> Option<ContactEvent> {
         let stage = self.next_stage();
         let previous = self.state.result;
         let mut step_ns = self.model.scenario.step_ns(stage.is_contact()).min(max_step_ns).max(1);
         let mut dt = step_ns as f64 * 1e-9;
-        let event = (previous.step == 0 && stage.is_contact()
-            || previous.step > 0 && previous.contact != stage.is_contact())
-        .then(|| {
-            let rate = self.stepper.probes(&self.state.kinematics.velocity)[Probe::Gap as usize];
-            ContactEvent {
-                start: stage.is_contact(),
-                time_ns: previous.time_ns,
-                step: previous.step + 1,
-                relative_velocity: rate,
-            }
-        });
         let forces = self.state.forces;
         self.backup.copy_from(&self.state.kinematics);
         self.stepper.step(&mut self.state.kinematics, stage, dt, forces);
@@ -233,17 +223,24 @@ impl<S: Stepper> Simulation<S> {
         self.update_peaks(energies.upper_strain);
 
         let windows = &mut self.state.contact_windows;
-        if let Some(e) = &event {
-            if e.start {
-                windows.push(ContactWindow { start: e.time_ns as f64 * 1e-9, end: result.time });
-            }
-        }
         if stage.is_contact() {
             if let Some(w) = windows.last_mut() {
                 w.end = result.time;
             }
         }
-        event
+        let next = contact::stage(self.state.gap);
+        if next == stage {
+            return None;
+        }
+        if next.is_contact() {
+            windows.push(ContactWindow { start: result.time, end: result.time });
+        }
+        Some(ContactEvent {
+            start: next.is_contact(),
+            time_ns: result.time_ns,
+            step: result.step + 1,
+            relative_velocity: self.stepper.probes(&self.state.kinematics.velocity)[Probe::Gap as usize],
+        })
     }
 
     /// The step from `backup` ended in the other stage (gap `gap_end` after `step_ns`): retakes it
@@ -301,12 +298,23 @@ impl<S: Stepper> Simulation<S> {
     ) -> Result<Advance> {
         while self.state.result.time_ns < target_ns {
             let event = self.step(target_ns - self.state.result.time_ns);
+            let r = &self.state.result;
+            if !(self.state.gap.is_finite() && r.energy.residual.is_finite()) {
+                let f = self.state.forces;
+                return Err(Error::Numerical {
+                    what: "time step",
+                    detail: format!(
+                        "the state is no longer finite at t = {} s (step {}); tip forces: upper {} N, lower {} N",
+                        r.time, r.step, f.upper, f.lower
+                    ),
+                });
+            }
+            recorder.step(r, self.state.kinematics.displacement.as_slice())?;
             if let Some(e) = &event {
                 recorder.contact_event(e)?;
-            }
-            recorder.step(&self.state.result, self.state.kinematics.displacement.as_slice())?;
-            if event.is_some() && stop_at_contact_change {
-                return Ok(Advance::ContactChanged);
+                if stop_at_contact_change {
+                    return Ok(Advance::ContactChanged);
+                }
             }
         }
         Ok(Advance::Reached)

@@ -50,3 +50,16 @@ fn scenario_output_runs_and_json_is_written() {
     assert!(doc["summary"]["steps"].as_u64().unwrap() > 1000);
     assert!(doc["summary"]["peaks"]["lower_tip_deflection"].as_f64().unwrap() > 0.1);
 }
+
+/// `report` on a file that is not an MCAP log: one line naming the file, exit code 2.
+#[test]
+fn report_on_a_foreign_file_is_a_one_line_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("notes.mcap");
+    std::fs::write(&file, "hello\n").unwrap();
+    let out = beam_impact().arg("report").arg(&file).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("notes.mcap") && stderr.contains("not an MCAP file"), "{stderr}");
+}

@@ -157,6 +157,26 @@ fn unwritable_log_path() {
     assert!(fmu.log.text().contains(path), "{}", fmu.log.text());
 }
 
+/// Two instances given the same log file: the second one's initialization fails with the path
+/// in the log, and the first one's log stays whole.
+#[test]
+fn two_instances_on_one_log_path() {
+    let lib = load();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("shared.mcap");
+    let path = path.to_str().unwrap();
+    let (a, b) = (Fmu2::new(&lib), Fmu2::new(&lib));
+    assert_eq!(a.set_string("log.path", path), OK);
+    assert_eq!(b.set_string("log.path", path), OK);
+    assert_eq!(a.initialize(), OK, "{}", a.log.text());
+    assert_eq!(b.initialize(), ERROR);
+    assert!(b.log.text().contains(path) && b.log.text().contains("another run or instance"), "{}", b.log.text());
+    assert_eq!(a.do_step(0.0, 1e-2), OK);
+    assert_eq!(a.call0("fmi2Terminate"), OK, "{}", a.log.text());
+    let log = beam_impact::record::report::read_log(std::path::Path::new(path)).unwrap();
+    assert!(log.complete, "{:?}", log.problem);
+}
+
 #[test]
 fn calls_after_terminate() {
     let fmu = fresh();

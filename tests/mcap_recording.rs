@@ -134,3 +134,16 @@ fn writer_settings_and_errors() {
     assert_eq!(log.messages.get("/beam/scene"), None);
     assert!(log.attachments.iter().any(|(n, _, size)| n == "notes.txt" && *size == 5));
 }
+
+/// Two writers given the same path (two FMU instances with the default log.path, a sweep in
+/// one directory): the second gets an error naming the file instead of interleaving records.
+#[test]
+fn second_writer_on_the_same_log_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("shared.mcap");
+    let first = beam_impact::record::mcap::McapRecorder::create(&path).unwrap();
+    let message = beam_impact::record::mcap::McapRecorder::create(&path).unwrap_err().to_string();
+    assert!(message.contains("shared.mcap") && message.contains("another run or instance"), "{message}");
+    drop(first);
+    beam_impact::record::mcap::McapRecorder::create(&path).expect("free again once the first writer is gone");
+}

@@ -15,7 +15,8 @@ echo "== cargo test --release"
 cargo test --release
 echo "== pack the FMUs"
 cargo build --release
-target/release/beam-impact pack --out target/fmu
+bin="${CARGO_TARGET_DIR:-target}/release/beam-impact"
+"$bin" pack --out target/fmu
 
 echo "== Python venv (.venv) with fmpy and mcap"
 if [ ! -x .venv/bin/python ]; then
@@ -23,6 +24,6 @@ if [ ! -x .venv/bin/python ]; then
 fi
 .venv/bin/python -m pip install --quiet --disable-pip-version-check -r tests/python/requirements.txt
 echo "== pytest"
-BEAM_IMPACT_FMU_DIR="$PWD/target/fmu" BEAM_IMPACT_BIN="$PWD/target/release/beam-impact" \
+BEAM_IMPACT_FMU_DIR="$PWD/target/fmu" BEAM_IMPACT_BIN="$(cd "$(dirname "$bin")" && pwd)/beam-impact" \
   .venv/bin/python -m pytest -q tests/python
 echo "== all tests passed"

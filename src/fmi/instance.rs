@@ -250,6 +250,10 @@ impl Instance {
         }
         self.start_time = start_time;
         self.stop_time = stop_time;
+        // The run's length goes into the scenario recorded in the MCAP log.
+        if let Some(stop) = stop_time.filter(|&stop| stop > start_time) {
+            self.scenario.duration = stop - start_time;
+        }
         self.last_successful_time = start_time;
         Ok(Status::Ok)
     }
@@ -396,7 +400,7 @@ impl Instance {
         }
         let time = self.time();
         self.last_successful_time = time;
-        let advance = advance.map_err(|e| format!("MCAP log: {e}"))?;
+        let advance = advance.map_err(|e| e.to_string())?;
         let early_return = advance == Advance::ContactChanged && time < end - time_tolerance(end);
         if early_return {
             self.log(Status::Ok, "logEvents", &format!("early return at t = {time:.9} s (contact change)"));

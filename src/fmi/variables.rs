@@ -264,7 +264,8 @@ pub fn table() -> Vec<Variable> {
         None,
         Source::Time,
     );
-    for p in PARAMETERS {
+    // `duration` is the CLI's run length; an FMU runs until its importer's stop time.
+    for p in PARAMETERS.iter().filter(|p| p.name != "duration") {
         let value = (p.get)(&defaults);
         let (ty, start) = match p.kind {
             Kind::Real => (Type::Real, format_real(value)),

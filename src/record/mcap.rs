@@ -142,11 +142,22 @@ impl McapRecorder {
 
     /// Like [`McapRecorder::create`], with explicit options.
     pub fn with_options(path: &Path, options: RecorderOptions) -> Result<Self> {
-        let file = File::create(path).map_err(|source| Error::Io {
-            action: "cannot create MCAP log",
-            path: path.display().to_string(),
-            source,
+        let io_error = |action, source| Error::Io { action, path: path.display().to_string(), source };
+        // Open without truncating, take an exclusive lock, then truncate: two writers given the same
+        // path (two FMU instances with the default log.path) get an error, not an interleaved file.
+        let file = std::fs::OpenOptions::new()
+            .write(true)
+            .create(true)
+            .truncate(false)
+            .open(path)
+            .map_err(|source| io_error("cannot create MCAP log", source))?;
+        file.try_lock().map_err(|e| {
+            io_error(
+                "cannot write MCAP log",
+                std::io::Error::other(format!("the file is being written by another run or instance ({e})")),
+            )
         })?;
+        file.set_len(0).map_err(|source| io_error("cannot truncate MCAP log", source))?;
         let write_options = WriteOptions::new()
             .profile("beam-impact")
             .compression(Some(Compression::Zstd))

@@ -72,6 +72,9 @@ pub fn read_log(path: &Path) -> Result<LogData> {
         path: path.display().to_string(),
         source,
     })?;
+    if !bytes.starts_with(mcap::MAGIC) {
+        return Err(mcap_err(path, "not an MCAP file (it does not start with the MCAP magic bytes)"));
+    }
     let mut data = LogData { monotonic: true, file_size: bytes.len() as u64, ..LogData::default() };
     let reader = ChunkFlattener::new_with_options(&bytes, Options::ValidateChunkCrcs | Options::IgnoreEndMagic)
         .map_err(|e| mcap_err(path, e))?;
@@ -83,6 +86,10 @@ pub fn read_log(path: &Path) -> Result<LogData> {
     for record in reader {
         let record = match record {
             Ok(r) => r,
+            // Nothing readable at all: not a log (or not even its header), an error.
+            Err(e) if topics.is_empty() && data.messages.is_empty() => {
+                return Err(mcap_err(path, format!("not a readable MCAP log: {e}")));
+            }
             Err(e) => {
                 data.problem = Some(e.to_string());
                 break;
