@@ -230,7 +230,7 @@ impl Scenario {
     }
 
     /// Checks every field that can be checked without assembling the model. The stability of
-    /// the time steps needs the natural frequencies and is checked by [`crate::model::Model::new`].
+    /// the time steps needs the natural frequencies and is checked by [`crate::solver::ModalSystem::new`].
     pub fn validate(&self) -> Result<()> {
         // A zero drop height is legal: the bridge touches the arrestor at rest.
         non_negative("drop_height", "m", self.drop_height)?;

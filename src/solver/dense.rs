@@ -62,7 +62,9 @@ impl Stepper for DenseStepper {
         let load = &self.gravity + &self.upper_tip * forces.upper + &self.lower_tip * forces.lower;
         let f = load - (p * &state.displacement + q * &state.velocity + r * &state.acceleration);
         // Eq. (7). S is symmetric positive definite for any dt > 0; LU keeps the oracle literal.
-        let Some(a_next) = s.lu().solve(&f) else { return };
+        // A failed solve (only with non-finite input) yields NaN, which the simulation reports.
+        let n = f.len();
+        let a_next = s.lu().solve(&f).unwrap_or_else(|| DVector::from_element(n, f64::NAN));
         // Eq. (11).
         let a = &state.acceleration;
         state.displacement += &state.velocity * dt + a * (dt * dt / 3.0) + &a_next * (dt * dt / 6.0);

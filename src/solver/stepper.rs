@@ -48,28 +48,29 @@ impl ModalStepper {
     pub fn system(&self) -> &ModalSystem {
         &self.system
     }
+}
 
-    /// Makes sure the cache holds S^-1 for (stage, dt); O(n) when it does not.
-    fn prepare(&mut self, contact: bool, dt: f64) {
-        let slot = usize::from(contact);
-        if matches!(&self.cache[slot], Some(c) if c.dt == dt) {
-            return;
-        }
-        let s = &self.system;
+impl StageInverse {
+    /// S^-1 of Eq. (9) for one stage and step: diagonal plus, in contact, the rank-one bar term.
+    fn new(s: &ModalSystem, contact: bool, dt: f64) -> StageInverse {
         let diagonal_inverse = s.omega2.zip_map(&s.damping, |w2, c| 1.0 / (1.0 + 0.5 * dt * c + dt * dt / 6.0 * w2));
         let corrected = diagonal_inverse.component_mul(&s.contact);
         let beta = if contact { s.bar_stiffness * dt * dt / 6.0 } else { 0.0 };
         let factor = beta / (1.0 + beta * s.contact.dot(&corrected));
-        self.cache[slot] = Some(StageInverse { dt, diagonal_inverse, corrected, factor });
+        StageInverse { dt, diagonal_inverse, corrected, factor }
     }
 }
 
 impl Stepper for ModalStepper {
     fn step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, forces: TipForces) {
         let contact = stage.is_contact();
-        self.prepare(contact, dt);
-        let Some(inv) = &self.cache[usize::from(contact)] else { return };
         let s = &self.system;
+        // S^-1 is recomputed (O(n)) only when the stage's step size changes.
+        let slot = &mut self.cache[usize::from(contact)];
+        let inv = match slot {
+            Some(c) if c.dt == dt => c,
+            _ => slot.insert(StageInverse::new(s, contact, dt)),
+        };
         let kappa = if contact { s.bar_stiffness } else { 0.0 };
         let (q, v, a) = (&mut state.displacement, &mut state.velocity, &mut state.acceleration);
         let n = q.len();
