@@ -10,9 +10,14 @@ use crate::simulation::Simulation;
 use crate::solver::{modal::STABILITY_LIMIT, Stepper};
 use crate::Scenario;
 
-fn median(mut samples: Vec<Duration>) -> Duration {
+/// The median of timing samples (zero for none; the mean of the middle two for an even count).
+pub fn median(mut samples: Vec<Duration>) -> Duration {
     samples.sort();
-    samples[samples.len() / 2]
+    match samples.len() {
+        0 => Duration::ZERO,
+        n if n % 2 == 1 => samples[n / 2],
+        n => (samples[n / 2 - 1] + samples[n / 2]) / 2,
+    }
 }
 
 fn time_run<S: Stepper>(make: impl Fn() -> Result<Simulation<S>>, runs: usize) -> Result<(Duration, u64)> {
@@ -82,7 +87,7 @@ pub fn stepper_benchmark(runs: usize) -> Result<String> {
             dofs = sim.model().dofs();
             let start = Instant::now();
             for _ in 0..20_000 {
-                sim.step(u64::MAX);
+                sim.step(u64::MAX)?;
             }
             samples.push(start.elapsed());
         }

@@ -2,6 +2,12 @@
 
 use serde::{Deserialize, Serialize};
 
+/// Seconds from the integer nanoseconds every time in the crate is counted in: the one
+/// conversion, so that step results, logs and FMU outputs carry the same f64 for a time.
+pub fn seconds(ns: u64) -> f64 {
+    ns as f64 / 1e9
+}
+
 /// The energy account of Section 2 at one instant, J. The residual is what the discrete
 /// balance misses: kinetic + strain + gravity + dissipated - external work - initial total.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]

@@ -8,7 +8,7 @@ use crate::error::{Error, Result};
 use crate::model::system::PROBES;
 use crate::model::{Model, Probe, Scenario};
 use crate::record::{Recorder, RunInfo};
-use crate::results::{ContactEvent, ContactWindow, EnergyAccount, ModeTable, Peaks, StepResult, Summary};
+use crate::results::{seconds, ContactEvent, ContactWindow, EnergyAccount, ModeTable, Peaks, StepResult, Summary};
 use crate::solver::contact::{self, Stage};
 use crate::solver::initial::initial_state;
 use crate::solver::{DenseStepper, EnergyMethod, Kinematics, ModalStepper, ModalSystem, Stepper, TipForces};
@@ -172,27 +172,38 @@ impl<S: Stepper> Simulation<S> {
 
     /// Takes one internal step of at most `max_step_ns` (the stage's own step otherwise) and
     /// returns the contact event if Eq. (6) gives the next step the other stage: the change is
-    /// located at the end of this step, which is when the event is reported.
-    pub fn step(&mut self, max_step_ns: u64) -> Option<ContactEvent> {
+    /// located at the end of this step, which is when the event is reported. A step that would
+    /// leave a non-finite state (an absurd tip force) is undone and reported as an error.
+    pub fn step(&mut self, max_step_ns: u64) -> Result<Option<ContactEvent>> {
         let stage = self.next_stage();
         let previous = self.state.result;
         let mut step_ns = self.model.scenario.step_ns(stage.is_contact()).min(max_step_ns).max(1);
-        let mut dt = step_ns as f64 * 1e-9;
+        let mut dt = seconds(step_ns);
         let forces = self.state.forces;
         self.backup.copy_from(&self.state.kinematics);
         self.stepper.step(&mut self.state.kinematics, stage, dt, forces);
         let mut probes = self.stepper.probes(&self.state.kinematics.displacement);
         if contact::stage(probes[Probe::Gap as usize]) != stage && step_ns > 1 {
             step_ns = self.locate_stage_change(stage, step_ns, probes[Probe::Gap as usize], forces);
-            dt = step_ns as f64 * 1e-9;
+            dt = seconds(step_ns);
             probes = self.stepper.probes(&self.state.kinematics.displacement);
         }
-        self.state.gap = probes[Probe::Gap as usize];
         let energies = self.stepper.energies(&self.state.kinematics);
+        if !(probes.iter().all(|p| p.is_finite()) && energies.kinetic.is_finite() && energies.beam_strain.is_finite()) {
+            self.state.kinematics.copy_from(&self.backup);
+            return Err(Error::Numerical {
+                what: "time step",
+                detail: format!(
+                    "the step from t = {} s (step {}) gives a non-finite state; tip forces: upper {} N, lower {} N",
+                    previous.time, previous.step, forces.upper, forces.lower
+                ),
+            });
+        }
+        self.state.gap = probes[Probe::Gap as usize];
         let mut result = self.outputs(&probes, stage);
         result.step = previous.step + 1;
         result.time_ns = previous.time_ns + step_ns;
-        result.time = result.time_ns as f64 * 1e-9;
+        result.time = seconds(result.time_ns);
         result.step_size = dt;
         result.peaks = previous.peaks;
         let last = self.state.last_forces;
@@ -230,33 +241,33 @@ impl<S: Stepper> Simulation<S> {
         }
         let next = contact::stage(self.state.gap);
         if next == stage {
-            return None;
+            return Ok(None);
         }
         if next.is_contact() {
             windows.push(ContactWindow { start: result.time, end: result.time });
         }
-        Some(ContactEvent {
+        Ok(Some(ContactEvent {
             start: next.is_contact(),
             time_ns: result.time_ns,
             step: result.step + 1,
             relative_velocity: self.stepper.probes(&self.state.kinematics.velocity)[Probe::Gap as usize],
-        })
+        }))
     }
 
     /// The step from `backup` ended in the other stage (gap `gap_end` after `step_ns`): retakes it
     /// with the shortest whole-nanosecond step after which Eq. (6) has changed, so that every stage
     /// starts where the gap crosses zero, whatever the step phase. Regula falsi on the nearly linear
-    /// gap(t), checked against the neighbouring nanosecond, with bisection as the fallback.
-    /// Returns the step taken, ns; the state is left at its end.
+    /// gap(t), alternating with bisection so that the bracket always shrinks (a pure regula falsi
+    /// stalls on one side). Returns the step taken, ns; the state is left at its end.
     fn locate_stage_change(&mut self, stage: Stage, step_ns: u64, gap_end: f64, forces: TipForces) -> u64 {
         let threshold = -contact::GAP_TOLERANCE;
-        let gap_start = self.stepper.probes(&self.backup.displacement)[Probe::Gap as usize];
+        let gap_start = self.state.gap;
         let (mut lo, mut hi) = (0u64, step_ns);
         let (mut f_lo, mut f_hi) = (gap_start - threshold, gap_end - threshold);
         let mut state_at_hi = false;
         let retake = |simulation: &mut Self, ns: u64| {
             simulation.state.kinematics.copy_from(&simulation.backup);
-            simulation.stepper.step(&mut simulation.state.kinematics, stage, ns as f64 * 1e-9, forces);
+            simulation.stepper.step(&mut simulation.state.kinematics, stage, seconds(ns), forces);
             simulation.stepper.probes(&simulation.state.kinematics.displacement)[Probe::Gap as usize] - threshold
         };
         let mut bisect = false;
@@ -278,7 +289,6 @@ impl<S: Stepper> Simulation<S> {
                 f_lo = f;
                 state_at_hi = false;
             }
-            // Next try the neighbour of the guess: a near-linear gap puts the change right there.
             bisect = !bisect && hi - lo > 2;
         }
         if !state_at_hi {
@@ -288,8 +298,8 @@ impl<S: Stepper> Simulation<S> {
     }
 
     /// Steps until `target_ns`, landing on it exactly (the last step is shortened), sending every
-    /// step to `recorder`. With `stop_at_contact_change`, returns early after the first step of a
-    /// new stage.
+    /// step to `recorder`. With `stop_at_contact_change`, returns early at a contact change: after
+    /// the step at whose end Eq. (6) changes (the located change), before the new stage's first step.
     pub fn advance_to(
         &mut self,
         target_ns: u64,
@@ -297,19 +307,8 @@ impl<S: Stepper> Simulation<S> {
         stop_at_contact_change: bool,
     ) -> Result<Advance> {
         while self.state.result.time_ns < target_ns {
-            let event = self.step(target_ns - self.state.result.time_ns);
-            let r = &self.state.result;
-            if !(self.state.gap.is_finite() && r.energy.residual.is_finite()) {
-                let f = self.state.forces;
-                return Err(Error::Numerical {
-                    what: "time step",
-                    detail: format!(
-                        "the state is no longer finite at t = {} s (step {}); tip forces: upper {} N, lower {} N",
-                        r.time, r.step, f.upper, f.lower
-                    ),
-                });
-            }
-            recorder.step(r, self.state.kinematics.displacement.as_slice())?;
+            let event = self.step(target_ns - self.state.result.time_ns)?;
+            recorder.step(&self.state.result, self.state.kinematics.displacement.as_slice())?;
             if let Some(e) = &event {
                 recorder.contact_event(e)?;
                 if stop_at_contact_change {

@@ -26,15 +26,6 @@ struct Sample {
     steps: u64,
 }
 
-fn median(mut values: Vec<Duration>) -> Duration {
-    values.sort();
-    match values.len() {
-        0 => Duration::ZERO,
-        n if n % 2 == 1 => values[n / 2],
-        n => (values[n / 2 - 1] + values[n / 2]) / 2,
-    }
-}
-
 fn ms(d: Duration) -> f64 {
     d.as_secs_f64() * 1e3
 }
@@ -89,11 +80,11 @@ pub fn recording_benchmark(runs: usize) -> Result<String> {
         plain.push(started.elapsed());
         samples.push(recorded_run(&scenario, &scratch.0.join(format!("run{run}.mcap")))?);
     }
-    let total = median(samples.iter().map(|s| s.total).collect());
-    let encode = median(samples.iter().map(|s| s.encode).collect());
-    let write = median(samples.iter().map(|s| s.write).collect());
-    let solve = median(samples.iter().map(|s| s.total.saturating_sub(s.encode + s.write)).collect());
-    let unrecorded = median(plain);
+    let total = crate::bench::median(samples.iter().map(|s| s.total).collect());
+    let encode = crate::bench::median(samples.iter().map(|s| s.encode).collect());
+    let write = crate::bench::median(samples.iter().map(|s| s.write).collect());
+    let solve = crate::bench::median(samples.iter().map(|s| s.total.saturating_sub(s.encode + s.write)).collect());
+    let unrecorded = crate::bench::median(plain);
     let last = samples[samples.len() - 1];
     let mut out = String::new();
     let build = if cfg!(debug_assertions) { "debug build: use --release for the target" } else { "release build" };

@@ -29,6 +29,12 @@ pub trait Recorder {
     fn step(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()>;
     /// A contact stage starts or ends.
     fn contact_event(&mut self, event: &ContactEvent) -> Result<()>;
+    /// The run was rolled back (an FMU state was restored) to `result`: the steps after it that
+    /// were already recorded are superseded by those that follow.
+    fn rollback(&mut self, result: &StepResult) -> Result<()> {
+        let _ = result;
+        Ok(())
+    }
     /// Completes the record (for a file: summary and footer). Must be called and checked.
     fn finish(&mut self) -> Result<()>;
 }

@@ -32,7 +32,12 @@ pub struct ModalStepper {
     probe_columns: nalgebra::DMatrix<f64>,
     /// The most recent S^-1 of each stage (index 0 free, 1 contact).
     cache: [Option<StageInverse>; 2],
-    work: DVector<f64>,
+    /// Modal load for `load_forces`.
+    load: DVector<f64>,
+    load_forces: Option<TipForces>,
+    /// Work vectors: z of Eq. (8) and D^-1 f.
+    z: DVector<f64>,
+    y: DVector<f64>,
 }
 
 impl ModalStepper {
@@ -41,7 +46,16 @@ impl ModalStepper {
         let projector = system.shapes(model).transpose() * model.mass();
         let n = system.dofs();
         let probe_columns = system.probes.transpose();
-        ModalStepper { system, projector, probe_columns, cache: [None, None], work: DVector::zeros(n) }
+        ModalStepper {
+            system,
+            projector,
+            probe_columns,
+            cache: [None, None],
+            load: DVector::zeros(n),
+            load_forces: None,
+            z: DVector::zeros(n),
+            y: DVector::zeros(n),
+        }
     }
 
     /// The modal system (modes, damping, modal probes).
@@ -71,34 +85,36 @@ impl Stepper for ModalStepper {
             Some(c) if c.dt == dt => c,
             _ => slot.insert(StageInverse::new(s, contact, dt)),
         };
-        let kappa = if contact { s.bar_stiffness } else { 0.0 };
+        // The modal load F = Phi^T (F_g + F_ext) changes only when the tip forces do.
+        if self.load_forces != Some(forces) {
+            self.load = &s.gravity + &s.upper_tip * forces.upper + &s.lower_tip * forces.lower;
+            self.load_forces = Some(forces);
+        }
         let (q, v, a) = (&mut state.displacement, &mut state.velocity, &mut state.acceleration);
         let n = q.len();
-        let (dt2_3, dt_2) = (dt * dt / 3.0, 0.5 * dt);
+        let (dt2_3, dt_2, dt2_6) = (dt * dt / 3.0, 0.5 * dt, dt * dt / 6.0);
+        let (z, y) = (&mut self.z, &mut self.y);
 
-        // Eq. (8): f = F - (P q + Q v + R a) = F - K (q + dt v + dt^2/3 a) - C (v + dt/2 a),
-        // with K = diag(omega^2) + kappa b b^T. First the rank-one part b . z.
-        let mut bz = 0.0;
+        // Eq. (8): f = F - (P q + Q v + R a) = F - K z - C (v + dt/2 a), z = q + dt v + dt^2/3 a,
+        // with K = diag(omega^2) + kappa b b^T (kappa = k_c in contact, 0 out of it).
         for i in 0..n {
-            bz += s.contact[i] * (q[i] + dt * v[i] + dt2_3 * a[i]);
+            z[i] = q[i] + dt * v[i] + dt2_3 * a[i];
+            y[i] = inv.diagonal_inverse[i] * (self.load[i] - s.omega2[i] * z[i] - s.damping[i] * (v[i] + dt_2 * a[i]));
         }
-        // Eq. (7) with Sherman-Morrison: a+ = D^-1 f - D^-1 b * factor * (b . D^-1 f).
-        let y = &mut self.work;
-        let mut by = 0.0;
-        for i in 0..n {
-            let z = q[i] + dt * v[i] + dt2_3 * a[i];
-            let f = s.gravity[i] + forces.upper * s.upper_tip[i] + forces.lower * s.lower_tip[i]
-                - s.omega2[i] * z
-                - kappa * s.contact[i] * bz
-                - s.damping[i] * (v[i] + dt_2 * a[i]);
-            y[i] = inv.diagonal_inverse[i] * f;
-            by += s.contact[i] * y[i];
+        // Eq. (7): a+ = S^-1 f. Out of contact S is diagonal: a+ = D^-1 f = y. In contact the bar
+        // adds kappa b b^T to K: f loses kappa b (b . z), and Sherman-Morrison corrects D^-1.
+        if contact {
+            let bz = s.contact.dot(z);
+            let mut by = 0.0;
+            for i in 0..n {
+                y[i] -= inv.diagonal_inverse[i] * s.bar_stiffness * s.contact[i] * bz;
+                by += s.contact[i] * y[i];
+            }
+            y.axpy(-inv.factor * by, &inv.corrected, 1.0);
         }
-        let correction = inv.factor * by;
-        let dt2_6 = dt * dt / 6.0;
         // Eq. (11).
         for i in 0..n {
-            let a_next = y[i] - inv.corrected[i] * correction;
+            let a_next = y[i];
             q[i] += dt * v[i] + dt2_3 * a[i] + dt2_6 * a_next;
             v[i] += dt_2 * (a[i] + a_next);
             a[i] = a_next;
