@@ -102,7 +102,7 @@ fn main() -> ExitCode {
 
 fn run(args: &RunArgs) -> Result<()> {
     let scenario = match &args.file {
-        Some(path) => Scenario::from_file(path)?,
+        Some(path) => read_scenario(path)?,
         None => Scenario::default(),
     };
     let paper = scenario.is_paper();
@@ -147,6 +147,12 @@ fn run(args: &RunArgs) -> Result<()> {
         text += &format!("results written to {}\n", path.display());
     }
     emit(&text)
+}
+
+/// Reads and validates a scenario file (missing fields take the paper's values).
+fn read_scenario(path: &Path) -> Result<Scenario> {
+    let text = std::fs::read_to_string(path).map_err(|source| io("cannot read scenario", path, source))?;
+    Scenario::from_toml(&text, &path.display().to_string())
 }
 
 fn io(action: &'static str, path: &Path, source: std::io::Error) -> Error {
@@ -201,7 +207,7 @@ impl Recorder for Progress<'_> {
 
 fn damping(file: Option<&Path>) -> Result<()> {
     let scenario = match file {
-        Some(path) => Scenario::from_file(path)?,
+        Some(path) => read_scenario(path)?,
         None => Scenario::default(),
     };
     let rows = beam_impact::damping_study::run(&scenario, &beam_impact::damping_study::RATIOS)?;

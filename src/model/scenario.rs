@@ -172,6 +172,14 @@ fn positive(name: &'static str, unit: &str, value: f64) -> Result<()> {
     }
 }
 
+fn time_step(name: &'static str, value: f64) -> Result<()> {
+    positive(name, "s", value)?;
+    if value < MIN_STEP {
+        return Err(Error::invalid(name, format!(">= {MIN_STEP:e} s (time is counted in ns)"), value));
+    }
+    Ok(())
+}
+
 fn non_negative(name: &'static str, unit: &str, value: f64) -> Result<()> {
     if value.is_finite() && value >= 0.0 {
         Ok(())
@@ -209,16 +217,6 @@ impl Scenario {
         Ok(scenario)
     }
 
-    /// Reads and validates a scenario file.
-    pub fn from_file(path: &std::path::Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-            action: "cannot read scenario",
-            path: path.display().to_string(),
-            source,
-        })?;
-        Self::from_toml(&text, &path.display().to_string())
-    }
-
     /// The scenario as TOML, with every field.
     pub fn to_toml(&self) -> String {
         toml::to_string(self).unwrap_or_else(|e| format!("# cannot serialize scenario: {e}\n"))
@@ -241,22 +239,8 @@ impl Scenario {
         }
         non_negative("rayleigh_alpha", "1/s", self.rayleigh_alpha)?;
         non_negative("rayleigh_beta", "s", self.rayleigh_beta)?;
-        positive("step_free", "s", self.step_free)?;
-        positive("step_contact", "s", self.step_contact)?;
-        if self.step_free < MIN_STEP {
-            return Err(Error::invalid(
-                "step_free",
-                format!(">= {MIN_STEP:e} s (time is counted in ns)"),
-                self.step_free,
-            ));
-        }
-        if self.step_contact < MIN_STEP {
-            return Err(Error::invalid(
-                "step_contact",
-                format!(">= {MIN_STEP:e} s (time is counted in ns)"),
-                self.step_contact,
-            ));
-        }
+        time_step("step_free", self.step_free)?;
+        time_step("step_contact", self.step_contact)?;
         positive("duration", "s", self.duration)?;
         if self.duration > 1e6 {
             return Err(Error::invalid("duration", "<= 1e6 s", self.duration));

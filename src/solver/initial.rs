@@ -7,7 +7,7 @@ use nalgebra::DVector;
 use super::kinematics::{Kinematics, TipForces};
 use super::modal::ModalSystem;
 use crate::error::{Error, Result};
-use crate::model::{Model, Probe};
+use crate::model::{damping, Model, Probe};
 
 /// The rigid pitching of the bridge before impact (Eqs. 15-22).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -66,12 +66,13 @@ pub fn initial_state(model: &Model, modal: &ModalSystem, forces: TipForces) -> R
     // Eq. (24) in the bridge's modes: each elastic mode is in quasi-static balance with
     // F - C v - M a. The rigid mode (omega = 0) takes the out-of-balance moment of any tip force
     // into its acceleration, and its amplitude is set so that the contact node meets the arrestor's end.
-    let damping = crate::model::damping::physical_matrix(&model.upper.mass, &modal.upper.shapes, &{
-        let w = &modal.upper.omega;
-        crate::model::damping::modal_coefficients(w, s.damping_ratio, s.rayleigh_alpha, s.rayleigh_beta)
-    });
-    let residual = &load_upper - &damping * &upper_velocity - &model.upper.mass * &upper_acceleration;
+    // C v through the bridge's modes (Eq. 34: C = M Phi diag(c) Phi^T M), without forming C.
     let phi = &modal.upper.shapes;
+    let coefficients =
+        damping::modal_coefficients(&modal.upper.omega, s.damping_ratio, s.rayleigh_alpha, s.rayleigh_beta);
+    let modal_velocity = phi.transpose() * (&model.upper.mass * &upper_velocity);
+    let damping_force = &model.upper.mass * (phi * modal_velocity.component_mul(&coefficients));
+    let residual = &load_upper - damping_force - &model.upper.mass * &upper_acceleration;
     let modal_residual = phi.transpose() * residual;
     let mut q = DVector::zeros(nu);
     for i in 0..nu {
