@@ -147,3 +147,41 @@ fn second_writer_on_the_same_log_is_refused() {
     drop(first);
     beam_impact::record::mcap::McapRecorder::create(&path).expect("free again once the first writer is gone");
 }
+
+/// A rollback (an FMU state restored, then stepped again): the log keeps every record and a
+/// warning line, and the reader drops the superseded branch, so the steps read back are those
+/// of a run without the rollback, and so are the summary's peaks and windows.
+#[test]
+fn rolled_back_steps_are_superseded_in_the_log() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("rollback.mcap");
+    let scenario = Scenario { duration: 1.0, ..Scenario::default() };
+    let mut recorder = McapRecorder::create(&path).unwrap();
+    let mut simulation = Simulation::new(&scenario).unwrap();
+    simulation.start_recording(&mut recorder).unwrap();
+    simulation.advance_to(400_000_000, &mut recorder, false).unwrap();
+    let saved = simulation.state().clone();
+    simulation.advance_to(900_000_000, &mut recorder, false).unwrap();
+    simulation.restore(saved).unwrap();
+    recorder.rollback(simulation.result()).unwrap();
+    simulation.advance_to(1_000_000_000, &mut recorder, false).unwrap();
+    recorder.finish().unwrap();
+
+    // The same run without the superseded branch: to 0.4 s, then to 1.0 s.
+    let mut plain = MemoryRecorder::default();
+    let mut straight = Simulation::new(&scenario).unwrap();
+    straight.start_recording(&mut plain).unwrap();
+    straight.advance_to(400_000_000, &mut plain, false).unwrap();
+    straight.advance_to(1_000_000_000, &mut plain, false).unwrap();
+    let reference = straight.summary();
+    let data = read_log(&path).unwrap();
+    assert_eq!(data.rollbacks, 1);
+    assert!(data.log_lines.iter().any(|l| l.starts_with("rolled back to t = 0.400000 s")), "{:?}", data.log_lines);
+    assert!(data.monotonic, "a rollback is not a disorder");
+    assert_eq!(data.steps.len(), plain.steps.len());
+    assert!(data.steps == plain.steps, "the steps read back differ from the straight run's");
+    assert_eq!(data.events, plain.events);
+    let summary = summary_from_log(&data, &Simulation::new(&scenario).unwrap()).unwrap();
+    assert_eq!(summary.peaks, reference.peaks);
+    assert_eq!(summary.contact_windows, reference.contact_windows);
+}

@@ -241,9 +241,7 @@ impl McapRecorder {
     }
 
     fn encode(&mut self, message: &impl Message) {
-        self.buffer.clear();
-        // Encoding into a Vec cannot fail: it grows as needed.
-        message.encode(&mut self.buffer).expect("encoding into a Vec cannot run out of space");
+        encode_into(&mut self.buffer, message);
     }
 
     fn flush(&mut self) -> Result<()> {
@@ -284,6 +282,15 @@ impl McapRecorder {
     pub fn timing(&self) -> RecorderTiming {
         self.timing
     }
+}
+
+/// How the log line of a rollback starts (the reader recognises it).
+pub const ROLLBACK_LINE: &str = "rolled back to";
+
+/// Encodes `message` into the cleared `buffer`. Encoding into a Vec cannot fail: it grows.
+fn encode_into(buffer: &mut Vec<u8>, message: &impl Message) {
+    buffer.clear();
+    message.encode(buffer).expect("encoding into a Vec cannot run out of space");
 }
 
 /// The scenario's TOML flattened to dotted keys (`upper.length` -> `29.0`).
@@ -341,8 +348,7 @@ impl Recorder for McapRecorder {
     fn step(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()> {
         let started = self.options.timing.then(Instant::now);
         self.message.fill(result, modal_coordinates);
-        self.buffer.clear();
-        self.message.encode(&mut self.buffer).expect("encoding into a Vec cannot run out of space");
+        encode_into(&mut self.buffer, &self.message);
         if let Some(t) = started {
             self.timing.encode += t.elapsed();
         }
@@ -352,9 +358,7 @@ impl Recorder for McapRecorder {
             let interval = self.options.scene_interval_ns;
             self.next_scene_ns = (result.time_ns / interval + 1) * interval;
             if let Some(scene) = self.scene.as_mut() {
-                let update = scene.update(result.time_ns, modal_coordinates);
-                self.buffer.clear();
-                update.encode(&mut self.buffer).expect("encoding into a Vec cannot run out of space");
+                encode_into(&mut self.buffer, scene.update(result.time_ns, modal_coordinates));
             }
             if let Some(t) = started {
                 self.timing.encode += t.elapsed();
@@ -389,6 +393,23 @@ impl Recorder for McapRecorder {
         };
         self.encode(&log);
         self.write_buffer(self.channels.log, event.time_ns)?;
+        self.flush()
+    }
+
+    fn rollback(&mut self, result: &StepResult) -> Result<()> {
+        let log = LogMessage {
+            timestamp: Some(TimeMessage::from_ns(result.time_ns)),
+            level: schema::LOG_LEVEL_WARNING,
+            message: format!(
+                "{ROLLBACK_LINE} t = {:.6} s (step {}): the steps recorded after it are superseded",
+                result.time, result.step
+            ),
+            name: "beam-impact".into(),
+            file: String::new(),
+            line: 0,
+        };
+        self.encode(&log);
+        self.write_buffer(self.channels.log, result.time_ns)?;
         self.flush()
     }
 

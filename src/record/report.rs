@@ -34,6 +34,11 @@ pub struct LogData {
     pub steps: Vec<StepResult>,
     /// Modal coordinates of the step at which the arrestor's deflection peaked.
     pub peak_deflection_coordinates: Vec<f64>,
+    /// Step index of `peak_deflection_coordinates`.
+    pub peak_deflection_step: u64,
+    /// How often the run was rolled back (an FMU state restored): each time, the steps and
+    /// events after the restored step are superseded and dropped here.
+    pub rollbacks: u64,
     /// Contact events, in order.
     pub events: Vec<ContactEvent>,
     /// The `foxglove.Log` lines.
@@ -102,7 +107,9 @@ pub fn read_log(path: &Path) -> Result<LogData> {
             Record::Message { header, data: bytes } => {
                 let topic = topics.get(&header.channel_id).map(String::as_str).unwrap_or("?");
                 *data.messages.entry(topic.to_string()).or_insert(0) += 1;
-                if header.log_time < last_time || header.publish_time != header.log_time {
+                // Time runs backwards only at a rollback: its log line and the steps after it.
+                let decreasing = header.log_time < last_time;
+                if header.publish_time != header.log_time {
                     data.monotonic = false;
                 }
                 last_time = header.log_time;
@@ -112,23 +119,38 @@ pub fn read_log(path: &Path) -> Result<LogData> {
                         step.clear();
                         step.merge(&bytes[..]).map_err(|e| bad("step", e))?;
                         let result = step.result();
+                        let rollback = data.steps.last().is_some_and(|last| result.step <= last.step);
+                        data.monotonic &= !decreasing || rollback;
+                        if rollback {
+                            // A rollback: this step continues from step result.step - 1.
+                            data.rollbacks += 1;
+                            data.steps.retain(|r| r.step < result.step);
+                            data.events.retain(|e| e.step <= result.step);
+                            if data.peak_deflection_step >= result.step {
+                                data.peak_deflection_coordinates.clear();
+                            }
+                        }
                         let previous = data.steps.last().map(|r| r.peaks.lower_tip_deflection);
                         if previous.is_none_or(|p| result.peaks.lower_tip_deflection != p) {
                             data.peak_deflection_coordinates.clear();
                             data.peak_deflection_coordinates
                                 .extend(step.modal_coordinates.iter().map(|&q| f64::from(q)));
+                            data.peak_deflection_step = result.step;
                         }
                         data.steps.push(result);
                     }
                     CONTACT_TOPIC => {
+                        data.monotonic &= !decreasing;
                         let m = ContactEventMessage::decode(&bytes[..]).map_err(|e| bad("contact", e))?;
                         data.events.push(ContactEvent::from(&m));
                     }
                     LOG_TOPIC => {
                         let m = LogMessage::decode(&bytes[..]).map_err(|e| bad("log", e))?;
+                        data.monotonic &= !decreasing || m.message.starts_with(super::mcap::ROLLBACK_LINE);
                         data.log_lines.push(m.message);
                     }
                     MODEL_TOPIC => {
+                        data.monotonic &= !decreasing;
                         let m = ModelMessage::decode(&bytes[..]).map_err(|e| bad("model", e))?;
                         model_toml = Some(m.scenario_toml.clone());
                         data.model = Some(m);
@@ -178,7 +200,7 @@ pub fn summary_from_log(data: &LogData, simulation: &Simulation) -> Result<Summa
     }
     let mut windows: Vec<ContactWindow> = Vec::new();
     for e in &data.events {
-        let t = e.time_ns as f64 * 1e-9;
+        let t = crate::results::seconds(e.time_ns);
         if e.start {
             windows.push(ContactWindow { start: t, end: last.time });
         } else if let Some(w) = windows.last_mut() {
@@ -199,6 +221,8 @@ pub fn summary_from_log(data: &LogData, simulation: &Simulation) -> Result<Summa
         .skip(modal.lower_dofs)
         .map(|(i, q)| 0.5 * modal.omega2.get(i).copied().unwrap_or(0.0) * q * q)
         .sum();
+    // After a rollback past the peak the shape at the peak is no longer in the log.
+    let upper_strain = if data.peak_deflection_coordinates.is_empty() { f64::NAN } else { upper_strain };
     Ok(Summary {
         steps: last.step,
         time: last.time,
@@ -281,6 +305,13 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
         let _ = writeln!(text, "messages: {}", counts.join(", "));
         if !data.monotonic {
             let _ = writeln!(text, "WARNING: log times decrease somewhere in the file");
+        }
+        if data.rollbacks > 0 {
+            let _ = writeln!(
+                text,
+                "rollbacks: {} (FMU states restored); the steps they superseded are left out below",
+                data.rollbacks
+            );
         }
     }
     let scenario = data.scenario()?;

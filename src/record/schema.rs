@@ -232,7 +232,7 @@ impl From<&ContactEvent> for ContactEventMessage {
             time_ns: e.time_ns,
             step: e.step,
             relative_velocity: e.relative_velocity,
-            time: e.time_ns as f64 * 1e-9,
+            time: crate::results::seconds(e.time_ns),
         }
     }
 }
@@ -436,6 +436,8 @@ pub struct LogMessage {
 
 /// `foxglove.Log.Level.INFO`.
 pub const LOG_LEVEL_INFO: i32 = 2;
+/// `foxglove.Log.Level.WARNING`.
+pub const LOG_LEVEL_WARNING: i32 = 3;
 
 // ---------------------------------------------------------------------------------------------
 // Descriptors.
