@@ -1,7 +1,9 @@
 //! The MCAP recorder: every internal step of a run as one protobuf message, readable by
 //! Foxglove, by Python's `mcap` package and by [`super::report`].
 //!
-//! Channels (all with log_time = publish_time = simulated time in ns, one time base):
+//! Channels (all with log_time = publish_time = simulated time in ns since the impact, one time
+//! base; for the FMU that is the time since its startTime; after a rollback of an FMU state the
+//! time goes back, marked by a `rolled back to` line on `/beam/log`):
 //!
 //! | topic | schema | what |
 //! |---|---|---|
