@@ -80,6 +80,45 @@ pub enum Error {
     /// A serialized FMU state that cannot be restored.
     #[error("FMU state: {0}")]
     State(String),
+    /// Bytes that do not start with the serialized FMU state's magic.
+    #[error("FMU state: not a serialized beam-impact FMU state ({length} bytes, magic missing)")]
+    StateMagic {
+        /// How many bytes were given.
+        length: usize,
+    },
+    /// A serialized FMU state of another format version.
+    #[error("FMU state: format version {found}, this binary reads version {expected}")]
+    StateVersion {
+        /// The version in the bytes.
+        found: u32,
+        /// The version this binary writes and reads.
+        expected: u32,
+    },
+    /// A serialized FMU state whose payload length is not the one its header declares.
+    #[error("FMU state: the payload should be {declared} bytes, {given} were given")]
+    StateLength {
+        /// Payload length in the header.
+        declared: u64,
+        /// Bytes after the header.
+        given: u64,
+    },
+    /// An FMU state saved by an instance with other parameters.
+    #[error(
+        "FMU state: the state belongs to another scenario (fingerprint {saved:016x}, this instance's \
+         parameters give {instance:016x}): set the same parameters before restoring"
+    )]
+    StateScenario {
+        /// Fingerprint stored with the state.
+        saved: u64,
+        /// Fingerprint of the restoring instance's parameters.
+        instance: u64,
+    },
+    /// A serialized FMU state whose payload cannot be read back into a run state.
+    #[error("FMU state: corrupt payload: {detail}")]
+    StatePayload {
+        /// The parser's message.
+        detail: String,
+    },
     /// Anything else, with its explanation.
     #[error("{0}")]
     Other(String),

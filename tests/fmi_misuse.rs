@@ -26,6 +26,7 @@ fn do_step_before_initialization() {
 #[test]
 fn unknown_value_reference() {
     let fmu = fresh();
+    assert_eq!(fmu.initialize(), OK);
     assert_eq!(fmu.get_reals(&[100_000]).0, ERROR);
     assert!(fmu.log.text().contains("unknown value reference 100000"), "{}", fmu.log.text());
     // A Real getter on the Boolean variable names it.
@@ -38,6 +39,8 @@ fn nan_parameter_is_refused_when_set() {
     let fmu = fresh();
     assert_eq!(fmu.set("upper.mass", f64::NAN), ERROR);
     assert!(fmu.log.text().contains("upper.mass must be a finite number, got NaN"), "{}", fmu.log.text());
+    assert_eq!(fmu.setup(0.0, None), OK);
+    assert_eq!(fmu.call0("fmi2EnterInitializationMode"), OK);
     assert_eq!(fmu.get("upper.mass"), 12_000.0, "the old value is kept");
 }
 
@@ -50,10 +53,17 @@ fn negative_parameters_are_each_named_at_initialization() {
     let log = fmu.log.text();
     assert!(log.contains("upper.length must be > 0 m, got -3"), "{log}");
     assert!(log.contains("lower.shear_area must be > 0 m^2, got -0.1"), "{log}");
-    // Fixed in initialization mode, the same instance initializes.
+    // The failed ExitInitializationMode left the instance in Error: parameters can no longer be
+    // set; Reset brings it back, and with valid parameters it initializes.
+    assert_eq!(fmu.set("upper.length", 29.0), ERROR);
+    assert!(fmu.log.text().contains("fmi2SetReal is not allowed in state Error"), "{}", fmu.log.text());
+    assert_eq!(fmu.get("upper.length"), -3.0, "getters are allowed in Error");
+    assert_eq!(fmu.get_reals(&[vr("lower.tip_deflection")]).0, ERROR, "no model to read outputs from");
+    assert!(fmu.log.text().contains("the model could not be built"), "{}", fmu.log.text());
+    assert_eq!(fmu.call0("fmi2Reset"), OK);
+    assert_eq!(fmu.set_string("log.path", ""), OK);
     assert_eq!(fmu.set("upper.length", 29.0), OK);
-    assert_eq!(fmu.set("lower.shear_area", 0.012), OK);
-    assert_eq!(fmu.call0("fmi2ExitInitializationMode"), OK, "{}", fmu.log.text());
+    assert_eq!(fmu.initialize(), OK, "{}", fmu.log.text());
 }
 
 #[test]
@@ -91,6 +101,7 @@ fn a_wrong_integer_is_refused() {
 #[test]
 fn null_pointers() {
     let fmu = fresh();
+    assert_eq!(fmu.initialize(), OK);
     let get: libloading::Symbol<unsafe extern "C" fn(*mut c_void, *const u32, usize, *mut f64) -> c_int> =
         // SAFETY: the signature of fmi2GetReal.
         unsafe { fmu.lib.get(b"fmi2GetReal\0") }.unwrap();
@@ -201,24 +212,135 @@ fn parameters_are_fixed_after_initialization() {
     assert_eq!(fmu.initialize(), OK);
     assert_eq!(fmu.set("drop_height", 1.0), ERROR);
     assert!(
-        fmu.log.text().contains("`drop_height` (parameter) cannot be set in state Step Mode"),
+        fmu.log.text().contains(
+            "fmi2SetReal: setting `drop_height` (parameter) is not allowed in state Step Mode (illegal call sequence"
+        ),
         "{}",
         fmu.log.text()
     );
+    // Every Integer and String variable is a parameter: the functions themselves are refused.
+    assert_eq!(fmu.set_integer("lower.elements", 7), ERROR);
+    assert!(fmu.log.text().contains("fmi2SetInteger is not allowed in state Step Mode"), "{}", fmu.log.text());
+    assert_eq!(fmu.set_string("log.path", "x.mcap"), ERROR);
+    assert!(fmu.log.text().contains("fmi2SetString is not allowed in state Step Mode"), "{}", fmu.log.text());
+    // Inputs are set in step mode; a refused setter did not change the state.
+    assert_eq!(fmu.set("upper.tip_force", -1e3), OK, "{}", fmu.log.text());
+    assert_eq!(fmu.do_step(0.0, 1e-3), OK);
     assert_eq!(fmu.set("contact.force", 1.0), ERROR);
     assert!(fmu.log.text().contains("`contact.force` is a output and cannot be set"), "{}", fmu.log.text());
 }
 
-#[test]
-fn a_communication_point_that_is_not_the_fmus_time() {
+/// A failed doStep puts the instance in Error, where doStep is refused until SetFMUstate (or Reset).
+fn refused_step(t: f64, h: f64, reason: &str) {
     let fmu = fresh();
     assert_eq!(fmu.initialize(), OK);
-    assert_eq!(fmu.do_step(0.5, 1e-3), ERROR);
-    assert!(fmu.log.text().contains("is not the FMU's time 0 s"), "{}", fmu.log.text());
-    assert_eq!(fmu.do_step(0.0, -1e-3), ERROR);
-    assert_eq!(fmu.do_step(0.0, 3.5), ERROR, "beyond stopTime = 3");
-    assert!(fmu.log.text().contains("after stopTime = 3 s"), "{}", fmu.log.text());
     assert_eq!(fmu.do_step(0.0, 1e-3), OK);
+    let state = fmu.get_state();
+    assert_eq!(fmu.do_step(t, h), ERROR);
+    assert!(fmu.log.text().contains(reason), "{reason}: {}", fmu.log.text());
+    assert_eq!(fmu.do_step(1e-3, 1e-3), ERROR);
+    assert!(fmu.log.text().contains("fmi2DoStep is not allowed in state Error"), "{}", fmu.log.text());
+    assert_eq!(fmu.set_state(state), OK, "{}", fmu.log.text());
+    fmu.free_state(state);
+    assert_eq!(fmu.do_step(1e-3, 1e-3), OK, "back in step mode: {}", fmu.log.text());
+}
+
+#[test]
+fn a_communication_point_that_is_not_the_fmus_time() {
+    refused_step(0.5, 1e-3, "currentCommunicationPoint = 0.5 s is not the FMU's time 0.001 s");
+}
+
+#[test]
+fn a_step_beyond_the_stop_time() {
+    refused_step(1e-3, 3.5, "after stopTime = 3 s");
+}
+
+#[test]
+fn a_communication_step_size_that_is_not_positive() {
+    for h in [0.0, -1e-3, f64::NAN] {
+        refused_step(1e-3, h, &format!("the communication step must be finite and > 0 s, got currentCommunicationPoint = 0.001, communicationStepSize = {h}"));
+    }
+}
+
+/// FMI 2.0 allows fmi2GetReal & co. from initialization mode on; FMI 3.0 in Instantiated, where
+/// the parameters have values but outputs and calculated parameters need the model.
+#[test]
+fn getters_before_initialization() {
+    let fmu = fresh();
+    assert_eq!(fmu.get_reals(&[vr("drop_height")]).0, ERROR);
+    assert!(fmu.log.text().contains("fmi2GetReal is not allowed in state Instantiated"), "{}", fmu.log.text());
+    assert_eq!(fmu.setup(0.0, None), OK);
+    assert_eq!(fmu.call0("fmi2EnterInitializationMode"), OK);
+    assert_eq!(fmu.get("drop_height"), 0.567);
+    assert!(fmu.get("modes.coupled.omega[1]") > 0.0, "computed in initialization mode");
+
+    let lib = load();
+    let fmu3 = Fmu3::try_new(&lib, None, false).0.unwrap();
+    assert_eq!(fmu3.set("drop_height", 0.6), OK);
+    assert_eq!(fmu3.get("drop_height"), 0.6, "a parameter's current value");
+    assert_eq!(fmu3.get("upper.tip_force"), 0.0);
+    for name in ["lower.tip_deflection", "modes.lower.omega[1]", "energy_method.tip_deflection"] {
+        let (status, _) = fmu3.try_get(name);
+        assert_eq!(status, ERROR, "{name}");
+        assert!(
+            fmu3.log.text().contains(&format!("fmi3GetFloat64: `{name}` is available after initialization")),
+            "{}",
+            fmu3.log.text()
+        );
+    }
+    assert_eq!(fmu3.set_string("log.path", ""), OK);
+    assert_eq!(fmu3.initialize(), OK, "{}", fmu3.log.text());
+    let w = fmu3.get("energy_method.tip_deflection");
+    assert!(w.is_finite() && w != 0.0, "{w}");
+}
+
+/// In Error (here after a failed doStep) only getters, FMU state, (de)serialization, Reset and
+/// FreeInstance are allowed.
+#[test]
+fn error_state_allows_getters_fmu_state_and_reset_only() {
+    let fmu = fresh();
+    assert_eq!(fmu.initialize(), OK);
+    assert_eq!(fmu.do_step(0.0, 0.0), ERROR);
+    for (status, function) in [
+        (fmu.do_step(0.0, 1e-3), "fmi2DoStep"),
+        (fmu.set("upper.tip_force", 1.0), "fmi2SetReal"),
+        (fmu.call0("fmi2Terminate"), "fmi2Terminate"),
+        (fmu.call0("fmi2EnterInitializationMode"), "fmi2EnterInitializationMode"),
+    ] {
+        assert_eq!(status, ERROR, "{function}");
+        assert!(fmu.log.text().contains(&format!("{function} is not allowed in state Error")), "{}", fmu.log.text());
+    }
+    assert_eq!(fmu.get("time"), 0.0);
+    assert!(fmu.get("modes.coupled.omega[1]") > 0.0);
+    let state = fmu.get_state();
+    let bytes = fmu.serialize(state);
+    let (status, copy) = fmu.deserialize(&bytes);
+    assert_eq!(status, OK);
+    fmu.free_state(copy);
+    fmu.free_state(state);
+    assert_eq!(fmu.call0("fmi2Reset"), OK);
+    assert_eq!(fmu.set_string("log.path", ""), OK);
+    assert_eq!(fmu.initialize(), OK);
+    assert_eq!(fmu.do_step(0.0, 1e-3), OK);
+}
+
+/// Get/set FMU state are allowed in every state after instantiation (FMI 2.0 and 3.0).
+#[test]
+fn fmu_state_in_instantiated_and_terminated() {
+    let fmu = fresh();
+    let initial = fmu.get_state();
+    assert_eq!(fmu.initialize(), OK);
+    fmu.run(0.0, 0.1, 1e-2);
+    let at_01 = fmu.get_state();
+    assert_eq!(fmu.call0("fmi2Terminate"), OK);
+    assert_eq!(fmu.set_state(initial), OK, "{}", fmu.log.text());
+    assert_eq!(fmu.get("time"), 0.0);
+    let terminated = fmu.get_state();
+    assert_eq!(fmu.set_state(at_01), OK);
+    assert_eq!(fmu.get("time"), 0.1);
+    for state in [initial, at_01, terminated] {
+        fmu.free_state(state);
+    }
 }
 
 #[test]
@@ -238,4 +360,23 @@ fn unsupported_functions_log_why() {
     // SAFETY: a live instance.
     assert_eq!(unsafe { f(fmu3.c, 1.0) }, ERROR);
     assert!(fmu3.log.text().contains("fmi3SetTime (model exchange) is not supported"), "{}", fmu3.log.text());
+}
+
+/// FMI 3: a failed fmi3ExitInitializationMode is the Error state too; fmi3Reset leaves it.
+#[test]
+fn fmi3_error_state_after_a_failed_initialization() {
+    let lib = load();
+    let fmu = Fmu3::try_new(&lib, None, false).0.unwrap();
+    assert_eq!(fmu.set_string("log.path", ""), OK);
+    assert_eq!(fmu.set("upper.length", -3.0), OK);
+    assert_eq!(fmu.initialize(), ERROR);
+    assert!(fmu.log.text().contains("upper.length must be > 0 m, got -3"), "{}", fmu.log.text());
+    assert_eq!(fmu.set("upper.length", 29.0), ERROR);
+    assert!(fmu.log.text().contains("fmi3SetFloat64 is not allowed in state Error"), "{}", fmu.log.text());
+    assert_eq!(fmu.get("upper.length"), -3.0);
+    assert_eq!(fmu.call0("fmi3Reset"), OK);
+    assert_eq!(fmu.set_string("log.path", ""), OK);
+    assert_eq!(fmu.initialize(), OK, "{}", fmu.log.text());
+    assert_eq!(fmu.do_step(0.0, 0.0).0, ERROR);
+    assert!(fmu.log.text().contains("communicationStepSize = 0"), "{}", fmu.log.text());
 }

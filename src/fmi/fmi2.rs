@@ -72,6 +72,21 @@ fn with(
     }
 }
 
+/// [`with`] for the calls after which an error is the Error state (DoStep, Terminate,
+/// ExitInitializationMode).
+fn with_run(
+    c: Fmi2Component,
+    function: &str,
+    mask: Mask,
+    work: impl FnOnce(&mut Instance) -> Result<Status, String>,
+) -> Status {
+    // SAFETY: as in `with`.
+    match unsafe { c.as_mut() } {
+        Some(instance) => instance.guard_run(function, mask, work),
+        None => Status::Error,
+    }
+}
+
 fn kind_name(kind: c_int) -> &'static str {
     match kind {
         FMI2_DO_STEP_STATUS => "fmi2DoStepStatus",
@@ -150,12 +165,10 @@ pub unsafe extern "C" fn fmi2Instantiate(
                 description::token()
             ));
         }
-        let resources = if fmu_resource_location.is_null() {
-            None
-        } else {
-            unsafe { string(fmu_resource_location, "fmuResourceLocation") }.ok().and_then(|s| resource::parse_uri(&s))
-        };
-        let instance = Instance::new(&name, Version::Fmi2, logger, logging_on != 0, resources);
+        let location = unsafe { string(fmu_resource_location, "fmuResourceLocation") }.ok();
+        let resources = location.as_deref().and_then(resource::parse_uri);
+        let instance = Instance::new(&name, Version::Fmi2, logger, logging_on != 0);
+        instance.log_resources(location.as_deref(), resources);
         Box::into_raw(Box::new(instance))
     }
 }
@@ -198,13 +211,13 @@ pub unsafe extern "C" fn fmi2EnterInitializationMode(c: Fmi2Component) -> Status
 /// `fmi2ExitInitializationMode`: validates the parameters, builds the model, opens the log.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2ExitInitializationMode(c: Fmi2Component) -> Status {
-    ffi_boundary! { with(c, "fmi2ExitInitializationMode", allowed::EXIT_INITIALIZATION, Instance::exit_initialization) }
+    ffi_boundary! { with_run(c, "fmi2ExitInitializationMode", allowed::EXIT_INITIALIZATION, Instance::exit_initialization) }
 }
 
 /// `fmi2Terminate`: completes the MCAP log.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2Terminate(c: Fmi2Component) -> Status {
-    ffi_boundary! { with(c, "fmi2Terminate", allowed::TERMINATE, Instance::terminate) }
+    ffi_boundary! { with_run(c, "fmi2Terminate", allowed::TERMINATE, Instance::terminate) }
 }
 
 /// `fmi2Reset`.
@@ -215,7 +228,7 @@ pub unsafe extern "C" fn fmi2Reset(c: Fmi2Component) -> Status {
 
 macro_rules! getter {
     ($c:expr, $function:literal, $vr:expr, $nvr:expr, $values:expr, $get:ident, $convert:expr) => {
-        with($c, $function, allowed::GET, |inst| {
+        with($c, $function, allowed::FMI2_GET, |inst| {
             let vrs = unsafe { slice($vr, $nvr, "vr") }.map_err(|e| e.to_string())?;
             let values = unsafe { slice_mut($values, $nvr, "value") }.map_err(|e| e.to_string())?;
             for (value, &vr) in values.iter_mut().zip(vrs) {
@@ -227,8 +240,8 @@ macro_rules! getter {
 }
 
 macro_rules! setter {
-    ($c:expr, $function:literal, $vr:expr, $nvr:expr, $values:expr, $set:ident, $convert:expr) => {
-        with($c, $function, allowed::GET.or(allowed::SET_INPUT), |inst| {
+    ($c:expr, $function:literal, $mask:expr, $vr:expr, $nvr:expr, $values:expr, $set:ident, $convert:expr) => {
+        with($c, $function, $mask, |inst| {
             let vrs = unsafe { slice($vr, $nvr, "vr") }.map_err(|e| e.to_string())?;
             let values = unsafe { slice($values, $nvr, "value") }.map_err(|e| e.to_string())?;
             for (&value, &vr) in values.iter().zip(vrs) {
@@ -271,7 +284,7 @@ pub unsafe extern "C" fn fmi2GetString(
     value: *mut *const c_char,
 ) -> Status {
     ffi_boundary! {
-        with(c, "fmi2GetString", allowed::GET, |inst| {
+        with(c, "fmi2GetString", allowed::FMI2_GET, |inst| {
             let vrs = unsafe { slice(vr, nvr, "vr") }.map_err(|e| e.to_string())?;
             let values = unsafe { slice_mut(value, nvr, "value") }.map_err(|e| e.to_string())?;
             let strings = inst.get_strings(vrs)?;
@@ -281,10 +294,10 @@ pub unsafe extern "C" fn fmi2GetString(
     }
 }
 
-/// `fmi2SetReal`: parameters before initialization ends, inputs at any time.
+/// `fmi2SetReal`: parameters before ExitInitializationMode, inputs until Terminate.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetReal(c: Fmi2Component, vr: *const c_uint, nvr: usize, value: *const f64) -> Status {
-    ffi_boundary! { setter!(c, "fmi2SetReal", vr, nvr, value, set_real, |x: f64| Ok::<f64, String>(x)) }
+    ffi_boundary! { setter!(c, "fmi2SetReal", allowed::SET_REAL, vr, nvr, value, set_real, |x: f64| Ok::<f64, String>(x)) }
 }
 
 /// `fmi2SetInteger`: the element counts.
@@ -295,7 +308,7 @@ pub unsafe extern "C" fn fmi2SetInteger(
     nvr: usize,
     value: *const c_int,
 ) -> Status {
-    ffi_boundary! { setter!(c, "fmi2SetInteger", vr, nvr, value, set_integer, |x: i32| Ok::<i32, String>(x)) }
+    ffi_boundary! { setter!(c, "fmi2SetInteger", allowed::SET_INTEGER, vr, nvr, value, set_integer, |x: i32| Ok::<i32, String>(x)) }
 }
 
 /// `fmi2SetBoolean`: there is no settable Boolean.
@@ -306,7 +319,7 @@ pub unsafe extern "C" fn fmi2SetBoolean(
     nvr: usize,
     value: *const Fmi2Boolean,
 ) -> Status {
-    ffi_boundary! { setter!(c, "fmi2SetBoolean", vr, nvr, value, set_boolean, |x: Fmi2Boolean| Ok::<bool, String>(x != 0)) }
+    ffi_boundary! { setter!(c, "fmi2SetBoolean", allowed::SET_BOOLEAN, vr, nvr, value, set_boolean, |x: Fmi2Boolean| Ok::<bool, String>(x != 0)) }
 }
 
 /// `fmi2SetString`: `log.path`.
@@ -318,7 +331,7 @@ pub unsafe extern "C" fn fmi2SetString(
     value: *const *const c_char,
 ) -> Status {
     ffi_boundary! {
-        setter!(c, "fmi2SetString", vr, nvr, value, set_string, |p: *const c_char| {
+        setter!(c, "fmi2SetString", allowed::SET_STRING, vr, nvr, value, set_string, |p: *const c_char| {
             unsafe { string(p, "value[i]") }.map_err(|e| e.to_string())
         })
     }
@@ -473,7 +486,7 @@ pub unsafe extern "C" fn fmi2DoStep(
     _no_set_fmu_state_prior_to_current_point: Fmi2Boolean,
 ) -> Status {
     ffi_boundary! {
-        with(c, "fmi2DoStep", allowed::DO_STEP, |inst| {
+        with_run(c, "fmi2DoStep", allowed::DO_STEP, |inst| {
             inst.do_step(current_communication_point, communication_step_size)?;
             Ok(Status::Ok)
         })

@@ -67,6 +67,21 @@ fn with(
     }
 }
 
+/// [`with`] for the calls after which an error is the Error state (DoStep, Terminate,
+/// ExitInitializationMode).
+fn with_run(
+    c: Fmi3Instance,
+    function: &str,
+    mask: Mask,
+    work: impl FnOnce(&mut Instance) -> Result<Status, String>,
+) -> Status {
+    // SAFETY: as in `with`.
+    match unsafe { c.as_mut() } {
+        Some(instance) => instance.guard_run(function, mask, work),
+        None => Status::Error,
+    }
+}
+
 fn unsupported(c: Fmi3Instance, what: &str) -> Status {
     with(c, what, Mask::NONE, |_| Ok(Status::Error))
 }
@@ -165,14 +180,12 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
                 description::token()
             ));
         }
-        let resources = if resource_path.is_null() {
-            None
-        } else {
-            unsafe { string(resource_path, "resourcePath") }.ok().and_then(|s| resource::parse_path(&s))
-        };
+        let location = unsafe { string(resource_path, "resourcePath") }.ok();
+        let resources = location.as_deref().and_then(resource::parse_path);
         let logger = Logger::Fmi3 { callback: log_message, environment: instance_environment };
-        let mut instance = Instance::new(&name, Version::Fmi3, logger, logging_on, resources);
+        let mut instance = Instance::new(&name, Version::Fmi3, logger, logging_on);
         instance.set_cosimulation_options(event_mode_used, early_return_allowed);
+        instance.log_resources(location.as_deref(), resources);
         Box::into_raw(Box::new(instance))
     }
 }
@@ -230,7 +243,7 @@ pub unsafe extern "C" fn fmi3EnterInitializationMode(
 /// `fmi3ExitInitializationMode`: validates the parameters, builds the model, opens the log.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3ExitInitializationMode(instance: Fmi3Instance) -> Status {
-    ffi_boundary! { with(instance, "fmi3ExitInitializationMode", allowed::EXIT_INITIALIZATION, Instance::exit_initialization) }
+    ffi_boundary! { with_run(instance, "fmi3ExitInitializationMode", allowed::EXIT_INITIALIZATION, Instance::exit_initialization) }
 }
 
 /// `fmi3EnterEventMode` (with eventModeUsed; there are no events to handle).
@@ -242,7 +255,7 @@ pub unsafe extern "C" fn fmi3EnterEventMode(instance: Fmi3Instance) -> Status {
 /// `fmi3Terminate`: completes the MCAP log.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3Terminate(instance: Fmi3Instance) -> Status {
-    ffi_boundary! { with(instance, "fmi3Terminate", allowed::TERMINATE, Instance::terminate) }
+    ffi_boundary! { with_run(instance, "fmi3Terminate", allowed::TERMINATE, Instance::terminate) }
 }
 
 /// `fmi3Reset`.
@@ -261,7 +274,7 @@ fn check_counts(nvr: usize, n_values: usize) -> Result<(), String> {
 
 macro_rules! getter {
     ($i:expr, $function:literal, $vr:expr, $nvr:expr, $values:expr, $nv:expr, $get:ident, $convert:expr) => {
-        with($i, $function, allowed::GET, |inst| {
+        with($i, $function, allowed::FMI3_GET, |inst| {
             check_counts($nvr, $nv)?;
             let vrs = unsafe { slice($vr, $nvr, "valueReferences") }.map_err(e)?;
             let values = unsafe { slice_mut($values, $nvr, "values") }.map_err(e)?;
@@ -274,8 +287,8 @@ macro_rules! getter {
 }
 
 macro_rules! setter {
-    ($i:expr, $function:literal, $vr:expr, $nvr:expr, $values:expr, $nv:expr, $set:ident, $convert:expr) => {
-        with($i, $function, allowed::GET.or(allowed::SET_INPUT), |inst| {
+    ($i:expr, $function:literal, $mask:expr, $vr:expr, $nvr:expr, $values:expr, $nv:expr, $set:ident, $convert:expr) => {
+        with($i, $function, $mask, |inst| {
             check_counts($nvr, $nv)?;
             let vrs = unsafe { slice($vr, $nvr, "valueReferences") }.map_err(e)?;
             let values = unsafe { slice($values, $nvr, "values") }.map_err(e)?;
@@ -312,7 +325,7 @@ pub unsafe extern "C" fn fmi3GetFloat32(
     _values: *mut f32,
     _n_values: usize,
 ) -> Status {
-    ffi_boundary! { absent(instance, "fmi3GetFloat32", allowed::GET, "Float32", value_references, n_value_references) }
+    ffi_boundary! { absent(instance, "fmi3GetFloat32", allowed::FMI3_GET, "Float32", value_references, n_value_references) }
 }
 
 /// `fmi3SetFloat32`: this FMU has no Float32 variables (nValueReferences = 0 is fine).
@@ -324,7 +337,7 @@ pub unsafe extern "C" fn fmi3SetFloat32(
     _values: *const f32,
     _n_values: usize,
 ) -> Status {
-    ffi_boundary! { absent(instance, "fmi3SetFloat32", allowed::GET.or(allowed::SET_INPUT), "Float32", value_references, n_value_references) }
+    ffi_boundary! { absent(instance, "fmi3SetFloat32", allowed::SET_ABSENT, "Float32", value_references, n_value_references) }
 }
 
 /// `fmi3GetInt8`: this FMU has no Int8 variables (nValueReferences = 0 is fine).
@@ -336,7 +349,7 @@ pub unsafe extern "C" fn fmi3GetInt8(
     _values: *mut i8,
     _n_values: usize,
 ) -> Status {
-    ffi_boundary! { absent(instance, "fmi3GetInt8", allowed::GET, "Int8", value_references, n_value_references) }
+    ffi_boundary! { absent(instance, "fmi3GetInt8", allowed::FMI3_GET, "Int8", value_references, n_value_references) }
 }
 
 /// `fmi3SetInt8`: this FMU has no Int8 variables (nValueReferences = 0 is fine).
@@ -348,7 +361,7 @@ pub unsafe extern "C" fn fmi3SetInt8(
     _values: *const i8,
     _n_values: usize,
 ) -> Status {
-    ffi_boundary! { absent(instance, "fmi3SetInt8", allowed::GET.or(allowed::SET_INPUT), "Int8", value_references, n_value_references) }
+    ffi_boundary! { absent(instance, "fmi3SetInt8", allowed::SET_ABSENT, "Int8", value_references, n_value_references) }
 }
 
 /// `fmi3GetUInt8`: this FMU has no UInt8 variables (nValueReferences = 0 is fine).
@@ -360,7 +373,7 @@ pub unsafe extern "C" fn fmi3GetUInt8(
     _values: *mut u8,
     _n_values: usize,
 ) -> Status {
-    ffi_boundary! { absent(instance, "fmi3GetUInt8", allowed::GET, "UInt8", value_references, n_value_references) }
+    ffi_boundary! { absent(instance, "fmi3GetUInt8", allowed::FMI3_GET, "UInt8", value_references, n_value_references) }
 }
 
 /// `fmi3SetUInt8`: this FMU has no UInt8 variables (nValueReferences = 0 is fine).
@@ -372,7 +385,7 @@ pub unsafe extern "C" fn fmi3SetUInt8(
     _values: *const u8,
     _n_values: usize,
 ) -> Status {
-    ffi_boundary! { absent(instance, "fmi3SetUInt8", allowed::GET.or(allowed::SET_INPUT), "UInt8", value_references, n_value_references) }
+    ffi_boundary! { absent(instance, "fmi3SetUInt8", allowed::SET_ABSENT, "UInt8", value_references, n_value_references) }
 }
 
 /// `fmi3GetInt16`: this FMU has no Int16 variables (nValueReferences = 0 is fine).
@@ -384,7 +397,7 @@ pub unsafe extern "C" fn fmi3GetInt16(
     _values: *mut i16,
     _n_values: usize,
 ) -> Status {
-    ffi_boundary! { absent(instance, "fmi3GetInt16", allowed::GET, "Int16", value_references, n_value_references) }
+    ffi_boundary! { absent(instance, "fmi3GetInt16", allowed::FMI3_GET, "Int16", value_references, n_value_references) }
 }
 
 /// `fmi3SetInt16`: this FMU has no Int16 variables (nValueReferences = 0 is fine).
@@ -396,7 +409,7 @@ pub unsafe extern "C" fn fmi3SetInt16(
     _values: *const i16,
     _n_values: usize,
 ) -> Status {
-    ffi_boundary! { absent(instance, "fmi3SetInt16", allowed::GET.or(allowed::SET_INPUT), "Int16", value_references, n_value_references) }
+    ffi_boundary! { absent(instance, "fmi3SetInt16", allowed::SET_ABSENT, "Int16", value_references, n_value_references) }
 }
 
 /// `fmi3GetUInt16`: this FMU has no UInt16 variables (nValueReferences = 0 is fine).
@@ -408,7 +421,7 @@ pub unsafe extern "C" fn fmi3GetUInt16(
     _values: *mut u16,
     _n_values: usize,
 ) -> Status {
-    ffi_boundary! { absent(instance, "fmi3GetUInt16", allowed::GET, "UInt16", value_references, n_value_references) }
+    ffi_boundary! { absent(instance, "fmi3GetUInt16", allowed::FMI3_GET, "UInt16", value_references, n_value_references) }
 }
 
 /// `fmi3SetUInt16`: this FMU has no UInt16 variables (nValueReferences = 0 is fine).
@@ -420,7 +433,7 @@ pub unsafe extern "C" fn fmi3SetUInt16(
     _values: *const u16,
     _n_values: usize,
 ) -> Status {
-    ffi_boundary! { absent(instance, "fmi3SetUInt16", allowed::GET.or(allowed::SET_INPUT), "UInt16", value_references, n_value_references) }
+    ffi_boundary! { absent(instance, "fmi3SetUInt16", allowed::SET_ABSENT, "UInt16", value_references, n_value_references) }
 }
 
 /// `fmi3GetUInt32`: this FMU has no UInt32 variables (nValueReferences = 0 is fine).
@@ -432,7 +445,7 @@ pub unsafe extern "C" fn fmi3GetUInt32(
     _values: *mut u32,
     _n_values: usize,
 ) -> Status {
-    ffi_boundary! { absent(instance, "fmi3GetUInt32", allowed::GET, "UInt32", value_references, n_value_references) }
+    ffi_boundary! { absent(instance, "fmi3GetUInt32", allowed::FMI3_GET, "UInt32", value_references, n_value_references) }
 }
 
 /// `fmi3SetUInt32`: this FMU has no UInt32 variables (nValueReferences = 0 is fine).
@@ -444,7 +457,7 @@ pub unsafe extern "C" fn fmi3SetUInt32(
     _values: *const u32,
     _n_values: usize,
 ) -> Status {
-    ffi_boundary! { absent(instance, "fmi3SetUInt32", allowed::GET.or(allowed::SET_INPUT), "UInt32", value_references, n_value_references) }
+    ffi_boundary! { absent(instance, "fmi3SetUInt32", allowed::SET_ABSENT, "UInt32", value_references, n_value_references) }
 }
 
 /// `fmi3GetInt64`: this FMU has no Int64 variables (nValueReferences = 0 is fine).
@@ -456,7 +469,7 @@ pub unsafe extern "C" fn fmi3GetInt64(
     _values: *mut i64,
     _n_values: usize,
 ) -> Status {
-    ffi_boundary! { absent(instance, "fmi3GetInt64", allowed::GET, "Int64", value_references, n_value_references) }
+    ffi_boundary! { absent(instance, "fmi3GetInt64", allowed::FMI3_GET, "Int64", value_references, n_value_references) }
 }
 
 /// `fmi3SetInt64`: this FMU has no Int64 variables (nValueReferences = 0 is fine).
@@ -468,7 +481,7 @@ pub unsafe extern "C" fn fmi3SetInt64(
     _values: *const i64,
     _n_values: usize,
 ) -> Status {
-    ffi_boundary! { absent(instance, "fmi3SetInt64", allowed::GET.or(allowed::SET_INPUT), "Int64", value_references, n_value_references) }
+    ffi_boundary! { absent(instance, "fmi3SetInt64", allowed::SET_ABSENT, "Int64", value_references, n_value_references) }
 }
 
 /// `fmi3GetUInt64`: this FMU has no UInt64 variables (nValueReferences = 0 is fine).
@@ -480,7 +493,7 @@ pub unsafe extern "C" fn fmi3GetUInt64(
     _values: *mut u64,
     _n_values: usize,
 ) -> Status {
-    ffi_boundary! { absent(instance, "fmi3GetUInt64", allowed::GET, "UInt64", value_references, n_value_references) }
+    ffi_boundary! { absent(instance, "fmi3GetUInt64", allowed::FMI3_GET, "UInt64", value_references, n_value_references) }
 }
 
 /// `fmi3SetUInt64`: this FMU has no UInt64 variables (nValueReferences = 0 is fine).
@@ -492,7 +505,7 @@ pub unsafe extern "C" fn fmi3SetUInt64(
     _values: *const u64,
     _n_values: usize,
 ) -> Status {
-    ffi_boundary! { absent(instance, "fmi3SetUInt64", allowed::GET.or(allowed::SET_INPUT), "UInt64", value_references, n_value_references) }
+    ffi_boundary! { absent(instance, "fmi3SetUInt64", allowed::SET_ABSENT, "UInt64", value_references, n_value_references) }
 }
 
 /// `fmi3GetFloat64`.
@@ -509,7 +522,7 @@ pub unsafe extern "C" fn fmi3GetFloat64(
     }
 }
 
-/// `fmi3SetFloat64`: parameters before initialization ends, inputs at any time.
+/// `fmi3SetFloat64`: parameters before ExitInitializationMode, inputs until Terminate.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetFloat64(
     instance: Fmi3Instance,
@@ -519,7 +532,7 @@ pub unsafe extern "C" fn fmi3SetFloat64(
     n_values: usize,
 ) -> Status {
     ffi_boundary! {
-        setter!(instance, "fmi3SetFloat64", value_references, n_value_references, values, n_values, set_real,
+        setter!(instance, "fmi3SetFloat64", allowed::SET_REAL, value_references, n_value_references, values, n_values, set_real,
             |x: f64| Ok::<f64, String>(x))
     }
 }
@@ -548,7 +561,7 @@ pub unsafe extern "C" fn fmi3SetInt32(
     n_values: usize,
 ) -> Status {
     ffi_boundary! {
-        setter!(instance, "fmi3SetInt32", value_references, n_value_references, values, n_values, set_integer,
+        setter!(instance, "fmi3SetInt32", allowed::SET_INTEGER, value_references, n_value_references, values, n_values, set_integer,
             |x: i32| Ok::<i32, String>(x))
     }
 }
@@ -577,7 +590,7 @@ pub unsafe extern "C" fn fmi3SetBoolean(
     n_values: usize,
 ) -> Status {
     ffi_boundary! {
-        setter!(instance, "fmi3SetBoolean", value_references, n_value_references, values, n_values, set_boolean,
+        setter!(instance, "fmi3SetBoolean", allowed::SET_BOOLEAN, value_references, n_value_references, values, n_values, set_boolean,
             |x: bool| Ok::<bool, String>(x))
     }
 }
@@ -592,7 +605,7 @@ pub unsafe extern "C" fn fmi3GetString(
     n_values: usize,
 ) -> Status {
     ffi_boundary! {
-        with(instance, "fmi3GetString", allowed::GET, |inst| {
+        with(instance, "fmi3GetString", allowed::FMI3_GET, |inst| {
             check_counts(n_value_references, n_values)?;
             let vrs = unsafe { slice(value_references, n_value_references, "valueReferences") }.map_err(e)?;
             let values = unsafe { slice_mut(values, n_value_references, "values") }.map_err(e)?;
@@ -613,7 +626,7 @@ pub unsafe extern "C" fn fmi3SetString(
     n_values: usize,
 ) -> Status {
     ffi_boundary! {
-        setter!(instance, "fmi3SetString", value_references, n_value_references, values, n_values, set_string,
+        setter!(instance, "fmi3SetString", allowed::SET_STRING, value_references, n_value_references, values, n_values, set_string,
             |p: *const c_char| unsafe { string(p, "values[i]") }.map_err(e))
     }
 }
@@ -629,7 +642,7 @@ pub unsafe extern "C" fn fmi3GetBinary(
     _n_values: usize,
 ) -> Status {
     ffi_boundary! {
-        with(instance, "fmi3GetBinary", allowed::GET, |inst| {
+        with(instance, "fmi3GetBinary", allowed::FMI3_GET, |inst| {
             let vrs = unsafe { slice(value_references, n_value_references, "valueReferences") }.map_err(e)?;
             inst.no_variables_of("Binary", vrs)
         })
@@ -647,7 +660,7 @@ pub unsafe extern "C" fn fmi3SetBinary(
     _n_values: usize,
 ) -> Status {
     ffi_boundary! {
-        with(instance, "fmi3SetBinary", allowed::GET.or(allowed::SET_INPUT), |inst| {
+        with(instance, "fmi3SetBinary", allowed::SET_ABSENT, |inst| {
             let vrs = unsafe { slice(value_references, n_value_references, "valueReferences") }.map_err(e)?;
             inst.no_variables_of("Binary", vrs)
         })
@@ -663,7 +676,7 @@ pub unsafe extern "C" fn fmi3GetClock(
     _values: *mut bool,
 ) -> Status {
     ffi_boundary! {
-        with(instance, "fmi3GetClock", allowed::GET, |inst| {
+        with(instance, "fmi3GetClock", allowed::FMI3_GET, |inst| {
             let vrs = unsafe { slice(value_references, n_value_references, "valueReferences") }.map_err(e)?;
             inst.no_variables_of("Clock", vrs)
         })
@@ -679,7 +692,7 @@ pub unsafe extern "C" fn fmi3SetClock(
     _values: *const bool,
 ) -> Status {
     ffi_boundary! {
-        with(instance, "fmi3SetClock", allowed::GET.or(allowed::SET_INPUT), |inst| {
+        with(instance, "fmi3SetClock", allowed::SET_ABSENT, |inst| {
             let vrs = unsafe { slice(value_references, n_value_references, "valueReferences") }.map_err(e)?;
             inst.no_variables_of("Clock", vrs)
         })
@@ -1113,7 +1126,7 @@ pub unsafe extern "C" fn fmi3DoStep(
     last_successful_time: *mut f64,
 ) -> Status {
     ffi_boundary! {
-        with(instance, "fmi3DoStep", allowed::DO_STEP, |inst| {
+        with_run(instance, "fmi3DoStep", allowed::DO_STEP, |inst| {
             let event_handling_needed = unsafe { out(event_handling_needed, "eventHandlingNeeded") }.map_err(e)?;
             let terminate_simulation = unsafe { out(terminate_simulation, "terminateSimulation") }.map_err(e)?;
             let early_return = unsafe { out(early_return, "earlyReturn") }.map_err(e)?;

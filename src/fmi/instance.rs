@@ -5,7 +5,7 @@
 
 use std::ffi::{c_char, c_void, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use super::boundary::panic_message;
 use super::description;
@@ -18,7 +18,7 @@ use crate::error::Error;
 use crate::model::parameters::{self, find};
 use crate::record::mcap::McapRecorder;
 use crate::record::{Recorder, RunInfo};
-use crate::results::{ContactEvent, StepResult};
+use crate::results::{seconds, ContactEvent, StepResult};
 use crate::simulation::Advance;
 use crate::solver::TipForces;
 use crate::{Scenario, Simulation};
@@ -106,8 +106,13 @@ pub struct Instance {
     early_return_allowed: bool,
     last_successful_time: f64,
     strings: Vec<CString>,
-    resources: Option<PathBuf>,
+    /// The state a failed `DoStep`, `Terminate` or `ExitInitializationMode` was called in: where a
+    /// successful `SetFMUState` returns to from [`State::Error`].
+    before_error: State,
 }
+
+/// The longest run the scenario's `duration` accepts, s (it only labels the MCAP log here).
+const MAX_DURATION: f64 = 1e6;
 
 /// Communication points closer than this to the FMU's time are the same point, s (time is kept
 /// in integer nanoseconds; importers accumulate rounding, e.g. steps of 0.009999999999999998).
@@ -134,6 +139,9 @@ impl Recorder for Tap<'_> {
         self.events.push(*event);
         self.inner.as_mut().map_or(Ok(()), |r| r.contact_event(event))
     }
+    fn rollback(&mut self, result: &StepResult) -> crate::Result<()> {
+        self.inner.as_mut().map_or(Ok(()), |r| r.rollback(result))
+    }
     fn finish(&mut self) -> crate::Result<()> {
         self.inner.as_mut().map_or(Ok(()), |r| r.finish())
     }
@@ -141,7 +149,7 @@ impl Recorder for Tap<'_> {
 
 impl Instance {
     /// A new instance in state Instantiated with the paper scenario.
-    pub fn new(name: &str, version: Version, logger: Logger, logging_on: bool, resources: Option<PathBuf>) -> Self {
+    pub fn new(name: &str, version: Version, logger: Logger, logging_on: bool) -> Self {
         Instance {
             name: name.to_string(),
             version,
@@ -160,7 +168,7 @@ impl Instance {
             early_return_allowed: false,
             last_successful_time: 0.0,
             strings: Vec::new(),
-            resources,
+            before_error: State::Instantiated,
         }
     }
 
@@ -170,9 +178,19 @@ impl Instance {
         self.early_return_allowed = early_return_allowed;
     }
 
-    /// The resource directory, if the importer gave a local one.
-    pub fn resources(&self) -> Option<&Path> {
-        self.resources.as_deref()
+    /// Logs (category `logEvents`, with logging on) where the importer unpacked the resources:
+    /// the FMU reads none, so the location is only checked and reported.
+    pub fn log_resources(&self, given: Option<&str>, parsed: Option<PathBuf>) {
+        let message = match (given, parsed) {
+            (None, _) => "no resource location given (the FMU reads no resources)".to_string(),
+            (Some(given), Some(dir)) => {
+                format!("resource location \"{given}\" is the directory {} (the FMU reads no resources)", dir.display())
+            }
+            (Some(given), None) => {
+                format!("resource location \"{given}\" is not a local directory (the FMU reads no resources)")
+            }
+        };
+        self.log(Status::Ok, "logEvents", &message);
     }
 
     /// The current state.
@@ -197,6 +215,27 @@ impl Instance {
     /// Runs `work` if the instance is in one of `allowed`'s states; logs an illegal call sequence,
     /// an error message or a caught panic (which makes the instance Fatal) before returning the status.
     pub fn guard(&mut self, function: &str, allowed: Mask, work: impl FnOnce(&mut Self) -> Outcome<Status>) -> Status {
+        self.guarded(function, allowed, false, work)
+    }
+
+    /// [`Instance::guard`] for `DoStep`, `Terminate` and `ExitInitializationMode`: an error (not an
+    /// illegal call sequence, which changes nothing) puts the instance in [`State::Error`].
+    pub fn guard_run(
+        &mut self,
+        function: &str,
+        allowed: Mask,
+        work: impl FnOnce(&mut Self) -> Outcome<Status>,
+    ) -> Status {
+        self.guarded(function, allowed, true, work)
+    }
+
+    fn guarded(
+        &mut self,
+        function: &str,
+        allowed: Mask,
+        failure_is_error_state: bool,
+        work: impl FnOnce(&mut Self) -> Outcome<Status>,
+    ) -> Status {
         if !allowed.contains(self.state) {
             let why = if allowed == Mask::NONE {
                 "is not supported by this FMU".to_string()
@@ -205,16 +244,22 @@ impl Instance {
             };
             return self.error(&format!("{function} {why}"));
         }
-        match catch_unwind(AssertUnwindSafe(|| work(self))) {
+        let before = self.state;
+        let status = match catch_unwind(AssertUnwindSafe(|| work(self))) {
             Ok(Ok(status)) => status,
             Ok(Err(message)) => self.error(&format!("{function}: {message}")),
             Err(payload) => {
                 self.state = State::Fatal;
                 let message = format!("{function}: internal error: {}", panic_message(payload.as_ref()));
                 self.log(Status::Fatal, Status::Fatal.category(), &message);
-                Status::Fatal
+                return Status::Fatal;
             }
+        };
+        if failure_is_error_state && status == Status::Error {
+            self.before_error = before;
+            self.state = State::Error;
         }
+        status
     }
 
     /// `SetDebugLogging`: an empty category list switches every category.
@@ -250,9 +295,10 @@ impl Instance {
         }
         self.start_time = start_time;
         self.stop_time = stop_time;
-        // The run's length goes into the scenario recorded in the MCAP log.
-        if let Some(stop) = stop_time.filter(|&stop| stop > start_time) {
-            self.scenario.duration = stop - start_time;
+        // The run's length only labels the scenario recorded in the MCAP log (`duration` is not an
+        // FMU parameter): taken from the stop time when the scenario accepts it.
+        if let Some(length) = stop_time.map(|stop| stop - start_time).filter(|&l| l > 0.0 && l <= MAX_DURATION) {
+            self.scenario.duration = length;
         }
         self.last_successful_time = start_time;
         Ok(Status::Ok)
@@ -345,7 +391,7 @@ impl Instance {
 
     /// The FMU's time, s.
     pub fn time(&self) -> f64 {
-        self.start_time + self.simulation.as_ref().map_or(0, |s| s.result().time_ns) as f64 / 1e9
+        self.start_time + seconds(self.simulation.as_ref().map_or(0, |s| s.result().time_ns))
     }
 
     /// `fmi2LastSuccessfulTime` / FMI 3's `lastSuccessfulTime`, s.
@@ -357,9 +403,9 @@ impl Instance {
     /// `early_return` (FMI 3, if allowed) stops at a contact change.
     pub fn do_step(&mut self, current: f64, step: f64) -> Outcome<StepOutcome> {
         let now = self.time();
-        if !(current.is_finite() && step.is_finite() && step >= 0.0) {
+        if !(current.is_finite() && step.is_finite() && step > 0.0) {
             return Err(format!(
-                "the communication step must be finite and >= 0 s, got currentCommunicationPoint = {current}, \
+                "the communication step must be finite and > 0 s, got currentCommunicationPoint = {current}, \
                  communicationStepSize = {step}"
             ));
         }
@@ -391,7 +437,7 @@ impl Instance {
                 "logEvents",
                 &format!(
                     "t = {:.9} s (step {}): contact {} (relative velocity {:.4} m/s)",
-                    self.start_time + e.time_ns as f64 / 1e9,
+                    self.start_time + seconds(e.time_ns),
                     e.step,
                     if e.start { "starts" } else { "ends" },
                     e.relative_velocity
@@ -428,10 +474,9 @@ impl Instance {
     /// `Reset`: back to Instantiated with the paper scenario (completing an open log first).
     pub fn reset(&mut self) -> Outcome<Status> {
         let finished = self.finish_log();
-        let (name, version, logger, logging_on, resources) =
-            (self.name.clone(), self.version, self.logger, self.logging_on, self.resources.take());
+        let (name, version, logger, logging_on) = (self.name.clone(), self.version, self.logger, self.logging_on);
         let (event_mode_used, early_return_allowed) = (self.event_mode_used, self.early_return_allowed);
-        *self = Instance::new(&name, version, logger, logging_on, resources);
+        *self = Instance::new(&name, version, logger, logging_on);
         self.set_cosimulation_options(event_mode_used, early_return_allowed);
         finished?;
         Ok(Status::Ok)
@@ -463,6 +508,22 @@ impl Instance {
         }
     }
 
+    /// The simulation behind an output or a calculated parameter: built from the parameters from
+    /// initialization mode on, never before (FMI 3 allows reads in Instantiated, where only the
+    /// parameters and inputs have values).
+    fn computed(&mut self, name: &str) -> Outcome<&mut Simulation> {
+        match self.state {
+            State::Instantiated => Err(format!(
+                "`{name}` is available after initialization (from EnterInitializationMode on); \
+                 in state Instantiated only parameters and inputs have values"
+            )),
+            State::Error | State::Fatal if self.simulation.is_none() => {
+                Err(format!("`{name}` is not available: the model could not be built (see the error before)"))
+            }
+            _ => self.simulation(),
+        }
+    }
+
     /// Reads a Real / Float64 variable.
     pub fn get_real(&mut self, vr: u32) -> Outcome<f64> {
         let v = self.variable(vr, Type::Real)?;
@@ -471,9 +532,9 @@ impl Instance {
             Source::Parameter(p) => (p.get)(&self.scenario),
             Source::Input(Tip::Upper) => self.forces().upper,
             Source::Input(Tip::Lower) => self.forces().lower,
-            Source::Output(get) => get(self.simulation()?.result()),
+            Source::Output(get) => get(self.computed(&v.name)?.result()),
             Source::Mode(column, k) => {
-                let table = self.simulation()?.mode_table(super::variables::MODES);
+                let table = self.computed(&v.name)?.mode_table(super::variables::MODES);
                 let (list, what) = match column {
                     Column::Lower => (table.lower, "the arrestor"),
                     Column::Upper => (table.upper, "the bridge"),
@@ -483,7 +544,7 @@ impl Instance {
                     .get(k)
                     .ok_or_else(|| format!("{}: {what} has only {} modes with this mesh", v.name, list.len()))?
             }
-            Source::EnergyMethod(get) => get(self.simulation()?.energy_method()),
+            Source::EnergyMethod(get) => get(self.computed(&v.name)?.energy_method()),
             Source::LogPath | Source::ContactActive => return Err(format!("`{}` is not Real", v.name)),
         })
     }
@@ -501,7 +562,7 @@ impl Instance {
     pub fn get_boolean(&mut self, vr: u32) -> Outcome<bool> {
         let v = self.variable(vr, Type::Boolean)?;
         match v.source {
-            Source::ContactActive => Ok(self.simulation()?.result().contact),
+            Source::ContactActive => Ok(self.computed(&v.name)?.result().contact),
             _ => Err(format!("`{}` is not a Boolean", v.name)),
         }
     }
@@ -520,19 +581,19 @@ impl Instance {
         Ok(self.strings.iter().map(|s| s.as_ptr()).collect())
     }
 
+    /// The per-variable rule inside a setter's allowed states: parameters before
+    /// `ExitInitializationMode`, inputs until `Terminate`, nothing else ever.
     fn check_settable(&self, v: &Variable) -> Outcome<()> {
-        let parameter = matches!(v.source, Source::Parameter(_) | Source::LogPath);
-        let input = matches!(v.source, Source::Input(_));
-        let allowed = if parameter {
-            super::status::allowed::SET_PARAMETER
-        } else if input {
-            super::status::allowed::SET_INPUT
-        } else {
-            return Err(format!("`{}` is a {} and cannot be set", v.name, v.causality.name()));
+        let (allowed, rule) = match v.source {
+            Source::Parameter(_) | Source::LogPath => {
+                (super::status::allowed::SET_PARAMETER, "parameters are fixed at ExitInitializationMode")
+            }
+            Source::Input(_) => (super::status::allowed::SET_INPUT, "inputs are set until Terminate"),
+            _ => return Err(format!("`{}` is a {} and cannot be set", v.name, v.causality.name())),
         };
         if !allowed.contains(self.state) {
             return Err(format!(
-                "`{}` ({}) cannot be set in state {} (parameters are fixed after initialization)",
+                "setting `{}` ({}) is not allowed in state {} (illegal call sequence: {rule})",
                 v.name,
                 v.causality.name(),
                 self.state.name()
@@ -619,18 +680,42 @@ impl Instance {
         Ok(Snapshot { fingerprint, run })
     }
 
-    /// `SetFMUState`: restores a snapshot taken from an instance of the same scenario.
+    /// `SetFMUState`: restores a snapshot taken from an instance of the same parameters, and
+    /// tells the MCAP log (if any) that the run went back. In state Error it returns the instance
+    /// to the state the failed call was made in. Before `ExitInitializationMode` the run will
+    /// start from the restored state (setting a parameter or an input afterwards, before
+    /// initialization ends, starts it from the impact again).
     pub fn restore(&mut self, snapshot: &Snapshot) -> Outcome<Status> {
         let mine = fingerprint(&self.scenario);
         if snapshot.fingerprint != mine {
-            return Err(format!(
-                "the state belongs to another scenario (fingerprint {:016x}, this instance's parameters give {mine:016x}): \
-                 set the same parameters before restoring",
-                snapshot.fingerprint
-            ));
+            return Err(Error::StateScenario { saved: snapshot.fingerprint, instance: mine }.to_string());
         }
         self.simulation()?.restore(snapshot.run.clone()).map_err(|e| e.to_string())?;
+        if matches!(self.state, State::Instantiated | State::Initialization) {
+            self.scenario.upper.tip_force = snapshot.run.forces.upper;
+            self.scenario.lower.tip_force = snapshot.run.forces.lower;
+        }
+        if self.state == State::Error {
+            self.state = self.before_error;
+        }
         self.last_successful_time = self.time();
+        let result = *self.simulation.as_ref().ok_or("no simulation")?.result();
+        let rollback = match self.recorder.as_mut() {
+            Some(recorder) => recorder.rollback(&result).map_err(|e| (recorder.path().display().to_string(), e)),
+            None => Ok(()),
+        };
+        if let Err((path, e)) = rollback {
+            self.log(
+                Status::Warning,
+                Status::Warning.category(),
+                &format!(
+                    "the state is restored (t = {} s, step {}), but the MCAP log {path} cannot record the rollback: {e}",
+                    self.time(),
+                    result.step
+                ),
+            );
+            return Ok(Status::Warning);
+        }
         Ok(Status::Ok)
     }
 }

@@ -43,6 +43,10 @@ pub enum State {
     Step,
     /// After `Terminate`: outputs can still be read.
     Terminated,
+    /// After `DoStep`, `Terminate` or `ExitInitializationMode` returned `Error`: only the getters,
+    /// get/set/free FMU state, (de)serialization, `Reset` and `FreeInstance` are allowed; a
+    /// successful `SetFMUState` returns to the state the failed call was made in.
+    Error,
     /// After a caught panic: only `FreeInstance` (and `Reset`) are allowed.
     Fatal,
 }
@@ -61,6 +65,7 @@ impl State {
             State::Event => "Event Mode",
             State::Step => "Step Mode",
             State::Terminated => "Terminated",
+            State::Error => "Error (after a failed call)",
             State::Fatal => "Fatal (after an internal error)",
         }
     }
@@ -85,7 +90,8 @@ impl Mask {
     pub const NONE: Mask = Mask(0);
 }
 
-/// The allowed-states table: one entry per kind of call.
+/// The allowed-states table: one entry per function (or per family of functions with the same
+/// rule), after the FMI 2.0 and 3.0 state machines and the Reference FMUs' `MASK_fmi*` tables.
 pub mod allowed {
     use super::{Mask, State};
 
@@ -94,10 +100,13 @@ pub mod allowed {
     const E: Mask = State::Event.bit();
     const S: Mask = State::Step.bit();
     const T: Mask = State::Terminated.bit();
+    const X: Mask = State::Error.bit();
     const F: Mask = State::Fatal.bit();
+    /// Every state after instantiation but Fatal.
+    const LIVE: Mask = I.or(N).or(E).or(S).or(T).or(X);
 
     /// `SetDebugLogging`: any state but Fatal.
-    pub const SET_DEBUG_LOGGING: Mask = I.or(N).or(E).or(S).or(T);
+    pub const SET_DEBUG_LOGGING: Mask = LIVE;
     /// `SetupExperiment` (FMI 2).
     pub const SETUP_EXPERIMENT: Mask = I;
     /// `EnterInitializationMode`.
@@ -114,20 +123,38 @@ pub mod allowed {
     pub const DO_STEP: Mask = S;
     /// `Terminate`.
     pub const TERMINATE: Mask = E.or(S);
-    /// `Reset`.
-    pub const RESET: Mask = I.or(N).or(E).or(S).or(T).or(F);
-    /// Reading any variable.
-    pub const GET: Mask = I.or(N).or(E).or(S).or(T);
-    /// Writing parameters (causality parameter, variability fixed).
+    /// `Reset`: any state, Fatal included.
+    pub const RESET: Mask = LIVE.or(F);
+    /// `fmi2GetReal`, `fmi2GetInteger`, `fmi2GetBoolean`, `fmi2GetString`: from initialization mode
+    /// on (FMI 2.0 does not allow them in Instantiated), in Error too.
+    pub const FMI2_GET: Mask = N.or(E).or(S).or(T).or(X);
+    /// Every `fmi3Get{VariableType}`: FMI 3.0 also allows them in Instantiated (parameters only
+    /// there: outputs and calculated parameters exist after initialization).
+    pub const FMI3_GET: Mask = I.or(FMI2_GET);
+    /// `SetReal` / `SetFloat64`: parameters before `ExitInitializationMode`, the two inputs also
+    /// in event and step mode (the per-variable rule is [`SET_PARAMETER`] / [`SET_INPUT`]).
+    pub const SET_REAL: Mask = I.or(N).or(E).or(S);
+    /// `SetInteger` / `SetInt32`: every Integer variable is a parameter.
+    pub const SET_INTEGER: Mask = I.or(N);
+    /// `SetBoolean`: there is no settable Boolean; the call is allowed where inputs are set, and
+    /// each value reference is refused by name.
+    pub const SET_BOOLEAN: Mask = I.or(N).or(E).or(S);
+    /// `SetString`: `log.path` is a parameter.
+    pub const SET_STRING: Mask = I.or(N);
+    /// FMI 3 setters of types this FMU has no variables of (Float32, Int8, ..., Binary, Clock).
+    pub const SET_ABSENT: Mask = I.or(N).or(E).or(S);
+    /// Where one parameter (causality parameter, variability fixed) may be written.
     pub const SET_PARAMETER: Mask = I.or(N);
-    /// Writing inputs.
+    /// Where one input may be written.
     pub const SET_INPUT: Mask = I.or(N).or(E).or(S);
-    /// `GetFMUState`, `SerializedFMUStateSize`, `SerializeFMUState`.
-    pub const GET_STATE: Mask = N.or(E).or(S).or(T);
-    /// `SetFMUState` and deserialization into an instance.
-    pub const SET_STATE: Mask = N.or(E).or(S).or(T);
-    /// `FreeFMUState`, `DeserializeFMUState` (no effect on the instance).
-    pub const STATE_MEMORY: Mask = I.or(N).or(E).or(S).or(T).or(F);
+    /// `GetFMUState`: every state after instantiation (FMI 2 `MASK_fmi2GetFMUstate` =
+    /// `MASK_fmi2FreeInstance`, FMI 3 any state), not after a panic.
+    pub const GET_STATE: Mask = LIVE;
+    /// `SetFMUState`: as [`GET_STATE`]; in Error it is the way back.
+    pub const SET_STATE: Mask = LIVE;
+    /// `FreeFMUState`, `SerializedFMUStateSize`, `SerializeFMUState`, `DeserializeFMUState`: they
+    /// touch the snapshot only, never the instance, so Fatal too.
+    pub const STATE_MEMORY: Mask = LIVE.or(F);
     /// The status queries of FMI 2.
     pub const STATUS: Mask = S.or(T);
 }
@@ -143,5 +170,68 @@ mod tests {
         }
         assert!(allowed::DO_STEP.contains(State::Step));
         assert!(!Mask::NONE.contains(State::Step));
+    }
+
+    #[test]
+    fn fmi2_getters_start_at_initialization_mode_fmi3_getters_at_instantiated() {
+        assert!(!allowed::FMI2_GET.contains(State::Instantiated));
+        assert!(allowed::FMI3_GET.contains(State::Instantiated));
+        for state in [State::Initialization, State::Event, State::Step, State::Terminated, State::Error] {
+            assert!(allowed::FMI2_GET.contains(state) && allowed::FMI3_GET.contains(state), "{state:?}");
+        }
+    }
+
+    #[test]
+    fn error_state_allows_only_getters_fmu_state_reset_and_debug_logging() {
+        let allowed_in_error = [
+            allowed::FMI2_GET,
+            allowed::FMI3_GET,
+            allowed::GET_STATE,
+            allowed::SET_STATE,
+            allowed::STATE_MEMORY,
+            allowed::RESET,
+            allowed::SET_DEBUG_LOGGING,
+        ];
+        for mask in allowed_in_error {
+            assert!(mask.contains(State::Error));
+        }
+        let refused_in_error = [
+            allowed::SETUP_EXPERIMENT,
+            allowed::ENTER_INITIALIZATION,
+            allowed::EXIT_INITIALIZATION,
+            allowed::ENTER_EVENT_MODE,
+            allowed::UPDATE_DISCRETE_STATES,
+            allowed::ENTER_STEP_MODE,
+            allowed::DO_STEP,
+            allowed::TERMINATE,
+            allowed::SET_REAL,
+            allowed::SET_INTEGER,
+            allowed::SET_BOOLEAN,
+            allowed::SET_STRING,
+            allowed::SET_ABSENT,
+            allowed::STATUS,
+        ];
+        for mask in refused_in_error {
+            assert!(!mask.contains(State::Error), "{mask:?}");
+        }
+    }
+
+    #[test]
+    fn fmu_state_functions_are_allowed_in_every_state_after_instantiation() {
+        for state in
+            [State::Instantiated, State::Initialization, State::Event, State::Step, State::Terminated, State::Error]
+        {
+            for mask in [allowed::GET_STATE, allowed::SET_STATE, allowed::STATE_MEMORY] {
+                assert!(mask.contains(state), "{state:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn parameters_only_before_exit_initialization_inputs_in_step_mode() {
+        assert!(allowed::SET_PARAMETER.contains(State::Initialization));
+        assert!(!allowed::SET_PARAMETER.contains(State::Step));
+        assert!(allowed::SET_INPUT.contains(State::Step));
+        assert!(!allowed::SET_INPUT.contains(State::Terminated));
     }
 }

@@ -237,6 +237,12 @@ const ENERGY_METHOD: &[(&str, &str, &str, Method)] = &[
     ("strain_energy", "J", "Energy method (Eq. 35): strain energy of the arrestor", |e| e.strain_energy),
 ];
 
+/// Whether a scenario parameter is an FMU parameter: all but `duration`, the CLI's run length (an
+/// FMU runs until its importer's stop time).
+pub fn is_fmu_parameter(p: &Parameter) -> bool {
+    p.name != "duration"
+}
+
 /// Every variable of the FMU, in value-reference order.
 pub fn table() -> Vec<Variable> {
     let defaults = Scenario::default();
@@ -264,8 +270,7 @@ pub fn table() -> Vec<Variable> {
         None,
         Source::Time,
     );
-    // `duration` is the CLI's run length; an FMU runs until its importer's stop time.
-    for p in PARAMETERS.iter().filter(|p| p.name != "duration") {
+    for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p)) {
         let value = (p.get)(&defaults);
         let (ty, start) = match p.kind {
             Kind::Real => (Type::Real, format_real(value)),

@@ -242,6 +242,16 @@ impl Fmu2 {
         value != 0
     }
 
+    pub fn set_integer(&self, name: &str, value: c_int) -> c_int {
+        let f = sym!(
+            self.lib,
+            "fmi2SetInteger",
+            unsafe extern "C" fn(*mut c_void, *const u32, usize, *const c_int) -> c_int
+        );
+        // SAFETY: one value reference and one value.
+        unsafe { f(self.c, [vr(name)].as_ptr(), 1, &value) }
+    }
+
     pub fn do_step(&self, t: f64, h: f64) -> c_int {
         let f = sym!(self.lib, "fmi2DoStep", unsafe extern "C" fn(*mut c_void, f64, f64, c_int) -> c_int);
         // SAFETY: a live component.
@@ -403,7 +413,8 @@ impl Fmu3 {
         unsafe { f(self.c, [vr(name)].as_ptr(), 1, pointers.as_ptr(), 1) }
     }
 
-    pub fn get(&self, name: &str) -> f64 {
+    /// `fmi3GetFloat64` of one variable: (status, value).
+    pub fn try_get(&self, name: &str) -> (c_int, f64) {
         let f = sym!(
             self.lib,
             "fmi3GetFloat64",
@@ -411,8 +422,32 @@ impl Fmu3 {
         );
         let mut value = f64::NAN;
         // SAFETY: one value.
-        assert_eq!(unsafe { f(self.c, [vr(name)].as_ptr(), 1, &mut value, 1) }, OK, "{}", self.log.text());
+        let status = unsafe { f(self.c, [vr(name)].as_ptr(), 1, &mut value, 1) };
+        (status, value)
+    }
+
+    pub fn get(&self, name: &str) -> f64 {
+        let (status, value) = self.try_get(name);
+        assert_eq!(status, OK, "fmi3GetFloat64({name}): {}", self.log.text());
         value
+    }
+
+    pub fn set(&self, name: &str, value: f64) -> c_int {
+        let f = sym!(
+            self.lib,
+            "fmi3SetFloat64",
+            unsafe extern "C" fn(*mut c_void, *const u32, usize, *const f64, usize) -> c_int
+        );
+        // SAFETY: one value reference and one value.
+        unsafe { f(self.c, [vr(name)].as_ptr(), 1, &value, 1) }
+    }
+
+    pub fn call0(&self, name: &str) -> c_int {
+        let symbol = format!("{name}\0");
+        // SAFETY: every fmi3 function taking only the instance has this signature.
+        let f: libloading::Symbol<Call0> = unsafe { self.lib.get(symbol.as_bytes()) }.unwrap();
+        // SAFETY: a live instance.
+        unsafe { f(self.c) }
     }
 
     /// `fmi3DoStep`: (status, earlyReturn, lastSuccessfulTime).
