@@ -155,7 +155,7 @@ enum Status fmi2GetBoolean(Fmi2Component c, const unsigned int *vr, size_t nvr, 
 // `fmi2GetString`: the strings stay valid until the next `fmi2GetString` on this instance.
 enum Status fmi2GetString(Fmi2Component c, const unsigned int *vr, size_t nvr, const char **value);
 
-// `fmi2SetReal`: parameters before initialization ends, inputs at any time.
+// `fmi2SetReal`: parameters before ExitInitializationMode, inputs until Terminate.
 enum Status fmi2SetReal(Fmi2Component c, const unsigned int *vr, size_t nvr, const double *value);
 
 // `fmi2SetInteger`: the element counts.
@@ -430,7 +430,7 @@ enum Status fmi3GetFloat64(Fmi3Instance instance,
                            double *values,
                            size_t n_values);
 
-// `fmi3SetFloat64`: parameters before initialization ends, inputs at any time.
+// `fmi3SetFloat64`: parameters before ExitInitializationMode, inputs until Terminate.
 enum Status fmi3SetFloat64(Fmi3Instance instance,
                            const Fmi3ValueReference *value_references,
                            size_t n_value_references,

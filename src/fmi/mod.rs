@@ -6,7 +6,6 @@
 //! - [`instance`]: one instance: parameters, simulation, MCAP log, state machine.
 //! - [`fmi2`], [`fmi3`]: the exported C functions; they check arguments and delegate.
 //! - [`state`]: FMU state snapshots and their portable byte format.
-//! - [`tree`]: the serde value tree behind that format, exact for every f64.
 //! - [`resource`]: resource-location parsing.
 //! - [`description`]: the two modelDescription.xml files, generated from the table.
 //! - [`pack`]: writes the two .fmu archives.
@@ -20,5 +19,4 @@ pub mod pack;
 pub mod resource;
 pub mod state;
 pub mod status;
-pub mod tree;
 pub mod variables;

@@ -9,18 +9,14 @@
 //!      8     4  format version, u32 little endian (FORMAT_VERSION)
 //!     12     8  scenario fingerprint, u64 little endian (FNV-1a of the FMU parameters' names and bits)
 //!     20     8  payload length n, u64 little endian
-//!     28     n  payload: the RunState as JSON, every f64 written as {"f64 bits": "<16 hex digits>"}
+//!     28     n  payload: the RunState as MessagePack with field names (rmp-serde)
 //! ```
 //!
-//! Floats are carried as their bit patterns, in an object with a key no Rust field can have, so
-//! that a restored state continues bit for bit whatever the JSON parser's rounding, NaN and -0
-//! included, and no string is ever mistaken for a float. The JSON field paths of [`RunState`] are
-//! pinned by a test at each [`FORMAT_VERSION`].
+//! MessagePack stores every f64 as its eight IEEE bytes, so a restored state continues bit for
+//! bit (NaN, infinities and -0 included), and it names fields and types, so a string is never
+//! taken for a number. The field paths of [`RunState`] are pinned by a test at each
+//! [`FORMAT_VERSION`].
 
-use serde::Deserialize;
-use serde_json::{Map, Value};
-
-use super::tree::{to_tree, Tree};
 use super::variables::is_fmu_parameter;
 use crate::error::{Error, Result};
 use crate::model::parameters::PARAMETERS;
@@ -34,9 +30,6 @@ pub const MAGIC: &[u8; 8] = b"BEAMFMU\0";
 pub const FORMAT_VERSION: u32 = 1;
 
 const HEADER: usize = 28;
-
-/// The key of the object an f64 is written as (a space: no Rust field is called that).
-const FLOAT_KEY: &str = "f64 bits";
 
 /// A saved FMU state (what `fmi2FMUstate` / `fmi3FMUState` point to).
 #[derive(Clone, Debug, PartialEq)]
@@ -69,54 +62,10 @@ fn payload_error(detail: impl std::fmt::Display) -> Error {
     Error::StatePayload { detail: detail.to_string() }
 }
 
-/// The value tree as JSON, each float as the object `{"f64 bits": "<16 hex digits>"}`.
-fn to_json(tree: Tree) -> Value {
-    match tree {
-        Tree::F64(x) => {
-            let mut map = Map::new();
-            map.insert(FLOAT_KEY.into(), Value::String(format!("{:016x}", x.to_bits())));
-            Value::Object(map)
-        }
-        Tree::Null => Value::Null,
-        Tree::Bool(b) => Value::Bool(b),
-        Tree::U64(n) => Value::from(n),
-        Tree::I64(n) => Value::from(n),
-        Tree::Str(s) => Value::String(s),
-        Tree::Seq(items) => Value::Array(items.into_iter().map(to_json).collect()),
-        Tree::Map(entries) => Value::Object(entries.into_iter().map(|(k, v)| (k, to_json(v))).collect()),
-    }
-}
-
-/// The inverse of [`to_json`]: only `{"f64 bits": "<16 hex digits>"}` objects become floats, and a
-/// JSON number must be an integer.
-fn from_json(value: Value) -> Result<Tree> {
-    Ok(match value {
-        Value::Object(map) if map.len() == 1 && map.contains_key(FLOAT_KEY) => {
-            let bits = match &map[FLOAT_KEY] {
-                Value::String(s) if s.len() == 16 => u64::from_str_radix(s, 16).ok(),
-                _ => None,
-            }
-            .ok_or_else(|| payload_error(format!("{} is not the 16 hex digits of an f64", map[FLOAT_KEY])))?;
-            Tree::F64(f64::from_bits(bits))
-        }
-        Value::Object(map) => Tree::Map(map.into_iter().map(|(k, v)| Ok((k, from_json(v)?))).collect::<Result<_>>()?),
-        Value::Number(n) => match (n.as_u64(), n.as_i64()) {
-            (Some(u), _) => Tree::U64(u),
-            (None, Some(i)) => Tree::I64(i),
-            _ => return Err(payload_error(format!("{n} is not an integer (floats are written as their bits)"))),
-        },
-        Value::Null => Tree::Null,
-        Value::Bool(b) => Tree::Bool(b),
-        Value::String(s) => Tree::Str(s),
-        Value::Array(items) => Tree::Seq(items.into_iter().map(from_json).collect::<Result<_>>()?),
-    })
-}
-
 impl Snapshot {
     /// The portable bytes of the snapshot.
     pub fn to_bytes(&self) -> Result<Vec<u8>> {
-        let tree = to_tree(&self.run).map_err(|e| Error::State(format!("cannot serialize: {e}")))?;
-        let payload = serde_json::to_vec(&to_json(tree)).map_err(|e| Error::State(format!("cannot serialize: {e}")))?;
+        let payload = rmp_serde::to_vec_named(&self.run).map_err(payload_error)?;
         let mut bytes = Vec::with_capacity(HEADER + payload.len());
         bytes.extend_from_slice(MAGIC);
         bytes.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
@@ -143,8 +92,7 @@ impl Snapshot {
         if declared != given {
             return Err(Error::StateLength { declared, given });
         }
-        let value: Value = serde_json::from_slice(&bytes[HEADER..]).map_err(payload_error)?;
-        let run = RunState::deserialize(from_json(value)?).map_err(payload_error)?;
+        let run: RunState = rmp_serde::from_slice(&bytes[HEADER..]).map_err(payload_error)?;
         Ok(Snapshot { fingerprint, run })
     }
 }
@@ -183,30 +131,8 @@ mod tests {
         assert_eq!(back.max_residual, f64::NEG_INFINITY);
         assert_eq!(back.result.contact_force.to_bits(), (-0.0f64).to_bits());
         assert!(back.kinematics.velocity[0].is_nan());
-        let bits = |r: &RunState| serde_json::to_string(&to_json(to_tree(r).unwrap())).unwrap();
-        assert_eq!(bits(&back), bits(&run));
-    }
-
-    #[test]
-    fn strings_and_integers_are_never_taken_for_floats() {
-        // A string of 16 hex digits (the old encoding of a float) stays a string; only the typed
-        // object is a float; a JSON float where bits are expected is refused.
-        let json: Value = serde_json::json!({
-            "name": "3ff0000000000000",
-            "x": {"f64 bits": "3ff0000000000000"},
-            "n": 42,
-            "other": {"f64 bits": "3ff0000000000000", "more": 1}
-        });
-        let tree = from_json(json.clone()).unwrap();
-        let Tree::Map(fields) = &tree else { panic!("{tree:?}") };
-        let field = |name: &str| fields.iter().find(|(k, _)| k == name).map(|(_, v)| v.clone()).unwrap();
-        assert_eq!(field("name"), Tree::Str("3ff0000000000000".into()));
-        assert_eq!(field("x"), Tree::F64(1.0));
-        assert_eq!(field("n"), Tree::U64(42));
-        assert!(matches!(field("other"), Tree::Map(_)));
-        assert_eq!(to_json(tree), json);
-        assert!(matches!(from_json(serde_json::json!({"x": 1.5})), Err(Error::StatePayload { .. })));
-        assert!(matches!(from_json(serde_json::json!({"f64 bits": "xyz"})), Err(Error::StatePayload { .. })));
+        assert_eq!(back.kinematics.velocity[0].to_bits(), run.kinematics.velocity[0].to_bits());
+        assert_eq!(rmp_serde::to_vec_named(&back).unwrap(), rmp_serde::to_vec_named(&run).unwrap());
     }
 
     #[test]
@@ -226,9 +152,9 @@ mod tests {
             other => panic!("{other:?}"),
         }
         assert!(matches!(Snapshot::from_bytes(b"garbage"), Err(Error::StateMagic { length: 7 })));
+        // A payload of the right length that is not a RunState.
         let mut corrupt = bytes.clone();
-        let last = corrupt.len() - 2;
-        corrupt[last] = b'#';
+        corrupt[HEADER..].fill(0xc1); // 0xc1 is never used in MessagePack
         assert!(matches!(Snapshot::from_bytes(&corrupt), Err(Error::StatePayload { .. })));
     }
 
@@ -242,26 +168,27 @@ mod tests {
         assert_eq!(fingerprint(&longer), fingerprint(&Scenario::default()));
     }
 
-    /// Every leaf's path in the payload with its type (`result.time: f64`); array elements are `[]`.
-    fn paths(tree: &Tree, prefix: &str, out: &mut std::collections::BTreeSet<String>) {
-        let leaf = match tree {
-            Tree::Map(fields) => {
+    /// Every leaf's path in the state with its type (`result.time: f64`); array elements are `[]`.
+    fn paths(value: &serde_json::Value, prefix: &str, out: &mut std::collections::BTreeSet<String>) {
+        use serde_json::Value;
+        let leaf = match value {
+            Value::Object(fields) => {
                 for (k, v) in fields {
                     paths(v, &if prefix.is_empty() { k.clone() } else { format!("{prefix}.{k}") }, out);
                 }
                 return;
             }
-            Tree::Seq(items) if !items.is_empty() => {
+            Value::Array(items) if !items.is_empty() => {
                 items.iter().for_each(|v| paths(v, &format!("{prefix}[]"), out));
                 return;
             }
-            Tree::Seq(_) => "empty",
-            Tree::Null => "null",
-            Tree::Bool(_) => "bool",
-            Tree::U64(_) => "u64",
-            Tree::I64(_) => "i64",
-            Tree::F64(_) => "f64",
-            Tree::Str(_) => "str",
+            Value::Array(_) => "empty",
+            Value::Null => "null",
+            Value::Bool(_) => "bool",
+            Value::Number(n) if n.is_f64() => "f64",
+            Value::Number(n) if n.is_u64() => "u64",
+            Value::Number(_) => "i64",
+            Value::String(_) => "str",
         };
         out.insert(format!("{prefix}: {leaf}"));
     }
@@ -326,7 +253,7 @@ mod tests {
         let run = state_at(50_000_000);
         assert!(!run.contact_windows.is_empty(), "the pinned paths need a contact window");
         let mut found = std::collections::BTreeSet::new();
-        paths(&to_tree(&run).unwrap(), "", &mut found);
+        paths(&serde_json::to_value(&run).unwrap(), "", &mut found);
         let found: Vec<&str> = found.iter().map(String::as_str).collect();
         assert_eq!(
             (FORMAT_VERSION, found.as_slice()),
