@@ -77,9 +77,14 @@ pub enum Error {
         /// The mcap crate's message.
         message: String,
     },
-    /// A serialized FMU state that cannot be restored.
-    #[error("FMU state: {0}")]
-    State(String),
+    /// A saved run state that does not fit this model.
+    #[error("FMU state: the state has {found} coordinates, this model has {expected}")]
+    StateCoordinates {
+        /// Coordinates in the saved state.
+        found: usize,
+        /// Coordinates of this model (its DOFs).
+        expected: usize,
+    },
     /// Bytes that do not start with the serialized FMU state's magic.
     #[error("FMU state: not a serialized beam-impact FMU state ({length} bytes, magic missing)")]
     StateMagic {

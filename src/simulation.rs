@@ -358,11 +358,9 @@ impl<S: Stepper> Simulation<S> {
     pub fn restore(&mut self, state: RunState) -> Result<()> {
         let n = self.model.dofs();
         let k = &state.kinematics;
-        if k.displacement.len() != n || k.velocity.len() != n || k.acceleration.len() != n {
-            return Err(crate::error::Error::State(format!(
-                "the state has {} coordinates, this model has {n}",
-                k.displacement.len()
-            )));
+        let found = [k.displacement.len(), k.velocity.len(), k.acceleration.len()];
+        if let Some(&bad) = found.iter().find(|&&len| len != n) {
+            return Err(Error::StateCoordinates { found: bad, expected: n });
         }
         self.state = state;
         Ok(())
