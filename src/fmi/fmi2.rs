@@ -11,6 +11,7 @@ use super::boundary::{out, slice, slice_mut, string};
 use super::description;
 use super::instance::{log_with, Instance, Logger, Version};
 use super::resource;
+use super::slots;
 use super::state::Snapshot;
 use super::status::{allowed, Mask, Status};
 use crate::ffi_boundary;
@@ -342,14 +343,8 @@ pub unsafe extern "C" fn fmi2SetString(
 pub unsafe extern "C" fn fmi2GetFMUstate(c: Fmi2Component, state: *mut Fmi2FmuState) -> Status {
     ffi_boundary! {
         with(c, "fmi2GetFMUstate", allowed::GET_STATE, |inst| {
-            let slot = unsafe { out(state, "FMUstate") }.map_err(|e| e.to_string())?;
             let snapshot = inst.snapshot()?;
-            // SAFETY: a non-null *slot is a snapshot this FMU allocated and has not freed.
-            match unsafe { slot.as_mut() } {
-                Some(existing) => *existing = snapshot,
-                None => *slot = Box::into_raw(Box::new(snapshot)),
-            }
-            Ok(Status::Ok)
+            unsafe { slots::store(state, "FMUstate", snapshot) }
         })
     }
 }
@@ -359,9 +354,7 @@ pub unsafe extern "C" fn fmi2GetFMUstate(c: Fmi2Component, state: *mut Fmi2FmuSt
 pub unsafe extern "C" fn fmi2SetFMUstate(c: Fmi2Component, state: Fmi2FmuState) -> Status {
     ffi_boundary! {
         with(c, "fmi2SetFMUstate", allowed::SET_STATE, |inst| {
-            // SAFETY: a non-null state is a snapshot this FMU allocated and has not freed.
-            let snapshot = unsafe { state.as_ref() }.ok_or("argument `FMUstate` is a null pointer")?;
-            inst.restore(snapshot)
+            inst.restore(unsafe { slots::borrow(state, "FMUstate") }?)
         })
     }
 }
@@ -371,13 +364,7 @@ pub unsafe extern "C" fn fmi2SetFMUstate(c: Fmi2Component, state: Fmi2FmuState) 
 pub unsafe extern "C" fn fmi2FreeFMUstate(c: Fmi2Component, state: *mut Fmi2FmuState) -> Status {
     ffi_boundary! {
         with(c, "fmi2FreeFMUstate", allowed::STATE_MEMORY, |_| {
-            let slot = unsafe { out(state, "FMUstate") }.map_err(|e| e.to_string())?;
-            if !slot.is_null() {
-                // SAFETY: allocated by Box::into_raw in fmi2GetFMUstate/fmi2DeSerializeFMUstate.
-                drop(unsafe { Box::from_raw(*slot) });
-                *slot = std::ptr::null_mut();
-            }
-            Ok(Status::Ok)
+            unsafe { slots::free(state, "FMUstate") }
         })
     }
 }
@@ -387,10 +374,7 @@ pub unsafe extern "C" fn fmi2FreeFMUstate(c: Fmi2Component, state: *mut Fmi2FmuS
 pub unsafe extern "C" fn fmi2SerializedFMUstateSize(c: Fmi2Component, state: Fmi2FmuState, size: *mut usize) -> Status {
     ffi_boundary! {
         with(c, "fmi2SerializedFMUstateSize", allowed::STATE_MEMORY, |_| {
-            let size = unsafe { out(size, "size") }.map_err(|e| e.to_string())?;
-            let snapshot = unsafe { state.as_ref() }.ok_or("argument `FMUstate` is a null pointer")?;
-            *size = snapshot.to_bytes().map_err(|e| e.to_string())?.len();
-            Ok(Status::Ok)
+            unsafe { slots::serialized_size(state, "FMUstate", size) }
         })
     }
 }
@@ -405,14 +389,7 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
 ) -> Status {
     ffi_boundary! {
         with(c, "fmi2SerializeFMUstate", allowed::STATE_MEMORY, |_| {
-            let snapshot = unsafe { state.as_ref() }.ok_or("argument `FMUstate` is a null pointer")?;
-            let bytes = snapshot.to_bytes().map_err(|e| e.to_string())?;
-            if size != bytes.len() {
-                return Err(format!("size = {size}, the state needs {} bytes (fmi2SerializedFMUstateSize)", bytes.len()));
-            }
-            let target = unsafe { slice_mut(serialized_state.cast::<u8>(), size, "serializedState") }.map_err(|e| e.to_string())?;
-            target.copy_from_slice(&bytes);
-            Ok(Status::Ok)
+            unsafe { slots::serialize(state, "FMUstate", serialized_state.cast::<u8>(), size, "fmi2SerializedFMUstateSize") }
         })
     }
 }
@@ -427,14 +404,7 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
 ) -> Status {
     ffi_boundary! {
         with(c, "fmi2DeSerializeFMUstate", allowed::STATE_MEMORY, |_| {
-            let bytes = unsafe { slice(serialized_state.cast::<u8>(), size, "serializedState") }.map_err(|e| e.to_string())?;
-            let slot = unsafe { out(state, "FMUstate") }.map_err(|e| e.to_string())?;
-            let snapshot = Snapshot::from_bytes(bytes).map_err(|e| e.to_string())?;
-            match unsafe { slot.as_mut() } {
-                Some(existing) => *existing = snapshot,
-                None => *slot = Box::into_raw(Box::new(snapshot)),
-            }
-            Ok(Status::Ok)
+            unsafe { slots::deserialize(serialized_state.cast::<u8>(), size, state, "FMUstate") }
         })
     }
 }

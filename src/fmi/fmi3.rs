@@ -11,6 +11,7 @@ use super::boundary::{out, slice, slice_mut, string};
 use super::description;
 use super::instance::{log_with, Instance, Logger, Version};
 use super::resource;
+use super::slots;
 use super::state::Snapshot;
 use super::status::{allowed, Mask, Status};
 use crate::ffi_boundary;
@@ -728,14 +729,8 @@ pub unsafe extern "C" fn fmi3GetVariableDependencies(
 pub unsafe extern "C" fn fmi3GetFMUState(instance: Fmi3Instance, state: *mut Fmi3FmuState) -> Status {
     ffi_boundary! {
         with(instance, "fmi3GetFMUState", allowed::GET_STATE, |inst| {
-            let slot = unsafe { out(state, "FMUState") }.map_err(e)?;
             let snapshot = inst.snapshot()?;
-            // SAFETY: a non-null *slot is a snapshot this FMU allocated and has not freed.
-            match unsafe { slot.as_mut() } {
-                Some(existing) => *existing = snapshot,
-                None => *slot = Box::into_raw(Box::new(snapshot)),
-            }
-            Ok(Status::Ok)
+            unsafe { slots::store(state, "FMUState", snapshot) }
         })
     }
 }
@@ -745,9 +740,7 @@ pub unsafe extern "C" fn fmi3GetFMUState(instance: Fmi3Instance, state: *mut Fmi
 pub unsafe extern "C" fn fmi3SetFMUState(instance: Fmi3Instance, state: Fmi3FmuState) -> Status {
     ffi_boundary! {
         with(instance, "fmi3SetFMUState", allowed::SET_STATE, |inst| {
-            // SAFETY: a non-null state is a snapshot this FMU allocated and has not freed.
-            let snapshot = unsafe { state.as_ref() }.ok_or("argument `FMUState` is a null pointer")?;
-            inst.restore(snapshot)
+            inst.restore(unsafe { slots::borrow(state, "FMUState") }?)
         })
     }
 }
@@ -757,13 +750,7 @@ pub unsafe extern "C" fn fmi3SetFMUState(instance: Fmi3Instance, state: Fmi3FmuS
 pub unsafe extern "C" fn fmi3FreeFMUState(instance: Fmi3Instance, state: *mut Fmi3FmuState) -> Status {
     ffi_boundary! {
         with(instance, "fmi3FreeFMUState", allowed::STATE_MEMORY, |_| {
-            let slot = unsafe { out(state, "FMUState") }.map_err(e)?;
-            if !slot.is_null() {
-                // SAFETY: allocated by Box::into_raw in fmi3GetFMUState/fmi3DeserializeFMUState.
-                drop(unsafe { Box::from_raw(*slot) });
-                *slot = std::ptr::null_mut();
-            }
-            Ok(Status::Ok)
+            unsafe { slots::free(state, "FMUState") }
         })
     }
 }
@@ -777,10 +764,7 @@ pub unsafe extern "C" fn fmi3SerializedFMUStateSize(
 ) -> Status {
     ffi_boundary! {
         with(instance, "fmi3SerializedFMUStateSize", allowed::STATE_MEMORY, |_| {
-            let size = unsafe { out(size, "size") }.map_err(e)?;
-            let snapshot = unsafe { state.as_ref() }.ok_or("argument `FMUState` is a null pointer")?;
-            *size = snapshot.to_bytes().map_err(e)?.len();
-            Ok(Status::Ok)
+            unsafe { slots::serialized_size(state, "FMUState", size) }
         })
     }
 }
@@ -795,14 +779,7 @@ pub unsafe extern "C" fn fmi3SerializeFMUState(
 ) -> Status {
     ffi_boundary! {
         with(instance, "fmi3SerializeFMUState", allowed::STATE_MEMORY, |_| {
-            let snapshot = unsafe { state.as_ref() }.ok_or("argument `FMUState` is a null pointer")?;
-            let bytes = snapshot.to_bytes().map_err(e)?;
-            if size != bytes.len() {
-                return Err(format!("size = {size}, the state needs {} bytes (fmi3SerializedFMUStateSize)", bytes.len()));
-            }
-            let target = unsafe { slice_mut(serialized_state, size, "serializedState") }.map_err(e)?;
-            target.copy_from_slice(&bytes);
-            Ok(Status::Ok)
+            unsafe { slots::serialize(state, "FMUState", serialized_state, size, "fmi3SerializedFMUStateSize") }
         })
     }
 }
@@ -817,14 +794,7 @@ pub unsafe extern "C" fn fmi3DeserializeFMUState(
 ) -> Status {
     ffi_boundary! {
         with(instance, "fmi3DeserializeFMUState", allowed::STATE_MEMORY, |_| {
-            let bytes = unsafe { slice(serialized_state, size, "serializedState") }.map_err(e)?;
-            let slot = unsafe { out(state, "FMUState") }.map_err(e)?;
-            let snapshot = Snapshot::from_bytes(bytes).map_err(e)?;
-            match unsafe { slot.as_mut() } {
-                Some(existing) => *existing = snapshot,
-                None => *slot = Box::into_raw(Box::new(snapshot)),
-            }
-            Ok(Status::Ok)
+            unsafe { slots::deserialize(serialized_state, size, state, "FMUState") }
         })
     }
 }

@@ -5,7 +5,7 @@
 //! - [`variables`]: the variable table (value references, names, units, start values).
 //! - [`instance`]: one instance: parameters, simulation, MCAP log, state machine.
 //! - [`fmi2`], [`fmi3`]: the exported C functions; they check arguments and delegate.
-//! - [`state`]: FMU state snapshots and their portable byte format.
+//! - [`state`]: FMU state snapshots and their portable byte format; [`slots`]: the importer's handles to them.
 //! - [`resource`]: resource-location parsing.
 //! - [`description`]: the two modelDescription.xml files, generated from the table.
 //! - [`pack`]: writes the two .fmu archives.
@@ -17,6 +17,7 @@ pub mod fmi3;
 pub mod instance;
 pub mod pack;
 pub mod resource;
+pub mod slots;
 pub mod state;
 pub mod status;
 pub mod variables;
