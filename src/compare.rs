@@ -36,6 +36,18 @@ fn ratio(value: f64, reference: f64) -> String {
     }
 }
 
+/// Ratio of `value` to a printed value that stands for `[printed - half, printed + half]`
+/// (a value printed to 3 decimals has half = 0.0005): 1 inside that interval, else the ratio of
+/// the distance beyond it, `1 +- outside / printed`. The paper's own 2 pi / 546.1 = 0.0115 s
+/// prints as 0.012, so a plain ratio would show 0.96 for an exact match.
+pub fn printed_ratio(value: f64, printed: f64, half: f64) -> String {
+    if !(printed.is_finite() && printed != 0.0 && value.is_finite()) {
+        return "     -".to_string();
+    }
+    let outside = ((value - printed).abs() - half).max(0.0);
+    format!("{:6.3}", 1.0 + (value - printed).signum() * outside / printed)
+}
+
 /// Table 1 (FEM peaks and the energy approach), with the paper's values and ratios when `paper`.
 pub fn table1(summary: &Summary, paper: bool) -> String {
     let mut s = String::new();
@@ -107,7 +119,7 @@ pub fn tables23(summary: &Summary, paper: bool) -> String {
     let columns = [("arrestor", &m.lower), ("bridge", &m.upper), ("coupled", &m.coupled)];
     for (title, periods) in [
         ("Table 2. Natural frequencies [rad/s]", false),
-        ("Table 3. Natural periods [s] (ratios at the paper's 3 decimals)", true),
+        ("Table 3. Natural periods [s] (ratio to the interval the paper's 3 decimals stand for)", true),
     ] {
         let _ = writeln!(s, "{title}");
         let _ = write!(s, " n");
@@ -133,9 +145,8 @@ pub fn tables23(summary: &Summary, paper: bool) -> String {
                     } else {
                         format!("{:>8}", "/")
                     };
-                    // Periods are compared at the paper's printed precision (3 decimals).
-                    let compared = if periods { (value * 1e3).round() / 1e3 } else { value };
-                    let _ = write!(s, " | {text} {ref_text} {}", ratio(compared, reference));
+                    let r = if periods { printed_ratio(value, reference, 0.0005) } else { ratio(value, reference) };
+                    let _ = write!(s, " | {text} {ref_text} {r}");
                 } else {
                     let _ = write!(s, " | {text}");
                 }
@@ -214,4 +225,19 @@ pub fn comparison(summary: &Summary, paper: bool) -> String {
         summary.final_energy_residual, summary.max_energy_residual
     );
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A value inside the interval its printed digits stand for is a ratio of 1; outside, the
+    /// distance beyond the interval counts (Table 3: 0.0115 prints as 0.012).
+    #[test]
+    fn printed_ratio_measures_from_the_printed_interval() {
+        assert_eq!(printed_ratio(0.011505, 0.012, 0.0005), " 1.000");
+        assert_eq!(printed_ratio(0.07454, 0.074, 0.0005), " 1.001");
+        assert_eq!(printed_ratio(0.0700, 0.074, 0.0005), " 0.953");
+        assert_eq!(printed_ratio(f64::INFINITY, f64::NAN, 0.0005), "     -");
+    }
 }
