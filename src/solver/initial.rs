@@ -83,8 +83,10 @@ pub fn initial_state(model: &Model, modal: &ModalSystem, forces: TipForces) -> R
             upper_acceleration += phi.column(i) * modal_residual[i];
         }
     }
-    let contact_w = model.upper.mesh.nodes[model.contact_node].w.expect("contact node is not the hinge");
-    let lower_tip_w = model.lower.mesh.tip().w.expect("arrestor tip is free");
+    let no_dof =
+        |what: &str| Error::Numerical { what: "initial conditions", detail: format!("{what} has no deflection DOF") };
+    let contact_w = model.upper.mesh.nodes[model.contact_node].w.ok_or_else(|| no_dof("the bridge's contact node"))?;
+    let lower_tip_w = model.lower.mesh.tip().w.ok_or_else(|| no_dof("the arrestor's end"))?;
     let target = lower_displacement[lower_tip_w];
     let rigid = (0..nu).find(|&i| modal.upper.omega[i] == 0.0).ok_or_else(|| Error::Numerical {
         what: "initial conditions",
