@@ -5,9 +5,10 @@ use std::fmt::Write;
 use std::time::{Duration, Instant};
 
 use crate::error::Result;
+use crate::model::TimeStep;
 use crate::record::NullRecorder;
 use crate::simulation::Simulation;
-use crate::solver::{modal::STABILITY_LIMIT, Stepper};
+use crate::solver::Stepper;
 use crate::Scenario;
 
 /// The median of timing samples (zero for none; the mean of the middle two for an even count).
@@ -33,20 +34,15 @@ fn time_run<S: Stepper>(make: impl Fn() -> Result<Simulation<S>>, runs: usize) -
     Ok((median(samples), steps))
 }
 
-/// The paper scenario with the element counts multiplied by `factor` and both steps at 90 % of
-/// the stability limit (finer meshes have higher frequencies).
+/// The paper scenario with the element counts multiplied by `factor` and automatic (energy-safe)
+/// steps, which finer meshes, with their higher frequencies, need.
 pub fn refined(factor: u32) -> Result<Scenario> {
-    let mut s = Scenario::default();
+    let mut s = Scenario::paper();
     s.lower.elements *= factor;
     s.upper.elements_to_contact *= factor;
     s.upper.elements_beyond_contact *= factor;
-    s.step_free = 1e-9;
-    s.step_contact = 1e-9;
-    let probe = Simulation::new(&s)?;
-    let modal = probe.modal();
-    let stable = |contact: bool| (0.9 * STABILITY_LIMIT / modal.omega_max(contact) * 1e9).floor() * 1e-9;
-    s.step_free = stable(false).min(5e-5);
-    s.step_contact = stable(true).min(2.5e-5);
+    s.step_free = TimeStep::Auto;
+    s.step_contact = TimeStep::Auto;
     Ok(s)
 }
 
@@ -54,7 +50,7 @@ pub fn refined(factor: u32) -> Result<Scenario> {
 /// (median of `runs`), then the production stepper's cost per step at 1x, 4x and 16x elements.
 pub fn stepper_benchmark(runs: usize) -> Result<String> {
     let mut out = String::new();
-    let paper = Scenario::default();
+    let paper = Scenario::paper();
     let setup = Instant::now();
     Simulation::new(&paper)?;
     let setup = setup.elapsed();

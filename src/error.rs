@@ -23,7 +23,8 @@ pub enum Error {
     #[error(
         "{name} = {step:e} s is above the stability limit of the linear acceleration method: \
          dt * omega_max = {product:.3} > sqrt(12) = 3.464 (omega_max = {omega_max:.1} rad/s {stage}); \
-         use {name} <= {limit:e} s"
+         use {name} <= {limit:e} s, or {name} = \"auto\" (0 in the FMU) for the largest energy-safe step, \
+         {auto:e} s"
     )]
     UnstableStep {
         /// `step_free` or `step_contact`.
@@ -38,6 +39,8 @@ pub enum Error {
         limit: f64,
         /// Which stage ("out of contact", "in contact").
         stage: &'static str,
+        /// The step `"auto"` would give, s.
+        auto: f64,
     },
     /// A parameter name that the scenario does not have.
     #[error("unknown parameter `{0}`")]
@@ -123,6 +126,33 @@ pub enum Error {
     StatePayload {
         /// The parser's message.
         detail: String,
+    },
+    /// More rigid-body modes expected from the supports than the eigen problem has DOFs.
+    #[error("{what}: {expected} rigid-body modes expected from the supports, but the problem has {dofs} DOFs")]
+    RigidModeCount {
+        /// The eigen problem ("natural modes", "coupled modes").
+        what: &'static str,
+        /// Rigid-body modes the supports give.
+        expected: usize,
+        /// Size of the eigen problem.
+        dofs: usize,
+    },
+    /// Eigenvalues that contradict the rigid-body mode count of the supports: the lowest elastic
+    /// eigenvalue omega^2 is not positive, or not above every eigenvalue taken as rigid.
+    #[error(
+        "{what}: {expected} rigid-body modes expected from the supports, but the lowest elastic eigenvalue \
+         omega^2 = {lowest_elastic:e} 1/s^2 is not positive and above the largest taken as rigid, \
+         |omega^2| = {largest_rigid:e} 1/s^2"
+    )]
+    RigidModeMismatch {
+        /// The eigen problem ("natural modes", "coupled modes").
+        what: &'static str,
+        /// Rigid-body modes the supports give.
+        expected: usize,
+        /// Eigenvalue number `expected` (0-based) in ascending order, 1/s^2.
+        lowest_elastic: f64,
+        /// Largest magnitude among the eigenvalues set to 0, 1/s^2 (0 if none).
+        largest_rigid: f64,
     },
     /// Anything else, with its explanation.
     #[error("{0}")]

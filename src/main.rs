@@ -9,6 +9,7 @@ use std::time::Instant;
 use clap::{Args, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
+use beam_impact::model::TimeStep;
 use beam_impact::record::mcap::McapRecorder;
 use beam_impact::record::{NullRecorder, Recorder, RunInfo};
 use beam_impact::results::{ContactEvent, StepResult};
@@ -30,7 +31,8 @@ struct Cli {
 enum Command {
     /// Run a scenario (default: the paper's) and print Tables 1-3 beside the paper.
     Run(RunArgs),
-    /// Print the default (paper) scenario as TOML, to start a scenario file from.
+    /// Print the default scenario as TOML (the paper's, with automatic energy-safe time steps),
+    /// to start a scenario file from.
     Scenario,
     /// The damping study of Appendix A: peaks for damping ratios 0 to 0.04.
     Damping {
@@ -61,6 +63,18 @@ enum Command {
         #[arg(long, default_value_t = 5)]
         runs: usize,
     },
+    /// Convergence of the four Table 1 peaks: the scenario at half its steps and at 2x and 4x its
+    /// elements; each peak's changes, a Richardson estimate and a verdict.
+    Verify {
+        /// Scenario file (default: the paper scenario).
+        file: Option<PathBuf>,
+        /// Write the verdicts as JSON to this file.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Largest relative change of a converged peak, a fraction (0.01 is 1 %).
+        #[arg(long, default_value_t = beam_impact::verify::DEFAULT_TOLERANCE)]
+        tolerance: f64,
+    },
 }
 
 #[derive(Args)]
@@ -76,7 +90,14 @@ struct RunArgs {
     /// Do not record.
     #[arg(long)]
     no_mcap: bool,
+    /// Exit with code 3 when the run is not trusted (its energy residual is above the scenario's
+    /// `energy_tolerance`).
+    #[arg(long)]
+    strict: bool,
 }
+
+/// Exit code of a run that completed but whose numbers are not trusted (with `--strict`).
+const UNTRUSTED: u8 = 3;
 
 fn main() -> ExitCode {
     std::panic::set_hook(Box::new(|info| {
@@ -84,12 +105,16 @@ fn main() -> ExitCode {
     }));
     let cli = Cli::parse();
     let outcome = match cli.command.unwrap_or(Command::Run(cli.run)) {
-        Command::Run(args) => run(&args),
+        Command::Run(args) => match run(&args) {
+            Ok(false) if args.strict => return ExitCode::from(UNTRUSTED),
+            outcome => outcome.map(|_| ()),
+        },
         Command::Scenario => emit(&Scenario::default().to_toml()),
         Command::Damping { file } => damping(file.as_deref()),
         Command::Pack { out, library } => pack(&out, library),
         Command::Report { file, out } => report(&file, out),
         Command::Bench { runs } => bench(runs),
+        Command::Verify { file, json, tolerance } => verify(file.as_deref(), json.as_deref(), tolerance),
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,
@@ -100,10 +125,11 @@ fn main() -> ExitCode {
     }
 }
 
-fn run(args: &RunArgs) -> Result<()> {
+/// Runs a scenario; returns whether its numbers are trusted.
+fn run(args: &RunArgs) -> Result<bool> {
     let scenario = match &args.file {
         Some(path) => read_scenario(path)?,
-        None => Scenario::default(),
+        None => Scenario::paper(),
     };
     let paper = scenario.is_paper();
     let started = Instant::now();
@@ -131,6 +157,27 @@ fn run(args: &RunArgs) -> Result<()> {
         scenario.duration
     );
     text += &compare::comparison(&summary, paper);
+    let quality = &summary.quality;
+    text += &format!(
+        "time steps: {:e} s out of contact, {:e} s in contact{}\nquality: {} (energy residual {:.4} % of the energy \
+         that flows, tolerance {} %)\n",
+        summary.time_steps.free,
+        summary.time_steps.contact,
+        if scenario.step_free == TimeStep::Auto || scenario.step_contact == TimeStep::Auto {
+            " (auto: energy-safe)"
+        } else {
+            ""
+        },
+        if quality.trusted { "trusted" } else { "NOT TRUSTED" },
+        quality.energy_residual_fraction * 100.0,
+        quality.energy_tolerance * 100.0
+    );
+    for line in quality.advisories.iter() {
+        eprintln!("beam-impact: note: {line}");
+    }
+    for line in quality.reasons.iter() {
+        eprintln!("beam-impact: warning: results not trusted: {line}");
+    }
     text += &format!("wall time: {:.1} ms (assembly, modes and stepping", wall.as_secs_f64() * 1e3);
     if !args.no_mcap {
         text += &format!(", recorded to {}", args.mcap.display());
@@ -140,13 +187,15 @@ fn run(args: &RunArgs) -> Result<()> {
         let doc = serde_json::json!({
             "scenario": scenario,
             "summary": summary,
+            "quality": summary.quality,
             "wall_time_s": wall.as_secs_f64(),
         });
         let json = serde_json::to_string_pretty(&doc).map_err(|e| Error::Other(format!("JSON: {e}")))?;
         writeln!(file, "{json}").map_err(|source| io("cannot write JSON", path, source))?;
         text += &format!("results written to {}\n", path.display());
     }
-    emit(&text)
+    emit(&text)?;
+    Ok(summary.quality.trusted)
 }
 
 /// Reads and validates a scenario file (missing fields take the paper's values).
@@ -208,7 +257,7 @@ impl Recorder for Progress<'_> {
 fn damping(file: Option<&Path>) -> Result<()> {
     let scenario = match file {
         Some(path) => read_scenario(path)?,
-        None => Scenario::default(),
+        None => Scenario::paper(),
     };
     let rows = beam_impact::damping_study::run(&scenario, &beam_impact::damping_study::RATIOS)?;
     emit(&beam_impact::damping_study::table(&rows))
@@ -240,4 +289,42 @@ fn bench(runs: usize) -> Result<()> {
     let runs = runs.max(1);
     emit(&beam_impact::bench::stepper_benchmark(runs)?)?;
     emit(&format!("\n{}", beam_impact::record::bench::recording_benchmark(runs)?))
+}
+
+fn verify(file: Option<&Path>, json: Option<&Path>, tolerance: f64) -> Result<()> {
+    use beam_impact::verify::{default_threads, table, Plan, RUN_LABELS};
+    let scenario = match file {
+        Some(path) => read_scenario(path)?,
+        None => Scenario::paper(),
+    };
+    let plan = Plan::new(&scenario, tolerance)?;
+    let json_file = match json {
+        Some(path) => {
+            Some((path, std::fs::File::create(path).map_err(|source| io("cannot create JSON", path, source))?))
+        }
+        None => None,
+    };
+    let started = Instant::now();
+    let multi = indicatif::MultiProgress::new();
+    let style = ProgressStyle::with_template("{prefix:>12} {bar:40} {pos}/{len} ms simulated, {elapsed}")
+        .unwrap_or_else(|_| ProgressStyle::default_bar());
+    let bars: Vec<ProgressBar> = RUN_LABELS
+        .iter()
+        .map(|label| {
+            let bar = multi.add(ProgressBar::new(plan.duration_ns() / 1_000_000).with_style(style.clone()));
+            bar.set_prefix(*label);
+            bar
+        })
+        .collect();
+    let verification = plan.run(default_threads(), &|run, ns| bars[run].set_position(ns / 1_000_000));
+    bars.iter().for_each(ProgressBar::finish_and_clear);
+    let verification = verification?;
+    let mut text = table(&verification);
+    text += &format!("wall time: {:.2} s ({} threads)\n", started.elapsed().as_secs_f64(), default_threads());
+    if let Some((path, mut file)) = json_file {
+        let json = serde_json::to_string_pretty(&verification).map_err(|e| Error::Other(format!("JSON: {e}")))?;
+        writeln!(file, "{json}").map_err(|source| io("cannot write JSON", path, source))?;
+        text += &format!("verdicts written to {}\n", path.display());
+    }
+    emit(&text)
 }

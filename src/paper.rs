@@ -6,8 +6,11 @@ pub const TABLE1_FEM: [f64; 4] = [0.691, 492e6, 59e6, 295e6];
 pub const TABLE1_ENERGY: [f64; 4] = [0.628, 412e6, 40e6, 219e6];
 /// E_def,a = 149.2 kJ (Eq. 35).
 pub const ARRESTOR_STRAIN_ENERGY: f64 = 149.2e3;
-/// E_def,b = 4.4 kJ at the largest arrestor deflection (Eq. 36).
+/// E_def,b = 4.4 kJ (Eq. 36): the bridge's strain energy of the energy approach, at the largest
+/// arrestor deflection with the bridge taken as a rigid body stopped by F_din (SCENARIO.md).
 pub const BRIDGE_STRAIN_ENERGY: f64 = 4.4e3;
+/// E_def,b / E_def,a: "the bridge strain energy makes only 3,0 % of the arrestor strain energy".
+pub const BRIDGE_STRAIN_RATIO: f64 = 0.030;
 /// Table 2: arrestor, bridge, coupled natural frequencies, rad/s.
 pub const TABLE2: [[f64; 5]; 3] =
     [[13.7, 92.9, 270.9, 546.1, 923.5], [0.0, 55.9, 181.1, 377.9, 646.5], [5.6, 45.8, 84.4, 181.1, 251.8]];

@@ -53,6 +53,13 @@ impl Peaks {
         ]
     }
 
+    /// Raises each peak to |value| where that is larger (values in the order of [`Peaks::as_array`]).
+    pub fn raise(&mut self, values: &[f64; 5]) {
+        for (peak, value) in self.as_mut_array().into_iter().zip(values) {
+            *peak = peak.max(value.abs());
+        }
+    }
+
     /// Mutable access in the order of [`Peaks::as_array`].
     pub fn as_mut_array(&mut self) -> [&mut f64; 5] {
         [
@@ -133,6 +140,110 @@ pub struct ModeTable {
     pub coupled: Vec<f64>,
 }
 
+/// Whether a run's numbers can be trusted, by its own energy balance.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Quality {
+    /// Largest |energy residual| as a fraction of the energy that flows in the run: the larger of
+    /// m_u g h + |external work| and the largest strain energy reached.
+    pub energy_residual_fraction: f64,
+    /// The scenario's tolerance on that fraction.
+    pub energy_tolerance: f64,
+    /// True when the fraction is finite and within the tolerance.
+    pub trusted: bool,
+    /// Why the run is not trusted (empty when it is).
+    pub reasons: Vec<String>,
+    /// Warnings that do not decide trust: fixed time steps above the energy-safe limit.
+    pub advisories: Vec<String>,
+}
+
+impl Quality {
+    /// The verdict from a run's energy account: `max_residual` against the energy that flows,
+    /// the larger of `impact_energy` (m_u g h) + `max_external_work` and `max_strain_energy`, J.
+    pub fn assess(
+        max_residual: f64,
+        impact_energy: f64,
+        max_external_work: f64,
+        max_strain_energy: f64,
+        energy_tolerance: f64,
+        advisories: Vec<String>,
+    ) -> Quality {
+        let flow = (impact_energy + max_external_work.abs()).max(max_strain_energy);
+        let fraction = if flow > 0.0 { max_residual / flow } else { 0.0 };
+        let trusted = fraction.is_finite() && fraction <= energy_tolerance;
+        let reasons = if trusted {
+            Vec::new()
+        } else {
+            vec![format!(
+                "energy residual {max_residual:.4e} J is {:.3} % of the {flow:.4e} J that flow in the run, above \
+                 energy_tolerance = {} %",
+                fraction * 100.0,
+                energy_tolerance * 100.0
+            )]
+        };
+        Quality { energy_residual_fraction: fraction, energy_tolerance, trusted, reasons, advisories }
+    }
+}
+
+/// A separation at least this long ends the first sustained contact, s (shorter ones are bounces).
+pub const SUSTAINED_SEPARATION: f64 = 0.01;
+
+/// The peaks of the first sustained contact: from t = 0 until the first separation of at least
+/// [`SUSTAINED_SEPARATION`] (0.75 s on the paper scenario). A separation counts as part of the
+/// contact until it proves long enough, so its steps are held apart until then.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct FirstContact {
+    /// Peaks max |.| of the first sustained contact (so far, while it lasts).
+    pub peaks: Peaks,
+    /// Peaks since the latest separation began.
+    pending: Peaks,
+    /// Time of the latest step taken in contact, s.
+    last_contact: Option<f64>,
+    /// True once the first sustained contact has ended.
+    pub ended: bool,
+}
+
+impl FirstContact {
+    /// Takes one step's results into account, in time order.
+    pub fn observe(&mut self, result: &StepResult) {
+        if self.ended {
+            return;
+        }
+        let values = [
+            result.lower_tip_deflection,
+            result.lower_clamp_bending_stress,
+            result.lower_clamp_shear_stress,
+            result.upper_contact_bending_stress,
+            result.contact_force,
+        ];
+        match self.last_contact {
+            Some(end) if !result.contact => {
+                if result.time - end >= SUSTAINED_SEPARATION {
+                    self.ended = true;
+                } else {
+                    self.pending.raise(&values);
+                }
+            }
+            _ => {
+                let pending = std::mem::take(&mut self.pending).as_array();
+                self.peaks.raise(&pending);
+                self.peaks.raise(&values);
+                if result.contact {
+                    self.last_contact = Some(result.time);
+                }
+            }
+        }
+    }
+}
+
+/// The time steps a run used, s (automatic ones resolved).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct TimeSteps {
+    /// Out of contact, s.
+    pub free: f64,
+    /// In contact, s.
+    pub contact: f64,
+}
+
 /// The whole run's summary: what the CLI prints and `--json` writes.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Summary {
@@ -156,4 +267,10 @@ pub struct Summary {
     pub energy_method: crate::solver::EnergyMethod,
     /// Natural frequencies (Table 2).
     pub modes: ModeTable,
+    /// The energy verdict.
+    pub quality: Quality,
+    /// Peaks of the first sustained contact, until the first separation of at least 10 ms.
+    pub first_contact_peaks: Peaks,
+    /// The time steps used.
+    pub time_steps: TimeSteps,
 }

@@ -7,11 +7,14 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::model::system::PROBES;
 use crate::model::{Model, Probe, Scenario};
-use crate::record::{Recorder, RunInfo};
-use crate::results::{seconds, ContactEvent, ContactWindow, EnergyAccount, ModeTable, Peaks, StepResult, Summary};
+use crate::record::{NullRecorder, Recorder, RunInfo};
+use crate::results::{
+    seconds, ContactEvent, ContactWindow, EnergyAccount, FirstContact, ModeTable, Peaks, Quality, StepResult, Summary,
+    TimeSteps,
+};
 use crate::solver::contact::{self, Stage};
 use crate::solver::initial::initial_state;
-use crate::solver::{DenseStepper, EnergyMethod, Kinematics, ModalStepper, ModalSystem, Stepper, TipForces};
+use crate::solver::{DenseStepper, EnergyMethod, Kinematics, ModalStepper, ModalSystem, StepPlan, Stepper, TipForces};
 
 /// Everything that changes during a run: enough to restore it exactly (FMU state, rollback).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -38,6 +41,18 @@ pub struct RunState {
     pub contact_windows: Vec<ContactWindow>,
     /// Largest |energy residual| so far, J.
     pub max_residual: f64,
+    /// Largest strain energy (beams and bar) reached so far, J.
+    pub max_strain_energy: f64,
+    /// Largest |external work| reached so far, J.
+    pub max_external_work: f64,
+    /// Time of the outputs, ns: the latest communication point, at or after the latest internal
+    /// step (the outputs between are interpolated within the next internal step).
+    pub output_ns: u64,
+    /// Tip forces set by the importer at `output_ns`, applied from there on (an input change
+    /// ends the internal step at its communication point).
+    pub input_forces: TipForces,
+    /// Peaks of the first sustained contact.
+    pub first_contact: FirstContact,
 }
 
 /// How an [`Simulation::advance_to`] call ended.
@@ -57,9 +72,13 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     stepper: S,
     energy_method: EnergyMethod,
     nodal_shapes: DMatrix<f64>,
+    plan: StepPlan,
     state: RunState,
     /// The state before the current step, to retake it when a stage change is located.
     backup: Kinematics,
+    /// The outputs at `state.output_ns` (interpolated inside the next internal step when the
+    /// communication point falls inside one).
+    output: StepResult,
 }
 
 impl Simulation<ModalStepper> {
@@ -85,6 +104,7 @@ impl Simulation<DenseStepper> {
 
 impl<S: Stepper> Simulation<S> {
     fn with_stepper(model: Model, modal: ModalSystem, stepper: S) -> Result<Self> {
+        let plan = StepPlan::new(&model.scenario, &modal)?;
         let forces = TipForces { upper: model.scenario.upper.tip_force, lower: model.scenario.lower.tip_force };
         let physical = initial_state(&model, &modal, forces)?;
         let kinematics = stepper.own_coordinates(&physical);
@@ -103,9 +123,16 @@ impl<S: Stepper> Simulation<S> {
             upper_strain_at_peak: 0.0,
             contact_windows: Vec::new(),
             max_residual: 0.0,
+            max_strain_energy: 0.0,
+            max_external_work: 0.0,
+            output_ns: 0,
+            input_forces: forces,
+            first_contact: FirstContact::default(),
         };
         let backup = state.kinematics.clone();
-        let mut simulation = Simulation { model, modal, stepper, energy_method, nodal_shapes, state, backup };
+        let output = StepResult::default();
+        let mut simulation =
+            Simulation { model, modal, stepper, energy_method, nodal_shapes, plan, state, backup, output };
         simulation.evaluate_initial();
         Ok(simulation)
     }
@@ -120,8 +147,10 @@ impl<S: Stepper> Simulation<S> {
         result.energy.gravity_potential = energies.gravity_potential;
         self.state.initial_energy = energies.kinetic + energies.beam_strain + energies.gravity_potential;
         self.state.dissipation_rate = energies.dissipation_rate;
+        self.state.max_strain_energy = energies.beam_strain;
         self.state.result = result;
         self.update_peaks(energies.upper_strain);
+        self.output = self.state.result;
     }
 
     /// The outputs of the current displacement probes, without time or energy.
@@ -152,6 +181,7 @@ impl<S: Stepper> Simulation<S> {
             r.contact_force,
         ];
         let time = r.time;
+        self.state.first_contact.observe(r);
         for (k, (peak, when)) in
             r.peaks.as_mut_array().into_iter().zip(self.state.peak_times.as_mut_array()).enumerate()
         {
@@ -177,7 +207,7 @@ impl<S: Stepper> Simulation<S> {
     pub fn step(&mut self, max_step_ns: u64) -> Result<Option<ContactEvent>> {
         let stage = self.next_stage();
         let previous = self.state.result;
-        let mut step_ns = self.model.scenario.step_ns(stage.is_contact()).min(max_step_ns).max(1);
+        let mut step_ns = self.plan.step_ns(stage.is_contact()).min(max_step_ns).max(1);
         let mut dt = seconds(step_ns);
         let forces = self.state.forces;
         self.backup.copy_from(&self.state.kinematics);
@@ -228,6 +258,8 @@ impl<S: Stepper> Simulation<S> {
             - self.state.initial_energy;
         result.energy = energy;
         self.state.max_residual = self.state.max_residual.max(energy.residual.abs());
+        self.state.max_strain_energy = self.state.max_strain_energy.max(energy.strain);
+        self.state.max_external_work = self.state.max_external_work.max(energy.external_work.abs());
         self.state.dissipation_rate = energies.dissipation_rate;
         self.state.last_forces = forces;
         self.state.result = result;
@@ -297,10 +329,69 @@ impl<S: Stepper> Simulation<S> {
         hi
     }
 
-    /// Steps until `target_ns`, landing on it exactly (the last step is shortened), sending every
-    /// step to `recorder`. With `stop_at_contact_change`, returns early at a contact change: after
-    /// the step at whose end Eq. (6) changes (the located change), before the new stage's first step.
+    /// Steps until `target_ns`, landing on it exactly (the last step is shortened: the stop time
+    /// breaks the step grid), sending every step to `recorder`. With `stop_at_contact_change`,
+    /// returns early at a contact change: after the step at whose end Eq. (6) changes (the located
+    /// change), before the new stage's first step.
     pub fn advance_to(
+        &mut self,
+        target_ns: u64,
+        recorder: &mut dyn Recorder,
+        stop_at_contact_change: bool,
+    ) -> Result<Advance> {
+        self.apply_input(recorder)?;
+        let advance = self.land_at(target_ns, recorder, stop_at_contact_change)?;
+        self.state.output_ns = self.state.result.time_ns;
+        self.output = self.state.result;
+        Ok(advance)
+    }
+
+    /// Moves the outputs to the communication point `target_ns` without breaking the internal
+    /// step grid: whole internal steps up to it are taken and recorded, and when the point falls
+    /// inside the next step, the outputs there come from that step's own polynomial (the linear
+    /// acceleration gives displacement and velocity at any instant of the step), while the step
+    /// itself is taken by the next call. With constant inputs the internal steps, and so the
+    /// log and the peaks, are those of a run without communication points.
+    pub fn advance_outputs_to(
+        &mut self,
+        target_ns: u64,
+        recorder: &mut dyn Recorder,
+        stop_at_contact_change: bool,
+    ) -> Result<Advance> {
+        self.apply_input(recorder)?;
+        let target_ns = target_ns.max(self.state.output_ns);
+        while self.state.result.time_ns < target_ns {
+            let stage = self.next_stage();
+            let start_ns = self.state.result.time_ns;
+            let full_step_fits = start_ns + self.plan.step_ns(stage.is_contact()) <= target_ns;
+            let saved = (!full_step_fits).then(|| self.state.clone());
+            let event = self.step(u64::MAX)?;
+            if let Some(saved) = saved {
+                if self.state.result.time_ns > target_ns {
+                    // The point falls inside this step: interpolate, and leave the step untaken.
+                    self.output = self.interpolate(&saved.result, target_ns, stage);
+                    self.state = saved;
+                    self.state.output_ns = target_ns;
+                    return Ok(Advance::Reached);
+                }
+            }
+            recorder.step(&self.state.result, self.state.kinematics.displacement.as_slice())?;
+            if let Some(e) = &event {
+                recorder.contact_event(e)?;
+                if stop_at_contact_change {
+                    self.state.output_ns = self.state.result.time_ns;
+                    self.output = self.state.result;
+                    return Ok(Advance::ContactChanged);
+                }
+            }
+        }
+        self.state.output_ns = self.state.result.time_ns;
+        self.output = self.state.result;
+        Ok(Advance::Reached)
+    }
+
+    /// Takes internal steps until `target_ns`, the last one shortened to land on it.
+    fn land_at(
         &mut self,
         target_ns: u64,
         recorder: &mut dyn Recorder,
@@ -317,6 +408,74 @@ impl<S: Stepper> Simulation<S> {
             }
         }
         Ok(Advance::Reached)
+    }
+
+    /// An input change takes effect at its communication point as a true step: the internal
+    /// step ends there (taken with the previous forces), and the acceleration is recomputed
+    /// for the new load, which holds over the following steps.
+    fn apply_input(&mut self, recorder: &mut dyn Recorder) -> Result<()> {
+        if self.state.input_forces == self.state.forces {
+            return Ok(());
+        }
+        let at = self.state.output_ns;
+        if self.state.result.time_ns < at {
+            self.land_at(at, recorder, false)?;
+        }
+        let forces = self.state.input_forces;
+        let stage = self.next_stage();
+        self.stepper.equilibrium_acceleration(&mut self.state.kinematics, stage, forces);
+        self.state.forces = forces;
+        self.state.last_forces = forces;
+        self.output = self.state.result;
+        Ok(())
+    }
+
+    /// The outputs at `at_ns` inside the step just taken from `start` (backup) to the current
+    /// state: the method's cubic displacement and quadratic velocity over the step. Cumulative
+    /// energies (work, dissipation) are interpolated linearly; the peaks stay those of the whole
+    /// internal steps taken so far.
+    fn interpolate(&self, start: &StepResult, at_ns: u64, stage: Stage) -> StepResult {
+        let end = &self.state.result;
+        let dt = seconds(end.time_ns - start.time_ns);
+        let tau = seconds(at_ns - start.time_ns);
+        let (k0, k1) = (&self.backup, &self.state.kinematics);
+        let jerk = (&k1.acceleration - &k0.acceleration) / dt;
+        let kinematics = Kinematics {
+            displacement: &k0.displacement
+                + &k0.velocity * tau
+                + &k0.acceleration * (0.5 * tau * tau)
+                + &jerk * (tau * tau * tau / 6.0),
+            velocity: &k0.velocity + &k0.acceleration * tau + &jerk * (0.5 * tau * tau),
+            acceleration: &k0.acceleration + &jerk * tau,
+        };
+        let probes = self.stepper.probes(&kinematics.displacement);
+        let energies = self.stepper.energies(&kinematics);
+        let mut result = self.outputs(&probes, stage);
+        let share = tau / dt;
+        let lerp = |a: f64, b: f64| a + (b - a) * share;
+        let bar = if stage.is_contact() {
+            contact::bar_energy(self.model.bar_stiffness, probes[Probe::Gap as usize])
+        } else {
+            0.0
+        };
+        let mut energy = EnergyAccount {
+            kinetic: energies.kinetic,
+            strain: energies.beam_strain + bar,
+            gravity_potential: energies.gravity_potential,
+            external_work: lerp(start.energy.external_work, end.energy.external_work),
+            damping_dissipation: lerp(start.energy.damping_dissipation, end.energy.damping_dissipation),
+            residual: 0.0,
+        };
+        energy.residual = energy.kinetic + energy.strain + energy.gravity_potential + energy.damping_dissipation
+            - energy.external_work
+            - self.state.initial_energy;
+        result.energy = energy;
+        result.step = start.step;
+        result.time_ns = at_ns;
+        result.time = seconds(at_ns);
+        result.step_size = dt;
+        result.peaks = start.peaks;
+        result
     }
 
     /// Sends the run's description and the initial state (step 0) to `recorder`.
@@ -339,14 +498,42 @@ impl<S: Stepper> Simulation<S> {
         Ok(self.summary())
     }
 
-    /// Sets the two external tip forces, N (up positive), applied from the next step on.
+    /// Sets the two external tip forces, N (up positive), from the outputs' time on: the next
+    /// advance first ends the internal step there if the forces changed.
     pub fn set_tip_forces(&mut self, forces: TipForces) {
-        self.state.forces = forces;
+        self.state.input_forces = forces;
     }
 
-    /// Results of the latest step.
+    /// Results of the latest internal step.
     pub fn result(&self) -> &StepResult {
         &self.state.result
+    }
+
+    /// The outputs at the latest communication point (`advance_outputs_to`'s target): the latest
+    /// internal step's results, or values interpolated inside the next internal step.
+    pub fn output(&self) -> &StepResult {
+        &self.output
+    }
+
+    /// The resolved time steps of both stages.
+    pub fn step_plan(&self) -> &StepPlan {
+        &self.plan
+    }
+
+    /// The run's energy verdict so far: the largest residual as a fraction of the energy that
+    /// flows in the run (the larger of m_u g h + |external work| and the largest strain energy),
+    /// against the scenario's `energy_tolerance`; and fixed time steps above the energy-safe limit.
+    pub fn quality(&self) -> Quality {
+        let s = &self.model.scenario;
+        let state = &self.state;
+        Quality::assess(
+            state.max_residual,
+            s.upper.mass * s.gravity * s.drop_height,
+            state.max_external_work,
+            state.max_strain_energy,
+            s.energy_tolerance,
+            self.plan.advisories(s, &self.modal),
+        )
     }
 
     /// The run state, for saving (FMU state, rollback).
@@ -362,7 +549,20 @@ impl<S: Stepper> Simulation<S> {
         if let Some(&bad) = found.iter().find(|&&len| len != n) {
             return Err(Error::StateCoordinates { found: bad, expected: n });
         }
+        if state.output_ns < state.result.time_ns {
+            return Err(Error::Other(format!(
+                "FMU state: output time {} ns is before the latest step's {} ns",
+                state.output_ns, state.result.time_ns
+            )));
+        }
         self.state = state;
+        // The outputs at a communication point inside a step are recomputed from that step.
+        let (at, forces) = (self.state.output_ns, self.state.input_forces);
+        self.state.input_forces = self.state.forces;
+        self.state.output_ns = self.state.result.time_ns;
+        self.output = self.state.result;
+        self.advance_outputs_to(at, &mut NullRecorder, false)?;
+        self.state.input_forces = forces;
         Ok(())
     }
 
@@ -415,6 +615,9 @@ impl<S: Stepper> Simulation<S> {
             max_energy_residual: s.max_residual,
             energy_method: self.energy_method,
             modes: self.mode_table(5),
+            quality: self.quality(),
+            first_contact_peaks: s.first_contact.peaks,
+            time_steps: TimeSteps { free: seconds(self.plan.free_ns), contact: seconds(self.plan.contact_ns) },
         }
     }
 }

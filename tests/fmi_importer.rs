@@ -1,7 +1,7 @@
 //! The FMU as a host program sees it: the shared library loaded with libloading and driven
 //! through the C API (FMI 2.0 mostly, FMI 3.0 for early return).
 //!
-//! Oracle: `Simulation::new(&Scenario::default())` run in-process (what the CLI runs). The FMU
+//! Oracle: `Simulation::new(&Scenario::paper())` run in-process (what the CLI runs). The FMU
 //! cuts the internal steps at every communication point, so after a contact change (located to
 //! the nanosecond) its step sequence differs from the single CLI run: peaks agree to 1e-3, not
 //! bit for bit. Rollback, deserialization and threads repeat the same calls, so those compare
@@ -49,7 +49,7 @@ fn fmi2_call_sequence_reproduces_the_library_run() {
     fmu.run(0.0, 3.0, 1e-3);
     assert_eq!(fmu.get("time"), 3.0);
 
-    let mut simulation = Simulation::new(&Scenario::default()).unwrap();
+    let mut simulation = Simulation::new(&Scenario::paper()).unwrap();
     simulation.advance_to(3_000_000_000, &mut NullRecorder, false).unwrap();
     let peaks = simulation.result().peaks;
     let expected = [

@@ -21,7 +21,7 @@ const CHILD_ENV: &str = "BEAM_IMPACT_KILL_TEST_LOG";
 #[test]
 fn child_records_a_long_run() {
     let Ok(path) = std::env::var(CHILD_ENV) else { return };
-    let scenario = Scenario { duration: 1000.0, ..Scenario::default() };
+    let scenario = Scenario { duration: 1000.0, ..Scenario::paper() };
     let mut recorder = McapRecorder::create(Path::new(&path)).unwrap();
     Simulation::new(&scenario).unwrap().run(&mut recorder).unwrap();
 }

@@ -41,7 +41,7 @@ impl Recorder for Tee<'_> {
 fn paper_run_log_holds_every_step_and_rebuilds_the_summary() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("paper.mcap");
-    let scenario = Scenario::default();
+    let scenario = Scenario::paper();
     let mut simulation = Simulation::new(&scenario).unwrap();
     let mut memory = MemoryRecorder::default();
     let mut mcap = McapRecorder::create(&path).unwrap();
@@ -119,7 +119,7 @@ fn writer_settings_and_errors() {
 
     // finish() is idempotent; writing after it is an error naming the file.
     let path = dir.path().join("short.mcap");
-    let scenario = Scenario { duration: 0.01, ..Scenario::default() };
+    let scenario = Scenario { duration: 0.01, ..Scenario::paper() };
     let mut recorder =
         McapRecorder::with_options(&path, RecorderOptions { scene_interval_ns: 0, ..RecorderOptions::default() })
             .unwrap();
@@ -155,7 +155,7 @@ fn second_writer_on_the_same_log_is_refused() {
 fn rolled_back_steps_are_superseded_in_the_log() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("rollback.mcap");
-    let scenario = Scenario { duration: 1.0, ..Scenario::default() };
+    let scenario = Scenario { duration: 1.0, ..Scenario::paper() };
     let mut recorder = McapRecorder::create(&path).unwrap();
     let mut simulation = Simulation::new(&scenario).unwrap();
     simulation.start_recording(&mut recorder).unwrap();

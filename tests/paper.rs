@@ -12,7 +12,7 @@ use beam_impact::solver::EnergyMethod;
 use beam_impact::{Scenario, Simulation};
 
 fn paper_run() -> Summary {
-    Simulation::new(&Scenario::default()).unwrap().run(&mut NullRecorder).unwrap()
+    Simulation::new(&Scenario::paper()).unwrap().run(&mut NullRecorder).unwrap()
 }
 
 fn within(value: f64, reference: f64, tolerance: f64, what: &str) {
@@ -23,7 +23,7 @@ fn within(value: f64, reference: f64, tolerance: f64, what: &str) {
 /// Table 2, every printed value within 1 % (the bridge's rigid mode exactly 0).
 #[test]
 fn table2_natural_frequencies_within_one_percent() {
-    let simulation = Simulation::new(&Scenario::default()).unwrap();
+    let simulation = Simulation::new(&Scenario::paper()).unwrap();
     let modes = simulation.mode_table(5);
     for (c, column) in [&modes.lower, &modes.upper, &modes.coupled].iter().enumerate() {
         for n in 0..5 {
@@ -42,7 +42,7 @@ fn table2_natural_frequencies_within_one_percent() {
 /// lie within 1 % of p from that interval.
 #[test]
 fn table3_natural_periods_within_one_percent_at_printed_precision() {
-    let simulation = Simulation::new(&Scenario::default()).unwrap();
+    let simulation = Simulation::new(&Scenario::paper()).unwrap();
     let modes = simulation.mode_table(5);
     for (c, column) in [&modes.lower, &modes.upper, &modes.coupled].iter().enumerate() {
         for n in 0..5 {
@@ -65,7 +65,7 @@ fn table3_natural_periods_within_one_percent_at_printed_precision() {
 /// Table 1, energy column and E_def,a (Eqs. 29, 33, 35), to the printed digits.
 #[test]
 fn table1_energy_approach_column() {
-    let e = EnergyMethod::new(&Scenario::default());
+    let e = EnergyMethod::new(&Scenario::paper());
     within(e.tip_deflection, 0.628, 0.005, "w_din");
     within(e.clamp_bending_stress, 412e6, 0.005, "sigma_din,a");
     within(e.clamp_shear_stress, 40e6, 0.012, "tau_din,a (paper prints 40 for 39.6)");
@@ -111,7 +111,7 @@ fn table1_fem_column_steps_and_figure6_separation() {
 /// gamma 0/0.03; sigma_b 299, 292, 271 MPa at gamma 0.02, 0.03, 0.04.
 #[test]
 fn appendix_a_damping_study_shapes() {
-    let rows = beam_impact::damping_study::run(&Scenario::default(), &beam_impact::damping_study::RATIOS).unwrap();
+    let rows = beam_impact::damping_study::run(&Scenario::paper(), &beam_impact::damping_study::RATIOS).unwrap();
     let peaks = |gamma: f64| rows.iter().find(|(g, _)| *g == gamma).unwrap().1.peaks;
     let reference = peaks(0.03);
     for (gamma, summary) in &rows {

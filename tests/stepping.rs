@@ -2,7 +2,7 @@
 //! oracle, energy conservation, convergence order, stability limit, snapshots, and the
 //! independence of the results from communication intervals.
 
-use beam_impact::model::Model;
+use beam_impact::model::{Model, TimeStep};
 use beam_impact::record::{MemoryRecorder, NullRecorder};
 use beam_impact::solver::{Kinematics, ModalStepper, ModalSystem, Stage, Stepper, TipForces};
 use beam_impact::{Error, Scenario, Simulation};
@@ -18,7 +18,7 @@ use nalgebra::DVector;
 /// the initial state alone moves it by 2e-12, so it is not amplified initial round-off.)
 #[test]
 fn production_stepper_matches_dense_oracle_to_round_off() {
-    let scenario = Scenario::default();
+    let scenario = Scenario::paper();
     let (mut a, mut b) = (MemoryRecorder::default(), MemoryRecorder::default());
     let fast = Simulation::new(&scenario).unwrap().run(&mut a).unwrap();
     let dense = Simulation::new_dense(&scenario).unwrap().run(&mut b).unwrap();
@@ -37,7 +37,7 @@ fn production_stepper_matches_dense_oracle_to_round_off() {
 /// of their scale.
 #[test]
 fn production_and_oracle_agree_at_every_step() {
-    let scenario = Scenario { duration: 0.1, ..Scenario::default() };
+    let scenario = Scenario { duration: 0.1, ..Scenario::paper() };
     let (mut a, mut b) = (MemoryRecorder::default(), MemoryRecorder::default());
     Simulation::new(&scenario).unwrap().run(&mut a).unwrap();
     Simulation::new_dense(&scenario).unwrap().run(&mut b).unwrap();
@@ -69,7 +69,7 @@ fn undeformed_swing(model: &Model, modal: &ModalSystem) -> (ModalStepper, Kinema
 /// residual |T + U + V - E0| over each half of `duration`.
 fn free_swing_residual(dt: f64, duration: f64) -> (f64, f64) {
     // Undamped, so that the energy of the swing is conserved by the exact solution.
-    let scenario = Scenario { damping_ratio: 0.0, ..Scenario::default() };
+    let scenario = Scenario { damping_ratio: 0.0, ..Scenario::paper() };
     let model = Model::new(&scenario).unwrap();
     let modal = ModalSystem::new(&model).unwrap();
     let (mut stepper, mut state) = undeformed_swing(&model, &modal);
@@ -122,7 +122,7 @@ fn free_undamped_swing_conserves_energy_to_second_order() {
 /// Measured 4.03, 4.01, 4.00; the band 3.8-4.2 fails for a first-order error (ratio 2).
 #[test]
 fn halving_the_step_shrinks_the_error_fourfold() {
-    let scenario = Scenario { damping_ratio: 0.0, ..Scenario::default() };
+    let scenario = Scenario { damping_ratio: 0.0, ..Scenario::paper() };
     let model = Model::new(&scenario).unwrap();
     let modal = ModalSystem::new(&model).unwrap();
     let run = |dt: f64| {
@@ -143,12 +143,12 @@ fn halving_the_step_shrinks_the_error_fourfold() {
 /// dt * omega_max <= sqrt(12): a larger step is rejected with both numbers in the message.
 #[test]
 fn step_above_stability_limit_is_rejected_with_both_numbers() {
-    let scenario = Scenario { step_free: 2e-4, ..Scenario::default() };
+    let scenario = Scenario { step_free: TimeStep::Fixed(2e-4), ..Scenario::paper() };
     let error = Simulation::new(&scenario).unwrap_err();
     let message = error.to_string();
     assert!(matches!(error, Error::UnstableStep { name: "step_free", .. }), "{message}");
     assert!(message.contains("2e-4") && message.contains("omega_max") && message.contains("3.464"), "{message}");
-    let scenario = Scenario { step_contact: 1e-3, ..Scenario::default() };
+    let scenario = Scenario { step_contact: TimeStep::Fixed(1e-3), ..Scenario::paper() };
     let message = Simulation::new(&scenario).unwrap_err().to_string();
     assert!(message.starts_with("step_contact = 1e-3 s is above the stability limit"), "{message}");
 }
@@ -157,7 +157,7 @@ fn step_above_stability_limit_is_rejected_with_both_numbers() {
 /// also through serde JSON).
 #[test]
 fn restored_state_continues_identically() {
-    let mut simulation = Simulation::new(&Scenario::default()).unwrap();
+    let mut simulation = Simulation::new(&Scenario::paper()).unwrap();
     simulation.advance_to(300_000_000, &mut NullRecorder, false).unwrap();
     let saved = simulation.state().clone();
     let json = serde_json::to_string(&saved).unwrap();
@@ -173,7 +173,7 @@ fn restored_state_continues_identically() {
 /// issue's bar is 0.5 %), and the contact force peak of the 2.6 s bounces by less than 1 %.
 #[test]
 fn peaks_do_not_depend_on_communication_interval() {
-    let scenario = Scenario::default();
+    let scenario = Scenario::paper();
     let reference = Simulation::new(&scenario).unwrap().run(&mut NullRecorder).unwrap().peaks;
     for interval in [100_000u64, 1_000_000, 10_000_000, 100_000_000] {
         let mut simulation = Simulation::new(&scenario).unwrap();
@@ -195,7 +195,7 @@ fn peaks_do_not_depend_on_communication_interval() {
 #[test]
 fn contact_starts_where_the_gap_closes() {
     let mut recorder = MemoryRecorder::default();
-    Simulation::new(&Scenario::default()).unwrap().run(&mut recorder).unwrap();
+    Simulation::new(&Scenario::paper()).unwrap().run(&mut recorder).unwrap();
     let first = recorder.steps[0];
     assert!((first.lower_tip_deflection - first.upper_contact_deflection).abs() < 1e-12);
     for event in recorder.events.iter().filter(|e| e.start) {
@@ -210,8 +210,8 @@ fn contact_starts_where_the_gap_closes() {
 /// (Eq. 26 with F_l including the force; exact for Hermite elements, 1e-12).
 #[test]
 fn lower_tip_force_enters_the_initial_static_deflection() {
-    let base = Simulation::new(&Scenario::default()).unwrap().result().lower_tip_deflection;
-    let mut s = Scenario::default();
+    let base = Simulation::new(&Scenario::paper()).unwrap().result().lower_tip_deflection;
+    let mut s = Scenario::paper();
     s.lower.tip_force = -50_000.0;
     let loaded = Simulation::new(&s).unwrap().result().lower_tip_deflection;
     let l = &s.lower;
@@ -224,7 +224,7 @@ fn lower_tip_force_enters_the_initial_static_deflection() {
 /// plus the impact energy; the paper run alone closes to ~0.1 %).
 #[test]
 fn energy_balance_books_the_work_of_tip_forces() {
-    let mut simulation = Simulation::new(&Scenario::default()).unwrap();
+    let mut simulation = Simulation::new(&Scenario::paper()).unwrap();
     let impact_energy = simulation.result().energy.kinetic;
     simulation.advance_to(200_000_000, &mut NullRecorder, false).unwrap();
     simulation.set_tip_forces(TipForces { upper: 80_000.0, lower: -20_000.0 });
@@ -239,7 +239,7 @@ fn energy_balance_books_the_work_of_tip_forces() {
 /// (measured 59 J of 66.7 kJ; before the stage changes were located it was 800 J).
 #[test]
 fn paper_run_energy_balance_closes() {
-    let mut simulation = Simulation::new(&Scenario::default()).unwrap();
+    let mut simulation = Simulation::new(&Scenario::paper()).unwrap();
     let impact_energy = simulation.result().energy.kinetic;
     assert!((impact_energy / 66.7e3 - 1.0).abs() < 0.01, "J w^2 / 2 = {impact_energy}");
     let summary = simulation.run(&mut NullRecorder).unwrap();

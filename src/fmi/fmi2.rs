@@ -457,8 +457,8 @@ pub unsafe extern "C" fn fmi2DoStep(
 ) -> Status {
     ffi_boundary! {
         with_run(c, "fmi2DoStep", allowed::DO_STEP, |inst| {
-            inst.do_step(current_communication_point, communication_step_size)?;
-            Ok(Status::Ok)
+            let outcome = inst.do_step(current_communication_point, communication_step_size)?;
+            Ok(if outcome.untrusted { Status::Warning } else { Status::Ok })
         })
     }
 }

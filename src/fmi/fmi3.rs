@@ -1108,7 +1108,7 @@ pub unsafe extern "C" fn fmi3DoStep(
             *last_successful_time = inst.last_successful_time();
             let outcome = outcome?;
             *early_return = outcome.early_return;
-            Ok(Status::Ok)
+            Ok(if outcome.untrusted { Status::Warning } else { Status::Ok })
         })
     }
 }

@@ -82,6 +82,8 @@ pub struct StepOutcome {
     pub early_return: bool,
     /// FMU time reached, s.
     pub last_successful_time: f64,
+    /// The run's energy residual crossed its tolerance in this step (logged; return a warning).
+    pub untrusted: bool,
 }
 
 /// Internal result: the error message is logged by [`Instance::guard`].
@@ -109,6 +111,8 @@ pub struct Instance {
     /// The state a failed `DoStep`, `Terminate` or `ExitInitializationMode` was called in: where a
     /// successful `SetFMUState` returns to from [`State::Error`].
     before_error: State,
+    /// Whether the energy residual's crossing of `energy_tolerance` has been reported (once).
+    untrusted_reported: bool,
 }
 
 /// The longest run the scenario's `duration` accepts, s (it only labels the MCAP log here).
@@ -169,6 +173,7 @@ impl Instance {
             last_successful_time: 0.0,
             strings: Vec::new(),
             before_error: State::Instantiated,
+            untrusted_reported: false,
         }
     }
 
@@ -325,7 +330,11 @@ impl Instance {
             }
             named.push(name);
             match find(name) {
-                Ok(p) => (p.put)(&mut scratch, (p.get)(&defaults)),
+                Ok(p) => {
+                    if (p.put)(&mut scratch, (p.get)(&defaults)).is_err() {
+                        break;
+                    }
+                }
                 Err(_) if name == "upper.tip_force" => scratch.upper.tip_force = 0.0,
                 Err(_) if name == "lower.tip_force" => scratch.lower.tip_force = 0.0,
                 Err(_) => break,
@@ -391,7 +400,7 @@ impl Instance {
 
     /// The FMU's time, s.
     pub fn time(&self) -> f64 {
-        self.start_time + seconds(self.simulation.as_ref().map_or(0, |s| s.result().time_ns))
+        self.start_time + seconds(self.simulation.as_ref().map_or(0, |s| s.output().time_ns))
     }
 
     /// `fmi2LastSuccessfulTime` / FMI 3's `lastSuccessfulTime`, s.
@@ -429,7 +438,14 @@ impl Instance {
         let early = self.version == Version::Fmi3 && self.early_return_allowed;
         let simulation = self.simulation.as_mut().ok_or("no simulation")?;
         let mut tap = Tap { inner: self.recorder.as_mut(), events: Vec::new() };
-        let advance = simulation.advance_to(target_ns.max(simulation.result().time_ns), &mut tap, early);
+        // The internal step grid is broken only at the stop time (and at input changes and located
+        // contact changes, inside the simulation): elsewhere the outputs are interpolated.
+        let at_stop = self.stop_time.is_some_and(|stop| (end - stop).abs() <= time_tolerance(stop));
+        let advance = if at_stop {
+            simulation.advance_to(target_ns, &mut tap, early)
+        } else {
+            simulation.advance_outputs_to(target_ns, &mut tap, early)
+        };
         let events = std::mem::take(&mut tap.events);
         for e in &events {
             self.log(
@@ -451,7 +467,17 @@ impl Instance {
         if early_return {
             self.log(Status::Ok, "logEvents", &format!("early return at t = {time:.9} s (contact change)"));
         }
-        Ok(StepOutcome { early_return, last_successful_time: time })
+        let quality = self.simulation.as_ref().ok_or("no simulation")?.quality();
+        let untrusted = !quality.trusted && !self.untrusted_reported;
+        if untrusted {
+            self.untrusted_reported = true;
+            self.log(
+                Status::Warning,
+                Status::Warning.category(),
+                &format!("at t = {time} s the results are no longer trusted: {}", quality.reasons.join("; ")),
+            );
+        }
+        Ok(StepOutcome { early_return, last_successful_time: time, untrusted })
     }
 
     /// Completes the MCAP log; its error is returned (and so logged).
@@ -532,7 +558,7 @@ impl Instance {
             Source::Parameter(p) => (p.get)(&self.scenario),
             Source::Input(Tip::Upper) => self.forces().upper,
             Source::Input(Tip::Lower) => self.forces().lower,
-            Source::Output(get) => get(self.computed(&v.name)?.result()),
+            Source::Output(get) => get(self.computed(&v.name)?.output()),
             Source::Mode(column, k) => {
                 let table = self.computed(&v.name)?.mode_table(super::variables::MODES);
                 let (list, what) = match column {
@@ -562,7 +588,7 @@ impl Instance {
     pub fn get_boolean(&mut self, vr: u32) -> Outcome<bool> {
         let v = self.variable(vr, Type::Boolean)?;
         match v.source {
-            Source::ContactActive => Ok(self.computed(&v.name)?.result().contact),
+            Source::ContactActive => Ok(self.computed(&v.name)?.output().contact),
             _ => Err(format!("`{}` is not a Boolean", v.name)),
         }
     }

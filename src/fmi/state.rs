@@ -27,7 +27,7 @@ use crate::Scenario;
 pub const MAGIC: &[u8; 8] = b"BEAMFMU\0";
 
 /// Version of the byte format; bump it when the layout or [`RunState`] changes.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 
 const HEADER: usize = 28;
 
@@ -146,8 +146,8 @@ mod tests {
         let mut other = bytes.clone();
         other[8] = 9;
         match Snapshot::from_bytes(&other) {
-            Err(e @ Error::StateVersion { found: 9, expected: 1 }) => {
-                assert!(e.to_string().contains("format version 9, this binary reads version 1"))
+            Err(e @ Error::StateVersion { found: 9, expected: 2 }) => {
+                assert!(e.to_string().contains("format version 9, this binary reads version 2"))
             }
             other => panic!("{other:?}"),
         }
@@ -193,20 +193,35 @@ mod tests {
         out.insert(format!("{prefix}: {leaf}"));
     }
 
-    /// The payload's layout at FORMAT_VERSION 1: every field path of `RunState` and its type. A
+    /// The payload's layout at FORMAT_VERSION 2 (2: the energy verdict, the output time and input of
+    /// grid-independent co-simulation, the first contact's peaks): every field path of `RunState` and its type. A
     /// field added to, renamed in, retyped in or removed from `RunState` (or a struct inside it)
     /// changes what a serialized state means: bump FORMAT_VERSION and update this list together.
     /// (A DVector is nalgebra's `[data, nrows, ncols]`: `[][]` the data, `[]` the sizes.)
     #[test]
-    fn run_state_fields_are_pinned_at_format_version_1() {
-        const VERSION_1: &[&str] = &[
+    fn run_state_fields_are_pinned_at_format_version_2() {
+        const VERSION_2: &[&str] = &[
             "contact_windows[].end: f64",
             "contact_windows[].start: f64",
             "dissipation_rate: f64",
+            "first_contact.ended: bool",
+            "first_contact.last_contact: f64",
+            "first_contact.peaks.contact_force: f64",
+            "first_contact.peaks.lower_clamp_bending_stress: f64",
+            "first_contact.peaks.lower_clamp_shear_stress: f64",
+            "first_contact.peaks.lower_tip_deflection: f64",
+            "first_contact.peaks.upper_contact_bending_stress: f64",
+            "first_contact.pending.contact_force: f64",
+            "first_contact.pending.lower_clamp_bending_stress: f64",
+            "first_contact.pending.lower_clamp_shear_stress: f64",
+            "first_contact.pending.lower_tip_deflection: f64",
+            "first_contact.pending.upper_contact_bending_stress: f64",
             "forces.lower: f64",
             "forces.upper: f64",
             "gap: f64",
             "initial_energy: f64",
+            "input_forces.lower: f64",
+            "input_forces.upper: f64",
             "kinematics.acceleration[]: null",
             "kinematics.acceleration[]: u64",
             "kinematics.acceleration[][]: f64",
@@ -218,7 +233,10 @@ mod tests {
             "kinematics.velocity[][]: f64",
             "last_forces.lower: f64",
             "last_forces.upper: f64",
+            "max_external_work: f64",
             "max_residual: f64",
+            "max_strain_energy: f64",
+            "output_ns: u64",
             "peak_times.contact_force: f64",
             "peak_times.lower_clamp_bending_stress: f64",
             "peak_times.lower_clamp_shear_stress: f64",
@@ -257,7 +275,7 @@ mod tests {
         let found: Vec<&str> = found.iter().map(String::as_str).collect();
         assert_eq!(
             (FORMAT_VERSION, found.as_slice()),
-            (1, VERSION_1),
+            (2, VERSION_2),
             "RunState's fields changed: bump FORMAT_VERSION and update the pinned list"
         );
     }

@@ -243,6 +243,12 @@ pub fn is_fmu_parameter(p: &Parameter) -> bool {
     p.name != "duration"
 }
 
+/// Whether a parameter came after the first release: its value reference follows every older
+/// variable's (the end of [`table`]), so that the older value references stay as they were.
+pub fn is_appended_parameter(p: &Parameter) -> bool {
+    matches!(p.name, "energy_tolerance" | "stress_recovery")
+}
+
 /// Every variable of the FMU, in value-reference order.
 pub fn table() -> Vec<Variable> {
     let defaults = Scenario::default();
@@ -270,21 +276,25 @@ pub fn table() -> Vec<Variable> {
         None,
         Source::Time,
     );
-    for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p)) {
+    let parameter = |p: &'static Parameter| {
         let value = (p.get)(&defaults);
         let (ty, start) = match p.kind {
             Kind::Real => (Type::Real, format_real(value)),
             Kind::Integer => (Type::Integer, format!("{}", value as i64)),
         };
         let unit = (!p.unit.is_empty()).then_some(p.unit);
+        (p.name.to_string(), ty, unit, p.description.to_string(), start)
+    };
+    for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && !is_appended_parameter(p)) {
+        let (name, ty, unit, description, start) = parameter(p);
         push(
-            p.name.into(),
+            name,
             ty,
             Causality::Parameter,
             Variability::Fixed,
             Some(true),
             unit,
-            p.description.into(),
+            description,
             Some(start),
             Source::Parameter(p),
         );
@@ -369,6 +379,20 @@ pub fn table() -> Vec<Variable> {
             description.into(),
             None,
             Source::EnergyMethod(get),
+        );
+    }
+    for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && is_appended_parameter(p)) {
+        let (name, ty, unit, description, start) = parameter(p);
+        push(
+            name,
+            ty,
+            Causality::Parameter,
+            Variability::Fixed,
+            Some(true),
+            unit,
+            description,
+            Some(start),
+            Source::Parameter(p),
         );
     }
     v

@@ -18,6 +18,8 @@ pub struct Mesh {
     pub nodes: Vec<Node>,
     /// Number of free DOFs.
     pub dofs: usize,
+    /// How the first node is supported (the other end is free).
+    pub support: Support,
 }
 
 /// How the first node is supported.
@@ -27,6 +29,19 @@ pub enum Support {
     Clamped,
     /// Deflection fixed, rotation free (the bridge's hinge).
     Hinged,
+}
+
+impl Support {
+    /// Rigid-body modes of a beam with this support at one end and the other end free: a clamp
+    /// leaves none, a hinge one (the rotation about it). The eigen solvers take this count from
+    /// the model rather than guessing it from the size of an eigenvalue, which round-off makes
+    /// unreliable on fine meshes (the absolute error grows like omega_max^2 ~ N^4).
+    pub fn rigid_modes(self) -> usize {
+        match self {
+            Support::Clamped => 0,
+            Support::Hinged => 1,
+        }
+    }
 }
 
 impl Mesh {
@@ -49,7 +64,7 @@ impl Mesh {
                 Node { x, w, theta }
             })
             .collect();
-        Mesh { nodes, dofs }
+        Mesh { nodes, dofs, support }
     }
 
     /// A clamped-free beam of `elements` equal elements.
@@ -80,6 +95,11 @@ impl Mesh {
     pub fn element_dofs(&self, e: usize) -> [Option<usize>; 4] {
         let (a, b) = (self.nodes[e], self.nodes[e + 1]);
         [a.w, a.theta, b.w, b.theta]
+    }
+
+    /// Rigid-body modes of the beam, from its support: see [`Support::rigid_modes`].
+    pub fn rigid_modes(&self) -> usize {
+        self.support.rigid_modes()
     }
 
     /// The free end's node.

@@ -6,8 +6,12 @@ pub mod damping;
 pub mod mesh;
 pub mod parameters;
 pub mod scenario;
+pub mod stress_recovery;
 pub mod system;
+pub mod time_step;
 
 pub use assembly::Beam;
 pub use scenario::Scenario;
+pub use stress_recovery::StressRecovery;
 pub use system::{Model, Probe};
+pub use time_step::TimeStep;

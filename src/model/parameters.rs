@@ -2,6 +2,8 @@
 //! variables and the CLI's messages take names, units and descriptions from.
 
 use super::scenario::Scenario;
+use super::stress_recovery::StressRecovery;
+use super::time_step::TimeStep;
 use crate::error::{Error, Result};
 
 /// Whether a parameter is a real number or a count.
@@ -26,8 +28,9 @@ pub struct Parameter {
     pub kind: Kind,
     /// Reads the value (integers as exact f64).
     pub get: fn(&Scenario) -> f64,
-    /// Writes the value (integers are checked by [`set`]).
-    pub put: fn(&mut Scenario, f64),
+    /// Writes the value (integers are checked by [`set`]; a value the field cannot hold, such
+    /// as an unknown stress recovery index, is an error naming the parameter).
+    pub put: fn(&mut Scenario, f64) -> Result<()>,
 }
 
 impl std::fmt::Debug for Parameter {
@@ -44,7 +47,10 @@ macro_rules! real {
             description: $desc,
             kind: Kind::Real,
             get: |s| s.$($field).+,
-            put: |s, v| s.$($field).+ = v,
+            put: |s, v| {
+                s.$($field).+ = v;
+                Ok(())
+            },
         }
     };
 }
@@ -57,7 +63,10 @@ macro_rules! integer {
             description: $desc,
             kind: Kind::Integer,
             get: |s| f64::from(s.$($field).+),
-            put: |s, v| s.$($field).+ = v as u32,
+            put: |s, v| {
+                s.$($field).+ = v as u32;
+                Ok(())
+            },
         }
     };
 }
@@ -69,8 +78,28 @@ pub const PARAMETERS: &[Parameter] = &[
     real!("damping_ratio", "1", "Modal damping ratio on every mode of each beam (Eq. 34)", damping_ratio),
     real!("rayleigh_alpha", "1/s", "Rayleigh mass-proportional damping added per beam", rayleigh_alpha),
     real!("rayleigh_beta", "s", "Rayleigh stiffness-proportional damping added per beam", rayleigh_beta),
-    real!("step_free", "s", "Time step out of contact", step_free),
-    real!("step_contact", "s", "Time step in contact", step_contact),
+    Parameter {
+        name: "step_free",
+        unit: "s",
+        description: "Time step out of contact; 0: automatic (the largest stable, energy-safe step, at most 5e-5 s)",
+        kind: Kind::Real,
+        get: |s| s.step_free.as_parameter(),
+        put: |s, v| {
+            s.step_free = TimeStep::from_parameter(v);
+            Ok(())
+        },
+    },
+    Parameter {
+        name: "step_contact",
+        unit: "s",
+        description: "Time step in contact; 0: automatic (the largest stable, energy-safe step, at most 2.5e-5 s)",
+        kind: Kind::Real,
+        get: |s| s.step_contact.as_parameter(),
+        put: |s, v| {
+            s.step_contact = TimeStep::from_parameter(v);
+            Ok(())
+        },
+    },
     real!("duration", "s", "Simulated time of a CLI run", duration),
     real!("gravity", "m/s2", "Acceleration of gravity", gravity),
     real!("upper.length", "m", "Bridge length l_u", upper.length),
@@ -99,6 +128,25 @@ pub const PARAMETERS: &[Parameter] = &[
     real!("contact.area", "m2", "Contact bar cross-section A_c", contact.area),
     real!("contact.length", "m", "Contact bar length l_c", contact.length),
     real!("contact.elastic_modulus", "Pa", "Contact bar Young's modulus", contact.elastic_modulus),
+    real!(
+        "energy_tolerance",
+        "1",
+        "Largest energy residual of a trusted run, as a fraction of the energy that flows in it",
+        energy_tolerance
+    ),
+    Parameter {
+        name: "stress_recovery",
+        unit: "",
+        description:
+            "Bridge moment at the contact node: 0 mean of the two adjacent elements, 1 left (hinge side), 2 right",
+        kind: Kind::Integer,
+        get: |s| f64::from(s.stress_recovery.index()),
+        put: |s, v| {
+            s.stress_recovery = StressRecovery::from_index(v)
+                .ok_or_else(|| Error::invalid("stress_recovery", "0 (mean), 1 (left) or 2 (right)", v))?;
+            Ok(())
+        },
+    },
 ];
 
 /// Looks a parameter up by name.
@@ -112,6 +160,5 @@ pub fn set(scenario: &mut Scenario, parameter: &Parameter, value: f64) -> Result
     if parameter.kind == Kind::Integer && !(value.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&value)) {
         return Err(Error::invalid(parameter.name, "a whole number >= 1", value));
     }
-    (parameter.put)(scenario, value);
-    Ok(())
+    (parameter.put)(scenario, value)
 }

@@ -6,6 +6,7 @@ use nalgebra::{DMatrix, DVector};
 use super::assembly::Beam;
 use super::mesh::Mesh;
 use super::scenario::Scenario;
+use super::stress_recovery::StressRecovery;
 use crate::error::Result;
 
 /// Index of each probe (a linear functional of the displacements) in [`Model::probes`].
@@ -23,7 +24,8 @@ pub enum Probe {
     ClampMoment = 4,
     /// Internal shear force at the clamp, N.
     ClampShear = 5,
-    /// Internal bending moment at the bridge's contact node (mean of the two adjacent elements), N m.
+    /// Internal bending moment at the bridge's contact node (from the elements the scenario's
+    /// `stress_recovery` names; the mean of the two adjacent ones by default), N m.
     UpperContactMoment = 6,
 }
 
@@ -86,7 +88,12 @@ impl Model {
         put(Probe::Gap, Some(-lower.deflection_functional(lower_tip)), Some(upper.deflection_functional(inner)));
         put(Probe::ClampMoment, Some(lower.start_moment_functional(0)), None);
         put(Probe::ClampShear, Some(lower.start_shear_functional(0)), None);
-        let contact_moment = (upper.end_moment_functional(inner - 1) + upper.start_moment_functional(inner)) * 0.5;
+        let (left, right) = (upper.end_moment_functional(inner - 1), upper.start_moment_functional(inner));
+        let contact_moment = match s.stress_recovery {
+            StressRecovery::Mean => (left + right) * 0.5,
+            StressRecovery::Left => left,
+            StressRecovery::Right => right,
+        };
         put(Probe::UpperContactMoment, None, Some(contact_moment));
         Ok(Model {
             scenario: scenario.clone(),

@@ -18,7 +18,9 @@ use super::mcap::{CONTACT_TOPIC, LOG_TOPIC, MODEL_TOPIC, SCENARIO_ATTACHMENT, SC
 use super::schema::{ContactEventMessage, LogMessage, ModelMessage, StepMessage};
 use crate::error::{Error, Result};
 use crate::model::Scenario;
-use crate::results::{ContactEvent, ContactWindow, Peaks, StepResult, Summary};
+use crate::results::{
+    seconds, ContactEvent, ContactWindow, FirstContact, Peaks, Quality, StepResult, Summary, TimeSteps,
+};
 use crate::simulation::Simulation;
 
 /// Everything a log holds, decoded.
@@ -187,7 +189,12 @@ pub fn summary_from_log(data: &LogData, simulation: &Simulation) -> Result<Summa
     let mut peak_times = Peaks::default();
     let mut previous: Option<Peaks> = None;
     let mut max_residual = 0.0f64;
+    let (mut max_strain, mut max_work) = (0.0f64, 0.0f64);
+    let mut first_contact = FirstContact::default();
     for r in &data.steps {
+        first_contact.observe(r);
+        max_strain = max_strain.max(r.energy.strain);
+        max_work = max_work.max(r.energy.external_work.abs());
         let now = r.peaks.as_array();
         let before = previous.map(|p| p.as_array());
         for (k, when) in peak_times.as_mut_array().into_iter().enumerate() {
@@ -234,6 +241,22 @@ pub fn summary_from_log(data: &LogData, simulation: &Simulation) -> Result<Summa
         max_energy_residual: max_residual,
         energy_method: *simulation.energy_method(),
         modes: simulation.mode_table(5),
+        quality: {
+            let s = simulation.scenario();
+            Quality::assess(
+                max_residual,
+                s.upper.mass * s.gravity * s.drop_height,
+                max_work,
+                max_strain,
+                s.energy_tolerance,
+                simulation.step_plan().advisories(s, simulation.modal()),
+            )
+        },
+        first_contact_peaks: first_contact.peaks,
+        time_steps: {
+            let plan = simulation.step_plan();
+            TimeSteps { free: seconds(plan.free_ns), contact: seconds(plan.contact_ns) }
+        },
     })
 }
 

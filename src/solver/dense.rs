@@ -72,6 +72,14 @@ impl Stepper for DenseStepper {
         state.acceleration = a_next;
     }
 
+    fn equilibrium_acceleration(&mut self, state: &mut Kinematics, stage: Stage, forces: TipForces) {
+        let k = if stage.is_contact() { &self.coupled_stiffness } else { &self.stiffness };
+        let load = &self.gravity + &self.upper_tip * forces.upper + &self.lower_tip * forces.lower;
+        let f = load - k * &state.displacement - &self.damping * &state.velocity;
+        let n = f.len();
+        state.acceleration = self.mass.clone().lu().solve(&f).unwrap_or_else(|| DVector::from_element(n, f64::NAN));
+    }
+
     fn probes(&self, displacement: &DVector<f64>) -> [f64; PROBES] {
         let values = &self.probes * displacement;
         let mut out = [0.0; PROBES];

@@ -55,6 +55,10 @@ pub struct Energies {
 pub trait Stepper {
     /// Advances `state` by `dt` in `stage`, with the tip forces at the end of the step (F_{i+1}).
     fn step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, forces: TipForces);
+    /// Sets the acceleration that Eq. (1) gives for the state's displacement and velocity under
+    /// `forces` (gravity included): M a = F - K delta - C delta', with the bar's stiffness in
+    /// contact. Used where the load jumps, so that the next step starts from equilibrium.
+    fn equilibrium_acceleration(&mut self, state: &mut Kinematics, stage: Stage, forces: TipForces);
     /// The model's probes (see [`crate::model::Probe`]) applied to a displacement vector (or to
     /// a velocity vector, for rates), in the stepper's coordinates.
     fn probes(&self, displacement: &DVector<f64>) -> [f64; PROBES];

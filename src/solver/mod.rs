@@ -8,6 +8,8 @@ pub mod energy_method;
 pub mod initial;
 pub mod kinematics;
 pub mod modal;
+pub mod secular;
+pub mod step_plan;
 pub mod stepper;
 
 pub use contact::Stage;
@@ -16,4 +18,5 @@ pub use eigen::{natural_modes, Modes};
 pub use energy_method::EnergyMethod;
 pub use kinematics::{Energies, Kinematics, Stepper, TipForces};
 pub use modal::ModalSystem;
+pub use step_plan::StepPlan;
 pub use stepper::ModalStepper;

@@ -121,6 +121,17 @@ impl Stepper for ModalStepper {
         }
     }
 
+    fn equilibrium_acceleration(&mut self, state: &mut Kinematics, stage: Stage, forces: TipForces) {
+        // In modal coordinates M = I: a = F - diag(omega^2) q - diag(c) v - kappa b (b . q).
+        let s = &self.system;
+        let load = &s.gravity + &s.upper_tip * forces.upper + &s.lower_tip * forces.lower;
+        let bar = if stage.is_contact() { s.bar_stiffness * s.contact.dot(&state.displacement) } else { 0.0 };
+        let (q, v) = (&state.displacement, &state.velocity);
+        for i in 0..q.len() {
+            state.acceleration[i] = load[i] - s.omega2[i] * q[i] - s.damping[i] * v[i] - bar * s.contact[i];
+        }
+    }
+
     fn probes(&self, displacement: &DVector<f64>) -> [f64; PROBES] {
         let mut out = [0.0; PROBES];
         for (k, value) in out.iter_mut().enumerate() {

@@ -386,6 +386,11 @@ impl Fmu3 {
     }
 
     pub fn initialize(&self) -> c_int {
+        self.initialize_until(None)
+    }
+
+    /// Enter and exit initialization mode at t = 0, with the stop time if given.
+    pub fn initialize_until(&self, stop: Option<f64>) -> c_int {
         let enter = sym!(
             self.lib,
             "fmi3EnterInitializationMode",
@@ -393,7 +398,7 @@ impl Fmu3 {
         );
         let exit = sym!(self.lib, "fmi3ExitInitializationMode", unsafe extern "C" fn(*mut c_void) -> c_int);
         // SAFETY: a live instance.
-        let status = unsafe { enter(self.c, false, 0.0, 0.0, false, 0.0) };
+        let status = unsafe { enter(self.c, false, 0.0, 0.0, stop.is_some(), stop.unwrap_or(0.0)) };
         if status != OK {
             return status;
         }
