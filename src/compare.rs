@@ -3,7 +3,7 @@
 use std::fmt::Write;
 
 use crate::paper;
-use crate::results::{ContactWindow, Summary};
+use crate::results::{ContactWindow, Summary, BOUNCE_GAP, SUSTAINED_CONTACT};
 
 /// Separations between contact windows longer than `min` s, as (start, end) in s.
 pub fn separations(windows: &[ContactWindow], min: f64) -> Vec<(f64, f64)> {
@@ -122,6 +122,17 @@ pub fn table1(summary: &Summary, paper: bool) -> String {
         "FEM bridge strain energy at the largest arrestor deflection = {:.2} kJ",
         summary.upper_strain_at_peak_deflection / 1e3
     );
+    let first = &summary.first_contact_peaks;
+    let _ = writeln!(
+        s,
+        "first sustained contact (t = 0 .. {}): sigma_din,b = {:.1} MPa (whole run {:.1} MPa), \
+         sigma_din,a = {:.1} MPa, tau_din,a = {:.1} MPa",
+        summary.first_contact_end.map_or("end of run".to_string(), |t| format!("{t:.4} s")),
+        first.upper_contact_bending_stress * 1e-6,
+        summary.peaks.upper_contact_bending_stress * 1e-6,
+        first.lower_clamp_bending_stress * 1e-6,
+        first.lower_clamp_shear_stress * 1e-6
+    );
     s
 }
 
@@ -181,7 +192,7 @@ fn period(omega: f64) -> f64 {
 /// Contact windows (bounces closer than 10 ms merged) and the longest separation.
 pub fn contact_windows(summary: &Summary, paper: bool) -> String {
     let mut s = String::new();
-    let merged = merged_windows(&summary.contact_windows, 0.01);
+    let merged = merged_windows(&summary.contact_windows, BOUNCE_GAP);
     let _ = writeln!(
         s,
         "Contact: {} windows ({} after merging bounces closer than 10 ms):",
@@ -198,8 +209,10 @@ pub fn contact_windows(summary: &Summary, paper: bool) -> String {
             let _ = write!(s, " (paper, Figure 6: {pa:.2} s .. {pb:.2} s)");
         }
         let _ = writeln!(s);
-        let sustained: Vec<ContactWindow> =
-            merged_windows(&summary.contact_windows, 0.01).into_iter().filter(|w| w.end - w.start >= 0.1).collect();
+        let sustained: Vec<ContactWindow> = merged_windows(&summary.contact_windows, BOUNCE_GAP)
+            .into_iter()
+            .filter(|w| w.end - w.start >= SUSTAINED_CONTACT)
+            .collect();
         if let [first, second, ..] = sustained.as_slice() {
             let _ = write!(s, "sustained contact (>= 0.1 s) ends {:.4} s and resumes {:.4} s", first.end, second.start);
             if paper {

@@ -184,18 +184,24 @@ impl Quality {
     }
 }
 
-/// A separation at least this long ends the first sustained contact, s (shorter ones are bounces).
-pub const SUSTAINED_SEPARATION: f64 = 0.01;
+/// Contact windows closer than this are one window (the bounces of one contact), s.
+pub const BOUNCE_GAP: f64 = 0.01;
 
-/// The peaks of the first sustained contact: from t = 0 until the first separation of at least
-/// [`SUSTAINED_SEPARATION`] (0.75 s on the paper scenario). A separation counts as part of the
-/// contact until it proves long enough, so its steps are held apart until then.
+/// A contact window (bounces merged) at least this long is sustained, s.
+pub const SUSTAINED_CONTACT: f64 = 0.1;
+
+/// The peaks of the first sustained contact: from t = 0 until the end of the first contact window
+/// (bounces closer than [`BOUNCE_GAP`] merged) that lasts at least [`SUSTAINED_CONTACT`]: 0.75 s
+/// on the paper scenario, where the impact's first bounces (separations of 14-15 ms) precede it.
+/// The steps of a separation count once contact resumes, so they are held apart until then.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct FirstContact {
-    /// Peaks max |.| of the first sustained contact (so far, while it lasts).
+    /// Peaks max |.| from t = 0 to the end of the first sustained contact (so far, while it lasts).
     pub peaks: Peaks,
-    /// Peaks since the latest separation began.
+    /// Peaks since the latest step in contact.
     pending: Peaks,
+    /// Start of the current contact window (bounces merged), s.
+    window_start: Option<f64>,
     /// Time of the latest step taken in contact, s.
     last_contact: Option<f64>,
     /// True once the first sustained contact has ended.
@@ -215,22 +221,35 @@ impl FirstContact {
             result.upper_contact_bending_stress,
             result.contact_force,
         ];
-        match self.last_contact {
-            Some(end) if !result.contact => {
-                if result.time - end >= SUSTAINED_SEPARATION {
+        if result.contact || self.last_contact.is_none() {
+            // A step in contact, or before the first one (the impact instant itself).
+            let pending = std::mem::take(&mut self.pending).as_array();
+            self.peaks.raise(&pending);
+            self.peaks.raise(&values);
+            if result.contact {
+                self.window_start.get_or_insert(result.time);
+                self.last_contact = Some(result.time);
+            }
+            return;
+        }
+        self.pending.raise(&values);
+        if let (Some(start), Some(end)) = (self.window_start, self.last_contact) {
+            if result.time - end >= BOUNCE_GAP {
+                if end - start >= SUSTAINED_CONTACT {
                     self.ended = true;
                 } else {
-                    self.pending.raise(&values);
+                    self.window_start = None;
                 }
             }
-            _ => {
-                let pending = std::mem::take(&mut self.pending).as_array();
-                self.peaks.raise(&pending);
-                self.peaks.raise(&values);
-                if result.contact {
-                    self.last_contact = Some(result.time);
-                }
-            }
+        }
+    }
+
+    /// When the first sustained contact ended (its last step in contact), s; `None` while it lasts.
+    pub fn end(&self) -> Option<f64> {
+        if self.ended {
+            self.last_contact
+        } else {
+            None
         }
     }
 }
@@ -269,8 +288,10 @@ pub struct Summary {
     pub modes: ModeTable,
     /// The energy verdict.
     pub quality: Quality,
-    /// Peaks of the first sustained contact, until the first separation of at least 10 ms.
+    /// Peaks from t = 0 to the end of the first sustained contact (see [`FirstContact`]).
     pub first_contact_peaks: Peaks,
+    /// End of the first sustained contact, s (null if it lasts to the end of the run).
+    pub first_contact_end: Option<f64>,
     /// The time steps used.
     pub time_steps: TimeSteps,
 }

@@ -617,6 +617,7 @@ impl<S: Stepper> Simulation<S> {
             modes: self.mode_table(5),
             quality: self.quality(),
             first_contact_peaks: s.first_contact.peaks,
+            first_contact_end: s.first_contact.end(),
             time_steps: TimeSteps { free: seconds(self.plan.free_ns), contact: seconds(self.plan.contact_ns) },
         }
     }

@@ -63,3 +63,58 @@ fn report_on_a_foreign_file_is_a_one_line_error() {
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(stderr.contains("notes.mcap") && stderr.contains("not an MCAP file"), "{stderr}");
 }
+
+/// An untrusted run (the paper's step pair on an undamped 0.2 m drop: energy residual 23 % of
+/// the energy that flows) warns on stderr, reports the verdict in `--json` (`quality`, also
+/// under `summary.quality`), exits 0, and exits 3 with `--strict`. A trusted run with `--strict`
+/// exits 0. The existing JSON keys stay.
+#[test]
+fn untrusted_run_warns_reports_quality_and_exits_3_with_strict() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("undamped.toml");
+    std::fs::write(&file, "drop_height = 0.2\ndamping_ratio = 0.0\nstep_free = 5e-5\nstep_contact = 2.5e-5\n").unwrap();
+    let json = dir.path().join("out.json");
+    let out = beam_impact().args(["run", "--no-mcap", "--json"]).arg(&json).arg(&file).output().unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(stderr.contains("warning: results not trusted: energy residual"), "{stderr}");
+    assert!(stderr.contains("step_free = 5e-5 s is stable but not energy-safe"), "{stderr}");
+    let doc: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let quality = &doc["quality"];
+    assert_eq!(quality["trusted"], false, "{quality}");
+    assert!(quality["energy_residual_fraction"].as_f64().unwrap() > 0.05, "{quality}");
+    assert_eq!(quality["energy_tolerance"], 0.01);
+    assert!(!quality["reasons"].as_array().unwrap().is_empty());
+    assert_eq!(&doc["summary"]["quality"], quality);
+    for key in ["peaks", "peak_times", "contact_windows", "max_energy_residual", "energy_method", "modes"] {
+        assert!(doc["summary"].get(key).is_some(), "existing key {key} kept");
+    }
+    let out = beam_impact().args(["run", "--no-mcap", "--strict"]).arg(&file).output().unwrap();
+    assert_eq!(out.status.code(), Some(3));
+    let out = beam_impact().args(["run", "--no-mcap", "--strict"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+}
+
+/// Scenario files take `"auto"` time steps (the default) and a named stress recovery; the JSON
+/// reports the steps used and the first sustained contact's peaks beside the whole run's.
+#[test]
+fn auto_steps_and_stress_recovery_from_a_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("user.toml");
+    std::fs::write(&file, "step_free = \"auto\"\nstress_recovery = \"left\"\nduration = 1.0\n").unwrap();
+    let json = dir.path().join("out.json");
+    let out = beam_impact().args(["run", "--no-mcap", "--json"]).arg(&json).arg(&file).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let doc: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(doc["scenario"]["step_free"], "auto");
+    assert_eq!(doc["scenario"]["stress_recovery"], "left");
+    assert_eq!(doc["summary"]["time_steps"]["free"], 2.2876e-5);
+    let first = doc["summary"]["first_contact_peaks"]["upper_contact_bending_stress"].as_f64().unwrap();
+    let whole = doc["summary"]["peaks"]["upper_contact_bending_stress"].as_f64().unwrap();
+    assert!(first > 1e8 && first <= whole, "{first} vs {whole}");
+    assert!((doc["summary"]["first_contact_end"].as_f64().unwrap() - 0.75).abs() < 0.01);
+    std::fs::write(&file, "stress_recovery = \"middle\"\n").unwrap();
+    let out = beam_impact().args(["run", "--no-mcap"]).arg(&file).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("middle"));
+}

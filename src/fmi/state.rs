@@ -216,6 +216,7 @@ mod tests {
             "first_contact.pending.lower_clamp_shear_stress: f64",
             "first_contact.pending.lower_tip_deflection: f64",
             "first_contact.pending.upper_contact_bending_stress: f64",
+            "first_contact.window_start: f64",
             "forces.lower: f64",
             "forces.upper: f64",
             "gap: f64",

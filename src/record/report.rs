@@ -253,6 +253,7 @@ pub fn summary_from_log(data: &LogData, simulation: &Simulation) -> Result<Summa
             )
         },
         first_contact_peaks: first_contact.peaks,
+        first_contact_end: first_contact.end(),
         time_steps: {
             let plan = simulation.step_plan();
             TimeSteps { free: seconds(plan.free_ns), contact: seconds(plan.contact_ns) }
