@@ -29,20 +29,27 @@ pub fn table(rows: &[(f64, Summary)]) -> String {
     let _ = writeln!(s, "Appendix A. Damping study (peaks max |.| over the run)");
     let _ = writeln!(
         s,
-        "{:>7} {:>12} {:>12} {:>12} {:>14} {:>12}",
-        "gamma", "w_a [m]", "sigma_a[MPa]", "tau_a [MPa]", "sigma_b [MPa]", "contact [s]"
+        "{:>7} {:>12} {:>12} {:>12} {:>14} {:>12} {:>13}",
+        "gamma", "w_a [m]", "sigma_a[MPa]", "tau_a [MPa]", "sigma_b [MPa]", "contact [s]", "residual [%]"
     );
     for (gamma, summary) in rows {
         let p = &summary.peaks;
         let contact: f64 = summary.contact_windows.iter().map(|w| w.end - w.start).sum();
         let _ = writeln!(
             s,
-            "{gamma:7.3} {:12.4} {:12.1} {:12.2} {:14.1} {contact:12.3}",
+            "{gamma:7.3} {:12.4} {:12.1} {:12.2} {:14.1} {contact:12.3} {:13.3}{}",
             p.lower_tip_deflection,
             p.lower_clamp_bending_stress * 1e-6,
             p.lower_clamp_shear_stress * 1e-6,
-            p.upper_contact_bending_stress * 1e-6
+            p.upper_contact_bending_stress * 1e-6,
+            summary.quality.energy_residual_fraction * 100.0,
+            if summary.quality.trusted { "" } else { "  NOT TRUSTED" }
         );
     }
+    let _ = writeln!(
+        s,
+        "residual: the largest energy residual, % of the energy that flows; a run above its energy_tolerance is \
+         NOT TRUSTED"
+    );
     s
 }
