@@ -101,6 +101,17 @@ pub struct StepResult {
     pub contact_force: f64,
     /// Contact bar stress F_c / A_c, Pa.
     pub contact_stress: f64,
+    /// Vertical force of the clamp on the arrestor, N, up positive (the dynamic reaction: the
+    /// clamp's row of stiffness, damping, consistent mass and loads).
+    pub lower_clamp_reaction_force: f64,
+    /// Moment of the clamp on the arrestor, N m, counter-clockwise positive (x from the clamp).
+    pub lower_clamp_reaction_moment: f64,
+    /// Vertical force of the hinge on the bridge, N, up positive.
+    pub upper_hinge_reaction_force: f64,
+    /// Vertical velocity of the arrestor's end, m/s, up positive.
+    pub lower_tip_velocity: f64,
+    /// Vertical velocity of the bridge's free end, m/s, up positive.
+    pub upper_tip_velocity: f64,
     /// Energy account.
     pub energy: EnergyAccount,
     /// Running peaks.

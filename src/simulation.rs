@@ -141,6 +141,7 @@ impl<S: Stepper> Simulation<S> {
         let probes = self.stepper.probes(&self.state.kinematics.displacement);
         let energies = self.stepper.energies(&self.state.kinematics);
         let mut result = self.outputs(&probes, Stage::Free);
+        self.set_support_and_tips(&mut result, &self.state.kinematics);
         self.state.gap = probes[Probe::Gap as usize];
         result.energy.kinetic = energies.kinetic;
         result.energy.strain = energies.beam_strain;
@@ -151,6 +152,16 @@ impl<S: Stepper> Simulation<S> {
         self.state.result = result;
         self.update_peaks(energies.upper_strain);
         self.output = self.state.result;
+    }
+
+    /// Sets the support reactions and tip velocities of `kinematics` on `result`.
+    fn set_support_and_tips(&self, result: &mut StepResult, kinematics: &Kinematics) {
+        let d = self.stepper.support_and_tips(kinematics);
+        result.lower_clamp_reaction_force = d.clamp_force;
+        result.lower_clamp_reaction_moment = d.clamp_moment;
+        result.upper_hinge_reaction_force = d.hinge_force;
+        result.lower_tip_velocity = d.lower_tip_velocity;
+        result.upper_tip_velocity = d.upper_tip_velocity;
     }
 
     /// The outputs of the current displacement probes, without time or energy.
@@ -231,6 +242,7 @@ impl<S: Stepper> Simulation<S> {
         }
         self.state.gap = probes[Probe::Gap as usize];
         let mut result = self.outputs(&probes, stage);
+        self.set_support_and_tips(&mut result, &self.state.kinematics);
         result.step = previous.step + 1;
         result.time_ns = previous.time_ns + step_ns;
         result.time = seconds(result.time_ns);
@@ -451,6 +463,7 @@ impl<S: Stepper> Simulation<S> {
         let probes = self.stepper.probes(&kinematics.displacement);
         let energies = self.stepper.energies(&kinematics);
         let mut result = self.outputs(&probes, stage);
+        self.set_support_and_tips(&mut result, &kinematics);
         let share = tau / dt;
         let lerp = |a: f64, b: f64| a + (b - a) * share;
         let bar = if stage.is_contact() {

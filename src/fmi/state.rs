@@ -253,8 +253,11 @@ mod tests {
             "result.energy.residual: f64",
             "result.energy.strain: f64",
             "result.lower_clamp_bending_stress: f64",
+            "result.lower_clamp_reaction_force: f64",
+            "result.lower_clamp_reaction_moment: f64",
             "result.lower_clamp_shear_stress: f64",
             "result.lower_tip_deflection: f64",
+            "result.lower_tip_velocity: f64",
             "result.peaks.contact_force: f64",
             "result.peaks.lower_clamp_bending_stress: f64",
             "result.peaks.lower_clamp_shear_stress: f64",
@@ -266,7 +269,9 @@ mod tests {
             "result.time_ns: u64",
             "result.upper_contact_bending_stress: f64",
             "result.upper_contact_deflection: f64",
+            "result.upper_hinge_reaction_force: f64",
             "result.upper_tip_deflection: f64",
+            "result.upper_tip_velocity: f64",
             "upper_strain_at_peak: f64",
         ];
         let run = state_at(50_000_000);

@@ -83,6 +83,24 @@ impl Beam {
         r
     }
 
+    /// The linear functional `row . (m_e a_e)` of element `e` over the beam's DOFs: the element's
+    /// consistent inertia force on one of its end DOFs as a dot product with the accelerations.
+    pub fn element_inertia_functional(&self, e: usize, row: usize) -> DVector<f64> {
+        let me = beam::consistent_mass(&self.section, self.mesh.element_length(e));
+        let mut r = DVector::zeros(self.dofs());
+        for (a, d) in self.mesh.element_dofs(e).iter().enumerate() {
+            if let Some(i) = *d {
+                r[i] += me[(row, a)];
+            }
+        }
+        r
+    }
+
+    /// The consistent self-weight load of element `e` on its end DOF `row`, N (N m), up positive.
+    pub fn element_gravity_load(&self, e: usize, row: usize, gravity: f64) -> f64 {
+        beam::uniform_load(-self.section.mass_per_length * gravity, self.mesh.element_length(e))[row]
+    }
+
     /// Internal bending moment (sagging positive) at the start of element `e`, as a functional: `-f[1]`.
     pub fn start_moment_functional(&self, e: usize) -> DVector<f64> {
         self.element_force_functional(e, 1, -1.0)

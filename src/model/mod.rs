@@ -13,5 +13,5 @@ pub mod time_step;
 pub use assembly::Beam;
 pub use scenario::Scenario;
 pub use stress_recovery::StressRecovery;
-pub use system::{Model, Probe};
+pub use system::{Model, Probe, Reaction, REACTIONS};
 pub use time_step::TimeStep;

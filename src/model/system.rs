@@ -32,6 +32,22 @@ pub enum Probe {
 /// Number of probes.
 pub const PROBES: usize = 7;
 
+/// A support reaction as linear functionals over the global DOFs: the support's row of the
+/// unconstrained equations of motion, R = k . delta + m . delta'' (+ damping) - load, the force
+/// (or moment) the support exerts on the beam, up (counter-clockwise) positive.
+#[derive(Clone, Debug)]
+pub struct Reaction {
+    /// Stiffness row K_s (the first element's, over the free DOFs), N/m.
+    pub stiffness: DVector<f64>,
+    /// Consistent mass row M_s, kg.
+    pub mass: DVector<f64>,
+    /// Consistent self-weight load on the support DOF, N (N m), up positive.
+    pub load: f64,
+}
+
+/// The reactions of [`Model::reactions`], in order.
+pub const REACTIONS: usize = 3;
+
 /// The assembled two-beam model.
 #[derive(Clone, Debug)]
 pub struct Model {
@@ -103,6 +119,25 @@ impl Model {
             upper,
             probes,
         })
+    }
+
+    /// The support reactions: the clamp's vertical force and moment on the arrestor, and the
+    /// hinge's vertical force on the bridge. The supports sit at node 0 of each beam, so only the
+    /// first element contributes to their rows.
+    pub fn reactions(&self) -> [Reaction; REACTIONS] {
+        let g = self.scenario.gravity;
+        let lower = |row: usize| Reaction {
+            stiffness: self
+                .stack(&self.lower.element_force_functional(0, row, 1.0), &DVector::zeros(self.upper.dofs())),
+            mass: self.stack(&self.lower.element_inertia_functional(0, row), &DVector::zeros(self.upper.dofs())),
+            load: self.lower.element_gravity_load(0, row, g),
+        };
+        let upper = Reaction {
+            stiffness: self.stack(&DVector::zeros(self.lower.dofs()), &self.upper.element_force_functional(0, 0, 1.0)),
+            mass: self.stack(&DVector::zeros(self.lower.dofs()), &self.upper.element_inertia_functional(0, 0)),
+            load: self.upper.element_gravity_load(0, 0, g),
+        };
+        [lower(0), lower(1), upper]
     }
 
     /// Number of global DOFs.

@@ -129,6 +129,21 @@ pub struct StepMessage {
     /// to redraw the deflected shapes, at half the bytes of the largest part of the message).
     #[prost(float, repeated, tag = "16")]
     pub modal_coordinates: Vec<f32>,
+    /// Vertical force of the clamp on the arrestor, N, up positive.
+    #[prost(double, tag = "17")]
+    pub lower_clamp_reaction_force: f64,
+    /// Moment of the clamp on the arrestor, N m, counter-clockwise positive.
+    #[prost(double, tag = "18")]
+    pub lower_clamp_reaction_moment: f64,
+    /// Vertical force of the hinge on the bridge, N, up positive.
+    #[prost(double, tag = "19")]
+    pub upper_hinge_reaction_force: f64,
+    /// Vertical velocity of the arrestor's end, m/s.
+    #[prost(double, tag = "20")]
+    pub lower_tip_velocity: f64,
+    /// Vertical velocity of the bridge's free end, m/s.
+    #[prost(double, tag = "21")]
+    pub upper_tip_velocity: f64,
 }
 
 impl StepMessage {
@@ -147,6 +162,11 @@ impl StepMessage {
         self.upper_contact_bending_stress = r.upper_contact_bending_stress;
         self.contact_force = r.contact_force;
         self.contact_stress = r.contact_stress;
+        self.lower_clamp_reaction_force = r.lower_clamp_reaction_force;
+        self.lower_clamp_reaction_moment = r.lower_clamp_reaction_moment;
+        self.upper_hinge_reaction_force = r.upper_hinge_reaction_force;
+        self.lower_tip_velocity = r.lower_tip_velocity;
+        self.upper_tip_velocity = r.upper_tip_velocity;
         let e = &r.energy;
         self.energy = Some(EnergyMessage {
             kinetic: e.kinetic,
@@ -186,6 +206,11 @@ impl StepMessage {
             upper_contact_bending_stress: self.upper_contact_bending_stress,
             contact_force: self.contact_force,
             contact_stress: self.contact_stress,
+            lower_clamp_reaction_force: self.lower_clamp_reaction_force,
+            lower_clamp_reaction_moment: self.lower_clamp_reaction_moment,
+            upper_hinge_reaction_force: self.upper_hinge_reaction_force,
+            lower_tip_velocity: self.lower_tip_velocity,
+            upper_tip_velocity: self.upper_tip_velocity,
             energy: EnergyAccount {
                 kinetic: e.kinetic,
                 strain: e.strain,
@@ -559,6 +584,11 @@ fn beam_impact_file() -> FileDescriptorProto {
             message("energy", 14, ".beam_impact.EnergyAccount"),
             message("peaks", 15, ".beam_impact.Peaks"),
             repeated("modal_coordinates", 16, Float),
+            d("lower_clamp_reaction_force", 17),
+            d("lower_clamp_reaction_moment", 18),
+            d("upper_hinge_reaction_force", 19),
+            d("lower_tip_velocity", 20),
+            d("upper_tip_velocity", 21),
         ],
     );
     let event = descriptor(

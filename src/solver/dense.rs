@@ -5,10 +5,10 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::contact::Stage;
-use super::kinematics::{Energies, Kinematics, Stepper, TipForces};
+use super::kinematics::{Energies, Kinematics, Stepper, SupportAndTips, TipForces};
 use super::modal::ModalSystem;
 use crate::model::system::PROBES;
-use crate::model::{damping, Model};
+use crate::model::{damping, Model, Probe};
 
 /// Literal dense linear acceleration method in physical coordinates.
 #[derive(Clone, Debug)]
@@ -22,6 +22,8 @@ pub struct DenseStepper {
     upper_tip: DVector<f64>,
     lower_tip: DVector<f64>,
     probes: DMatrix<f64>,
+    /// Support reactions in physical coordinates: (stiffness, damping, mass rows, load).
+    reactions: Vec<(DVector<f64>, DVector<f64>, DVector<f64>, f64)>,
 }
 
 impl DenseStepper {
@@ -35,6 +37,7 @@ impl DenseStepper {
         let c =
             model.block_diagonal(&beam_damping(&model.lower, &modal.lower), &beam_damping(&model.upper, &modal.upper));
         let (upper_tip, lower_tip) = model.tip_force_vectors();
+        let mass_shapes = model.mass() * modal.shapes(model);
         DenseStepper {
             mass: model.mass(),
             damping: c,
@@ -45,6 +48,16 @@ impl DenseStepper {
             upper_tip,
             lower_tip,
             probes: model.probes.clone(),
+            // Physical rows from the modal ones: d = Phi^-T Phi^T k = M Phi (Phi^T k) (mass-normalised
+            // modes), and the same for the damping and mass rows.
+            reactions: modal
+                .reactions
+                .iter()
+                .map(|r| {
+                    let back = |modal_row: &DVector<f64>| &mass_shapes * modal_row;
+                    (back(&r.displacement), back(&r.velocity), back(&r.acceleration), r.load)
+                })
+                .collect(),
         }
     }
 }
@@ -85,6 +98,19 @@ impl Stepper for DenseStepper {
         let mut out = [0.0; PROBES];
         out.copy_from_slice(values.as_slice());
         out
+    }
+
+    fn support_and_tips(&self, state: &Kinematics) -> SupportAndTips {
+        let (q, v, a) = (&state.displacement, &state.velocity, &state.acceleration);
+        let r: Vec<f64> = self.reactions.iter().map(|(k, c, m, load)| k.dot(q) + c.dot(v) + m.dot(a) - load).collect();
+        let rates = &self.probes * v;
+        SupportAndTips {
+            clamp_force: r[0],
+            clamp_moment: r[1],
+            hinge_force: r[2],
+            lower_tip_velocity: rates[Probe::LowerTipDeflection as usize],
+            upper_tip_velocity: rates[Probe::UpperTipDeflection as usize],
+        }
     }
 
     fn energies(&self, state: &Kinematics) -> Energies {

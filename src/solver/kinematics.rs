@@ -51,6 +51,22 @@ pub struct Energies {
     pub dissipation_rate: f64,
 }
 
+/// Support reactions and tip velocities at one instant: what a platform or a spring on a tip
+/// couples to.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SupportAndTips {
+    /// Vertical force of the clamp on the arrestor, N, up positive.
+    pub clamp_force: f64,
+    /// Moment of the clamp on the arrestor, N m, counter-clockwise positive (x from the clamp).
+    pub clamp_moment: f64,
+    /// Vertical force of the hinge on the bridge, N, up positive.
+    pub hinge_force: f64,
+    /// Vertical velocity of the arrestor's end, m/s.
+    pub lower_tip_velocity: f64,
+    /// Vertical velocity of the bridge's free end, m/s.
+    pub upper_tip_velocity: f64,
+}
+
 /// One integration method for Eqs. (7)-(11) over a model.
 pub trait Stepper {
     /// Advances `state` by `dt` in `stage`, with the tip forces at the end of the step (F_{i+1}).
@@ -62,6 +78,9 @@ pub trait Stepper {
     /// The model's probes (see [`crate::model::Probe`]) applied to a displacement vector (or to
     /// a velocity vector, for rates), in the stepper's coordinates.
     fn probes(&self, displacement: &DVector<f64>) -> [f64; PROBES];
+    /// Support reactions (the supports' rows of the unconstrained equations of motion: stiffness,
+    /// damping, consistent mass and loads) and tip velocities of the state.
+    fn support_and_tips(&self, state: &Kinematics) -> SupportAndTips;
     /// Energy terms of the state.
     fn energies(&self, state: &Kinematics) -> Energies;
     /// The stepper's state from physical kinematics.

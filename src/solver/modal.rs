@@ -7,7 +7,7 @@ use super::eigen::{natural_modes, Modes};
 use super::secular::coupled_modes;
 use crate::error::{Error, Result};
 use crate::model::scenario::{PAPER_STEP_CONTACT, PAPER_STEP_FREE};
-use crate::model::{damping, Model};
+use crate::model::{damping, Model, REACTIONS};
 
 /// Largest stable step of the linear acceleration method: dt * omega_max <= sqrt(12).
 pub const STABILITY_LIMIT: f64 = 3.464_101_615_137_754_6;
@@ -39,6 +39,23 @@ pub struct ModalSystem {
     pub lower_dofs: usize,
     /// Contact bar stiffness, N/m.
     pub bar_stiffness: f64,
+    /// The support reactions (clamp force, clamp moment, hinge force) in modal coordinates.
+    pub reactions: [ModalReaction; REACTIONS],
+}
+
+/// A support reaction in modal coordinates: R = d . q + v . q' + a . q'' - load.
+#[derive(Clone, Debug)]
+pub struct ModalReaction {
+    /// Phi^T k_s: the stiffness row.
+    pub displacement: DVector<f64>,
+    /// The damping row. Modal damping (Eq. 34) defines damping forces on the free DOFs only,
+    /// M Phi (c o q'); the support row takes the same field through its mass row, M_s Phi (c o q'),
+    /// except the Rayleigh beta K part, which is beta K_s v as the physics has it.
+    pub velocity: DVector<f64>,
+    /// Phi^T m_s: the consistent mass row.
+    pub acceleration: DVector<f64>,
+    /// Consistent self-weight load on the support DOF, N (N m).
+    pub load: f64,
 }
 
 impl ModalSystem {
@@ -70,6 +87,15 @@ impl ModalSystem {
             upper_tip: shapes.transpose() * upper_tip,
             lower_tip: shapes.transpose() * lower_tip,
             probes: &model.probes * &shapes,
+            reactions: model.reactions().map(|r| {
+                let displacement = shapes.transpose() * &r.stiffness;
+                let acceleration = shapes.transpose() * &r.mass;
+                let beta = s.rayleigh_beta;
+                let velocity = DVector::from_fn(acceleration.len(), |i, _| {
+                    acceleration[i] * (damping[i] - beta * omega2[i]) + beta * displacement[i]
+                });
+                ModalReaction { displacement, velocity, acceleration, load: r.load }
+            }),
             lower_dofs: lower.omega.len(),
             lower,
             upper,

@@ -5,7 +5,7 @@
 use nalgebra::DVector;
 
 use super::contact::Stage;
-use super::kinematics::{Energies, Kinematics, Stepper, TipForces};
+use super::kinematics::{Energies, Kinematics, Stepper, SupportAndTips, TipForces};
 use super::modal::ModalSystem;
 use crate::model::system::PROBES;
 use crate::model::Model;
@@ -138,6 +138,30 @@ impl Stepper for ModalStepper {
             *value = self.probe_columns.column(k).dot(displacement);
         }
         out
+    }
+
+    fn support_and_tips(&self, state: &Kinematics) -> SupportAndTips {
+        let s = &self.system;
+        let (q, v, a) = (&state.displacement, &state.velocity, &state.acceleration);
+        let [r0, r1, r2] = &s.reactions;
+        let (lower_tip, upper_tip) = (self.probe_columns.column(0), self.probe_columns.column(2));
+        let mut sums = [0.0f64; 5];
+        // One pass over the coordinates for all five functionals.
+        for i in 0..q.len() {
+            let (qi, vi, ai) = (q[i], v[i], a[i]);
+            sums[0] += r0.displacement[i] * qi + r0.velocity[i] * vi + r0.acceleration[i] * ai;
+            sums[1] += r1.displacement[i] * qi + r1.velocity[i] * vi + r1.acceleration[i] * ai;
+            sums[2] += r2.displacement[i] * qi + r2.velocity[i] * vi + r2.acceleration[i] * ai;
+            sums[3] += lower_tip[i] * vi;
+            sums[4] += upper_tip[i] * vi;
+        }
+        SupportAndTips {
+            clamp_force: sums[0] - r0.load,
+            clamp_moment: sums[1] - r1.load,
+            hinge_force: sums[2] - r2.load,
+            lower_tip_velocity: sums[3],
+            upper_tip_velocity: sums[4],
+        }
     }
 
     fn energies(&self, state: &Kinematics) -> Energies {

@@ -43,6 +43,11 @@ SCALARS = [
     "upper_contact_bending_stress",
     "contact_force",
     "contact_stress",
+    "lower_clamp_reaction_force",
+    "lower_clamp_reaction_moment",
+    "upper_hinge_reaction_force",
+    "lower_tip_velocity",
+    "upper_tip_velocity",
 ]
 ENERGY = ["kinetic", "strain", "gravity_potential", "external_work", "damping_dissipation", "residual"]
 PEAKS = [
