@@ -22,8 +22,17 @@ pub struct DenseStepper {
     upper_tip: DVector<f64>,
     lower_tip: DVector<f64>,
     probes: DMatrix<f64>,
-    /// Support reactions in physical coordinates: (stiffness, damping, mass rows, load).
-    reactions: Vec<(DVector<f64>, DVector<f64>, DVector<f64>, f64)>,
+    /// Support reactions in physical coordinates.
+    reactions: Vec<PhysicalReaction>,
+}
+
+/// A support reaction's rows over the physical DOFs: R = k . q + c . v + m . a - load.
+#[derive(Clone, Debug)]
+struct PhysicalReaction {
+    stiffness: DVector<f64>,
+    damping: DVector<f64>,
+    mass: DVector<f64>,
+    load: f64,
 }
 
 impl DenseStepper {
@@ -55,7 +64,12 @@ impl DenseStepper {
                 .iter()
                 .map(|r| {
                     let back = |modal_row: &DVector<f64>| &mass_shapes * modal_row;
-                    (back(&r.displacement), back(&r.velocity), back(&r.acceleration), r.load)
+                    PhysicalReaction {
+                        stiffness: back(&r.displacement),
+                        damping: back(&r.velocity),
+                        mass: back(&r.acceleration),
+                        load: r.load,
+                    }
                 })
                 .collect(),
         }
@@ -102,7 +116,8 @@ impl Stepper for DenseStepper {
 
     fn support_and_tips(&self, state: &Kinematics) -> SupportAndTips {
         let (q, v, a) = (&state.displacement, &state.velocity, &state.acceleration);
-        let r: Vec<f64> = self.reactions.iter().map(|(k, c, m, load)| k.dot(q) + c.dot(v) + m.dot(a) - load).collect();
+        let r: Vec<f64> =
+            self.reactions.iter().map(|r| r.stiffness.dot(q) + r.damping.dot(v) + r.mass.dot(a) - r.load).collect();
         let rates = &self.probes * v;
         SupportAndTips {
             clamp_force: r[0],
