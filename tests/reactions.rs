@@ -4,9 +4,13 @@
 //! force (moment) the support exerts on the beam, up (counter-clockwise) positive.
 
 use beam_impact::record::{MemoryRecorder, NullRecorder};
+use beam_impact::results::StepResult;
 use beam_impact::{Scenario, Simulation};
 
 const G: f64 = 9.81;
+
+/// A named accessor of one step result field.
+type Field = (&'static str, fn(&StepResult) -> f64);
 
 /// At t = 0 the arrestor rests in its self-weight deflection (Eq. 26): the clamp carries its
 /// weight, (m_l + m_tip) g = 114 777 N, and the moment m_l g L / 2 + m_tip g L = 914 k N m, to
@@ -69,7 +73,7 @@ fn dynamic_reactions_agree_with_the_dense_oracle_through_the_impact() {
     assert_eq!(modal.steps.len(), dense.steps.len());
     let scale =
         |f: fn(&beam_impact::results::StepResult) -> f64| modal.steps.iter().map(|r| f(r).abs()).fold(0.0, f64::max);
-    let fields: [(&str, fn(&beam_impact::results::StepResult) -> f64); 5] = [
+    let fields: [Field; 5] = [
         ("clamp force", |r| r.lower_clamp_reaction_force),
         ("clamp moment", |r| r.lower_clamp_reaction_moment),
         ("hinge force", |r| r.upper_hinge_reaction_force),
