@@ -83,7 +83,7 @@ pub fn stepper_benchmark(runs: usize) -> Result<String> {
             dofs = sim.model().dofs();
             let start = Instant::now();
             for _ in 0..20_000 {
-                sim.step(u64::MAX)?;
+                sim.step(u64::MAX, false)?;
             }
             samples.push(start.elapsed());
         }

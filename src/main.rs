@@ -252,6 +252,9 @@ impl Recorder for Progress<'_> {
     fn finish(&mut self) -> Result<()> {
         self.inner.finish()
     }
+    fn wants_details(&self) -> bool {
+        self.inner.wants_details()
+    }
 }
 
 fn damping(file: Option<&Path>) -> Result<()> {

@@ -215,7 +215,8 @@ impl<S: Stepper> Simulation<S> {
     /// returns the contact event if Eq. (6) gives the next step the other stage: the change is
     /// located at the end of this step, which is when the event is reported. A step that would
     /// leave a non-finite state (an absurd tip force) is undone and reported as an error.
-    pub fn step(&mut self, max_step_ns: u64) -> Result<Option<ContactEvent>> {
+    /// With `details`, the step's support reactions and tip velocities are set too.
+    pub fn step(&mut self, max_step_ns: u64, details: bool) -> Result<Option<ContactEvent>> {
         let stage = self.next_stage();
         let previous = self.state.result;
         let mut step_ns = self.plan.step_ns(stage.is_contact()).min(max_step_ns).max(1);
@@ -242,7 +243,9 @@ impl<S: Stepper> Simulation<S> {
         }
         self.state.gap = probes[Probe::Gap as usize];
         let mut result = self.outputs(&probes, stage);
-        self.set_support_and_tips(&mut result, &self.state.kinematics);
+        if details {
+            self.set_support_and_tips(&mut result, &self.state.kinematics);
+        }
         result.step = previous.step + 1;
         result.time_ns = previous.time_ns + step_ns;
         result.time = seconds(result.time_ns);
@@ -353,8 +356,7 @@ impl<S: Stepper> Simulation<S> {
     ) -> Result<Advance> {
         self.apply_input(recorder)?;
         let advance = self.land_at(target_ns, recorder, stop_at_contact_change)?;
-        self.state.output_ns = self.state.result.time_ns;
-        self.output = self.state.result;
+        self.outputs_at_latest_step();
         Ok(advance)
     }
 
@@ -377,7 +379,7 @@ impl<S: Stepper> Simulation<S> {
             let start_ns = self.state.result.time_ns;
             let full_step_fits = start_ns + self.plan.step_ns(stage.is_contact()) <= target_ns;
             let saved = (!full_step_fits).then(|| self.state.clone());
-            let event = self.step(u64::MAX)?;
+            let event = self.step(u64::MAX, recorder.wants_details())?;
             if let Some(saved) = saved {
                 if self.state.result.time_ns > target_ns {
                     // The point falls inside this step: interpolate, and leave the step untaken.
@@ -391,15 +393,22 @@ impl<S: Stepper> Simulation<S> {
             if let Some(e) = &event {
                 recorder.contact_event(e)?;
                 if stop_at_contact_change {
-                    self.state.output_ns = self.state.result.time_ns;
-                    self.output = self.state.result;
+                    self.outputs_at_latest_step();
                     return Ok(Advance::ContactChanged);
                 }
             }
         }
-        self.state.output_ns = self.state.result.time_ns;
-        self.output = self.state.result;
+        self.outputs_at_latest_step();
         Ok(Advance::Reached)
+    }
+
+    /// The outputs are the latest internal step's, with its support reactions and tip velocities.
+    fn outputs_at_latest_step(&mut self) {
+        let mut result = self.state.result;
+        self.set_support_and_tips(&mut result, &self.state.kinematics);
+        self.state.result = result;
+        self.state.output_ns = result.time_ns;
+        self.output = result;
     }
 
     /// Takes internal steps until `target_ns`, the last one shortened to land on it.
@@ -410,7 +419,7 @@ impl<S: Stepper> Simulation<S> {
         stop_at_contact_change: bool,
     ) -> Result<Advance> {
         while self.state.result.time_ns < target_ns {
-            let event = self.step(target_ns - self.state.result.time_ns)?;
+            let event = self.step(target_ns - self.state.result.time_ns, recorder.wants_details())?;
             recorder.step(&self.state.result, self.state.kinematics.displacement.as_slice())?;
             if let Some(e) = &event {
                 recorder.contact_event(e)?;
@@ -438,7 +447,7 @@ impl<S: Stepper> Simulation<S> {
         self.stepper.equilibrium_acceleration(&mut self.state.kinematics, stage, forces);
         self.state.forces = forces;
         self.state.last_forces = forces;
-        self.output = self.state.result;
+        self.outputs_at_latest_step();
         Ok(())
     }
 

@@ -481,6 +481,9 @@ impl Recorder for Watch<'_> {
     fn start(&mut self, _: &RunInfo<'_>) -> Result<()> {
         Ok(())
     }
+    fn wants_details(&self) -> bool {
+        false
+    }
     fn step(&mut self, result: &StepResult, _: &[f64]) -> Result<()> {
         if result.step.is_multiple_of(1000) {
             if self.failed.load(Ordering::Relaxed) {

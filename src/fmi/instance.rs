@@ -146,6 +146,9 @@ impl Recorder for Tap<'_> {
     fn rollback(&mut self, result: &StepResult) -> crate::Result<()> {
         self.inner.as_mut().map_or(Ok(()), |r| r.rollback(result))
     }
+    fn wants_details(&self) -> bool {
+        self.inner.is_some()
+    }
     fn finish(&mut self) -> crate::Result<()> {
         self.inner.as_mut().map_or(Ok(()), |r| r.finish())
     }

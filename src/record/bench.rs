@@ -62,7 +62,7 @@ fn recorded_run(scenario: &Scenario, path: &std::path::Path) -> Result<Sample> {
 /// of medians (the CLI prints it).
 pub fn recording_benchmark(runs: usize) -> Result<String> {
     let runs = runs.max(1);
-    let scenario = Scenario::default();
+    let scenario = Scenario::paper();
     let dir = std::env::temp_dir().join(format!("beam-impact-bench-{}", std::process::id()));
     std::fs::create_dir_all(&dir).map_err(|source| Error::Io {
         action: "cannot create benchmark directory",

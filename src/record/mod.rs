@@ -37,6 +37,12 @@ pub trait Recorder {
     }
     /// Completes the record (for a file: summary and footer). Must be called and checked.
     fn finish(&mut self) -> Result<()>;
+    /// Whether every step needs its support reactions and tip velocities (a recorder that keeps
+    /// nothing says no: they cost about a third of a step; the simulation still sets them at the
+    /// end of every advance, where outputs are read).
+    fn wants_details(&self) -> bool {
+        true
+    }
 }
 
 /// A recorder that keeps nothing.
@@ -46,6 +52,9 @@ pub struct NullRecorder;
 impl Recorder for NullRecorder {
     fn start(&mut self, _: &RunInfo<'_>) -> Result<()> {
         Ok(())
+    }
+    fn wants_details(&self) -> bool {
+        false
     }
     fn step(&mut self, _: &StepResult, _: &[f64]) -> Result<()> {
         Ok(())
