@@ -226,6 +226,34 @@ const OUTPUTS: &[(&str, &str, &str, Out)] = &[
     ("peak.contact.force", "N", "Running peak max |contact.force| since t = 0", |r| r.peaks.contact_force),
 ];
 
+/// Real outputs added after the first release (issue 8: what a system engineer couples the
+/// platforms and tip springs to), appended at the end of [`table`] so that older value
+/// references stay as they were.
+const APPENDED_OUTPUTS: &[(&str, &str, &str, Out)] = &[
+    (
+        "lower.clamp_reaction_force",
+        "N",
+        "Vertical force of the clamp on the arrestor, up positive (dynamic: stiffness, damping, consistent mass, loads)",
+        |r| r.lower_clamp_reaction_force,
+    ),
+    (
+        "upper.hinge_reaction_force",
+        "N",
+        "Vertical force of the hinge on the bridge, up positive (dynamic: stiffness, damping, consistent mass, loads)",
+        |r| r.upper_hinge_reaction_force,
+    ),
+    (
+        "lower.clamp_reaction_moment",
+        "N.m",
+        "Moment of the clamp on the arrestor, counter-clockwise positive (x from the clamp towards the free end)",
+        |r| r.lower_clamp_reaction_moment,
+    ),
+    ("lower.tip_velocity", "m/s", "Vertical velocity of the arrestor's free end, up positive", |r| {
+        r.lower_tip_velocity
+    }),
+    ("upper.tip_velocity", "m/s", "Vertical velocity of the bridge's free end, up positive", |r| r.upper_tip_velocity),
+];
+
 type Method = fn(&EnergyMethod) -> f64;
 
 /// The energy approach's results: name suffix, unit, description, accessor.
@@ -381,6 +409,19 @@ pub fn table() -> Vec<Variable> {
             Source::EnergyMethod(get),
         );
     }
+    for &(name, unit, description, get) in APPENDED_OUTPUTS {
+        push(
+            name.into(),
+            Type::Real,
+            Causality::Output,
+            Variability::Continuous,
+            Some(false),
+            Some(unit),
+            description.into(),
+            None,
+            Source::Output(get),
+        );
+    }
     for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && is_appended_parameter(p)) {
         let (name, ty, unit, description, start) = parameter(p);
         push(
@@ -409,6 +450,8 @@ pub fn base_units(unit: &str) -> Option<[i32; 4]> {
         "m3" => [0, 3, 0, 0],
         "m4" => [0, 4, 0, 0],
         "m/s2" => [0, 1, -2, 0],
+        "m/s" => [0, 1, -1, 0],
+        "N.m" => [1, 2, -2, 0],
         "kg" => [1, 0, 0, 0],
         "N" => [1, 1, -2, 0],
         "Pa" => [1, -1, -2, 0],
