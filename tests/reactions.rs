@@ -13,7 +13,7 @@ const G: f64 = 9.81;
 type Field = (&'static str, fn(&StepResult) -> f64);
 
 /// At t = 0 the arrestor rests in its self-weight deflection (Eq. 26): the clamp carries its
-/// weight, (m_l + m_tip) g = 114 777 N, and the moment m_l g L / 2 + m_tip g L = 914 k N m, to
+/// weight, (m_l + m_tip) g = 114 777 N, and the moment m_l g L / 2 + m_tip g L = 781 kN m, to
 /// round-off (1e-9: the static rows of Hermite elements are exact for a uniform load).
 #[test]
 fn clamp_carries_the_arrestors_weight_at_rest() {
