@@ -19,6 +19,9 @@ pub enum Error {
         /// The offending value, as given.
         value: String,
     },
+    /// Several invalid parameters, each with its own message, reported at once.
+    #[error("{}", .0.iter().map(ToString::to_string).collect::<Vec<_>>().join("; "))]
+    Invalid(Vec<Error>),
     /// A time step above the stability limit of the linear acceleration method.
     #[error(
         "{name} = {step:e} s is above the stability limit of the linear acceleration method: \

@@ -94,6 +94,9 @@ struct RunArgs {
     /// `energy_tolerance`).
     #[arg(long)]
     strict: bool,
+    /// Refuse runs that need more internal steps than this (duration over the smaller step).
+    #[arg(long, default_value_t = beam_impact::model::scenario::MAX_STEPS)]
+    max_steps: u64,
 }
 
 /// Exit code of a run that completed but whose numbers are not trusted (with `--strict`).
@@ -134,6 +137,7 @@ fn run(args: &RunArgs) -> Result<bool> {
     let paper = scenario.is_paper();
     let started = Instant::now();
     let mut simulation = Simulation::new(&scenario)?;
+    simulation.check_step_count(scenario.duration_ns(), args.max_steps)?;
     // Open every output before the run, so that a bad path fails at once, not after it.
     let json_file = match &args.json {
         Some(path) => {

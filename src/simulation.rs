@@ -537,6 +537,26 @@ impl<S: Stepper> Simulation<S> {
         &self.output
     }
 
+    /// Refuses a run of `duration_ns` that would need more than `max_steps` internal steps (at
+    /// the smaller of the two time steps): an error naming the duration, the step and the count.
+    pub fn check_step_count(&self, duration_ns: u64, max_steps: u64) -> Result<()> {
+        let step_ns = self.plan.free_ns.min(self.plan.contact_ns).max(1);
+        let steps = duration_ns.div_ceil(step_ns);
+        if steps > max_steps {
+            return Err(Error::invalid(
+                "duration",
+                format!(
+                    "at most {max_steps} steps of {:e} s (the smaller time step), i.e. <= {} s; this run needs {steps} \
+                     steps (raise the limit with --max-steps, or coarsen the mesh)",
+                    seconds(step_ns),
+                    seconds(step_ns.saturating_mul(max_steps))
+                ),
+                seconds(duration_ns),
+            ));
+        }
+        Ok(())
+    }
+
     /// The resolved time steps of both stages.
     pub fn step_plan(&self) -> &StepPlan {
         &self.plan

@@ -85,3 +85,32 @@ fn unknown_fields_and_bad_types_are_reported_on_one_line() {
     let message = Scenario::from_toml("[lower]\nelements = \"seven\"\n", "type.toml").unwrap_err().to_string();
     assert!(message.contains("type.toml") && !message.contains('\n'), "{message}");
 }
+
+/// Scenarios from strangers (issue 9): each is refused before any work, with a message naming
+/// the field. A million seconds at 1 ns steps (1e15 steps) by the step-count limit; a drop height
+/// of 1e308 m (beyond half the bridge: impossible) and a subnormal section modulus (infinite
+/// stresses) by their physical ranges; 400 elements per segment by the mesh limit (32x the
+/// paper's 7 = 224 still fits). Every invalid field of a file is reported at once.
+#[test]
+fn hostile_scenarios_are_refused_naming_the_field() {
+    let s = Scenario::from_toml("duration = 1e6\nstep_free = 1e-9\nstep_contact = 1e-9\n", "long.toml").unwrap();
+    let simulation = Simulation::new(&s).unwrap();
+    let message = simulation.check_step_count(s.duration_ns(), beam_impact::model::scenario::MAX_STEPS).unwrap_err();
+    assert!(message.to_string().starts_with("duration must be at most 100000000 steps"), "{message}");
+    let message = Scenario::from_toml("drop_height = 1e308\n", "high.toml").unwrap_err().to_string();
+    assert_eq!(message, "drop_height must be between 0 and 14.5 m, got 1e308");
+    let message = Scenario::from_toml("[lower]\nsection_modulus = 1e-310\n", "tiny.toml").unwrap_err().to_string();
+    assert!(message.starts_with("lower.section_modulus must be between 1e-12 and 1000 m^3"), "{message}");
+    let text = "[lower]\nelements = 400\nsection_modulus = -1\n[upper]\nelements_to_contact = 400\nelements_beyond_contact = 400\n";
+    let message = Scenario::from_toml(text, "big.toml").unwrap_err().to_string();
+    for field in
+        ["lower.elements", "lower.section_modulus", "upper.elements_to_contact", "upper.elements_beyond_contact"]
+    {
+        assert!(message.contains(&format!("{field} must be")), "{field} missing from: {message}");
+    }
+    let mut fine = Scenario::default();
+    fine.lower.elements = 224;
+    fine.upper.elements_to_contact = 224;
+    fine.upper.elements_beyond_contact = 224;
+    assert!(fine.validate().is_ok(), "32x the paper's mesh stays allowed");
+}

@@ -176,9 +176,14 @@ pub const PAPER_STEP_FREE: f64 = 5e-5;
 /// The paper's time step in contact, s: the upper bound of the automatic step.
 pub const PAPER_STEP_CONTACT: f64 = 2.5e-5;
 
-/// Largest element count accepted per beam segment: far beyond any useful mesh, it keeps
-/// the dense eigen solution of the model in seconds.
-pub const MAX_ELEMENTS: u32 = 400;
+/// Largest element count accepted per beam segment: 32x the paper's 7 (224) fits, and the
+/// dense eigen solutions of the beams (O(n^3)) stay within seconds.
+pub const MAX_ELEMENTS: u32 = 256;
+
+/// Largest number of internal steps a run may need (duration over the smaller time step),
+/// unless the CLI's `--max-steps` raises it: 1e8 steps take minutes on the paper mesh and
+/// hours on fine ones; a scenario asking for more is refused before it starts.
+pub const MAX_STEPS: u64 = 100_000_000;
 
 /// Smallest time step: the stepper counts time in integer nanoseconds.
 pub const MIN_STEP: f64 = 1e-9;
@@ -187,28 +192,50 @@ fn positive(name: &'static str, unit: &str, value: f64) -> Result<()> {
     if value.is_finite() && value > 0.0 {
         Ok(())
     } else {
-        Err(Error::invalid(name, format!("> 0 {unit}").trim_end().to_string(), value))
+        Err(Error::invalid(name, format!("> 0 {unit}").trim_end().to_string(), bound(value)))
     }
+}
+
+/// A number as people write it: 0.999, 1000, 1e-12, 1e9 (and -3, NaN, inf as they are).
+fn bound(x: f64) -> String {
+    if x.is_finite() && x != 0.0 && !(1e-3..1e4).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
+/// `min <= value <= max`, finite.
+fn within(name: &'static str, unit: &str, value: f64, min: f64, max: f64) -> Result<()> {
+    if value.is_finite() && (min..=max).contains(&value) {
+        Ok(())
+    } else if value.is_finite() && value < min && min == 0.0 {
+        Err(Error::invalid(name, format!(">= 0 {unit}").trim_end().to_string(), bound(value)))
+    } else {
+        Err(Error::invalid(
+            name,
+            format!("between {} and {} {unit}", bound(min), bound(max)).trim_end().to_string(),
+            bound(value),
+        ))
+    }
+}
+
+/// A physical size: > 0 (the message every user knows), then within its sane range.
+fn size(name: &'static str, unit: &str, value: f64, min: f64, max: f64) -> Result<()> {
+    positive(name, unit, value)?;
+    within(name, unit, value, min, max)
 }
 
 fn time_step(name: &'static str, value: TimeStep) -> Result<()> {
     let TimeStep::Fixed(step) = value else { return Ok(()) };
-    if !(step.is_finite() && step >= MIN_STEP) {
+    if !(step.is_finite() && (MIN_STEP..=1.0).contains(&step)) {
         return Err(Error::invalid(
             name,
-            format!(">= {MIN_STEP:e} s (time is counted in ns), or \"auto\" (0 in the FMU)"),
+            format!("between {MIN_STEP:e} s (time is counted in ns) and 1 s, or \"auto\" (0 in the FMU)"),
             step,
         ));
     }
     Ok(())
-}
-
-fn non_negative(name: &'static str, unit: &str, value: f64) -> Result<()> {
-    if value.is_finite() && value >= 0.0 {
-        Ok(())
-    } else {
-        Err(Error::invalid(name, format!(">= 0 {unit}").trim_end().to_string(), value))
-    }
 }
 
 /// Largest tip force accepted, N: a thousand times the paper's 475 kN impact force is far
@@ -232,12 +259,17 @@ fn elements(name: &'static str, value: u32) -> Result<()> {
 }
 
 impl Scenario {
-    /// Parses a scenario from TOML text; missing fields take the paper's values.
+    /// Parses a scenario from TOML text; missing fields take their defaults. Every invalid field
+    /// is reported at once (a syntax or type error stops first).
     pub fn from_toml(text: &str, path: &str) -> Result<Self> {
         let scenario: Scenario = toml::from_str(text)
             .map_err(|e| Error::Scenario { path: path.to_string(), message: one_line(&e.to_string()) })?;
-        scenario.validate()?;
-        Ok(scenario)
+        let mut errors = scenario.validation_errors();
+        match errors.len() {
+            0 => Ok(scenario),
+            1 => Err(errors.remove(0)),
+            _ => Err(Error::Invalid(errors)),
+        }
     }
 
     /// The scenario as TOML, with every field.
@@ -263,59 +295,75 @@ impl Scenario {
     /// Checks every field that can be checked without assembling the model. The stability of
     /// the time steps needs the natural frequencies and is checked by [`crate::solver::ModalSystem::new`].
     pub fn validate(&self) -> Result<()> {
-        // A zero drop height is legal: the bridge touches the arrestor at rest.
-        non_negative("drop_height", "m", self.drop_height)?;
-        positive("contact_position", "m", self.contact_position)?;
-        non_negative("damping_ratio", "", self.damping_ratio)?;
-        if self.damping_ratio >= 1.0 {
-            return Err(Error::invalid("damping_ratio", "< 1 (under-critical)", self.damping_ratio));
+        match self.validation_errors().into_iter().next() {
+            Some(e) => Err(e),
+            None => Ok(()),
         }
-        non_negative("rayleigh_alpha", "1/s", self.rayleigh_alpha)?;
-        non_negative("rayleigh_beta", "s", self.rayleigh_beta)?;
-        time_step("step_free", self.step_free)?;
-        time_step("step_contact", self.step_contact)?;
-        positive("duration", "s", self.duration)?;
-        if self.duration > 1e6 {
-            return Err(Error::invalid("duration", "<= 1e6 s", self.duration));
-        }
-        positive("gravity", "m/s^2", self.gravity)?;
-        if !(self.energy_tolerance.is_finite() && self.energy_tolerance > 0.0 && self.energy_tolerance <= 1.0) {
-            return Err(Error::invalid("energy_tolerance", "> 0 and <= 1 (a fraction)", self.energy_tolerance));
-        }
+    }
 
+    /// Every field that breaks its rule, each as its own error naming the field, its rule (with
+    /// the unit) and the value. The bounds keep every accepted scenario finite and answerable:
+    /// beyond them the model's numbers overflow, underflow or stop meaning anything physical.
+    pub fn validation_errors(&self) -> Vec<Error> {
+        let mut errors = Vec::new();
+        let mut check = |result: Result<()>| {
+            if let Err(e) = result {
+                errors.push(e);
+            }
+        };
         let u = &self.upper;
-        positive("upper.length", "m", u.length)?;
-        positive("upper.mass", "kg", u.mass)?;
-        positive("upper.elastic_modulus", "Pa", u.elastic_modulus)?;
-        positive("upper.second_moment", "m^4", u.second_moment)?;
-        positive("upper.section_modulus", "m^3", u.section_modulus)?;
-        elements("upper.elements_to_contact", u.elements_to_contact)?;
-        elements("upper.elements_beyond_contact", u.elements_beyond_contact)?;
-        tip_force("upper.tip_force", u.tip_force)?;
-        if self.contact_position >= u.length {
-            return Err(Error::invalid(
+        let l = &self.lower;
+        let c = &self.contact;
+        // A zero drop height is legal: the bridge touches the arrestor at rest. The centre of
+        // gravity cannot drop more than half the bridge's length (45 degrees with Eq. 20's tan).
+        let bridge_ok = size("upper.length", "m", u.length, 0.01, 1e3).is_ok();
+        check(within("drop_height", "m", self.drop_height, 0.0, if bridge_ok { 0.5 * u.length } else { 500.0 }));
+        check(positive("contact_position", "m", self.contact_position));
+        if bridge_ok && self.contact_position.is_finite() && self.contact_position >= u.length {
+            check(Err(Error::invalid(
                 "contact_position",
                 format!("inside the upper beam, 0 < d < upper.length = {} m", u.length),
                 self.contact_position,
-            ));
+            )));
         }
+        check(within("damping_ratio", "", self.damping_ratio, 0.0, 0.999));
+        check(within("rayleigh_alpha", "1/s", self.rayleigh_alpha, 0.0, 1e4));
+        check(within("rayleigh_beta", "s", self.rayleigh_beta, 0.0, 1.0));
+        check(time_step("step_free", self.step_free));
+        check(time_step("step_contact", self.step_contact));
+        check(positive("duration", "s", self.duration).and_then(|()| within("duration", "s", self.duration, 0.0, 1e6)));
+        check(
+            positive("gravity", "m/s^2", self.gravity)
+                .and_then(|()| within("gravity", "m/s^2", self.gravity, 0.0, 100.0)),
+        );
+        check(
+            positive("energy_tolerance", "", self.energy_tolerance)
+                .and_then(|()| within("energy_tolerance", "(a fraction)", self.energy_tolerance, 0.0, 1.0)),
+        );
 
-        let l = &self.lower;
-        positive("lower.length", "m", l.length)?;
-        positive("lower.mass", "kg", l.mass)?;
-        non_negative("lower.tip_mass", "kg", l.tip_mass)?;
-        positive("lower.elastic_modulus", "Pa", l.elastic_modulus)?;
-        positive("lower.second_moment", "m^4", l.second_moment)?;
-        positive("lower.section_modulus", "m^3", l.section_modulus)?;
-        positive("lower.shear_area", "m^2", l.shear_area)?;
-        elements("lower.elements", l.elements)?;
-        tip_force("lower.tip_force", l.tip_force)?;
+        check(size("upper.length", "m", u.length, 0.01, 1e3));
+        check(size("upper.mass", "kg", u.mass, 1e-3, 1e9));
+        check(size("upper.elastic_modulus", "Pa", u.elastic_modulus, 1e6, 1e13));
+        check(size("upper.second_moment", "m^4", u.second_moment, 1e-12, 1e3));
+        check(size("upper.section_modulus", "m^3", u.section_modulus, 1e-12, 1e3));
+        check(elements("upper.elements_to_contact", u.elements_to_contact));
+        check(elements("upper.elements_beyond_contact", u.elements_beyond_contact));
+        check(tip_force("upper.tip_force", u.tip_force));
 
-        let c = &self.contact;
-        positive("contact.area", "m^2", c.area)?;
-        positive("contact.length", "m", c.length)?;
-        positive("contact.elastic_modulus", "Pa", c.elastic_modulus)?;
-        Ok(())
+        check(size("lower.length", "m", l.length, 0.01, 1e3));
+        check(size("lower.mass", "kg", l.mass, 1e-3, 1e9));
+        check(within("lower.tip_mass", "kg", l.tip_mass, 0.0, 1e9));
+        check(size("lower.elastic_modulus", "Pa", l.elastic_modulus, 1e6, 1e13));
+        check(size("lower.second_moment", "m^4", l.second_moment, 1e-12, 1e3));
+        check(size("lower.section_modulus", "m^3", l.section_modulus, 1e-12, 1e3));
+        check(size("lower.shear_area", "m^2", l.shear_area, 1e-12, 1e3));
+        check(elements("lower.elements", l.elements));
+        check(tip_force("lower.tip_force", l.tip_force));
+
+        check(size("contact.area", "m^2", c.area, 1e-12, 1e3));
+        check(size("contact.length", "m", c.length, 1e-6, 1e3));
+        check(size("contact.elastic_modulus", "Pa", c.elastic_modulus, 1e6, 1e13));
+        errors
     }
 
     /// Duration in integer nanoseconds.

@@ -110,5 +110,6 @@ pub mod mcap;
 pub mod bench;
 pub mod figures;
 pub mod report;
+pub mod safe_read;
 pub mod scene;
 pub mod schema;
