@@ -616,13 +616,15 @@ mod tests {
     /// come out equal, mesh_change falls back to base vs 2x; at the cap everywhere, an error.
     #[test]
     fn refinement_past_the_cap_is_capped_per_segment_and_noted() {
-        let m = Mesh { lower: 7, upper_to_contact: 150, upper_beyond_contact: 120 };
+        let m = Mesh { lower: 7, upper_to_contact: 100, upper_beyond_contact: 90 };
         let r = Refinement::of(m).unwrap();
-        assert_eq!(r.mesh_2x, Mesh { lower: 14, upper_to_contact: 300, upper_beyond_contact: 240 });
+        assert_eq!(r.mesh_2x, Mesh { lower: 14, upper_to_contact: 200, upper_beyond_contact: 180 });
         assert_eq!(r.mesh_4x, Mesh { lower: 28, upper_to_contact: MAX_ELEMENTS, upper_beyond_contact: MAX_ELEMENTS });
         assert_eq!(r.mesh_change_between, ["mesh_2x", "mesh_4x"]);
         let note = r.mesh_capped.expect("capped");
-        assert!(note.contains("capped at 400") && note.contains("28 + 400/400"), "{note}");
+        let cap = format!("capped at {MAX_ELEMENTS}");
+        let mesh = format!("28 + {MAX_ELEMENTS}/{MAX_ELEMENTS}");
+        assert!(note.contains(&cap) && note.contains(&mesh), "{note}");
 
         let at_cap = Mesh { lower: 7, upper_to_contact: 200, upper_beyond_contact: MAX_ELEMENTS };
         let r = Refinement::of(at_cap).unwrap();

@@ -95,7 +95,7 @@ fn a_wrong_integer_is_refused() {
     // SAFETY: as above.
     assert_eq!(unsafe { f(fmu.c, [vr("lower.elements")].as_ptr(), 1, [0].as_ptr()) }, OK);
     assert_eq!(fmu.initialize(), ERROR);
-    assert!(fmu.log.text().contains("lower.elements must be between 1 and 400, got 0"), "{}", fmu.log.text());
+    assert!(fmu.log.text().contains("lower.elements must be between 1 and 256, got 0"), "{}", fmu.log.text());
 }
 
 #[test]

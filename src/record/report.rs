@@ -10,10 +10,9 @@ use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::Path;
 
-use ::mcap::read::{ChunkFlattener, Options};
-use ::mcap::records::Record;
 use prost::Message;
 
+use super::safe_read::{read_records, Ending, Limits, Place, Record};
 use super::mcap::{CONTACT_TOPIC, LOG_TOPIC, MODEL_TOPIC, SCENARIO_ATTACHMENT, SCENARIO_METADATA, STEP_TOPIC};
 use super::schema::{ContactEventMessage, LogMessage, ModelMessage, StepMessage};
 use crate::error::{Error, Result};
@@ -53,8 +52,13 @@ pub struct LogData {
     pub monotonic: bool,
     /// Whether the file ended with its summary and footer (a finished log).
     pub complete: bool,
-    /// Why reading stopped early, for a log cut short.
+    /// Why reading stopped early, one line naming the record and its byte offset: for a log cut
+    /// short (a killed writer) or one that holds damaged or invalid records.
     pub problem: Option<String>,
+    /// Whether reading stopped at bytes that are not a valid log (a bad CRC, a length beyond its
+    /// record, a chunk that does not decompress, a message that does not decode), rather than at
+    /// the end of a file cut short.
+    pub damaged: bool,
     /// Size of the file, bytes.
     pub file_size: u64,
 }
@@ -71,6 +75,16 @@ fn mcap_err(path: &Path, e: impl std::fmt::Display) -> Error {
     Error::Mcap { path: path.display().to_string(), message: e.to_string() }
 }
 
+/// What the reader may keep from a log, as a multiple of the file's size (plus
+/// [`RETAINED_SLACK`]): the decoded steps, events, log lines, topics, metadata and scenario.
+/// A step message of ours is ~330 bytes in the file and 216 bytes decoded, so real logs keep
+/// under 1x; the bound stops a crafted log of highly compressible messages from growing the
+/// reader's memory to the 64x its chunks may decompress to (see [`super::safe_read::Limits`]).
+pub const RETAINED_RATIO: u64 = 16;
+
+/// What the reader may keep from any log regardless of its size, bytes.
+pub const RETAINED_SLACK: u64 = 16 << 20;
+
 /// Reads every complete chunk of the log at `path`; a log cut short is not an error (see
 /// [`LogData::complete`] and [`LogData::problem`]), an unreadable or foreign file is.
 pub fn read_log(path: &Path) -> Result<LogData> {
@@ -79,55 +93,111 @@ pub fn read_log(path: &Path) -> Result<LogData> {
         path: path.display().to_string(),
         source,
     })?;
-    if !bytes.starts_with(mcap::MAGIC) {
-        return Err(mcap_err(path, "not an MCAP file (it does not start with the MCAP magic bytes)"));
-    }
+    read_log_bytes(&bytes, path)
+}
+
+/// What [`read_log`] does with the bytes of the file: every length is checked against what the
+/// bytes hold before anything is allocated or decompressed ([`super::safe_read`]), and what is
+/// kept is bounded by [`RETAINED_RATIO`] times their size. `path` names the log in errors.
+///
+/// Reading stops at the first record that is not valid (a file cut short, a bad CRC, a chunk
+/// that does not decompress, a message that does not decode); what was read before it is kept,
+/// and [`LogData::problem`] says what stopped it, with the record's kind and byte offset. A file
+/// in which nothing could be read is an error.
+pub fn read_log_bytes(bytes: &[u8], path: &Path) -> Result<LogData> {
     let mut data = LogData { monotonic: true, file_size: bytes.len() as u64, ..LogData::default() };
-    let reader = ChunkFlattener::new_with_options(&bytes, Options::ValidateChunkCrcs | Options::IgnoreEndMagic)
-        .map_err(|e| mcap_err(path, e))?;
-    let mut topics: BTreeMap<u16, String> = BTreeMap::new();
-    let mut step = StepMessage::default();
-    let mut last_time = 0u64;
-    let mut model_toml = None;
-    let mut footer = false;
-    for record in reader {
-        let record = match record {
-            Ok(r) => r,
-            // Nothing readable at all: not a log (or not even its header), an error.
-            Err(e) if topics.is_empty() && data.messages.is_empty() => {
-                return Err(mcap_err(path, format!("not a readable MCAP log: {e}")));
-            }
-            Err(e) => {
-                data.problem = Some(e.to_string());
-                break;
-            }
-        };
+    let mut state = ReadState {
+        retained_limit: RETAINED_RATIO.saturating_mul(bytes.len() as u64).saturating_add(RETAINED_SLACK),
+        ..ReadState::default()
+    };
+    let ending = read_records(bytes, Limits::default(), &mut |at, record| state.visit(&mut data, at, record));
+    let stop = match ending {
+        Ok(Ending::Complete) => None,
+        Ok(Ending::Stopped(e)) => Some((e.is_cut_short(), e.to_string())),
+        Err(problem) => Some((false, problem)),
+    };
+    if let Some((cut_short, problem)) = stop {
+        // Nothing readable at all: not a log (or not even its header), an error.
+        if state.topics.is_empty() && data.messages.is_empty() {
+            return Err(mcap_err(path, format!("not a readable MCAP log: {problem}")));
+        }
+        data.damaged = !cut_short;
+        data.problem = Some(problem);
+    }
+    data.complete = data.problem.is_none();
+    if data.scenario_toml.is_none() {
+        data.scenario_toml = state.model_toml;
+    }
+    Ok(data)
+}
+
+/// What reading a log carries from one record to the next.
+#[derive(Default)]
+struct ReadState {
+    topics: BTreeMap<u16, String>,
+    step: StepMessage,
+    last_time: u64,
+    model_toml: Option<String>,
+    retained: u64,
+    retained_limit: u64,
+}
+
+impl ReadState {
+    /// Counts `bytes` more kept from the log; past the limit, reading stops.
+    fn keep(&mut self, bytes: usize, at: Place, what: &str) -> std::result::Result<(), String> {
+        self.retained = self.retained.saturating_add(bytes as u64);
+        if self.retained > self.retained_limit {
+            return Err(format!(
+                "{what} at {at}: the log decodes to more than {} bytes ({RETAINED_RATIO}x its size + {} MiB), \
+                 more than any log of this program holds",
+                self.retained_limit,
+                RETAINED_SLACK >> 20
+            ));
+        }
+        Ok(())
+    }
+
+    fn visit(&mut self, data: &mut LogData, at: Place, record: Record<'_>) -> std::result::Result<(), String> {
         match record {
-            Record::Channel(c) => {
-                topics.insert(c.id, c.topic);
+            Record::Channel { id, topic, .. } => {
+                // The topic is kept twice: here and as a key of the message counts.
+                self.keep(2 * topic.len() + 64, at, "channel record")?;
+                self.topics.insert(id, topic.to_string());
             }
-            Record::Message { header, data: bytes } => {
-                let topic = topics.get(&header.channel_id).map(String::as_str).unwrap_or("?");
-                *data.messages.entry(topic.to_string()).or_insert(0) += 1;
+            Record::Message { channel_id, log_time, publish_time, data: bytes, .. } => {
+                let topic = self.topics.get(&channel_id).map(String::as_str).unwrap_or("?");
+                match data.messages.get_mut(topic) {
+                    Some(n) => *n += 1,
+                    None => {
+                        data.messages.insert(topic.to_string(), 1);
+                    }
+                }
                 // Time runs backwards only at a rollback: its log line and the steps after it.
-                let decreasing = header.log_time < last_time;
-                if header.publish_time != header.log_time {
+                let decreasing = log_time < self.last_time;
+                if publish_time != log_time {
                     data.monotonic = false;
                 }
-                last_time = header.log_time;
-                let bad = |what: &str, e: prost::DecodeError| mcap_err(path, format!("bad {what} message: {e}"));
+                self.last_time = log_time;
+                let bad = |what: &str, e: prost::DecodeError| format!("{what} message at {at} does not decode: {e}");
                 match topic {
                     STEP_TOPIC => {
-                        step.clear();
-                        step.merge(&bytes[..]).map_err(|e| bad("step", e))?;
-                        let result = step.result();
+                        self.keep(std::mem::size_of::<StepResult>(), at, "step message")?;
+                        self.step.clear();
+                        self.step.merge(bytes).map_err(|e| bad("step", e))?;
+                        let result = self.step.result();
                         let rollback = data.steps.last().is_some_and(|last| result.step <= last.step);
                         data.monotonic &= !decreasing || rollback;
                         if rollback {
-                            // A rollback: this step continues from step result.step - 1.
+                            // A rollback: this step continues from step result.step - 1. Steps are
+                            // kept in increasing step order, so the superseded ones are a tail
+                            // (found by binary search); so are the events, which follow the steps.
+                            // Each step and event is dropped at most once: linear in the log.
                             data.rollbacks += 1;
-                            data.steps.retain(|r| r.step < result.step);
-                            data.events.retain(|e| e.step <= result.step);
+                            let keep = data.steps.partition_point(|r| r.step < result.step);
+                            data.steps.truncate(keep);
+                            while data.events.last().is_some_and(|e| e.step > result.step) {
+                                data.events.pop();
+                            }
                             if data.peak_deflection_step >= result.step {
                                 data.peak_deflection_coordinates.clear();
                             }
@@ -136,49 +206,53 @@ pub fn read_log(path: &Path) -> Result<LogData> {
                         if previous.is_none_or(|p| result.peaks.lower_tip_deflection != p) {
                             data.peak_deflection_coordinates.clear();
                             data.peak_deflection_coordinates
-                                .extend(step.modal_coordinates.iter().map(|&q| f64::from(q)));
+                                .extend(self.step.modal_coordinates.iter().map(|&q| f64::from(q)));
                             data.peak_deflection_step = result.step;
                         }
                         data.steps.push(result);
                     }
                     CONTACT_TOPIC => {
+                        self.keep(std::mem::size_of::<ContactEvent>(), at, "contact message")?;
                         data.monotonic &= !decreasing;
-                        let m = ContactEventMessage::decode(&bytes[..]).map_err(|e| bad("contact", e))?;
+                        let m = ContactEventMessage::decode(bytes).map_err(|e| bad("contact", e))?;
                         data.events.push(ContactEvent::from(&m));
                     }
                     LOG_TOPIC => {
-                        let m = LogMessage::decode(&bytes[..]).map_err(|e| bad("log", e))?;
+                        let m = LogMessage::decode(bytes).map_err(|e| bad("log", e))?;
+                        self.keep(m.message.len() + std::mem::size_of::<String>(), at, "log message")?;
                         data.monotonic &= !decreasing || m.message.starts_with(super::mcap::ROLLBACK_LINE);
                         data.log_lines.push(m.message);
                     }
                     MODEL_TOPIC => {
                         data.monotonic &= !decreasing;
-                        let m = ModelMessage::decode(&bytes[..]).map_err(|e| bad("model", e))?;
-                        model_toml = Some(m.scenario_toml.clone());
+                        let m = ModelMessage::decode(bytes).map_err(|e| bad("model", e))?;
+                        let size = 2 * m.scenario_toml.len()
+                            + 8 * (m.lower_nodes.len() + m.upper_nodes.len() + m.nodal_shapes.len());
+                        self.keep(size, at, "model message")?;
+                        self.model_toml = Some(m.scenario_toml.clone());
                         data.model = Some(m);
                     }
                     _ => {}
                 }
             }
-            Record::Attachment { header, data: bytes, .. } => {
-                if header.name == SCENARIO_ATTACHMENT {
-                    data.scenario_toml = Some(String::from_utf8_lossy(&bytes).into_owned());
+            Record::Attachment { name, media_type, data: bytes, .. } => {
+                let scenario = name == SCENARIO_ATTACHMENT;
+                let size = name.len() + media_type.len() + 64 + if scenario { bytes.len() } else { 0 };
+                self.keep(size, at, "attachment record")?;
+                if scenario {
+                    data.scenario_toml = Some(String::from_utf8_lossy(bytes).into_owned());
                 }
-                data.attachments.push((header.name, header.media_type, bytes.len()));
+                data.attachments.push((name.to_string(), media_type.to_string(), bytes.len()));
             }
-            Record::Metadata(m) if m.name == SCENARIO_METADATA => data.metadata = m.metadata,
-            Record::Footer(_) => footer = true,
+            Record::Metadata { name, entries } if name == SCENARIO_METADATA => {
+                let size: usize = entries.iter().map(|(k, v)| k.len() + v.len() + 64).sum();
+                self.keep(size, at, "metadata record")?;
+                data.metadata = entries.into_iter().map(|(k, v)| (k.to_string(), v.to_string())).collect();
+            }
             _ => {}
         }
+        Ok(())
     }
-    data.complete = footer && data.problem.is_none();
-    if !data.complete && data.problem.is_none() {
-        data.problem = Some("the file ends before its summary and footer (the writer never finished)".into());
-    }
-    if data.scenario_toml.is_none() {
-        data.scenario_toml = model_toml;
-    }
-    Ok(data)
 }
 
 /// The run's [`Summary`] rebuilt from the log: peaks and when they were reached from the step
@@ -320,7 +394,8 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
         } else {
             let _ = writeln!(
                 text,
-                "status: CUT SHORT: {}; reporting the {} complete step messages it holds",
+                "status: {}: {}; reporting the {} complete step messages before it",
+                if data.damaged { "DAMAGED" } else { "CUT SHORT" },
                 data.problem.as_deref().unwrap_or("unknown"),
                 data.steps.len()
             );
@@ -338,8 +413,12 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
             );
         }
     }
-    let scenario = data.scenario()?;
-    let simulation = Simulation::new(&scenario)?;
+    // Nothing in a log is trusted: the stored scenario is parsed and validated (every field within
+    // the scenario limits, which bound the model's size) before anything is built from it.
+    let refused = |e: Error| mcap_err(mcap, format!("the scenario stored in the log is refused: {e}"));
+    let scenario = data.scenario().map_err(refused)?;
+    scenario.validate().map_err(refused)?;
+    let simulation = Simulation::new(&scenario).map_err(refused)?;
     let summary = summary_from_log(&data, &simulation)?;
     summary_text(&data, &scenario, &summary, &mut text);
     text.push('\n');
