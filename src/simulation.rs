@@ -223,14 +223,13 @@ impl<S: Stepper> Simulation<S> {
         let mut dt = seconds(step_ns);
         let forces = self.state.forces;
         self.backup.copy_from(&self.state.kinematics);
-        self.stepper.step(&mut self.state.kinematics, stage, dt, forces);
-        let mut probes = self.stepper.probes(&self.state.kinematics.displacement);
+        let (mut probes, mut energies) = self.stepper.step_measured(&mut self.state.kinematics, stage, dt, forces);
         if contact::stage(probes[Probe::Gap as usize]) != stage && step_ns > 1 {
             step_ns = self.locate_stage_change(stage, step_ns, probes[Probe::Gap as usize], forces);
             dt = seconds(step_ns);
             probes = self.stepper.probes(&self.state.kinematics.displacement);
+            energies = self.stepper.energies(&self.state.kinematics);
         }
-        let energies = self.stepper.energies(&self.state.kinematics);
         if !(probes.iter().all(|p| p.is_finite()) && energies.kinetic.is_finite() && energies.beam_strain.is_finite()) {
             self.state.kinematics.copy_from(&self.backup);
             return Err(Error::Numerical {

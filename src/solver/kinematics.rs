@@ -21,9 +21,9 @@ pub struct Kinematics {
 impl Kinematics {
     /// Copies `other` into `self` without allocating (same sizes).
     pub fn copy_from(&mut self, other: &Kinematics) {
-        self.displacement.copy_from(&other.displacement);
-        self.velocity.copy_from(&other.velocity);
-        self.acceleration.copy_from(&other.acceleration);
+        self.displacement.as_mut_slice().copy_from_slice(other.displacement.as_slice());
+        self.velocity.as_mut_slice().copy_from_slice(other.velocity.as_slice());
+        self.acceleration.as_mut_slice().copy_from_slice(other.acceleration.as_slice());
     }
 }
 
@@ -71,6 +71,18 @@ pub struct SupportAndTips {
 pub trait Stepper {
     /// Advances `state` by `dt` in `stage`, with the tip forces at the end of the step (F_{i+1}).
     fn step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, forces: TipForces);
+    /// [`Stepper::step`], then the probes and energies of the new state (a stepper may sum them
+    /// in its update pass).
+    fn step_measured(
+        &mut self,
+        state: &mut Kinematics,
+        stage: Stage,
+        dt: f64,
+        forces: TipForces,
+    ) -> ([f64; PROBES], Energies) {
+        self.step(state, stage, dt, forces);
+        (self.probes(&state.displacement), self.energies(state))
+    }
     /// Sets the acceleration that Eq. (1) gives for the state's displacement and velocity under
     /// `forces` (gravity included): M a = F - K delta - C delta', with the bar's stiffness in
     /// contact. Used where the load jumps, so that the next step starts from equilibrium.

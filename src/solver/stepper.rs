@@ -75,8 +75,16 @@ impl StageInverse {
     }
 }
 
-impl Stepper for ModalStepper {
-    fn step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, forces: TipForces) {
+impl ModalStepper {
+    /// Eqs. (7)-(11) for one step; with `MEASURE`, the probes and energies of the new state too
+    /// (otherwise zero), summed four lanes at a time.
+    fn advance<const MEASURE: bool>(
+        &mut self,
+        state: &mut Kinematics,
+        stage: Stage,
+        dt: f64,
+        forces: TipForces,
+    ) -> ([f64; PROBES], Energies) {
         let contact = stage.is_contact();
         let s = &self.system;
         // S^-1 is recomputed (O(n)) only when the stage's step size changes.
@@ -90,27 +98,41 @@ impl Stepper for ModalStepper {
             self.load = &s.gravity + &s.upper_tip * forces.upper + &s.lower_tip * forces.lower;
             self.load_forces = Some(forces);
         }
-        let (q, v, a) = (&mut state.displacement, &mut state.velocity, &mut state.acceleration);
-        let n = q.len();
+        let n = state.displacement.len();
         let (dt2_3, dt_2, dt2_6) = (dt * dt / 3.0, 0.5 * dt, dt * dt / 6.0);
-        let (z, y) = (&mut self.z, &mut self.y);
+        // Plain slices of one length: the loops below run without bounds checks.
+        let q = &mut state.displacement.as_mut_slice()[..n];
+        let v = &mut state.velocity.as_mut_slice()[..n];
+        let a = &mut state.acceleration.as_mut_slice()[..n];
+        let z = &mut self.z.as_mut_slice()[..n];
+        let y = &mut self.y.as_mut_slice()[..n];
+        let d_inv = &inv.diagonal_inverse.as_slice()[..n];
+        let load = &self.load.as_slice()[..n];
+        let omega2 = &s.omega2.as_slice()[..n];
+        let damping = &s.damping.as_slice()[..n];
+        let b = &s.contact.as_slice()[..n];
 
         // Eq. (8): f = F - (P q + Q v + R a) = F - K z - C (v + dt/2 a), z = q + dt v + dt^2/3 a,
         // with K = diag(omega^2) + kappa b b^T (kappa = k_c in contact, 0 out of it).
         for i in 0..n {
             z[i] = q[i] + dt * v[i] + dt2_3 * a[i];
-            y[i] = inv.diagonal_inverse[i] * (self.load[i] - s.omega2[i] * z[i] - s.damping[i] * (v[i] + dt_2 * a[i]));
+            y[i] = d_inv[i] * (load[i] - omega2[i] * z[i] - damping[i] * (v[i] + dt_2 * a[i]));
         }
         // Eq. (7): a+ = S^-1 f. Out of contact S is diagonal: a+ = D^-1 f = y. In contact the bar
         // adds kappa b b^T to K: f loses kappa b (b . z), and Sherman-Morrison corrects D^-1.
         if contact {
-            let bz = s.contact.dot(z);
+            let bz: f64 = b.iter().zip(z.iter()).map(|(bi, zi)| bi * zi).sum();
+            let kbz = s.bar_stiffness * bz;
             let mut by = 0.0;
             for i in 0..n {
-                y[i] -= inv.diagonal_inverse[i] * s.bar_stiffness * s.contact[i] * bz;
-                by += s.contact[i] * y[i];
+                y[i] -= d_inv[i] * kbz * b[i];
+                by += b[i] * y[i];
             }
-            y.axpy(-inv.factor * by, &inv.corrected, 1.0);
+            let corrected = &inv.corrected.as_slice()[..n];
+            let scale = inv.factor * by;
+            for i in 0..n {
+                y[i] -= scale * corrected[i];
+            }
         }
         // Eq. (11).
         for i in 0..n {
@@ -119,6 +141,40 @@ impl Stepper for ModalStepper {
             v[i] += dt_2 * (a[i] + a_next);
             a[i] = a_next;
         }
+        let mut probes = [0.0; PROBES];
+        let mut e = Energies::default();
+        if MEASURE {
+            // The measurements of the new state as lane-wise sums (vectorised; the order of the
+            // additions differs from a plain loop only by round-off).
+            let (q, v) = (&*q, &*v);
+            for (k, p) in probes.iter_mut().enumerate() {
+                *p = dot(&self.probe_columns.column(k).as_slice()[..n], q);
+            }
+            let lower = s.lower_dofs.min(n);
+            let lower_strain = 0.5 * weighted_squares(&omega2[..lower], &q[..lower]);
+            e.upper_strain = 0.5 * weighted_squares(&omega2[lower..], &q[lower..]);
+            e.beam_strain = lower_strain + e.upper_strain;
+            e.kinetic = 0.5 * dot(v, v);
+            e.gravity_potential = -dot(&s.gravity.as_slice()[..n], q);
+            e.dissipation_rate = weighted_squares(damping, v);
+        }
+        (probes, e)
+    }
+}
+
+impl Stepper for ModalStepper {
+    fn step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, forces: TipForces) {
+        self.advance::<false>(state, stage, dt, forces);
+    }
+
+    fn step_measured(
+        &mut self,
+        state: &mut Kinematics,
+        stage: Stage,
+        dt: f64,
+        forces: TipForces,
+    ) -> ([f64; PROBES], Energies) {
+        self.advance::<true>(state, stage, dt, forces)
     }
 
     fn equilibrium_acceleration(&mut self, state: &mut Kinematics, stage: Stage, forces: TipForces) {
@@ -188,4 +244,37 @@ impl Stepper for ModalStepper {
             acceleration: &self.projector * &physical.acceleration,
         }
     }
+}
+
+/// sum a_i b_i in four lanes (the compiler vectorises it; a plain loop's single accumulator
+/// cannot be reordered).
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let mut lanes = [0.0f64; 4];
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for l in 0..4 {
+            lanes[l] += x[l] * y[l];
+        }
+    }
+    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
+    (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) + tail
+}
+
+/// sum w_i x_i^2 in four lanes.
+fn weighted_squares(w: &[f64], x: &[f64]) -> f64 {
+    let n = w.len().min(x.len());
+    let (w, x) = (&w[..n], &x[..n]);
+    let mut lanes = [0.0f64; 4];
+    let (cw, cx) = (w.chunks_exact(4), x.chunks_exact(4));
+    let (rw, rx) = (cw.remainder(), cx.remainder());
+    for (u, y) in cw.zip(cx) {
+        for l in 0..4 {
+            lanes[l] += u[l] * y[l] * y[l];
+        }
+    }
+    let tail: f64 = rw.iter().zip(rx).map(|(u, y)| u * y * y).sum();
+    (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) + tail
 }
