@@ -179,8 +179,9 @@ enum Status fmi2GetFMUstate(Fmi2Component c, Fmi2FmuState *state);
 // `fmi2SetFMUstate`.
 enum Status fmi2SetFMUstate(Fmi2Component c, Fmi2FmuState state);
 
-// `fmi2FreeFMUstate`: frees `*state` and sets it to null.
-enum Status fmi2FreeFMUstate(Fmi2Component c, Fmi2FmuState *state);
+// `fmi2FreeFMUstate`: frees `*state` and sets it to null; a null `state` or `*state` is ignored (OK).
+enum Status fmi2FreeFMUstate(Fmi2Component c,
+                             Fmi2FmuState *state);
 
 // `fmi2SerializedFMUstateSize`.
 enum Status fmi2SerializedFMUstateSize(Fmi2Component c, Fmi2FmuState state, size_t *size);
@@ -527,8 +528,9 @@ enum Status fmi3GetFMUState(Fmi3Instance instance, Fmi3FmuState *state);
 // `fmi3SetFMUState`.
 enum Status fmi3SetFMUState(Fmi3Instance instance, Fmi3FmuState state);
 
-// `fmi3FreeFMUState`: frees `*state` and sets it to null.
-enum Status fmi3FreeFMUState(Fmi3Instance instance, Fmi3FmuState *state);
+// `fmi3FreeFMUState`: frees `*state` and sets it to null; a null `state` or `*state` is ignored (OK).
+enum Status fmi3FreeFMUState(Fmi3Instance instance,
+                             Fmi3FmuState *state);
 
 // `fmi3SerializedFMUStateSize`.
 enum Status fmi3SerializedFMUStateSize(Fmi3Instance instance, Fmi3FmuState state, size_t *size);

@@ -113,16 +113,24 @@ pub enum Error {
         /// Bytes after the header.
         given: u64,
     },
-    /// An FMU state saved by an instance with other parameters.
+    /// A serialized FMU state whose checksum does not match its bytes (damaged in storage or transit).
     #[error(
-        "FMU state: the state belongs to another scenario (fingerprint {saved:016x}, this instance's \
-         parameters give {instance:016x}): set the same parameters before restoring"
+        "FMU state: checksum mismatch (CRC-32 {saved:08x} stored, {computed:08x} computed): the bytes are damaged"
     )]
-    StateScenario {
-        /// Fingerprint stored with the state.
-        saved: u64,
-        /// Fingerprint of the restoring instance's parameters.
-        instance: u64,
+    StateChecksum {
+        /// The CRC-32 in the header.
+        saved: u32,
+        /// The CRC-32 of the header and payload as given.
+        computed: u32,
+    },
+    /// A restored FMU state whose contents are impossible (a forged or corrupted state): the field
+    /// and why.
+    #[error("FMU state: {field} {detail}")]
+    StateInvalid {
+        /// The field's path in the state (`gap`, `result.step`, `contact_windows[3]`).
+        field: String,
+        /// What is wrong with it, with the value.
+        detail: String,
     },
     /// A serialized FMU state whose payload cannot be read back into a run state.
     #[error("FMU state: corrupt payload: {detail}")]

@@ -19,6 +19,7 @@ pub mod record;
 pub mod results;
 pub mod simulation;
 pub mod solver;
+pub mod sweep;
 pub mod verify;
 
 pub use error::{Error, Result};

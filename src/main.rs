@@ -1,7 +1,7 @@
 //! `beam-impact`: run the paper scenario or a user scenario, print the comparison with the
 //! paper, write FMUs, replay logs, benchmark. Thin: everything happens in the library.
 
-use std::io::Write;
+use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -10,7 +10,8 @@ use clap::{Args, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use beam_impact::model::TimeStep;
-use beam_impact::record::mcap::McapRecorder;
+use beam_impact::record::mcap::{McapRecorder, RecorderOptions};
+use beam_impact::record::output::{open_input, open_output};
 use beam_impact::record::{NullRecorder, Recorder, RunInfo};
 use beam_impact::results::{ContactEvent, StepResult};
 use beam_impact::{compare, Error, Result, Scenario, Simulation};
@@ -39,14 +40,20 @@ enum Command {
         /// Scenario file (default: the paper scenario).
         file: Option<PathBuf>,
     },
-    /// Write the FMI 2.0 and FMI 3.0 co-simulation FMUs.
+    /// Write the FMI 2.0 and FMI 3.0 co-simulation FMUs. With cargo-zigbuild on PATH the library
+    /// is first built for glibc 2.17 (manylinux2014) and that build is packed; without it, the
+    /// host build (with a warning: it needs this machine's glibc).
     Pack {
         /// Output directory; the FMUs go to DIR/fmi2/BeamImpact.fmu and DIR/fmi3/BeamImpact.fmu.
         #[arg(long, default_value = "target/fmu")]
         out: PathBuf,
-        /// The shared library to pack (default: libbeam_impact.so next to this executable).
+        /// The shared library to pack, as it is (default: the glibc 2.17 build, or the host build
+        /// libbeam_impact.so next to this executable).
         #[arg(long)]
         library: Option<PathBuf>,
+        /// Pack the host build next to this executable even when cargo-zigbuild is on PATH.
+        #[arg(long)]
+        no_zigbuild: bool,
     },
     /// Read an MCAP log: print its summary and write Figures 6-9 (SVG and PNG).
     Report {
@@ -75,6 +82,10 @@ enum Command {
         #[arg(long, default_value_t = beam_impact::verify::DEFAULT_TOLERANCE)]
         tolerance: f64,
     },
+    /// A design sweep: every combination of the `--vary` values (the last varying fastest), run in
+    /// parallel without logs; one CSV row per scenario (peaks, peak times, energy approach,
+    /// largest energy residual, trust verdict, error).
+    Sweep(SweepArgs),
 }
 
 #[derive(Args)]
@@ -84,9 +95,9 @@ struct RunArgs {
     /// Write the summary as JSON to this file.
     #[arg(long)]
     json: Option<PathBuf>,
-    /// Record every step to this MCAP file.
-    #[arg(long, default_value = "paper.mcap", conflicts_with = "no_mcap")]
-    mcap: PathBuf,
+    /// Record every step to this MCAP file [default: paper.mcap; with --set: <stem>-set-<hash>.mcap].
+    #[arg(long, conflicts_with = "no_mcap")]
+    mcap: Option<PathBuf>,
     /// Do not record.
     #[arg(long)]
     no_mcap: bool,
@@ -95,6 +106,35 @@ struct RunArgs {
     #[arg(long)]
     strict: bool,
     /// Refuse runs that need more internal steps than this (duration over the smaller step).
+    #[arg(long, default_value_t = beam_impact::model::scenario::MAX_STEPS)]
+    max_steps: u64,
+    /// Change a scenario field, KEY=VALUE with the dotted names of `beam-impact scenario`
+    /// (repeatable): `--set upper.mass=14000 --set step_free=auto --set stress_recovery=left`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+}
+
+#[derive(Args)]
+struct SweepArgs {
+    /// Scenario file (TOML) the grid starts from. Default: the paper scenario (the paper's steps).
+    file: Option<PathBuf>,
+    /// A varied field, KEY=SPEC with SPEC `start:stop:count` (inclusive, linear) or a comma list
+    /// (repeatable; the first is the outermost loop): `--vary drop_height=0.1:2:100`.
+    #[arg(long, value_name = "KEY=SPEC")]
+    vary: Vec<String>,
+    /// Change a field of every scenario, KEY=VALUE (repeatable), as `run --set`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+    /// The rows, one per scenario in grid order, as CSV.
+    #[arg(long, value_name = "FILE.csv")]
+    out: PathBuf,
+    /// Also write the rows as a JSON array of objects.
+    #[arg(long, value_name = "FILE")]
+    json: Option<PathBuf>,
+    /// Scenarios run at once [default: every core].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    jobs: Option<u64>,
+    /// Refuse runs that need more internal steps than this (a row with the error).
     #[arg(long, default_value_t = beam_impact::model::scenario::MAX_STEPS)]
     max_steps: u64,
 }
@@ -114,10 +154,11 @@ fn main() -> ExitCode {
         },
         Command::Scenario => emit(&Scenario::default().to_toml()),
         Command::Damping { file } => damping(file.as_deref()),
-        Command::Pack { out, library } => pack(&out, library),
+        Command::Pack { out, library, no_zigbuild } => pack(&out, library, no_zigbuild),
         Command::Report { file, out } => report(&file, out),
         Command::Bench { runs } => bench(runs),
         Command::Verify { file, json, tolerance } => verify(file.as_deref(), json.as_deref(), tolerance),
+        Command::Sweep(args) => sweep(&args),
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,
@@ -130,23 +171,43 @@ fn main() -> ExitCode {
 
 /// Runs a scenario; returns whether its numbers are trusted.
 fn run(args: &RunArgs) -> Result<bool> {
-    let scenario = match &args.file {
+    let mut scenario = match &args.file {
         Some(path) => read_scenario(path)?,
         None => Scenario::paper(),
     };
+    let settings = beam_impact::sweep::parse_settings(&args.set)?;
+    beam_impact::sweep::apply_settings(&mut scenario, &settings)?;
+    let mcap = args
+        .mcap
+        .clone()
+        .unwrap_or_else(|| beam_impact::sweep::default_log(args.file.as_deref(), &settings, &scenario));
     let paper = scenario.is_paper();
     let started = Instant::now();
     let mut simulation = Simulation::new(&scenario)?;
     simulation.check_step_count(scenario.duration_ns(), args.max_steps)?;
     // Open every output before the run, so that a bad path fails at once, not after it.
+    if let Some(json) = args.json.as_deref().filter(|_| !args.no_mcap) {
+        if same_file(json, &mcap) {
+            return Err(Error::Other(format!("--json and --mcap name the same file {}", json.display())));
+        }
+    }
     let json_file = match &args.json {
+        Some(path) if path.as_os_str() == "-" => Some((path, None)),
         Some(path) => {
-            Some((path, std::fs::File::create(path).map_err(|source| io("cannot create JSON", path, source))?))
+            let file = open_output(path, true, "cannot create JSON")?;
+            if file.metadata().is_ok_and(|m| m.is_file()) {
+                file.set_len(0).map_err(|source| io("cannot truncate JSON", path, source))?;
+            }
+            Some((path, Some(file)))
         }
         None => None,
     };
-    let mut recorder: Box<dyn Recorder> =
-        if args.no_mcap { Box::new(NullRecorder) } else { Box::new(McapRecorder::create(&args.mcap)?) };
+    let mut recorder: Box<dyn Recorder> = if args.no_mcap {
+        Box::new(NullRecorder)
+    } else {
+        let options = RecorderOptions { allow_devices: true, ..RecorderOptions::default() };
+        Box::new(McapRecorder::with_options(&mcap, options)?)
+    };
     let mut progress = Progress::new(recorder.as_mut(), scenario.duration_ns());
     simulation.run(&mut progress)?;
     progress.bar.finish_and_clear();
@@ -184,28 +245,71 @@ fn run(args: &RunArgs) -> Result<bool> {
     }
     text += &format!("wall time: {:.1} ms (assembly, modes and stepping", wall.as_secs_f64() * 1e3);
     if !args.no_mcap {
-        text += &format!(", recorded to {}", args.mcap.display());
+        text += &format!(", recorded to {}", mcap.display());
     }
     text += ")\n";
-    if let Some((path, mut file)) = json_file {
+    if let Some((path, file)) = json_file {
         let doc = serde_json::json!({
             "scenario": scenario,
             "summary": summary,
             "quality": summary.quality,
+            "merged_contact_windows": compare::merged_windows(&summary.contact_windows, beam_impact::results::BOUNCE_GAP),
+            "units": json_units(),
             "wall_time_s": wall.as_secs_f64(),
         });
         let json = serde_json::to_string_pretty(&doc).map_err(|e| Error::Other(format!("JSON: {e}")))?;
-        writeln!(file, "{json}").map_err(|source| io("cannot write JSON", path, source))?;
-        text += &format!("results written to {}\n", path.display());
+        match file {
+            Some(mut file) => {
+                writeln!(file, "{json}").map_err(|source| io("cannot write JSON", path, source))?;
+                text += &format!("results written to {}\n", path.display());
+            }
+            // `--json -`: the JSON is the standard output, without the tables.
+            None => return emit(&format!("{json}\n")).map(|()| summary.quality.trusted),
+        }
     }
     emit(&text)?;
     Ok(summary.quality.trusted)
 }
 
-/// Reads and validates a scenario file (missing fields take the paper's values).
+/// Reads and validates a scenario file (missing fields take their defaults); `-` is the standard
+/// input. A FIFO or socket is refused rather than waited on.
 fn read_scenario(path: &Path) -> Result<Scenario> {
-    let text = std::fs::read_to_string(path).map_err(|source| io("cannot read scenario", path, source))?;
+    let mut text = String::new();
+    if path.as_os_str() == "-" {
+        std::io::stdin().read_to_string(&mut text).map_err(|source| io("cannot read scenario", path, source))?;
+        return Scenario::from_toml(&text, "standard input");
+    }
+    let mut file = open_input(path, "cannot read scenario")?;
+    file.read_to_string(&mut text).map_err(|source| io("cannot read scenario", path, source))?;
     Scenario::from_toml(&text, &path.display().to_string())
+}
+
+/// The SI units of the `--json` fields (by name; nested names with dots).
+fn json_units() -> serde_json::Value {
+    serde_json::json!({
+        "time, times, contact windows, time_steps, first_contact_end": "s",
+        "lower_tip_deflection, tip_deflection": "m",
+        "*_stress (peaks, first_contact_peaks, energy_method)": "Pa",
+        "contact_force, energy_method.force": "N",
+        "energies, residuals, strain_energy, bridge_strain_energy, upper_strain_at_peak_deflection": "J",
+        "energy_method.flexion_stiffness": "N/m",
+        "energy_method.bridge_deceleration": "rad/s^2",
+        "energy_method.bridge_contact_moment": "N m",
+        "modes": "rad/s",
+        "energy_residual_fraction, energy_tolerance, bridge_strain_ratio": "1 (fraction)",
+        "scenario": "SI, as in `beam-impact scenario`",
+        "wall_time_s": "s"
+    })
+}
+
+/// Whether two paths name the same file: the same inode if both exist (a device such as
+/// /dev/null can take any number of outputs), else the same path.
+fn same_file(a: &Path, b: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    match (std::fs::metadata(a), std::fs::metadata(b)) {
+        (Ok(x), Ok(y)) => x.is_file() && x.dev() == y.dev() && x.ino() == y.ino(),
+        _ => a == b,
+    }
 }
 
 fn io(action: &'static str, path: &Path, source: std::io::Error) -> Error {
@@ -270,12 +374,86 @@ fn damping(file: Option<&Path>) -> Result<()> {
     emit(&beam_impact::damping_study::table(&rows))
 }
 
-fn pack(out: &Path, library: Option<PathBuf>) -> Result<()> {
+/// Packs `library`, or else the glibc 2.17 build that cargo-zigbuild makes when it is on PATH (and
+/// `no_zigbuild` is not set), or else the host build next to this executable. The build runs here,
+/// in the CLI, not in `fmi::pack`: that module is part of the shared library loaded into every
+/// FMU host, which has no business spawning cargo; `fmi::pack` packs the file it is given.
+fn pack(out: &Path, library: Option<PathBuf>, no_zigbuild: bool) -> Result<()> {
+    /// The target cargo-zigbuild builds for: x86_64 Linux, linked against glibc 2.17 symbols
+    /// (manylinux2014: loads on RHEL 7/8, Ubuntu 20.04, Debian 11 and later).
+    const TARGET: &str = "x86_64-unknown-linux-gnu.2.17";
+
+    /// An executable named `name` in a directory of PATH.
+    fn on_path(name: &str) -> Option<PathBuf> {
+        use std::os::unix::fs::PermissionsExt;
+        let paths = std::env::var_os("PATH")?;
+        std::env::split_paths(&paths)
+            .map(|dir| dir.join(name))
+            .find(|p| p.metadata().is_ok_and(|m| m.is_file() && m.permissions().mode() & 0o111 != 0))
+    }
+
+    /// Runs `cargo zigbuild` on this crate's source into its own target directory
+    /// (`<target>/zigbuild`, so that the host build's artifacts are neither locked nor rebuilt)
+    /// and returns the library it built.
+    fn zigbuild(zigbuild: &Path) -> Result<PathBuf> {
+        let source = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let manifest = source.join("Cargo.toml");
+        if !manifest.is_file() {
+            return Err(Error::Other(format!(
+                "cannot build the library for glibc 2.17: the crate's source {} is gone (pass --library FILE or \
+                 --no-zigbuild)",
+                source.display()
+            )));
+        }
+        let target_dir =
+            std::env::var_os("CARGO_TARGET_DIR").map_or_else(|| source.join("target"), PathBuf::from).join("zigbuild");
+        eprintln!("beam-impact: building the library for glibc 2.17 with {}", zigbuild.display());
+        let started = Instant::now();
+        let status = std::process::Command::new(zigbuild)
+            .args(["zigbuild", "--release", "--lib", "--target", TARGET, "--manifest-path"])
+            .arg(&manifest)
+            .arg("--target-dir")
+            .arg(&target_dir)
+            .status()
+            .map_err(|source| io("cannot run", zigbuild, source))?;
+        if !status.success() {
+            return Err(Error::Other(format!(
+                "`{} zigbuild --release --lib --target {TARGET}` failed ({status}); --no-zigbuild packs the host build",
+                zigbuild.display()
+            )));
+        }
+        let library = target_dir.join("x86_64-unknown-linux-gnu").join("release").join("libbeam_impact.so");
+        eprintln!(
+            "beam-impact: built {} for glibc 2.17 in {:.1} s",
+            library.display(),
+            started.elapsed().as_secs_f64()
+        );
+        Ok(library)
+    }
+
     let library = match library {
         Some(path) => path,
-        None => std::env::current_exe()
-            .map_err(|source| Error::Io { action: "cannot locate", path: "the running executable".into(), source })?
-            .with_file_name("libbeam_impact.so"),
+        None => {
+            let zig = if no_zigbuild { None } else { on_path("cargo-zigbuild") };
+            match zig {
+                Some(zig) => zigbuild(&zig)?,
+                None => {
+                    if !no_zigbuild {
+                        eprintln!(
+                            "beam-impact: warning: cargo-zigbuild is not on PATH: packing the host build, which needs \
+                             this machine's glibc or newer (pip install ziglang cargo-zigbuild for a glibc 2.17 build)"
+                        );
+                    }
+                    std::env::current_exe()
+                        .map_err(|source| Error::Io {
+                            action: "cannot locate",
+                            path: "the running executable".into(),
+                            source,
+                        })?
+                        .with_file_name("libbeam_impact.so")
+                }
+            }
+        }
     };
     for path in beam_impact::fmi::pack::pack(&library, out)? {
         emit(&format!("wrote {}\n", path.display()))?;
@@ -294,7 +472,9 @@ fn report(file: &Path, out: Option<PathBuf>) -> Result<()> {
 
 fn bench(runs: usize) -> Result<()> {
     let runs = runs.max(1);
+    eprintln!("beam-impact bench: 1/2 production stepper vs dense oracle, per-step cost ({runs} runs each)...");
     emit(&beam_impact::bench::stepper_benchmark(runs)?)?;
+    eprintln!("beam-impact bench: 2/2 recorded vs unrecorded paper run ({runs} runs each)...");
     emit(&format!("\n{}", beam_impact::record::bench::recording_benchmark(runs)?))
 }
 
@@ -334,4 +514,64 @@ fn verify(file: Option<&Path>, json: Option<&Path>, tolerance: f64) -> Result<()
         text += &format!("verdicts written to {}\n", path.display());
     }
     emit(&text)
+}
+
+fn sweep(args: &SweepArgs) -> Result<()> {
+    use beam_impact::sweep::{apply_settings, default_jobs, parse_axes, parse_settings, Sweep, SweepWriteError};
+    let mut base = match &args.file {
+        Some(path) => read_scenario(path)?,
+        None => Scenario::paper(),
+    };
+    apply_settings(&mut base, &parse_settings(&args.set)?)?;
+    let sweep = Sweep::new(base, parse_axes(&args.vary)?, args.max_steps)?;
+    let jobs = args.jobs.map_or_else(default_jobs, |j| usize::try_from(j).unwrap_or(usize::MAX));
+    let create = |path: &Path| {
+        std::fs::File::create(path).map(std::io::BufWriter::new).map_err(|source| io("cannot create", path, source))
+    };
+    let mut csv = create(&args.out)?;
+    let mut json = args.json.as_deref().map(create).transpose()?;
+    let bar = ProgressBar::new(sweep.len() as u64);
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} scenarios, {elapsed} ({eta} left)")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let started = Instant::now();
+    let tally = sweep
+        .write(jobs, &mut csv, json.as_mut().map(|j| j as &mut dyn Write), &mut |n| bar.set_position(n as u64))
+        .map_err(|e| match e {
+            SweepWriteError::Csv(source) => io("cannot write", &args.out, source),
+            SweepWriteError::Json(source) => {
+                io("cannot write", args.json.as_deref().unwrap_or(Path::new("JSON")), source)
+            }
+            SweepWriteError::Run(e) => e,
+        })?;
+    bar.finish_and_clear();
+    let wall = started.elapsed().as_secs_f64();
+    if tally.failed > 0 {
+        eprintln!(
+            "beam-impact: warning: {} of {} scenarios failed (their rows hold the error)",
+            tally.failed, tally.scenarios
+        );
+    }
+    if tally.untrusted > 0 {
+        eprintln!(
+            "beam-impact: warning: {} of {} scenarios not trusted (column trusted)",
+            tally.untrusted, tally.scenarios
+        );
+    }
+    let mut text = format!(
+        "sweep: {} scenarios on {} threads in {wall:.2} s ({:.1} ms of a thread each): {} ran, {} failed, {} not \
+         trusted\nrows written to {}",
+        tally.scenarios,
+        jobs.min(tally.scenarios.max(1)),
+        wall * 1e3 * jobs.min(tally.scenarios.max(1)) as f64 / tally.scenarios.max(1) as f64,
+        tally.scenarios - tally.failed,
+        tally.failed,
+        tally.untrusted,
+        args.out.display()
+    );
+    if let Some(path) = &args.json {
+        text += &format!(" and {}", path.display());
+    }
+    emit(&(text + "\n"))
 }

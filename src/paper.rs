@@ -7,7 +7,7 @@ pub const TABLE1_ENERGY: [f64; 4] = [0.628, 412e6, 40e6, 219e6];
 /// E_def,a = 149.2 kJ (Eq. 35).
 pub const ARRESTOR_STRAIN_ENERGY: f64 = 149.2e3;
 /// E_def,b = 4.4 kJ (Eq. 36): the bridge's strain energy of the energy approach, at the largest
-/// arrestor deflection with the bridge taken as a rigid body stopped by F_din (SCENARIO.md).
+/// arrestor deflection with the bridge taken as a rigid body stopped by F_din (docs/scenario.md).
 pub const BRIDGE_STRAIN_ENERGY: f64 = 4.4e3;
 /// E_def,b / E_def,a: "the bridge strain energy makes only 3,0 % of the arrestor strain energy".
 pub const BRIDGE_STRAIN_RATIO: f64 = 0.030;

@@ -185,13 +185,23 @@ impl Quality {
             Vec::new()
         } else {
             vec![format!(
-                "energy residual {max_residual:.4e} J is {:.3} % of the {flow:.4e} J that flow in the run, above \
+                "energy residual {max_residual:.4e} J is {} % of the {flow:.4e} J that flow in the run, above \
                  energy_tolerance = {} %",
-                fraction * 100.0,
-                energy_tolerance * 100.0
+                percent(fraction),
+                percent(energy_tolerance)
             )]
         };
         Quality { energy_residual_fraction: fraction, energy_tolerance, trusted, reasons, advisories }
+    }
+}
+
+/// A fraction as a percentage people read: 1 %, 0.036 %, 1e-7 %.
+fn percent(fraction: f64) -> String {
+    let p = fraction * 100.0;
+    if p != 0.0 && p.abs() < 1e-3 {
+        format!("{p:.1e}")
+    } else {
+        format!("{}", (p * 1e3).round() / 1e3)
     }
 }
 

@@ -55,6 +55,136 @@ pub struct RunState {
     pub first_contact: FirstContact,
 }
 
+impl RunState {
+    /// Checks a state that comes from outside the process (a deserialized FMU state) before it is
+    /// restored into a model of `dofs` coordinates whose longer internal step is `longest_step_ns`:
+    /// the vectors of the model's size and every number finite, step and time consistent (time =
+    /// seconds(time_ns), at least 1 ns per step, the outputs' time within the next internal step),
+    /// the contact windows ordered and within the run, peaks and their times plausible, the tip
+    /// forces within the input bound. The error names the field and the value. A real state
+    /// holds no NaN or infinity (nothing in it is undefined), so none is accepted.
+    pub fn validate(&self, dofs: usize, longest_step_ns: u64) -> Result<()> {
+        let invalid = |field: &str, detail: String| Err(Error::StateInvalid { field: field.to_string(), detail });
+        let k = &self.kinematics;
+        for (field, v) in [
+            ("kinematics.displacement", &k.displacement),
+            ("kinematics.velocity", &k.velocity),
+            ("kinematics.acceleration", &k.acceleration),
+        ] {
+            if v.len() != dofs {
+                return Err(Error::StateCoordinates { found: v.len(), expected: dofs });
+            }
+            if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+                return invalid(&format!("{field}[{i}]"), format!("= {} is not finite", v[i]));
+            }
+        }
+        let r = &self.result;
+        let e = &r.energy;
+        let numbers = [
+            ("gap", self.gap),
+            ("initial_energy", self.initial_energy),
+            ("dissipation_rate", self.dissipation_rate),
+            ("upper_strain_at_peak", self.upper_strain_at_peak),
+            ("max_residual", self.max_residual),
+            ("max_strain_energy", self.max_strain_energy),
+            ("max_external_work", self.max_external_work),
+            ("result.step_size", r.step_size),
+            ("result.lower_tip_deflection", r.lower_tip_deflection),
+            ("result.upper_contact_deflection", r.upper_contact_deflection),
+            ("result.upper_tip_deflection", r.upper_tip_deflection),
+            ("result.lower_clamp_bending_stress", r.lower_clamp_bending_stress),
+            ("result.lower_clamp_shear_stress", r.lower_clamp_shear_stress),
+            ("result.upper_contact_bending_stress", r.upper_contact_bending_stress),
+            ("result.contact_force", r.contact_force),
+            ("result.contact_stress", r.contact_stress),
+            ("result.lower_clamp_reaction_force", r.lower_clamp_reaction_force),
+            ("result.lower_clamp_reaction_moment", r.lower_clamp_reaction_moment),
+            ("result.upper_hinge_reaction_force", r.upper_hinge_reaction_force),
+            ("result.lower_tip_velocity", r.lower_tip_velocity),
+            ("result.upper_tip_velocity", r.upper_tip_velocity),
+            ("result.energy.kinetic", e.kinetic),
+            ("result.energy.strain", e.strain),
+            ("result.energy.gravity_potential", e.gravity_potential),
+            ("result.energy.external_work", e.external_work),
+            ("result.energy.damping_dissipation", e.damping_dissipation),
+            ("result.energy.residual", e.residual),
+        ];
+        if let Some((field, value)) = numbers.iter().find(|(_, x)| !x.is_finite()) {
+            return invalid(field, format!("= {value} is not finite"));
+        }
+        let non_negative = [
+            ("max_residual", self.max_residual),
+            ("max_external_work", self.max_external_work),
+            ("result.step_size", r.step_size),
+        ];
+        if let Some((field, value)) = non_negative.iter().find(|(_, x)| *x < 0.0) {
+            return invalid(field, format!("= {value} is negative"));
+        }
+        for (field, f) in
+            [("forces", self.forces), ("last_forces", self.last_forces), ("input_forces", self.input_forces)]
+        {
+            for (tip, value) in [("upper", f.upper), ("lower", f.lower)] {
+                if !(value.is_finite() && value.abs() <= crate::model::scenario::MAX_TIP_FORCE) {
+                    return invalid(
+                        &format!("{field}.{tip}"),
+                        format!(
+                            "= {value} N is not a tip force (finite, |F| <= {:e} N)",
+                            crate::model::scenario::MAX_TIP_FORCE
+                        ),
+                    );
+                }
+            }
+        }
+        if r.time.to_bits() != seconds(r.time_ns).to_bits() {
+            return invalid("result.time", format!("= {} s is not result.time_ns = {} ns", r.time, r.time_ns));
+        }
+        if (r.step == 0) != (r.time_ns == 0) || r.step > r.time_ns {
+            return invalid(
+                "result.step",
+                format!("= {} steps in result.time_ns = {} ns (each step lasts >= 1 ns)", r.step, r.time_ns),
+            );
+        }
+        if self.output_ns < r.time_ns || self.output_ns - r.time_ns > longest_step_ns {
+            return invalid(
+                "output_ns",
+                format!(
+                    "= {} ns is not within the internal step after result.time_ns = {} ns (at most {longest_step_ns} ns)",
+                    self.output_ns, r.time_ns
+                ),
+            );
+        }
+        let peaks = [("result.peaks", r.peaks), ("first_contact.peaks", self.first_contact.peaks)];
+        for (field, p) in peaks {
+            if let Some(v) = p.as_array().into_iter().find(|v| !(v.is_finite() && *v >= 0.0)) {
+                return invalid(field, format!("holds {v}, not a peak (finite, >= 0)"));
+            }
+        }
+        if let Some(t) = self.peak_times.as_array().into_iter().find(|t| !(*t >= 0.0 && *t <= r.time)) {
+            return invalid("peak_times", format!("holds {t} s, outside the run (0 to {} s)", r.time));
+        }
+        if self.contact_windows.len() as u64 > r.step.saturating_add(1) {
+            return invalid(
+                "contact_windows",
+                format!("holds {} windows in {} steps", self.contact_windows.len(), r.step),
+            );
+        }
+        let mut previous_end = 0.0;
+        for (i, w) in self.contact_windows.iter().enumerate() {
+            if !(w.start >= previous_end && w.start <= w.end && w.end <= r.time) {
+                return invalid(
+                    &format!("contact_windows[{i}]"),
+                    format!(
+                        "= {} to {} s is not ordered within the run (after {previous_end} s, before {} s)",
+                        w.start, w.end, r.time
+                    ),
+                );
+            }
+            previous_end = w.end;
+        }
+        Ok(())
+    }
+}
+
 /// How an [`Simulation::advance_to`] call ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Advance {
@@ -382,7 +512,7 @@ impl<S: Stepper> Simulation<S> {
             if let Some(saved) = saved {
                 if self.state.result.time_ns > target_ns {
                     // The point falls inside this step: interpolate, and leave the step untaken.
-                    self.output = self.interpolate(&saved.result, target_ns, stage);
+                    self.output = self.interpolate(&saved, target_ns, stage);
                     self.state = saved;
                     self.state.output_ns = target_ns;
                     return Ok(Advance::Reached);
@@ -451,11 +581,11 @@ impl<S: Stepper> Simulation<S> {
     }
 
     /// The outputs at `at_ns` inside the step just taken from `start` (backup) to the current
-    /// state: the method's cubic displacement and quadratic velocity over the step. Cumulative
-    /// energies (work, dissipation) are interpolated linearly; the peaks stay those of the whole
-    /// internal steps taken so far.
-    fn interpolate(&self, start: &StepResult, at_ns: u64, stage: Stage) -> StepResult {
-        let end = &self.state.result;
+    /// state: the method's cubic displacement and quadratic velocity over the step. Work and
+    /// dissipation are booked up to the point as the step books them; the peaks stay those of
+    /// the whole internal steps taken so far.
+    fn interpolate(&self, before: &RunState, at_ns: u64, stage: Stage) -> StepResult {
+        let (start, end) = (&before.result, &self.state.result);
         let dt = seconds(end.time_ns - start.time_ns);
         let tau = seconds(at_ns - start.time_ns);
         let (k0, k1) = (&self.backup, &self.state.kinematics);
@@ -472,8 +602,12 @@ impl<S: Stepper> Simulation<S> {
         let energies = self.stepper.energies(&kinematics);
         let mut result = self.outputs(&probes, stage);
         self.set_support_and_tips(&mut result, &kinematics);
-        let share = tau / dt;
-        let lerp = |a: f64, b: f64| a + (b - a) * share;
+        // The work and the dissipation up to the point, booked as the step books them: the tip
+        // forces' trapezoid over the deflection change, the dissipation rate's over the time.
+        let (last, forces) = (before.last_forces, before.forces);
+        let work = 0.5 * (last.upper + forces.upper) * (result.upper_tip_deflection - start.upper_tip_deflection)
+            + 0.5 * (last.lower + forces.lower) * (result.lower_tip_deflection - start.lower_tip_deflection);
+        let dissipated = 0.5 * tau * (before.dissipation_rate + energies.dissipation_rate);
         let bar = if stage.is_contact() {
             contact::bar_energy(self.model.bar_stiffness, probes[Probe::Gap as usize])
         } else {
@@ -483,8 +617,8 @@ impl<S: Stepper> Simulation<S> {
             kinetic: energies.kinetic,
             strain: energies.beam_strain + bar,
             gravity_potential: energies.gravity_potential,
-            external_work: lerp(start.energy.external_work, end.energy.external_work),
-            damping_dissipation: lerp(start.energy.damping_dissipation, end.energy.damping_dissipation),
+            external_work: start.energy.external_work + work,
+            damping_dissipation: start.energy.damping_dissipation + dissipated,
             residual: 0.0,
         };
         energy.residual = energy.kinetic + energy.strain + energy.gravity_potential + energy.damping_dissipation
@@ -582,27 +716,23 @@ impl<S: Stepper> Simulation<S> {
         &self.state
     }
 
-    /// Restores a state saved from a simulation of the same scenario.
+    /// Restores a state saved from a simulation of the same scenario, after
+    /// [`RunState::validate`]; a refused state leaves the simulation as it was.
     pub fn restore(&mut self, state: RunState) -> Result<()> {
-        let n = self.model.dofs();
-        let k = &state.kinematics;
-        let found = [k.displacement.len(), k.velocity.len(), k.acceleration.len()];
-        if let Some(&bad) = found.iter().find(|&&len| len != n) {
-            return Err(Error::StateCoordinates { found: bad, expected: n });
-        }
-        if state.output_ns < state.result.time_ns {
-            return Err(Error::Other(format!(
-                "FMU state: output time {} ns is before the latest step's {} ns",
-                state.output_ns, state.result.time_ns
-            )));
-        }
-        self.state = state;
+        state.validate(self.model.dofs(), self.plan.free_ns.max(self.plan.contact_ns))?;
+        let previous = std::mem::replace(&mut self.state, state);
+        let previous_output = self.output;
         // The outputs at a communication point inside a step are recomputed from that step.
         let (at, forces) = (self.state.output_ns, self.state.input_forces);
         self.state.input_forces = self.state.forces;
         self.state.output_ns = self.state.result.time_ns;
         self.output = self.state.result;
-        self.advance_outputs_to(at, &mut NullRecorder, false)?;
+        if let Err(e) = self.advance_outputs_to(at, &mut NullRecorder, false) {
+            // Leave the simulation as it was: a refused state changes nothing.
+            self.state = previous;
+            self.output = previous_output;
+            return Err(e);
+        }
         self.state.input_forces = forces;
         Ok(())
     }

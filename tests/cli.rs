@@ -118,3 +118,42 @@ fn auto_steps_and_stress_recovery_from_a_file() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("middle"));
 }
+
+/// Paths from strangers (issue 9): `--json` and `--mcap` on one file is refused; an output that
+/// is a symbolic link is refused without touching the link's target; a FIFO as scenario or log
+/// is refused at once instead of blocking; `-` reads the scenario from standard input and writes
+/// the JSON to standard output; `/dev/null` works as either output.
+#[test]
+fn output_and_input_paths_are_checked() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let out = beam_impact().args(["run", "--mcap", "x.out", "--json", "x.out"]).current_dir(d).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--json and --mcap name the same file"));
+    std::fs::write(d.join("target.txt"), "keep").unwrap();
+    std::os::unix::fs::symlink(d.join("target.txt"), d.join("link.mcap")).unwrap();
+    let out = beam_impact().args(["run", "--mcap", "link.mcap"]).current_dir(d).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("symbolic link"));
+    assert_eq!(std::fs::read_to_string(d.join("target.txt")).unwrap(), "keep");
+    assert!(std::process::Command::new("mkfifo").arg(d.join("fifo")).status().unwrap().success());
+    for args in [vec!["run", "fifo", "--no-mcap"], vec!["run", "--mcap", "fifo"]] {
+        let out = beam_impact().args(&args).current_dir(d).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(String::from_utf8_lossy(&out.stderr).contains("FIFO"), "{args:?}");
+    }
+    let mut child = beam_impact()
+        .args(["run", "-", "--no-mcap", "--json", "-"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    use std::io::Write;
+    child.stdin.take().unwrap().write_all(b"drop_height = 0.3\nduration = 0.1\n").unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert!(out.status.success());
+    let doc: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(doc["scenario"]["drop_height"], 0.3);
+    let out = beam_impact().args(["run", "--mcap", "/dev/null", "--json", "/dev/null"]).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+}

@@ -380,3 +380,30 @@ fn fmi3_error_state_after_a_failed_initialization() {
     assert_eq!(fmu.do_step(0.0, 0.0).0, ERROR);
     assert!(fmu.log.text().contains("communicationStepSize = 0"), "{}", fmu.log.text());
 }
+
+/// Issue 8 item 5 (failed before: fmi2Error, "argument `FMUstate` is a null pointer"): freeing a
+/// null state, or through a pointer to a null state, is ignored with OK, as FMI 2.0 and 3.0 say.
+#[test]
+fn free_of_a_null_state_is_ignored() {
+    let fmu = fresh();
+    type Free = unsafe extern "C" fn(*mut c_void, *mut *mut c_void) -> c_int;
+    let free2: libloading::Symbol<Free> =
+        // SAFETY: the signature of fmi2FreeFMUstate.
+        unsafe { fmu.lib.get(b"fmi2FreeFMUstate\0") }.unwrap();
+    let mut null_state: *mut c_void = std::ptr::null_mut();
+    // SAFETY: null pointers are what is being tested; the FMU ignores them.
+    assert_eq!(unsafe { free2(fmu.c, std::ptr::null_mut()) }, OK, "{}", fmu.log.text());
+    // SAFETY: as above.
+    assert_eq!(unsafe { free2(fmu.c, &mut null_state) }, OK, "{}", fmu.log.text());
+    assert!(null_state.is_null());
+    let lib = load();
+    let fmu3 = Fmu3::try_new(&lib, None, false).0.unwrap();
+    let free3: libloading::Symbol<Free> =
+        // SAFETY: the signature of fmi3FreeFMUState.
+        unsafe { lib.get(b"fmi3FreeFMUState\0") }.unwrap();
+    // SAFETY: as above.
+    assert_eq!(unsafe { free3(fmu3.c, std::ptr::null_mut()) }, OK, "{}", fmu3.log.text());
+    // SAFETY: as above.
+    assert_eq!(unsafe { free3(fmu3.c, &mut null_state) }, OK, "{}", fmu3.log.text());
+    assert!(fmu.log.all().iter().chain(fmu3.log.all().iter()).all(|m| m.status == OK), "nothing but OK logged");
+}

@@ -1,7 +1,9 @@
 //! `fmi::pack::pack` writes both FMUs with the layout importers expect: modelDescription.xml at
 //! the root (the committed ones), the binary under the platform directory of its standard, and
 //! the documentation. `BEAM_IMPACT_PACK_TO=DIR` also packs into DIR (for trying the FMUs out
-//! before the CLI's `pack`).
+//! before the CLI's `pack`). The CLI's `pack` packs a glibc 2.17 build when cargo-zigbuild is on
+//! PATH (a stand-in here), the host build with `--no-zigbuild`, and the host build with one
+//! warning line without cargo-zigbuild.
 
 mod fmi_common;
 
@@ -53,4 +55,109 @@ fn a_missing_library_is_an_error_naming_it() {
     let dir = tempfile::tempdir().unwrap();
     let err = beam_impact::fmi::pack::pack(&dir.path().join("nope.so"), dir.path()).unwrap_err().to_string();
     assert!(err.contains("nope.so"), "{err}");
+}
+
+/// The CLI's `pack` with the given PATH and CARGO_TARGET_DIR; returns (status, stdout, stderr).
+fn cli_pack(args: &[&str], path: &std::path::Path, target_dir: &std::path::Path) -> (bool, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_beam-impact"))
+        .arg("pack")
+        .args(args)
+        .env("PATH", path)
+        .env("CARGO_TARGET_DIR", target_dir)
+        .output()
+        .unwrap();
+    (out.status.success(), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
+}
+
+/// The host build the CLI packs by default: libbeam_impact.so next to the executable.
+fn host_library() -> Vec<u8> {
+    let exe = std::path::Path::new(env!("CARGO_BIN_EXE_beam-impact"));
+    std::fs::read(exe.with_file_name("libbeam_impact.so")).unwrap()
+}
+
+/// A stand-in `cargo-zigbuild` on PATH: records its arguments and writes `library` where the real
+/// one puts its build (`<--target-dir>/x86_64-unknown-linux-gnu/release/`), or fails.
+fn fake_zigbuild(dir: &std::path::Path, library: &str, fail: bool) {
+    use std::os::unix::fs::PermissionsExt;
+    let script = format!(
+        "#!/bin/sh\nPATH=/usr/bin:/bin\nprintf '%s\\n' \"$@\" > '{log}'\n{fail}\nwhile [ $# -gt 0 ]; do [ \"$1\" = --target-dir ] && dir=\"$2\"; \
+         shift; done\nmkdir -p \"$dir/x86_64-unknown-linux-gnu/release\"\nprintf '{library}' > \
+         \"$dir/x86_64-unknown-linux-gnu/release/libbeam_impact.so\"\n",
+        log = dir.join("args").display(),
+        fail = if fail { "exit 1" } else { "" },
+    );
+    let path = dir.join("cargo-zigbuild");
+    std::fs::write(&path, script).unwrap();
+    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+}
+
+/// Issue 8 item 7: with cargo-zigbuild on PATH, `pack` builds the library for glibc 2.17 itself
+/// (`cargo zigbuild --release --lib --target x86_64-unknown-linux-gnu.2.17` on this crate, into its
+/// own target directory) and packs that build. A stand-in cargo-zigbuild checks the invocation
+/// without the two-minute build; `tests/python/test_glibc.py` checks the real one's symbols.
+#[test]
+fn pack_builds_and_packs_the_glibc_2_17_library_when_cargo_zigbuild_is_on_path() {
+    let bin = tempfile::tempdir().unwrap();
+    let target = tempfile::tempdir().unwrap();
+    let out = tempfile::tempdir().unwrap();
+    fake_zigbuild(bin.path(), "built for glibc 2.17", false);
+    let (ok, stdout, stderr) = cli_pack(&["--out", out.path().to_str().unwrap()], bin.path(), target.path());
+    assert!(ok, "{stderr}");
+    assert!(!stderr.contains("warning"), "{stderr}");
+    assert!(stdout.contains("wrote"), "{stdout}");
+    let args: Vec<String> =
+        std::fs::read_to_string(bin.path().join("args")).unwrap().lines().map(String::from).collect();
+    let manifest = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("Cargo.toml");
+    let zig_target = target.path().join("zigbuild");
+    let expected = [
+        "zigbuild",
+        "--release",
+        "--lib",
+        "--target",
+        "x86_64-unknown-linux-gnu.2.17",
+        "--manifest-path",
+        manifest.to_str().unwrap(),
+        "--target-dir",
+        zig_target.to_str().unwrap(),
+    ];
+    assert_eq!(args, expected);
+    for (fmu, platform) in [("fmi2", "linux64"), ("fmi3", "x86_64-linux")] {
+        let so = read(&out.path().join(fmu).join("BeamImpact.fmu"), &format!("binaries/{platform}/BeamImpact.so"));
+        assert_eq!(so, b"built for glibc 2.17", "{fmu}");
+    }
+
+    // A failed build is an error (exit 2) naming it, not a silent host build.
+    fake_zigbuild(bin.path(), "", true);
+    let (ok, _, stderr) = cli_pack(&["--out", out.path().to_str().unwrap()], bin.path(), target.path());
+    assert!(!ok);
+    assert!(stderr.contains("zigbuild") && stderr.contains("failed") && stderr.contains("--no-zigbuild"), "{stderr}");
+}
+
+/// `--no-zigbuild` packs the host build even with cargo-zigbuild on PATH, and runs no build.
+#[test]
+fn no_zigbuild_packs_the_host_build() {
+    let bin = tempfile::tempdir().unwrap();
+    let target = tempfile::tempdir().unwrap();
+    let out = tempfile::tempdir().unwrap();
+    fake_zigbuild(bin.path(), "not this one", false);
+    let (ok, _, stderr) =
+        cli_pack(&["--no-zigbuild", "--out", out.path().to_str().unwrap()], bin.path(), target.path());
+    assert!(ok, "{stderr}");
+    assert_eq!(stderr, "", "no warning: the host build was asked for");
+    assert!(!bin.path().join("args").exists(), "cargo-zigbuild ran");
+    let so = read(&out.path().join("fmi3/BeamImpact.fmu"), "binaries/x86_64-linux/BeamImpact.so");
+    assert!(so == host_library(), "the FMU holds another library than the host build");
+}
+
+/// Without cargo-zigbuild on PATH, `pack` packs the host build and says so in one warning line.
+#[test]
+fn without_cargo_zigbuild_pack_warns_once_and_packs_the_host_build() {
+    let empty = tempfile::tempdir().unwrap();
+    let out = tempfile::tempdir().unwrap();
+    let (ok, _, stderr) = cli_pack(&["--out", out.path().to_str().unwrap()], empty.path(), empty.path());
+    assert!(ok, "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.starts_with("beam-impact: warning: cargo-zigbuild is not on PATH"), "{stderr}");
+    let so = read(&out.path().join("fmi2/BeamImpact.fmu"), "binaries/linux64/BeamImpact.so");
+    assert!(so == host_library(), "the FMU holds another library than the host build");
 }

@@ -5,13 +5,20 @@
 use std::collections::BTreeSet;
 use std::fmt::Write;
 
-use super::variables::{base_units, table, Causality, Type, Variable};
+use super::variables::{
+    affects_values, base_units, declared_type, display_unit, format_real, table, Causality, Source, Type, Variable,
+};
 
 /// The `modelIdentifier`: the binary is `BeamImpact.so`.
 pub const MODEL_IDENTIFIER: &str = "BeamImpact";
 
 /// Start, stop and communication step of the DefaultExperiment, s (the paper's 3 s run).
 pub const DEFAULT_EXPERIMENT: (f64, f64, f64) = (0.0, 3.0, 1e-3);
+
+/// `generationDateAndTime` of both descriptions: when the variable table last changed (set by
+/// hand with it; a constant, not the clock, so that the generated files are reproducible and the
+/// drift test holds).
+pub const GENERATION_DATE_AND_TIME: &str = "2026-11-23T00:00:00Z";
 
 const DESCRIPTION: &str = "Elastic impact of two beams (Catipovic, Vladimir, Reljic 2008): a hinged bridge dropped \
                            on a cantilever arrestor through a contact bar, Euler-Bernoulli FEM with the modified linear \
@@ -77,6 +84,68 @@ fn unit_definitions(out: &mut String, variables: &[Variable]) {
     out.push_str("  </UnitDefinitions>\n");
 }
 
+/// `<TypeDefinitions>`: one type per unit the variables use, which declares the unit (and the
+/// display unit) for every variable of that unit through `declaredType`.
+fn type_definitions(out: &mut String, variables: &[Variable], fmi3: bool) {
+    out.push_str("  <TypeDefinitions>\n");
+    let mut types: Vec<(&str, &str, &str)> = units(variables)
+        .into_iter()
+        .filter_map(|u| declared_type(u).map(|(name, quantity)| (name, quantity, u)))
+        .collect();
+    types.sort_unstable();
+    for (name, quantity, unit) in types {
+        let mut attributes = format!("quantity=\"{}\" unit=\"{}\"", esc(quantity), esc(unit));
+        if let Some(display) = display_unit(unit) {
+            let _ = write!(attributes, " displayUnit=\"{display}\"");
+        }
+        if fmi3 {
+            let _ = writeln!(out, "    <Float64Type name=\"{}\" {attributes}/>", esc(name));
+        } else {
+            let _ =
+                writeln!(out, "    <SimpleType name=\"{}\">\n      <Real {attributes}/>\n    </SimpleType>", esc(name));
+        }
+    }
+    out.push_str("  </TypeDefinitions>\n");
+}
+
+/// `declaredType`, `min` and `max` of a variable's type element, each with a leading space.
+fn type_attributes(v: &Variable) -> String {
+    let mut a = String::new();
+    if let Some(name) = v.declared_type() {
+        let _ = write!(a, " declaredType=\"{}\"", esc(name));
+    }
+    let bound = |x: f64| if v.ty == Type::Integer { format!("{}", x as i64) } else { format_real(x) };
+    if let Some(min) = v.min {
+        let _ = write!(a, " min=\"{}\"", bound(min));
+    }
+    if let Some(max) = v.max {
+        let _ = write!(a, " max=\"{}\"", bound(max));
+    }
+    a
+}
+
+/// What an initial unknown depends on in Initialization Mode: every parameter the computed
+/// values depend on and, for an output, the inputs (the initial state is the static deflection
+/// under the tip forces). After initialization an output depends on no input: an input set at a
+/// communication point acts from that point on, and the outputs there were computed before it;
+/// so every output declares `dependencies=""`. FMI 2 lists 1-based indices, FMI 3 value
+/// references (both are the value reference + 1 / the value reference here).
+fn initial_dependencies(v: &Variable, variables: &[Variable]) -> Vec<u32> {
+    variables
+        .iter()
+        .filter(|k| match k.source {
+            Source::Parameter(p) => affects_values(p),
+            Source::Input(_) => v.causality == Causality::Output,
+            _ => false,
+        })
+        .map(|k| k.vr)
+        .collect()
+}
+
+fn list(values: impl IntoIterator<Item = u32>) -> String {
+    values.into_iter().map(|x| x.to_string()).collect::<Vec<_>>().join(" ")
+}
+
 fn log_categories(out: &mut String) {
     out.push_str("  <LogCategories>\n");
     for (name, description) in CATEGORIES {
@@ -122,8 +191,8 @@ pub fn fmi2() -> String {
     let _ = writeln!(
         out,
         "<fmiModelDescription fmiVersion=\"2.0\" modelName=\"{MODEL_IDENTIFIER}\" guid=\"{}\"\n  \
-         description=\"{}\"\n  generationTool=\"beam-impact {}\" variableNamingConvention=\"structured\" \
-         numberOfEventIndicators=\"0\">",
+         description=\"{}\"\n  generationTool=\"beam-impact {}\" generationDateAndTime=\"{GENERATION_DATE_AND_TIME}\"\n  \
+         variableNamingConvention=\"structured\" numberOfEventIndicators=\"0\">",
         token(),
         esc(DESCRIPTION),
         env!("CARGO_PKG_VERSION")
@@ -134,19 +203,14 @@ pub fn fmi2() -> String {
          canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\" canNotUseMemoryManagementFunctions=\"true\"/>"
     );
     unit_definitions(&mut out, &variables);
+    type_definitions(&mut out, &variables, false);
     log_categories(&mut out);
     default_experiment(&mut out);
     out.push_str("  <ModelVariables>\n");
     for (index, v) in variables.iter().enumerate() {
         let _ = writeln!(out, "    <!-- index {} -->", index + 1);
         let _ = writeln!(out, "    <ScalarVariable {}>", common_attributes(v));
-        let mut t = format!("      <{}", v.ty.fmi2_name());
-        if let Some(unit) = v.unit {
-            let _ = write!(t, " unit=\"{}\"", esc(unit));
-        }
-        if let Some(display) = v.display_unit() {
-            let _ = write!(t, " displayUnit=\"{display}\"");
-        }
+        let mut t = format!("      <{}{}", v.ty.fmi2_name(), type_attributes(v));
         if let Some(start) = &v.start {
             let _ = write!(t, " start=\"{}\"", esc(start));
         }
@@ -155,13 +219,14 @@ pub fn fmi2() -> String {
     out.push_str("  </ModelVariables>\n  <ModelStructure>\n    <Outputs>\n");
     for (index, v) in variables.iter().enumerate() {
         if v.causality == Causality::Output {
-            let _ = writeln!(out, "      <Unknown index=\"{}\"/>", index + 1);
+            let _ = writeln!(out, "      <Unknown index=\"{}\" dependencies=\"\"/>", index + 1);
         }
     }
     out.push_str("    </Outputs>\n    <InitialUnknowns>\n");
     for (index, v) in variables.iter().enumerate() {
         if is_initial_unknown(v) {
-            let _ = writeln!(out, "      <Unknown index=\"{}\"/>", index + 1);
+            let dependencies = list(initial_dependencies(v, &variables).into_iter().map(|vr| vr + 1));
+            let _ = writeln!(out, "      <Unknown index=\"{}\" dependencies=\"{dependencies}\"/>", index + 1);
         }
     }
     out.push_str("    </InitialUnknowns>\n  </ModelStructure>\n</fmiModelDescription>\n");
@@ -176,7 +241,8 @@ pub fn fmi3() -> String {
     let _ = writeln!(
         out,
         "<fmiModelDescription fmiVersion=\"3.0\" modelName=\"{MODEL_IDENTIFIER}\" instantiationToken=\"{}\"\n  \
-         description=\"{}\"\n  generationTool=\"beam-impact {}\" variableNamingConvention=\"structured\">",
+         description=\"{}\"\n  generationTool=\"beam-impact {}\" generationDateAndTime=\"{GENERATION_DATE_AND_TIME}\"\n  \
+         variableNamingConvention=\"structured\">",
         token(),
         esc(DESCRIPTION),
         env!("CARGO_PKG_VERSION")
@@ -188,17 +254,12 @@ pub fn fmi3() -> String {
          mightReturnEarlyFromDoStep=\"true\"/>"
     );
     unit_definitions(&mut out, &variables);
+    type_definitions(&mut out, &variables, true);
     log_categories(&mut out);
     default_experiment(&mut out);
     out.push_str("  <ModelVariables>\n");
     for v in &variables {
-        let mut element = format!("    <{} {}", v.ty.fmi3_name(), common_attributes(v));
-        if let Some(unit) = v.unit {
-            let _ = write!(element, " unit=\"{}\"", esc(unit));
-        }
-        if let Some(display) = v.display_unit() {
-            let _ = write!(element, " displayUnit=\"{display}\"");
-        }
+        let mut element = format!("    <{} {}{}", v.ty.fmi3_name(), common_attributes(v), type_attributes(v));
         match (&v.start, v.ty) {
             (Some(start), Type::String) => {
                 let _ = write!(element, ">\n      <Start value=\"{}\"/>\n    </String>", esc(start));
@@ -214,12 +275,13 @@ pub fn fmi3() -> String {
     out.push_str("  </ModelVariables>\n  <ModelStructure>\n");
     for v in &variables {
         if v.causality == Causality::Output {
-            let _ = writeln!(out, "    <Output valueReference=\"{}\"/>", v.vr);
+            let _ = writeln!(out, "    <Output valueReference=\"{}\" dependencies=\"\"/>", v.vr);
         }
     }
     for v in &variables {
         if is_initial_unknown(v) {
-            let _ = writeln!(out, "    <InitialUnknown valueReference=\"{}\"/>", v.vr);
+            let dependencies = list(initial_dependencies(v, &variables));
+            let _ = writeln!(out, "    <InitialUnknown valueReference=\"{}\" dependencies=\"{dependencies}\"/>", v.vr);
         }
     }
     out.push_str("  </ModelStructure>\n</fmiModelDescription>\n");

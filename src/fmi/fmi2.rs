@@ -359,12 +359,12 @@ pub unsafe extern "C" fn fmi2SetFMUstate(c: Fmi2Component, state: Fmi2FmuState) 
     }
 }
 
-/// `fmi2FreeFMUstate`: frees `*state` and sets it to null.
+/// `fmi2FreeFMUstate`: frees `*state` and sets it to null; a null `state` or `*state` is ignored (OK).
 #[no_mangle]
 pub unsafe extern "C" fn fmi2FreeFMUstate(c: Fmi2Component, state: *mut Fmi2FmuState) -> Status {
     ffi_boundary! {
         with(c, "fmi2FreeFMUstate", allowed::STATE_MEMORY, |_| {
-            unsafe { slots::free(state, "FMUstate") }
+            unsafe { slots::free(state) }
         })
     }
 }

@@ -745,12 +745,12 @@ pub unsafe extern "C" fn fmi3SetFMUState(instance: Fmi3Instance, state: Fmi3FmuS
     }
 }
 
-/// `fmi3FreeFMUState`: frees `*state` and sets it to null.
+/// `fmi3FreeFMUState`: frees `*state` and sets it to null; a null `state` or `*state` is ignored (OK).
 #[no_mangle]
 pub unsafe extern "C" fn fmi3FreeFMUState(instance: Fmi3Instance, state: *mut Fmi3FmuState) -> Status {
     ffi_boundary! {
         with(instance, "fmi3FreeFMUState", allowed::STATE_MEMORY, |_| {
-            unsafe { slots::free(state, "FMUState") }
+            unsafe { slots::free(state) }
         })
     }
 }

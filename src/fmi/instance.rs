@@ -5,13 +5,14 @@
 
 use std::ffi::{c_char, c_void, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::time::{SystemTime, UNIX_EPOCH};
 
 use super::boundary::panic_message;
 use super::description;
 use super::fmi2::Fmi2CallbackLogger;
 use super::fmi3::Fmi3LogMessageCallback;
-use super::state::{fingerprint, Snapshot};
+use super::state::{parameters_of, scenario_with, Snapshot};
 use super::status::{Mask, State, Status};
 use super::variables::{table, Column, Source, Tip, Type, Variable};
 use crate::error::Error;
@@ -115,6 +116,62 @@ pub struct Instance {
     untrusted_reported: bool,
 }
 
+/// `log.path`'s start value, which stands for the default log: a new file per instance and run in
+/// the working directory, `BeamImpact-<instance>-<UTC date and time>-<n>.mcap` (see [`unique_log`]).
+/// Any other path is the user's file (`./BeamImpact.mcap` for that very name).
+pub const DEFAULT_LOG_PATH: &str = "BeamImpact.mcap";
+
+/// The highest `<n>` tried for a default log name in one second before giving up (a warning).
+const MAX_LOG_COUNTER: u32 = 10_000;
+
+/// The instance name as it goes into a file name: `[A-Za-z0-9._-]` kept, anything else `_`, at most
+/// 64 characters, `instance` if nothing is left.
+pub fn file_name_part(instance_name: &str) -> String {
+    let cleaned: String = instance_name
+        .chars()
+        .take(64)
+        .map(|c| if c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '-') { c } else { '_' })
+        .collect();
+    if cleaned.is_empty() {
+        "instance".to_string()
+    } else {
+        cleaned
+    }
+}
+
+/// `YYYYMMDDTHHMMSSZ` (UTC) of `time`.
+pub fn timestamp(time: SystemTime) -> String {
+    let seconds = time.duration_since(UNIX_EPOCH).map_or(0, |d| d.as_secs()) as i64;
+    let (days, second_of_day) = (seconds.div_euclid(86_400), seconds.rem_euclid(86_400));
+    // Days since 1970-01-01 to the civil (proleptic Gregorian) date, in 400-year eras.
+    let z = days + 719_468;
+    let (era, day_of_era) = (z.div_euclid(146_097), z.rem_euclid(146_097));
+    let year_of_era = (day_of_era - day_of_era / 1460 + day_of_era / 36_524 - day_of_era / 146_096) / 365;
+    let day_of_year = day_of_era - (365 * year_of_era + year_of_era / 4 - year_of_era / 100);
+    let month_from_march = (5 * day_of_year + 2) / 153;
+    let day = day_of_year - (153 * month_from_march + 2) / 5 + 1;
+    let month = if month_from_march < 10 { month_from_march + 3 } else { month_from_march - 9 };
+    let year = year_of_era + era * 400 + i64::from(month <= 2);
+    let (hour, minute, second) = (second_of_day / 3600, second_of_day / 60 % 60, second_of_day % 60);
+    format!("{year:04}{month:02}{day:02}T{hour:02}{minute:02}{second:02}Z")
+}
+
+/// Creates a new, empty log file `BeamImpact-<instance>-<timestamp>-<n>.mcap` in `dir`, `n` = 1, 2,
+/// ... the first name that does not exist yet: the file is created with `create_new`, so two
+/// instances or processes never get the same one and no file is ever overwritten.
+pub fn unique_log(dir: &Path, instance_name: &str, now: SystemTime) -> std::io::Result<PathBuf> {
+    let stem = format!("BeamImpact-{}-{}", file_name_part(instance_name), timestamp(now));
+    for n in 1..=MAX_LOG_COUNTER {
+        let path = dir.join(format!("{stem}-{n}.mcap"));
+        match std::fs::OpenOptions::new().write(true).create_new(true).open(&path) {
+            Ok(_) => return Ok(path),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(e),
+        }
+    }
+    Err(std::io::Error::other(format!("{stem}-1.mcap to {stem}-{MAX_LOG_COUNTER}.mcap all exist")))
+}
+
 /// The longest run the scenario's `duration` accepts, s (it only labels the MCAP log here).
 const MAX_DURATION: f64 = 1e6;
 
@@ -166,7 +223,7 @@ impl Instance {
             state: State::Instantiated,
             variables: table(),
             scenario: Scenario::default(),
-            log_path: "BeamImpact.mcap".to_string(),
+            log_path: DEFAULT_LOG_PATH.to_string(),
             simulation: None,
             recorder: None,
             start_time: 0.0,
@@ -362,28 +419,87 @@ impl Instance {
         self.simulation.as_mut().ok_or_else(|| "no simulation".to_string())
     }
 
-    /// `ExitInitializationMode`: builds the model, opens the MCAP log and records the initial state.
-    pub fn exit_initialization(&mut self) -> Outcome<Status> {
-        self.simulation()?;
-        if !self.log_path.is_empty() {
-            let path = PathBuf::from(&self.log_path);
-            let mut recorder =
-                McapRecorder::create(&path).map_err(|e| format!("log.path = \"{}\": {e}", self.log_path))?;
-            let xml = match self.version {
-                Version::Fmi2 => description::fmi2(),
-                Version::Fmi3 => description::fmi3(),
-            };
-            recorder
-                .attach("modelDescription.xml", "application/xml", xml.as_bytes())
-                .map_err(|e| format!("log.path = \"{}\": {e}", self.log_path))?;
-            self.recorder = Some(recorder);
+    /// Whether the instance went through `ExitInitializationMode` (or restored a state taken after
+    /// it): Event, Step or Terminated, or Error after a failure in one of them.
+    fn initialized(&self) -> bool {
+        let state = if self.state == State::Error { self.before_error } else { self.state };
+        matches!(state, State::Event | State::Step | State::Terminated)
+    }
+
+    /// The MCAP log of a run that starts now (initialization, or a state restored into an instance
+    /// that was not initialized). `log.path` = `""`: none. [`DEFAULT_LOG_PATH`]: a new file with a
+    /// unique name in the working directory ([`unique_log`]); a folder that cannot take it is a
+    /// warning (returned, to be logged) and no log. Any other path is the user's file, created or
+    /// truncated (an error if that fails, or if another run writes it). The model description is
+    /// attached, and where the log goes is logged (logEvents).
+    fn open_log(&self) -> Outcome<(Option<McapRecorder>, Option<String>)> {
+        if self.log_path.is_empty() {
+            return Ok((None, None));
         }
+        let xml = match self.version {
+            Version::Fmi2 => description::fmi2(),
+            Version::Fmi3 => description::fmi3(),
+        };
+        let attach = |mut recorder: McapRecorder| {
+            recorder.attach("modelDescription.xml", "application/xml", xml.as_bytes()).map(|()| recorder)
+        };
+        if self.log_path != DEFAULT_LOG_PATH {
+            let recorder = McapRecorder::create(Path::new(&self.log_path))
+                .and_then(attach)
+                .map_err(|e| format!("log.path = \"{}\": {e}", self.log_path))?;
+            self.log(Status::Ok, "logEvents", &format!("MCAP log of every internal step: {}", self.log_path));
+            return Ok((Some(recorder), None));
+        }
+        let no_log = |why: String| {
+            format!(
+                "log.path = \"{DEFAULT_LOG_PATH}\" (the default, a new file per instance and run in the working \
+                 directory): {why}; the run goes on without an MCAP log (set log.path to a writable file, or \"\" \
+                 for no log)"
+            )
+        };
+        let path = match std::env::current_dir().and_then(|dir| unique_log(&dir, &self.name, SystemTime::now())) {
+            Ok(path) => path,
+            Err(e) => return Ok((None, Some(no_log(format!("cannot create a log in the working directory: {e}"))))),
+        };
+        match McapRecorder::create(&path).and_then(attach) {
+            Ok(recorder) => {
+                self.log(
+                    Status::Ok,
+                    "logEvents",
+                    &format!(
+                        "MCAP log of every internal step: {} (log.path is the default \"{DEFAULT_LOG_PATH}\": a new \
+                         file per instance and run)",
+                        path.display()
+                    ),
+                );
+                Ok((Some(recorder), None))
+            }
+            Err(e) => {
+                // The file is ours (created empty by unique_log): do not leave it behind.
+                let _ = std::fs::remove_file(&path);
+                Ok((None, Some(no_log(e.to_string()))))
+            }
+        }
+    }
+
+    /// Sends the run's description and its latest step (step 0 after initialization, the restored
+    /// step after a restore) to the MCAP log, if any.
+    fn start_log(&mut self) -> Outcome<()> {
         let simulation = self.simulation.as_mut().ok_or("no simulation")?;
         let mut tap = Tap { inner: self.recorder.as_mut(), events: Vec::new() };
-        simulation.start_recording(&mut tap).map_err(|e| format!("MCAP log: {e}"))?;
-        self.last_successful_time = self.start_time;
+        simulation.start_recording(&mut tap).map_err(|e| format!("MCAP log: {e}"))
+    }
+
+    /// `ExitInitializationMode`: builds the model, opens the MCAP log and records the initial state.
+    /// A default log that cannot be created is a warning (the run goes on without it).
+    pub fn exit_initialization(&mut self) -> Outcome<Status> {
+        self.simulation()?;
+        let (recorder, warning) = self.open_log()?;
+        self.recorder = recorder;
+        self.start_log()?;
+        self.last_successful_time = self.time();
         self.state = if self.event_mode_used { State::Event } else { State::Step };
-        Ok(Status::Ok)
+        Ok(self.warn(warning))
     }
 
     /// FMI 3 `EnterEventMode`.
@@ -702,49 +818,122 @@ impl Instance {
         }
     }
 
-    /// `GetFMUState`: a snapshot of the simulation.
+    /// `GetFMUState`: the FMI state: the simulation's state, the FMU parameters, the absolute
+    /// start time and whether the instance is initialized (not the stop time, not `log.path`).
     pub fn snapshot(&mut self) -> Outcome<Snapshot> {
-        let fingerprint = fingerprint(&self.scenario);
         let run = self.simulation()?.state().clone();
-        Ok(Snapshot { fingerprint, run })
+        Ok(Snapshot {
+            start_time: self.start_time,
+            initialized: self.initialized(),
+            parameters: parameters_of(&self.scenario),
+            run,
+        })
     }
 
-    /// `SetFMUState`: restores a snapshot taken from an instance of the same parameters, and
-    /// tells the MCAP log (if any) that the run went back. In state Error it returns the instance
-    /// to the state the failed call was made in. Before `ExitInitializationMode` the run will
-    /// start from the restored state (setting a parameter or an input afterwards, before
-    /// initialization ends, starts it from the impact again).
+    /// `SetFMUState`: restores the FMI state of a snapshot, after checking it (the scenario within
+    /// the scenario limits, [`crate::simulation::RunState::validate`]); a refused state changes
+    /// nothing. The snapshot's parameters win: a state of another scenario rebuilds the model for
+    /// it. The time is the snapshot's (absolute); the stop time stays the instance's.
+    ///
+    /// - Into an instance that is not initialized (Instantiated, Initialization Mode; fmpy's
+    ///   `simulate_fmu(fmu_state=...)`, fmusim's `--initial-fmu-state-file`): a snapshot taken after
+    ///   initialization puts the instance in Step Mode, ready for `DoStep` and the getters, with
+    ///   its MCAP log (`log.path` of this instance; the default one is a new file) starting at the
+    ///   restored step. A snapshot taken before initialization only sets the parameters and the
+    ///   inputs; `ExitInitializationMode` follows as usual.
+    /// - Into an initialized instance (rollback): the MCAP log records the rollback. If the
+    ///   scenario changes, the log (which describes the old one) is completed; a default log goes
+    ///   on in a new file, an explicit one stops (a warning).
+    /// - In state Error it returns the instance to the state the failed call was made in.
     pub fn restore(&mut self, snapshot: &Snapshot) -> Outcome<Status> {
-        let mine = fingerprint(&self.scenario);
-        if snapshot.fingerprint != mine {
-            return Err(Error::StateScenario { saved: snapshot.fingerprint, instance: mine }.to_string());
+        if !snapshot.start_time.is_finite() {
+            return Err(Error::StateInvalid {
+                field: "start_time".into(),
+                detail: format!("= {} s is not finite", snapshot.start_time),
+            }
+            .to_string());
         }
-        self.simulation()?.restore(snapshot.run.clone()).map_err(|e| e.to_string())?;
-        if matches!(self.state, State::Instantiated | State::Initialization) {
-            self.scenario.upper.tip_force = snapshot.run.forces.upper;
-            self.scenario.lower.tip_force = snapshot.run.forces.lower;
+        let fresh = !self.initialized();
+        let mut base = self.scenario.clone();
+        if fresh {
+            base.upper.tip_force = snapshot.run.forces.upper;
+            base.lower.tip_force = snapshot.run.forces.lower;
         }
+        let scenario = scenario_with(&base, &snapshot.parameters).map_err(|e| e.to_string())?;
+        let same_model = self.simulation.is_some() && parameters_of(&scenario) == parameters_of(&self.scenario);
+        if same_model {
+            let simulation = self.simulation.as_mut().ok_or("no simulation")?;
+            simulation.restore(snapshot.run.clone()).map_err(|e| e.to_string())?;
+        } else {
+            let mut simulation = Simulation::new(&scenario).map_err(|e| format!("the state's scenario: {e}"))?;
+            simulation.restore(snapshot.run.clone()).map_err(|e| e.to_string())?;
+            self.simulation = Some(simulation);
+        }
+        self.scenario = scenario;
+        self.start_time = snapshot.start_time;
+        self.last_successful_time = self.time();
         if self.state == State::Error {
             self.state = self.before_error;
         }
-        self.last_successful_time = self.time();
         let result = *self.simulation.as_ref().ok_or("no simulation")?.result();
+        let restored = format!("t = {} s, step {}", self.time(), result.step);
+        if fresh {
+            if !snapshot.initialized {
+                return Ok(Status::Ok);
+            }
+            if let Some(mut left) = self.recorder.take() {
+                // A log left open by a failed initialization: complete it before the run starts anew.
+                let _ = left.finish();
+            }
+            let (recorder, warning) = self.open_log()?;
+            self.recorder = recorder;
+            self.start_log()?;
+            self.state = State::Step;
+            self.log(Status::Ok, "logEvents", &format!("restored a state into Step Mode ({restored})"));
+            return Ok(self.warn(warning));
+        }
+        if !same_model {
+            let Some(mut old) = self.recorder.take() else { return Ok(Status::Ok) };
+            let finished = old.finish().err().map(|e| format!("; completing it failed: {e}"));
+            let old = old.path().display().to_string();
+            let warning = if self.log_path == DEFAULT_LOG_PATH {
+                let (recorder, warning) = self.open_log()?;
+                self.recorder = recorder;
+                self.start_log()?;
+                warning
+            } else {
+                Some(format!(
+                    "the state restored ({restored}) belongs to another scenario: the MCAP log {old} describes the \
+                     previous one and is complete; no log from here on (log.path is not the default)"
+                ))
+            };
+            let warning = match (warning, finished) {
+                (Some(w), Some(f)) => Some(format!("{w} (the previous log {old}{f})")),
+                (None, Some(f)) => Some(format!("the previous log {old}{f}")),
+                (w, None) => w,
+            };
+            return Ok(self.warn(warning));
+        }
         let rollback = match self.recorder.as_mut() {
             Some(recorder) => recorder.rollback(&result).map_err(|e| (recorder.path().display().to_string(), e)),
             None => Ok(()),
         };
         if let Err((path, e)) = rollback {
-            self.log(
-                Status::Warning,
-                Status::Warning.category(),
-                &format!(
-                    "the state is restored (t = {} s, step {}), but the MCAP log {path} cannot record the rollback: {e}",
-                    self.time(),
-                    result.step
-                ),
-            );
-            return Ok(Status::Warning);
+            return Ok(self.warn(Some(format!(
+                "the state is restored ({restored}), but the MCAP log {path} cannot record the rollback: {e}"
+            ))));
         }
         Ok(Status::Ok)
+    }
+
+    /// Logs `warning` (if any) and returns its status.
+    fn warn(&self, warning: Option<String>) -> Status {
+        match warning {
+            Some(message) => {
+                self.log(Status::Warning, Status::Warning.category(), &message);
+                Status::Warning
+            }
+            None => Status::Ok,
+        }
     }
 }

@@ -23,12 +23,14 @@ pub unsafe fn store(slot: *mut *mut Snapshot, name: &'static str, snapshot: Snap
     Ok(Status::Ok)
 }
 
-/// Frees the snapshot `*slot` points to (if any) and sets `*slot` to null.
+/// Frees the snapshot `*slot` points to (if any) and sets `*slot` to null. A null `slot` or a null
+/// `*slot` is ignored (FMI 2.0 and 3.0: "If a null pointer is provided, the call is ignored").
 ///
 /// # Safety
 /// As for [`store`].
-pub unsafe fn free(slot: *mut *mut Snapshot, name: &'static str) -> Outcome<Status> {
-    let slot = unsafe { out(slot, name) }.map_err(|e| e.to_string())?;
+pub unsafe fn free(slot: *mut *mut Snapshot) -> Outcome<Status> {
+    // SAFETY: null or valid for writes (caller's contract).
+    let Some(slot) = (unsafe { slot.as_mut() }) else { return Ok(Status::Ok) };
     if !slot.is_null() {
         // SAFETY: allocated by Box::into_raw in `store` and not yet freed.
         drop(unsafe { Box::from_raw(*slot) });

@@ -3,6 +3,7 @@
 //! [`PARAMETERS`]; the value reference of a variable is its index in [`table`].
 
 use crate::model::parameters::{Kind, Parameter, PARAMETERS};
+use crate::model::scenario::MAX_ELEMENTS;
 use crate::results::StepResult;
 use crate::solver::EnergyMethod;
 use crate::Scenario;
@@ -152,8 +153,13 @@ pub struct Variable {
     /// `initial`: `Some(true)` for exact (with a start value), `Some(false)` for calculated,
     /// `None` for the independent variable.
     pub exact: Option<bool>,
-    /// SI unit, if any.
+    /// SI unit, if any; the descriptions declare it through the unit's type definition
+    /// ([`declared_type`]), not on the variable.
     pub unit: Option<&'static str>,
+    /// Declared `min` (parameters the physics bounds, see [`declared_range`]).
+    pub min: Option<f64>,
+    /// Declared `max`.
+    pub max: Option<f64>,
     /// What it is.
     pub description: String,
     /// Start value as written in the description.
@@ -165,8 +171,66 @@ pub struct Variable {
 impl Variable {
     /// The display unit (MPa for stresses and moduli).
     pub fn display_unit(&self) -> Option<&'static str> {
-        (self.unit == Some("Pa")).then_some("MPa")
+        self.unit.and_then(display_unit)
     }
+
+    /// The name of the type definition that declares the variable's unit.
+    pub fn declared_type(&self) -> Option<&'static str> {
+        self.unit.and_then(declared_type).map(|(name, _)| name)
+    }
+}
+
+/// The display unit of a unit, if it has one (MPa for Pa).
+pub fn display_unit(unit: &str) -> Option<&'static str> {
+    (unit == "Pa").then_some("MPa")
+}
+
+/// The smallest positive double, 5e-324: the declared `min` of a parameter that must be > 0
+/// with no other lower bound (FMI's `min` is inclusive, so `min="0"` would admit 0).
+pub const SMALLEST_POSITIVE: f64 = f64::from_bits(1);
+
+/// Declared `min` and `max` of the FMU's parameters: exactly the ranges
+/// [`Scenario::validate`] accepts (checked at and beyond each bound by
+/// `tests/fmi_description.rs`), so an importer that honours them never meets an
+/// initialization error for a value out of range. Where the rule depends on another parameter
+/// the declared bound is the widest one and the rest is checked at initialization:
+/// `drop_height` is at most half of `upper.length` (500 m at its largest),
+/// `contact_position` is below `upper.length` (a bound FMI cannot express: no `max`). The step
+/// sizes' range 0..1 s holds a gap: 0 is "automatic", otherwise at least 1e-9 s.
+const RANGES: &[(&str, Option<f64>, Option<f64>)] = &[
+    ("drop_height", Some(0.0), Some(500.0)),
+    ("contact_position", Some(SMALLEST_POSITIVE), None),
+    ("damping_ratio", Some(0.0), Some(0.999)),
+    ("rayleigh_alpha", Some(0.0), Some(1e4)),
+    ("rayleigh_beta", Some(0.0), Some(1.0)),
+    ("step_free", Some(0.0), Some(1.0)),
+    ("step_contact", Some(0.0), Some(1.0)),
+    ("gravity", Some(SMALLEST_POSITIVE), Some(100.0)),
+    ("upper.length", Some(0.01), Some(1e3)),
+    ("upper.mass", Some(1e-3), Some(1e9)),
+    ("upper.elastic_modulus", Some(1e6), Some(1e13)),
+    ("upper.second_moment", Some(1e-12), Some(1e3)),
+    ("upper.section_modulus", Some(1e-12), Some(1e3)),
+    ("upper.elements_to_contact", Some(1.0), Some(MAX_ELEMENTS as f64)),
+    ("upper.elements_beyond_contact", Some(1.0), Some(MAX_ELEMENTS as f64)),
+    ("lower.length", Some(0.01), Some(1e3)),
+    ("lower.mass", Some(1e-3), Some(1e9)),
+    ("lower.tip_mass", Some(0.0), Some(1e9)),
+    ("lower.elastic_modulus", Some(1e6), Some(1e13)),
+    ("lower.second_moment", Some(1e-12), Some(1e3)),
+    ("lower.section_modulus", Some(1e-12), Some(1e3)),
+    ("lower.shear_area", Some(1e-12), Some(1e3)),
+    ("lower.elements", Some(1.0), Some(MAX_ELEMENTS as f64)),
+    ("contact.area", Some(1e-12), Some(1e3)),
+    ("contact.length", Some(1e-6), Some(1e3)),
+    ("contact.elastic_modulus", Some(1e6), Some(1e13)),
+    ("energy_tolerance", Some(SMALLEST_POSITIVE), Some(1.0)),
+    ("stress_recovery", Some(0.0), Some(2.0)),
+];
+
+/// The declared (`min`, `max`) of a parameter (`None`: not declared).
+pub fn declared_range(p: &Parameter) -> (Option<f64>, Option<f64>) {
+    RANGES.iter().find(|(name, _, _)| *name == p.name).map_or((None, None), |&(_, min, max)| (min, max))
 }
 
 /// Formats a real start value so that it parses back to the same number.
@@ -271,6 +335,12 @@ pub fn is_fmu_parameter(p: &Parameter) -> bool {
     p.name != "duration"
 }
 
+/// Whether the values the FMU computes (outputs, calculated parameters) depend on a parameter:
+/// all but `energy_tolerance`, which only decides whether a run is trusted (a warning).
+pub fn affects_values(p: &Parameter) -> bool {
+    p.name != "energy_tolerance"
+}
+
 /// Whether a parameter came after the first release: its value reference follows every older
 /// variable's (the end of [`table`]), so that the older value references stay as they were.
 pub fn is_appended_parameter(p: &Parameter) -> bool {
@@ -291,7 +361,11 @@ pub fn table() -> Vec<Variable> {
                     start: Option<String>,
                     source: Source| {
         let vr = v.len() as u32;
-        v.push(Variable { name, vr, ty, causality, variability, exact, unit, description, start, source });
+        let (min, max) = match source {
+            Source::Parameter(p) => declared_range(p),
+            _ => (None, None),
+        };
+        v.push(Variable { name, vr, ty, causality, variability, exact, unit, min, max, description, start, source });
     };
     push(
         "time".into(),
@@ -334,7 +408,10 @@ pub fn table() -> Vec<Variable> {
         Variability::Fixed,
         Some(true),
         None,
-        "MCAP log of every internal step, relative to the working directory; empty: no log".into(),
+        "MCAP log of every internal step. The default BeamImpact.mcap stands for a new file per instance and run in \
+         the working directory, BeamImpact-<instance>-<UTC date-time>-<n>.mcap, never overwriting one (the FMU's log \
+         says which); any other path: that file, relative to the working directory; empty: no log"
+            .into(),
         Some("BeamImpact.mcap".into()),
         Source::LogPath,
     );
@@ -439,26 +516,36 @@ pub fn table() -> Vec<Variable> {
     v
 }
 
+/// Every unit the table uses: its base-unit exponents (kg, m, s, rad) and the type definition
+/// that declares it (name, quantity), as the Reference-FMUs declare units: through
+/// `<TypeDefinitions>` and `declaredType`, never on the variable (some importers, such as
+/// rust-fmi, refuse `unit` on an FMI 3 `Float64`).
+const UNITS: &[(&str, [i32; 4], &str, &str)] = &[
+    ("1", [0, 0, 0, 0], "Ratio", "Ratio"),
+    ("s", [0, 0, 1, 0], "Time", "Time"),
+    ("1/s", [0, 0, -1, 0], "InverseTime", "InverseTime"),
+    ("m", [0, 1, 0, 0], "Length", "Length"),
+    ("m2", [0, 2, 0, 0], "Area", "Area"),
+    ("m3", [0, 3, 0, 0], "SectionModulus", "SectionModulus"),
+    ("m4", [0, 4, 0, 0], "SecondMomentOfArea", "SecondMomentOfArea"),
+    ("m/s2", [0, 1, -2, 0], "Acceleration", "Acceleration"),
+    ("m/s", [0, 1, -1, 0], "Velocity", "Velocity"),
+    ("N.m", [1, 2, -2, 0], "Moment", "MomentOfForce"),
+    ("kg", [1, 0, 0, 0], "Mass", "Mass"),
+    ("N", [1, 1, -2, 0], "Force", "Force"),
+    ("Pa", [1, -1, -2, 0], "Stress", "Stress"),
+    ("J", [1, 2, -2, 0], "Energy", "Energy"),
+    ("rad/s", [0, 0, -1, 1], "AngularVelocity", "AngularVelocity"),
+];
+
 /// Base-unit exponents (kg, m, s, rad) of every unit the table uses.
 pub fn base_units(unit: &str) -> Option<[i32; 4]> {
-    Some(match unit {
-        "1" => [0, 0, 0, 0],
-        "s" => [0, 0, 1, 0],
-        "1/s" => [0, 0, -1, 0],
-        "m" => [0, 1, 0, 0],
-        "m2" => [0, 2, 0, 0],
-        "m3" => [0, 3, 0, 0],
-        "m4" => [0, 4, 0, 0],
-        "m/s2" => [0, 1, -2, 0],
-        "m/s" => [0, 1, -1, 0],
-        "N.m" => [1, 2, -2, 0],
-        "kg" => [1, 0, 0, 0],
-        "N" => [1, 1, -2, 0],
-        "Pa" => [1, -1, -2, 0],
-        "J" => [1, 2, -2, 0],
-        "rad/s" => [0, 0, -1, 1],
-        _ => return None,
-    })
+    UNITS.iter().find(|u| u.0 == unit).map(|u| u.1)
+}
+
+/// The type definition that declares a unit: (type name, quantity).
+pub fn declared_type(unit: &str) -> Option<(&'static str, &'static str)> {
+    UNITS.iter().find(|u| u.0 == unit).map(|u| (u.2, u.3))
 }
 
 #[cfg(test)]
@@ -481,7 +568,25 @@ mod tests {
             assert!(!v.description.is_empty(), "{}", v.name);
             if let Some(u) = v.unit {
                 assert!(base_units(u).is_some(), "{} has unit {u} without base units", v.name);
+                assert!(declared_type(u).is_some(), "{} has unit {u} without a type definition", v.name);
             }
+        }
+    }
+
+    #[test]
+    fn type_names_are_unique() {
+        let mut names: Vec<&str> = UNITS.iter().map(|u| u.2).collect();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), UNITS.len());
+    }
+
+    #[test]
+    fn every_range_names_an_fmu_parameter_and_holds_its_start_value() {
+        for &(name, min, max) in RANGES {
+            let v = table().into_iter().find(|v| v.name == name).unwrap_or_else(|| panic!("{name}: no such variable"));
+            let start: f64 = v.start.as_deref().unwrap_or_default().parse().unwrap();
+            assert!(min.is_none_or(|m| m <= start) && max.is_none_or(|m| start <= m), "{name}: start {start}");
         }
     }
 

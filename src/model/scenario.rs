@@ -1,5 +1,5 @@
 //! Every input of a run in one serde struct, with the paper scenario as [`Default`]
-//! (see `SCENARIO.md` beside the paper for where each number comes from).
+//! (see `docs/scenario.md` for where each number comes from).
 
 use serde::{Deserialize, Serialize};
 

@@ -64,6 +64,8 @@ pub struct RecorderOptions {
     pub scene_interval_ns: u64,
     /// Measure the time spent encoding and writing (for the benchmark).
     pub timing: bool,
+    /// Accept a device as the log (the CLI's `/dev/null`); the FMU wants a regular file.
+    pub allow_devices: bool,
 }
 
 impl Default for RecorderOptions {
@@ -76,6 +78,7 @@ impl Default for RecorderOptions {
             flush_every: 1000,
             scene_interval_ns: 1_000_000,
             timing: false,
+            allow_devices: false,
         }
     }
 }
@@ -147,19 +150,17 @@ impl McapRecorder {
         let io_error = |action, source| Error::Io { action, path: path.display().to_string(), source };
         // Open without truncating, take an exclusive lock, then truncate: two writers given the same
         // path (two FMU instances with the default log.path) get an error, not an interleaved file.
-        let file = std::fs::OpenOptions::new()
-            .write(true)
-            .create(true)
-            .truncate(false)
-            .open(path)
-            .map_err(|source| io_error("cannot create MCAP log", source))?;
+        let file = super::output::open_output(path, options.allow_devices, "cannot create MCAP log")?;
         file.try_lock().map_err(|e| {
             io_error(
                 "cannot write MCAP log",
                 std::io::Error::other(format!("the file is being written by another run or instance ({e})")),
             )
         })?;
-        file.set_len(0).map_err(|source| io_error("cannot truncate MCAP log", source))?;
+        // A device (the CLI's /dev/null) has no length to cut.
+        if file.metadata().is_ok_and(|m| m.is_file()) {
+            file.set_len(0).map_err(|source| io_error("cannot truncate MCAP log", source))?;
+        }
         let write_options = WriteOptions::new()
             .profile("beam-impact")
             .compression(Some(Compression::Zstd))

@@ -106,6 +106,7 @@ impl Recorder for MemoryRecorder {
 }
 
 pub mod mcap;
+pub mod output;
 
 pub mod bench;
 pub mod figures;

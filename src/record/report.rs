@@ -5,6 +5,12 @@
 //! killed process still yields every complete chunk; the report then says that it was cut short
 //! and reports what it holds. The modes and the energy approach are recomputed from the scenario
 //! stored in the log (they are functions of it); everything else comes from the messages.
+//!
+//! Nothing in a log is trusted (issue 9): the bytes are framed by [`super::safe_read`], which
+//! checks every length before allocating or decompressing; what is kept is bounded by
+//! [`RETAINED_RATIO`] times the file; a rollback drops the superseded tail of the steps in
+//! time linear in the log; the stored scenario is validated (its limits bound the model) before
+//! a model is built from it; values the figures cannot scale are reported instead of drawn.
 
 use std::collections::BTreeMap;
 use std::io::Write;
@@ -12,8 +18,8 @@ use std::path::Path;
 
 use prost::Message;
 
-use super::safe_read::{read_records, Ending, Limits, Place, Record};
 use super::mcap::{CONTACT_TOPIC, LOG_TOPIC, MODEL_TOPIC, SCENARIO_ATTACHMENT, SCENARIO_METADATA, STEP_TOPIC};
+use super::safe_read::{read_records, Ending, Limits, Place, Record};
 use super::schema::{ContactEventMessage, LogMessage, ModelMessage, StepMessage};
 use crate::error::{Error, Result};
 use crate::model::Scenario;
@@ -415,11 +421,15 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
     }
     // Nothing in a log is trusted: the stored scenario is parsed and validated (every field within
     // the scenario limits, which bound the model's size) before anything is built from it.
+    if data.scenario_toml.is_none() {
+        let problem = data.problem.as_deref().map(|p| format!(" (reading stopped: {p})")).unwrap_or_default();
+        return Err(mcap_err(mcap, format!("the log holds no scenario{problem}")));
+    }
     let refused = |e: Error| mcap_err(mcap, format!("the scenario stored in the log is refused: {e}"));
     let scenario = data.scenario().map_err(refused)?;
     scenario.validate().map_err(refused)?;
     let simulation = Simulation::new(&scenario).map_err(refused)?;
-    let summary = summary_from_log(&data, &simulation)?;
+    let summary = summary_from_log(&data, &simulation).map_err(|e| mcap_err(mcap, e))?;
     summary_text(&data, &scenario, &summary, &mut text);
     text.push('\n');
     text.push_str(&crate::compare::comparison(&summary, scenario.is_paper()));
@@ -429,6 +439,12 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
         path: out_dir.display().to_string(),
         source,
     })?;
+    // A value the figures cannot scale (a damaged or forged log: a run's results are finite) would
+    // make the axes infinite: say so instead of drawing.
+    if let Some(reason) = unplottable(&data.steps, &summary) {
+        let note = format!("\nfigures: not drawn: {reason}\n");
+        return out.write_all(note.as_bytes()).map_err(io);
+    }
     let files = super::figures::write_figures(&data.steps, &summary, out_dir, !data.complete)?;
     let mut listing = String::from("\nfigures:\n");
     for f in files {
@@ -436,6 +452,36 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
     }
     out.write_all(listing.as_bytes()).map_err(io)?;
     Ok(())
+}
+
+/// Largest magnitude of a time or a plotted value the figures accept: the axes pad the range
+/// of the values by 6 %, which must stay finite (a range reaching 1e308 overflows to infinity
+/// and the axis ticks never end).
+pub const PLOTTABLE: f64 = 1e300;
+
+/// The first time or plotted value (Figures 6-9) that is not finite or not within
+/// [`PLOTTABLE`], with its step, or the end of a contact window that is not.
+fn unplottable(steps: &[StepResult], summary: &Summary) -> Option<String> {
+    let fine = |v: f64| v.abs() <= PLOTTABLE;
+    for r in steps {
+        let values = [
+            ("time", r.time),
+            ("lower_tip_deflection", r.lower_tip_deflection),
+            ("upper_contact_deflection", r.upper_contact_deflection),
+            ("lower_clamp_bending_stress", r.lower_clamp_bending_stress),
+            ("upper_contact_bending_stress", r.upper_contact_bending_stress),
+            ("lower_clamp_shear_stress", r.lower_clamp_shear_stress),
+            ("contact_stress", r.contact_stress),
+        ];
+        if let Some((name, v)) = values.into_iter().find(|&(_, v)| !fine(v)) {
+            return Some(format!("step {} holds {name} = {v:e}, not a finite value within {PLOTTABLE:e}", r.step));
+        }
+    }
+    summary
+        .contact_windows
+        .iter()
+        .find(|w| !(fine(w.start) && fine(w.end)))
+        .map(|w| format!("a contact window runs from {:e} s to {:e} s", w.start, w.end))
 }
 
 /// The default figure directory: `<stem>-figures` next to the log.

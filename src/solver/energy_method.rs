@@ -7,7 +7,7 @@
 //! the clamp stresses are F_din l_a / W_a and F_din / A_s,a, and E_def,a = F_din w_din / 2 (Eq. 35).
 //!
 //! **Bridge** (Eq. 36, Table 1's sigma_din,b = 219 MPa; the paper does not print the steps, they
-//! are reconstructed in `SCENARIO.md`): at the largest arrestor deflection the bridge is at rest
+//! are reconstructed in `docs/scenario.md`): at the largest arrestor deflection the bridge is at rest
 //! (Section 3: "zero velocity at maximum deflection") but still pressed by F_din. Taken as a rigid
 //! body rotating about its hinge, J_u = m_u l_u^2 / 3, it decelerates its fall at
 //!

@@ -1,5 +1,5 @@
 //! Initial conditions at the instant of impact (paper Eqs. 14-26) with the compatibility
-//! convention of SCENARIO.md: time 0 is the impact, the bridge is horizontal and rotating
+//! convention of docs/scenario.md: time 0 is the impact, the bridge is horizontal and rotating
 //! rigidly, the arrestor rests in its self-weight deflection, and the beams touch.
 
 use nalgebra::DVector;

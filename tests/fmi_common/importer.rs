@@ -8,6 +8,7 @@ use std::sync::{Arc, Mutex};
 use libloading::Library;
 
 pub const OK: c_int = 0;
+pub const WARNING: c_int = 1;
 pub const ERROR: c_int = 3;
 
 /// One logged message.
@@ -124,6 +125,16 @@ type Call0 = unsafe extern "C" fn(*mut c_void) -> c_int;
 impl Fmu2 {
     /// `fmi2Instantiate` with the given GUID (`None`: the right one); null on refusal.
     pub fn try_new(lib: &Arc<Library>, guid: Option<&str>, logging_on: bool) -> (Option<Fmu2>, Box<Log>) {
+        Self::try_new_named(lib, guid, logging_on, "beam")
+    }
+
+    /// [`Fmu2::try_new`] with the instance name.
+    pub fn try_new_named(
+        lib: &Arc<Library>,
+        guid: Option<&str>,
+        logging_on: bool,
+        instance_name: &str,
+    ) -> (Option<Fmu2>, Box<Log>) {
         let log = Box::new(Log::default());
         let callbacks = Box::new(Fmi2Callbacks {
             logger: Some(fmi2_logger),
@@ -134,7 +145,7 @@ impl Fmu2 {
         });
         let token = guid.map(String::from).unwrap_or_else(beam_impact::fmi::description::token);
         let (name, guid, resources) = (
-            CString::new("beam").unwrap(),
+            CString::new(instance_name).unwrap(),
             CString::new(token).unwrap(),
             CString::new("file:///tmp/some%20dir/resources").unwrap(),
         );
@@ -166,6 +177,11 @@ impl Fmu2 {
 
     pub fn new(lib: &Arc<Library>) -> Fmu2 {
         Self::try_new(lib, None, true).0.expect("fmi2Instantiate returned null")
+    }
+
+    /// A logging instance named `instance_name`.
+    pub fn new_named(lib: &Arc<Library>, instance_name: &str) -> Fmu2 {
+        Self::try_new_named(lib, None, true, instance_name).0.expect("fmi2Instantiate returned null")
     }
 
     pub fn call0(&self, name: &str) -> c_int {
@@ -391,19 +407,7 @@ impl Fmu3 {
 
     /// Enter and exit initialization mode at t = 0, with the stop time if given.
     pub fn initialize_until(&self, stop: Option<f64>) -> c_int {
-        let enter = sym!(
-            self.lib,
-            "fmi3EnterInitializationMode",
-            unsafe extern "C" fn(*mut c_void, bool, f64, f64, bool, f64) -> c_int
-        );
-        let exit = sym!(self.lib, "fmi3ExitInitializationMode", unsafe extern "C" fn(*mut c_void) -> c_int);
-        // SAFETY: a live instance.
-        let status = unsafe { enter(self.c, false, 0.0, 0.0, stop.is_some(), stop.unwrap_or(0.0)) };
-        if status != OK {
-            return status;
-        }
-        // SAFETY: a live instance.
-        unsafe { exit(self.c) }
+        self.initialize_at(0.0, stop)
     }
 
     pub fn set_string(&self, name: &str, value: &str) -> c_int {
@@ -453,6 +457,101 @@ impl Fmu3 {
         let f: libloading::Symbol<Call0> = unsafe { self.lib.get(symbol.as_bytes()) }.unwrap();
         // SAFETY: a live instance.
         unsafe { f(self.c) }
+    }
+
+    pub fn get_state(&self) -> *mut c_void {
+        let f = sym!(self.lib, "fmi3GetFMUState", unsafe extern "C" fn(*mut c_void, *mut *mut c_void) -> c_int);
+        let mut state = std::ptr::null_mut();
+        // SAFETY: an out-pointer.
+        assert_eq!(unsafe { f(self.c, &mut state) }, OK, "{}", self.log.text());
+        state
+    }
+
+    pub fn set_state(&self, state: *mut c_void) -> c_int {
+        let f = sym!(self.lib, "fmi3SetFMUState", unsafe extern "C" fn(*mut c_void, *mut c_void) -> c_int);
+        // SAFETY: a state from this FMU.
+        unsafe { f(self.c, state) }
+    }
+
+    pub fn free_state(&self, mut state: *mut c_void) {
+        let f = sym!(self.lib, "fmi3FreeFMUState", unsafe extern "C" fn(*mut c_void, *mut *mut c_void) -> c_int);
+        // SAFETY: a state from this FMU.
+        assert_eq!(unsafe { f(self.c, &mut state) }, OK);
+        assert!(state.is_null());
+    }
+
+    pub fn serialize(&self, state: *mut c_void) -> Vec<u8> {
+        let size_of = sym!(
+            self.lib,
+            "fmi3SerializedFMUStateSize",
+            unsafe extern "C" fn(*mut c_void, *mut c_void, *mut usize) -> c_int
+        );
+        let serialize = sym!(
+            self.lib,
+            "fmi3SerializeFMUState",
+            unsafe extern "C" fn(*mut c_void, *mut c_void, *mut u8, usize) -> c_int
+        );
+        let mut size = 0usize;
+        // SAFETY: out-pointer, then a buffer of that size.
+        assert_eq!(unsafe { size_of(self.c, state, &mut size) }, OK);
+        let mut bytes = vec![0u8; size];
+        assert_eq!(unsafe { serialize(self.c, state, bytes.as_mut_ptr(), size) }, OK);
+        bytes
+    }
+
+    pub fn deserialize(&self, bytes: &[u8]) -> (c_int, *mut c_void) {
+        let f = sym!(
+            self.lib,
+            "fmi3DeserializeFMUState",
+            unsafe extern "C" fn(*mut c_void, *const u8, usize, *mut *mut c_void) -> c_int
+        );
+        let mut state = std::ptr::null_mut();
+        // SAFETY: a byte buffer and an out-pointer.
+        let status = unsafe { f(self.c, bytes.as_ptr(), bytes.len(), &mut state) };
+        (status, state)
+    }
+
+    /// Enter and exit initialization mode at `start`, with the stop time if given.
+    pub fn initialize_at(&self, start: f64, stop: Option<f64>) -> c_int {
+        let enter = sym!(
+            self.lib,
+            "fmi3EnterInitializationMode",
+            unsafe extern "C" fn(*mut c_void, bool, f64, f64, bool, f64) -> c_int
+        );
+        let exit = sym!(self.lib, "fmi3ExitInitializationMode", unsafe extern "C" fn(*mut c_void) -> c_int);
+        // SAFETY: a live instance.
+        let status = unsafe { enter(self.c, false, 0.0, start, stop.is_some(), stop.unwrap_or(0.0)) };
+        if status != OK {
+            return status;
+        }
+        // SAFETY: a live instance.
+        unsafe { exit(self.c) }
+    }
+
+    /// fmpy's loop from `start` to `stop` at `interval`, without early return.
+    pub fn run(&self, start: f64, stop: f64, interval: f64) {
+        let mut t = start;
+        let mut n = 0u64;
+        while t < stop && (stop - t).abs() > 1e-12 {
+            let next = (start + (n + 1) as f64 * interval).min(stop);
+            let (status, _, _) = self.do_step(t, next - t);
+            assert_eq!(status, OK, "fmi3DoStep at {t}: {}", self.log.text());
+            t = next;
+            n += 1;
+        }
+    }
+
+    /// `fmi3GetFloat64` of several variables.
+    pub fn get_reals(&self, vrs: &[u32]) -> (c_int, Vec<f64>) {
+        let f = sym!(
+            self.lib,
+            "fmi3GetFloat64",
+            unsafe extern "C" fn(*mut c_void, *const u32, usize, *mut f64, usize) -> c_int
+        );
+        let mut values = vec![f64::NAN; vrs.len()];
+        // SAFETY: arrays of the given length.
+        let status = unsafe { f(self.c, vrs.as_ptr(), vrs.len(), values.as_mut_ptr(), vrs.len()) };
+        (status, values)
     }
 
     /// `fmi3DoStep`: (status, earlyReturn, lastSuccessfulTime).

@@ -1,156 +1,20 @@
-"""Load a beam-impact MCAP log into numpy arrays with the `mcap` package.
-
-Usage as a script:  python load_log.py paper.mcap
-Usage as a module:  from load_log import load_log; log = load_log("paper.mcap")
-
-The log is self-describing: every channel carries its protobuf schema (a FileDescriptorSet), so
-`mcap-protobuf-support` decodes it without any generated code. Returned arrays (one entry per
-internal step, step 0 = the initial state):
-
-    log.steps["time"], log.steps["lower_tip_deflection"], ...   every scalar field of beam_impact.Step
-    log.steps["energy.kinetic"], log.steps["peaks.contact_force"], ...   nested fields, dotted
-    log.modal_coordinates   (steps x coordinates), float32 as stored
-    log.nodal_shapes        (nodes x coordinates): nodal deflections w = nodal_shapes @ q
-    log.lower_nodes, log.upper_nodes   node positions from clamp / hinge, m
-    log.events              list of dicts (start, time, time_ns, step, relative_velocity)
-    log.scenario_toml, log.metadata, log.log_times (every message's log_time, file order)
+"""Load a beam-impact MCAP log into numpy arrays: moved to the `beam_impact` package
+(python/beam_impact/log.py, `from beam_impact import load_log`); this file re-exports it so
+that `from load_log import load_log` and `python load_log.py paper.mcap` keep working.
 """
 
 from __future__ import annotations
 
 import sys
-from dataclasses import dataclass, field
+from pathlib import Path
 
-import numpy as np
-from mcap.reader import make_reader
-from mcap_protobuf.decoder import DecoderFactory
+try:
+    from beam_impact.log import CONTACT_TOPIC, MODEL_TOPIC, STEP_TOPIC, Log, load_log, main
+except ImportError:  # the package is not installed (`pip install ./python`): use the source tree's
+    sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "python"))
+    from beam_impact.log import CONTACT_TOPIC, MODEL_TOPIC, STEP_TOPIC, Log, load_log, main
 
-STEP_TOPIC = "/beam/step"
-CONTACT_TOPIC = "/beam/contact"
-MODEL_TOPIC = "/beam/model"
-
-SCALARS = [
-    "step",
-    "time_ns",
-    "time",
-    "step_size",
-    "contact",
-    "lower_tip_deflection",
-    "upper_contact_deflection",
-    "upper_tip_deflection",
-    "lower_clamp_bending_stress",
-    "lower_clamp_shear_stress",
-    "upper_contact_bending_stress",
-    "contact_force",
-    "contact_stress",
-    "lower_clamp_reaction_force",
-    "lower_clamp_reaction_moment",
-    "upper_hinge_reaction_force",
-    "lower_tip_velocity",
-    "upper_tip_velocity",
-]
-ENERGY = ["kinetic", "strain", "gravity_potential", "external_work", "damping_dissipation", "residual"]
-PEAKS = [
-    "lower_tip_deflection",
-    "lower_clamp_bending_stress",
-    "lower_clamp_shear_stress",
-    "upper_contact_bending_stress",
-    "contact_force",
-]
-INTEGER = {"step": np.uint64, "time_ns": np.uint64, "contact": np.bool_}
-
-
-@dataclass
-class Log:
-    steps: dict[str, np.ndarray]
-    modal_coordinates: np.ndarray
-    nodal_shapes: np.ndarray
-    lower_nodes: np.ndarray
-    upper_nodes: np.ndarray
-    events: list[dict]
-    scenario_toml: str
-    metadata: dict[str, str]
-    log_times: np.ndarray
-    counts: dict[str, int] = field(default_factory=dict)
-
-
-def load_log(path: str) -> Log:
-    columns: dict[str, list] = {name: [] for name in SCALARS}
-    columns.update({f"energy.{n}": [] for n in ENERGY})
-    columns.update({f"peaks.{n}": [] for n in PEAKS})
-    coordinates: list = []
-    events: list[dict] = []
-    log_times: list[int] = []
-    counts: dict[str, int] = {}
-    model = None
-    with open(path, "rb") as f:
-        reader = make_reader(f, decoder_factories=[DecoderFactory()])
-        summary = reader.get_summary()
-        metadata = {}
-        for record in reader.iter_metadata():
-            if record.name == "scenario":
-                metadata = dict(record.metadata)
-        for _schema, channel, message, proto in reader.iter_decoded_messages(log_time_order=False):
-            log_times.append(message.log_time)
-            counts[channel.topic] = counts.get(channel.topic, 0) + 1
-            if channel.topic == STEP_TOPIC:
-                for name in SCALARS:
-                    columns[name].append(getattr(proto, name))
-                for name in ENERGY:
-                    columns[f"energy.{name}"].append(getattr(proto.energy, name))
-                for name in PEAKS:
-                    columns[f"peaks.{name}"].append(getattr(proto.peaks, name))
-                coordinates.append(proto.modal_coordinates)
-            elif channel.topic == CONTACT_TOPIC:
-                events.append(
-                    {
-                        "start": proto.start,
-                        "time": proto.time,
-                        "time_ns": proto.time_ns,
-                        "step": proto.step,
-                        "relative_velocity": proto.relative_velocity,
-                    }
-                )
-            elif channel.topic == MODEL_TOPIC:
-                model = proto
-    if model is None:
-        raise ValueError(f"{path}: no {MODEL_TOPIC} message")
-    assert summary is not None
-    steps = {name: np.asarray(values, dtype=INTEGER.get(name, np.float64)) for name, values in columns.items()}
-    shapes = np.asarray(model.nodal_shapes, dtype=np.float64).reshape(model.shape_rows, model.shape_cols)
-    return Log(
-        steps=steps,
-        modal_coordinates=np.asarray(coordinates, dtype=np.float32),
-        nodal_shapes=shapes,
-        lower_nodes=np.asarray(model.lower_nodes),
-        upper_nodes=np.asarray(model.upper_nodes),
-        events=events,
-        scenario_toml=model.scenario_toml,
-        metadata=metadata,
-        log_times=np.asarray(log_times, dtype=np.uint64),
-        counts=counts,
-    )
-
-
-def main(argv: list[str]) -> int:
-    if len(argv) != 2:
-        print(__doc__)
-        return 2
-    log = load_log(argv[1])
-    s = log.steps
-    print(f"{argv[1]}: {len(s['step'])} step messages to t = {s['time'][-1]:.6f} s; messages {log.counts}")
-    peak = int(np.argmax(np.abs(s["lower_tip_deflection"])))
-    print(f"largest arrestor end deflection {abs(s['lower_tip_deflection'][peak]):.4f} m at t = {s['time'][peak]:.5f} s")
-    for name in ["lower_clamp_bending_stress", "lower_clamp_shear_stress", "upper_contact_bending_stress"]:
-        k = int(np.argmax(np.abs(s[name])))
-        print(f"largest |{name}| {abs(s[name][k]) / 1e6:.2f} MPa at t = {s['time'][k]:.5f} s")
-    starts = [e["time"] for e in log.events if e["start"]]
-    print(f"{len(log.events)} contact events, first contact at t = {starts[0] if starts else float('nan'):.6f} s")
-    # The deflected shape at the largest deflection, from the modal coordinates.
-    w = log.nodal_shapes @ log.modal_coordinates[peak].astype(np.float64)
-    print(f"bridge nodal deflections at the largest arrestor deflection, m: {np.array2string(w[len(log.lower_nodes):], precision=3)}")
-    return 0
-
+__all__ = ["CONTACT_TOPIC", "MODEL_TOPIC", "STEP_TOPIC", "Log", "load_log", "main"]
 
 if __name__ == "__main__":
     sys.exit(main(sys.argv))

@@ -210,3 +210,47 @@ def test_serialized_state_restores_in_another_process(version, tmp_path):
     assert state.read_bytes()[:8] == b"BEAMFMU\0"
     restored = run("load")
     assert json.loads(saved) == json.loads(restored)
+
+
+def _saved_state(version: str, start: float, save_at: float) -> bytes:
+    """fmpy runs the FMU from `start` to `save_at` without telling it a stop time (so the internal
+    steps up to `save_at` are the uninterrupted run's) and serializes its state there."""
+    from fmpy import extract, instantiate_fmu, read_model_description
+
+    path = fmu_path(version)
+    md = read_model_description(path)
+    unzipdir = extract(path)
+    fmu = instantiate_fmu(unzipdir, md)
+    fmpy.simulate_fmu(unzipdir, model_description=md, fmu_instance=fmu, start_time=start, stop_time=save_at,
+                      output_interval=1e-3, start_values={"log.path": "", **PAPER_STEPS}, terminate=False,
+                      set_stop_time=False, output=PEAKS)
+    state = fmu.getFMUState()
+    data = bytes(fmu.serializeFMUState(state))
+    fmu.freeFMUState(state)
+    fmu.terminate()
+    fmu.freeInstance()
+    return data
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+@pytest.mark.parametrize("start", [0.0, 10.0])
+def test_fmpy_restore_flow_continues_to_the_uninterrupted_peaks(version, start, tmp_path):
+    """Issue 8 items 1, 2: `simulate_fmu(fmu, fmu_state=bytes, start_time=...)` instantiates, restores
+    the state and steps, with no initialization call and no start values: the state's parameters
+    and absolute time win, and the run continues to the uninterrupted run's peaks. Before: the fresh
+    instance refused a state of other parameters than its defaults (here the paper's steps: "the state
+    belongs to another scenario"); with equal ones fmpy failed with "fmi2GetReal is not allowed in
+    state Instantiated", and a state of a run started at 10 s restored at 1.5 s. The restored
+    instance has the default log.path: it records to a new BeamImpact-*.mcap in the working directory."""
+    stop = start + 3.0
+    uninterrupted = fmpy.simulate_fmu(fmu_path(version), start_time=start, stop_time=stop, output_interval=1e-3,
+                                      start_values={"log.path": "", **PAPER_STEPS}, output=PEAKS)
+    data = _saved_state(version, start, start + 1.5)
+    assert data[:8] == b"BEAMFMU\0"
+    restored = fmpy.simulate_fmu(fmu_path(version), fmu_state=data, start_time=start + 1.5, stop_time=stop,
+                                 output_interval=1e-3, output=PEAKS)
+    assert restored["time"][0] == start + 1.5 and restored["time"][-1] == pytest.approx(stop)
+    for name in PEAKS:
+        assert restored[name][-1] == uninterrupted[name][-1], f"{name}: restored {restored[name][-1]} vs {uninterrupted[name][-1]}"
+    logs = list(tmp_path.glob("BeamImpact-*.mcap"))
+    assert len(logs) == 1 and logs[0].stat().st_size > 0, logs

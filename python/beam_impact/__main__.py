@@ -1,0 +1,64 @@
+"""`python -m beam_impact sweep --fmu PATH --vary KEY=SPEC ... [--scheduler ADDRESS] --out FILE.csv`
+and `python -m beam_impact log FILE.mcap`."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m beam_impact", description=__doc__)
+    commands = parser.add_subparsers(dest="command", required=True)
+    s = commands.add_parser(
+        "sweep",
+        help="run a grid of scenarios through the FMU as Dask tasks",
+        description="Every combination of the --vary values (the last varying fastest), one FMU run per "
+        "scenario as a Dask task; one CSV row per scenario in grid order, with the columns of "
+        "`beam-impact sweep` that the FMU gives.",
+    )
+    s.add_argument("--fmu", required=True, help="the FMU file (target/fmu/fmi2/BeamImpact.fmu)")
+    s.add_argument("--vary", action="append", default=[], metavar="KEY=SPEC",
+                   help="a varied field: start:stop:count (inclusive, linear) or a comma list (repeatable)")
+    s.add_argument("--scheduler", metavar="ADDRESS",
+                   help="a Dask scheduler (tcp://host:8786); default: threads on this machine")
+    s.add_argument("--stop-time", type=float, default=3.0, help="simulated s per run (default 3)")
+    s.add_argument("--workers", type=int, default=None, help="local threads (default: one per core)")
+    s.add_argument("--out", required=True, metavar="FILE.csv", help="the rows as CSV")
+    s.add_argument("--json", metavar="FILE", help="also write the rows as JSON records")
+    lg = commands.add_parser("log", help="print what an MCAP log holds")
+    lg.add_argument("file")
+    args = parser.parse_args(argv)
+
+    if args.command == "log":
+        from .log import main as log_main
+
+        return log_main(["log", args.file])
+
+    from .dask_sweep import sweep
+    from .grid import parse_vary
+
+    try:
+        grid = parse_vary(args.vary)
+        started = time.perf_counter()
+        frame = sweep(grid, client=args.scheduler, fmu=args.fmu, stop_time=args.stop_time,
+                      num_workers=args.workers)
+    except (ValueError, FileNotFoundError) as e:
+        print(f"python -m beam_impact: {e}", file=sys.stderr)
+        return 2
+    wall = time.perf_counter() - started
+    frame.to_csv(args.out, index=False)
+    if args.json:
+        frame.to_json(args.json, orient="records", indent=1)
+    failed = int((frame["error"] != "").sum())
+    if failed:
+        print(f"python -m beam_impact: warning: {failed} of {len(frame)} scenarios failed (their rows hold the error)",
+              file=sys.stderr)
+    print(f"sweep: {len(frame)} scenarios in {wall:.2f} s: {len(frame) - failed} ran, {failed} failed\n"
+          f"rows written to {args.out}" + (f" and {args.json}" if args.json else ""))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

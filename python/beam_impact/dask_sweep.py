@@ -1,0 +1,144 @@
+"""`beam_impact.sweep`: a grid of FMU runs as Dask tasks, one row per scenario.
+
+Each task runs one scenario of the grid (`beam_impact.simulate`, logging off, one communication
+step over the whole run) and returns its row; a scenario the FMU refuses, or whose run fails,
+returns its row with the FMU's message in `error`, and the sweep goes on.
+
+Where the tasks run:
+- `client=None`: Dask's local threaded scheduler, one thread per core, with
+  `dask.diagnostics.ProgressBar`; the FMU is read from its path and unzipped once. The threads run
+  in parallel: the whole run is one `fmi2DoStep` / `fmi3DoStep`, a ctypes call that releases the
+  GIL; the FMU keeps no global state, and each run gets its own instance of the shared unzipped
+  copy (fmpy's `simulate_fmu` is unsafe across threads when it unzips and deletes an FMU per
+  call, which this never asks it to do). No `if __name__ == "__main__"` guard is needed.
+- a `dask.distributed.Client` (of a `LocalCluster`, or `Client("tcp://host:8786")`), or a
+  scheduler address: the FMU file's bytes are read here and scattered once to every worker, which
+  unzips them once per process (keyed by their SHA-256), so workers need the `beam_impact`
+  package but no shared file system; `distributed.progress` shows the bar. Workers must run
+  Linux x86-64 (the FMU's binaries are `linux64` / `x86_64-linux`).
+One task per scenario, so the bar advances per finished scenario.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import uuid
+from contextlib import nullcontext
+from typing import Any, Iterable
+
+from .fmu import FmuFile, simulate
+from .grid import PEAKS, display, expand
+
+#: Dask key prefix of the sweep's tasks (the progress bar's label).
+TASK_PREFIX = "beam_impact-scenario"
+
+
+def _one_line(text: str) -> str:
+    return " ".join(str(text).split())
+
+
+def run_row(point: dict[str, float], fmu: "str | FmuFile", stop_time: float = 3.0) -> dict[str, Any]:
+    """One scenario's row: the varied values as the CLI shows them, the peaks and the energy
+    approach (CLI names), and `error` ("" when fine)."""
+    row: dict[str, Any] = {k: display(k, v) for k, v in point.items()}
+    try:
+        row.update(simulate(fmu, point, stop_time=stop_time))
+        row["error"] = ""
+    except Exception as e:  # a refused scenario or a failed run is a row, not an aborted sweep
+        row["error"] = _one_line(e) or type(e).__name__
+    return row
+
+
+def _fmu_path(fmu: "str | os.PathLike | None") -> str:
+    path = fmu if fmu is not None else os.environ.get("BEAM_IMPACT_FMU")
+    if path is None:
+        raise ValueError("no FMU: pass fmu=PATH (or set BEAM_IMPACT_FMU)")
+    path = os.fspath(path)
+    if not os.path.isfile(path):
+        raise FileNotFoundError(f"{path}: no such FMU (build it with `beam-impact pack`)")
+    return path
+
+
+def _columns(fields: Iterable[str], path: str) -> list[str]:
+    from fmpy import read_model_description
+
+    md = read_model_description(path)
+    names = {v.name for v in md.modelVariables}
+    for f in fields:
+        if f != "duration" and f not in names:
+            raise ValueError(f"unknown parameter `{f}`: the FMU has no variable of that name")
+    method = [v.name for v in md.modelVariables if v.name.startswith("energy_method.")]
+    return [*fields, *PEAKS, *method, "error"]
+
+
+def sweep(
+    grid: dict[str, Iterable[Any]],
+    client: Any = None,
+    fmu: "str | os.PathLike | None" = None,
+    stop_time: float = 3.0,
+    progress: bool | None = None,
+    num_workers: int | None = None,
+):
+    """Runs every scenario of `grid` ({field: values}, the product in dict order with the last
+    field fastest, as `beam-impact sweep --vary`) through the FMU at `fmu` and returns a
+    pandas.DataFrame, one row per scenario in grid order: the varied fields, the peaks
+    `lower_tip_deflection` (m), `lower_clamp_bending_stress`, `lower_clamp_shear_stress`,
+    `upper_contact_bending_stress` (Pa), `contact_force` (N), `energy_method.<field>` (SI units),
+    and `error` ("" when fine; the peaks are NaN then).
+
+    `client`: None for the local threaded scheduler (`num_workers` threads, default one per core),
+    a `dask.distributed.Client`, or a scheduler address ("tcp://host:8786").
+    `stop_time`: simulated s per run (a varied `duration` overrides it). `progress`: show a bar
+    (default: when the output is a terminal)."""
+    import pandas as pd
+
+    path = _fmu_path(fmu)
+    points = expand(grid)
+    columns = _columns(list(grid), path)
+    if client is None:
+        rows = _run_local(points, path, stop_time, progress, num_workers)
+    else:
+        own = isinstance(client, str)
+        if own:
+            from distributed import Client
+
+            client = Client(client)
+        try:
+            rows = _run_distributed(client, points, path, stop_time, progress)
+        finally:
+            if own:
+                client.close()
+    return pd.DataFrame(rows, columns=columns)
+
+
+def _run_local(points, path, stop_time, progress, num_workers) -> list[dict]:
+    import dask
+    from dask.diagnostics import ProgressBar
+
+    if progress is None:
+        progress = sys.stderr.isatty()
+    tasks = [dask.delayed(run_row, pure=False)(p, path, stop_time, dask_key_name=f"{TASK_PREFIX}-{i}")
+             for i, p in enumerate(points)]
+    with ProgressBar(out=sys.stderr) if progress else nullcontext():
+        return list(dask.compute(*tasks, scheduler="threads", num_workers=num_workers))
+
+
+def _run_distributed(client, points, path, stop_time, progress) -> list[dict]:
+    if progress is None:
+        progress = sys.stdout.isatty()
+    fmu = client.scatter(FmuFile.read(path), broadcast=True)
+    token = uuid.uuid4().hex[:12]  # fresh keys: never another sweep's cached results
+    keys = [f"{TASK_PREFIX}-{token}-{i}" for i in range(len(points))]
+    futures = client.map(run_row, points, fmu=fmu, stop_time=stop_time, key=keys, pure=False)
+    if progress:
+        from distributed import progress as show
+
+        show(futures)
+    rows = []
+    for point, future in zip(points, futures):
+        try:
+            rows.append(future.result())
+        except Exception as e:  # the worker died (a crash inside the FMU): still a row
+            rows.append({**{k: display(k, v) for k, v in point.items()}, "error": f"task failed: {_one_line(e)}"})
+    return rows

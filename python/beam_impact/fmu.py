@@ -1,0 +1,302 @@
+"""One run of the beam-impact FMU through fmpy.
+
+Parameters are the scenario's dotted names (`drop_height`, `upper.mass`, ...), with the values of
+`beam_impact.grid.parse_value` ("auto" time steps, stress recovery names); `duration` is the stop
+time (the FMU runs until its importer's stop time); `upper.tip_force` / `lower.tip_force` are the
+FMU's inputs, held constant. Logging is off unless asked (`log.path` = "").
+
+With one communication step over the whole run (the default here) the FMU takes the CLI's very
+internal steps, so the peaks equal `beam-impact run`'s to round-off (README, "Co-simulation grid").
+"""
+
+from __future__ import annotations
+
+import atexit
+import hashlib
+import os
+import shutil
+import tempfile
+import threading
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from .grid import INTEGER_FIELDS, PEAKS, parse_value
+
+#: FMU output -> CLI name, for the five peaks.
+PEAK_OUTPUTS = {
+    "peak.lower.tip_deflection": "lower_tip_deflection",
+    "peak.lower.clamp_bending_stress": "lower_clamp_bending_stress",
+    "peak.lower.clamp_shear_stress": "lower_clamp_shear_stress",
+    "peak.upper.contact_bending_stress": "upper_contact_bending_stress",
+    "peak.contact.force": "contact_force",
+}
+assert tuple(PEAK_OUTPUTS.values()) == PEAKS
+
+#: fmi2Error / fmi3Error and above.
+_ERROR = 3
+
+
+class SimulationError(RuntimeError):
+    """A run the FMU refused or could not finish; the message is the FMU's own (its logger's)."""
+
+
+@dataclass(frozen=True)
+class FmuFile:
+    """An FMU's bytes, the unit shipped to a cluster's workers (scattered once to each)."""
+
+    name: str
+    data: bytes = field(repr=False)
+    sha256: str = ""
+
+    @staticmethod
+    def read(path: str | os.PathLike) -> "FmuFile":
+        data = Path(path).read_bytes()
+        return FmuFile(Path(path).name, data, hashlib.sha256(data).hexdigest())
+
+
+@dataclass
+class _Extracted:
+    directory: str
+    model_description: Any
+    names: set = field(default_factory=set)
+
+
+_cache: dict[str, _Extracted] = {}
+_lock = threading.Lock()
+_scratch: list[str] = []
+
+
+def _cleanup() -> None:
+    for d in _scratch:
+        shutil.rmtree(d, ignore_errors=True)
+
+
+atexit.register(_cleanup)
+
+
+def _extracted(fmu: "str | os.PathLike | FmuFile") -> _Extracted:
+    """The FMU unzipped once per process (keyed by its content), with its model description."""
+    from fmpy import extract, read_model_description
+
+    if isinstance(fmu, FmuFile):
+        key, data = fmu.sha256 or hashlib.sha256(fmu.data).hexdigest(), fmu.data
+    else:
+        path = os.path.abspath(os.fspath(fmu))
+        stat = os.stat(path)
+        key, data = f"{path}:{stat.st_mtime_ns}:{stat.st_size}", None
+    with _lock:
+        hit = _cache.get(key)
+        if hit is not None:
+            return hit
+        scratch = tempfile.mkdtemp(prefix="beam_impact-fmu-")
+        _scratch.append(scratch)
+        if data is not None:
+            source = os.path.join(scratch, fmu.name or "model.fmu")
+            with open(source, "wb") as f:
+                f.write(data)
+        else:
+            source = path
+        directory = extract(source, unzipdir=os.path.join(scratch, "unzipped"))
+        md = read_model_description(directory)
+        entry = _Extracted(directory, md, {v.name for v in md.modelVariables})
+        _cache[key] = entry
+        return entry
+
+
+def _start_values(parameters: dict[str, Any], names: set) -> tuple[dict[str, Any], float | None]:
+    values: dict[str, Any] = {}
+    duration = None
+    for key, value in parameters.items():
+        v = parse_value(key, value)
+        if key == "duration":
+            duration = v
+            continue
+        if key not in names:
+            raise SimulationError(f"unknown parameter `{key}`: the FMU has no variable of that name")
+        if key in INTEGER_FIELDS:
+            if not (v.is_integer() and v >= 0):
+                raise SimulationError(f"{key} must be a whole number >= 1, got {v:g}")
+            v = int(v)
+        values[key] = v
+    return values, duration
+
+
+class _Fmi2Messages:
+    """FMI 2 logger messages, routed to their run by `componentEnvironment`.
+
+    fmpy's varargs proxy (`fmpy.logging.addLoggerProxy`, which formats the FMU's printf-style
+    message) keeps the Python logger in one process-wide pointer, so every instance in a process
+    must share one logger that lives as long as the process (a logger freed after its run, with
+    another run's pointer still on it, would crash the next message). This is that logger; each
+    run passes its own key as `componentEnvironment`, which the FMU hands back untouched."""
+
+    def __init__(self) -> None:
+        from fmpy.fmi2 import fmi2CallbackLoggerTYPE
+
+        self.lock = threading.Lock()
+        self.runs: dict[int, list] = {}
+        self.next_key = 1
+        self.callback = fmi2CallbackLoggerTYPE(self._log)
+
+    def _log(self, env, instance, status, category, message) -> None:
+        with self.lock:
+            messages = self.runs.get(int(env or 0))
+        if messages is not None:
+            messages.append((int(status), message.decode(errors="replace") if message else ""))
+
+    def open(self) -> tuple[int, list]:
+        with self.lock:
+            key, self.next_key = self.next_key, self.next_key + 1
+            self.runs[key] = []
+            return key, self.runs[key]
+
+    def close(self, key: int) -> None:
+        with self.lock:
+            self.runs.pop(key, None)
+
+
+_fmi2_messages: _Fmi2Messages | None = None
+
+
+def _fmi2_router() -> _Fmi2Messages:
+    global _fmi2_messages
+    with _lock:
+        if _fmi2_messages is None:
+            _fmi2_messages = _Fmi2Messages()
+        return _fmi2_messages
+
+
+def _communication_points(stop_time: float, interval: float) -> list[float]:
+    """0, interval, 2 interval, ..., stop_time (the last one exactly), from the index, not a sum."""
+    n = max(1, int(round(stop_time / interval)))
+    return [k * interval for k in range(n)] + [stop_time]
+
+
+def _run(entry: _Extracted, start: dict[str, Any], stop_time: float, interval: float, outputs: list[str],
+         histories: bool) -> list[list[float]]:
+    """Drives one co-simulation instance (FMI 2 or 3): start values, initialization, doStep over
+    the communication points; returns the outputs at the end (or at every point, time first)."""
+    md = entry.model_description
+    variables = {v.name: v for v in md.modelVariables}
+    fmi2 = md.fmiVersion.startswith("2")
+    common = dict(guid=md.guid, unzipDirectory=entry.directory, modelIdentifier=md.coSimulation.modelIdentifier,
+                  instanceName="beam_impact")
+    messages: list[tuple[int, str]]
+    if fmi2:
+        from ctypes import byref, c_void_p
+
+        from fmpy.fmi2 import FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE, \
+            fmi2CallbackFunctions
+        from fmpy import calloc, free
+        from fmpy.logging import addLoggerProxy
+
+        router = _fmi2_router()
+        key, messages = router.open()
+        callbacks = fmi2CallbackFunctions()
+        callbacks.logger = router.callback
+        callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+        callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+        callbacks.componentEnvironment = c_void_p(key)
+        addLoggerProxy(byref(callbacks))
+        fmu = FMU2Slave(**common)
+        setters = {"Real": fmu.setReal, "Integer": fmu.setInteger, "Boolean": fmu.setBoolean,
+                   "String": fmu.setString}
+        get = fmu.getReal
+    else:
+        from fmpy.fmi3 import FMU3Slave
+
+        messages = []
+        key = 0
+
+        def log(env, status, category, message):
+            messages.append((int(status), message.decode(errors="replace") if message else ""))
+
+        fmu = FMU3Slave(**common)
+        setters = {"Float64": fmu.setFloat64, "Int32": fmu.setInt32, "Int64": fmu.setInt64,
+                   "Boolean": fmu.setBoolean, "String": fmu.setString}
+        get = fmu.getFloat64
+    instantiated = False
+    try:
+        if fmi2:
+            fmu.instantiate(callbacks=callbacks)
+        else:
+            fmu.instantiate(logMessage=log)
+        instantiated = True
+        if fmi2:
+            fmu.setupExperiment(startTime=0.0, stopTime=stop_time)
+        for name, value in start.items():
+            v = variables[name]
+            setters[v.type]([v.valueReference], [value])
+        if fmi2:
+            fmu.enterInitializationMode()
+        else:
+            fmu.enterInitializationMode(startTime=0.0, stopTime=stop_time)
+        fmu.exitInitializationMode()
+        vrs = [variables[n].valueReference for n in outputs]
+        points = _communication_points(stop_time, interval)
+        rows = [[0.0, *get(vrs)]] if histories else []
+        for t0, t1 in zip(points, points[1:]):
+            fmu.doStep(currentCommunicationPoint=t0, communicationStepSize=t1 - t0)
+            if histories:
+                rows.append([t1, *get(vrs)])
+        if not histories:
+            rows = [[stop_time, *get(vrs)]]
+        fmu.terminate()
+        return rows
+    except Exception as e:
+        errors = [m for status, m in messages if status >= _ERROR]
+        raise SimulationError("; ".join(errors) if errors else str(e)) from e
+    finally:
+        if instantiated:
+            fmu.freeInstance()  # also unloads this instance's handle on the shared library
+        else:
+            fmu.freeLibrary()
+        if fmi2:
+            router.close(key)
+
+
+def simulate(
+    fmu: "str | os.PathLike | FmuFile",
+    parameters: dict[str, Any] | None = None,
+    stop_time: float = 3.0,
+    output_interval: float | None = None,
+    log_path: str | None = None,
+    histories: bool = False,
+):
+    """Runs the FMU once: `parameters` by the scenario's dotted names, until `stop_time` s (or the
+    `duration` parameter). Returns a dict of the peaks under the CLI's names (`lower_tip_deflection`,
+    `lower_clamp_bending_stress`, `lower_clamp_shear_stress`, `upper_contact_bending_stress`,
+    `contact_force`; SI units) and the energy approach (`energy_method.<field>`). With
+    `histories=True`, returns (dict, DataFrame of every real output at each communication point,
+    `output_interval` default 1e-3 s, time first); otherwise one communication step over the whole
+    run. `log_path`: write the FMU's MCAP log there (default: no log). Raises SimulationError with
+    the FMU's message when it refuses the parameters or the run fails.
+
+    The instance is driven here through fmpy's FMU2Slave / FMU3Slave (not `simulate_fmu`), so that
+    runs on several threads of one process keep their logger messages apart (see _Fmi2Messages)."""
+    entry = _extracted(fmu)
+    md = entry.model_description
+    start, duration = _start_values(dict(parameters or {}), entry.names)
+    if duration is not None:
+        stop_time = duration
+    if not stop_time > 0:
+        raise SimulationError(f"stop time must be > 0 s, got {stop_time}")
+    start["log.path"] = "" if log_path is None else os.fspath(log_path)
+    if output_interval is None:
+        output_interval = min(1e-3, stop_time) if histories else stop_time
+    method = [v.name for v in md.modelVariables if v.name.startswith("energy_method.")]
+    outputs = list(PEAK_OUTPUTS) + method
+    if histories:
+        real = ("Real", "Float64")
+        outputs += [v.name for v in md.modelVariables if v.causality == "output" and v.type in real
+                    and v.name not in PEAK_OUTPUTS]
+    rows = _run(entry, start, stop_time, output_interval, outputs, histories)
+    last = rows[-1][1:]
+    peaks: dict[str, float] = {cli: float(value) for cli, value in zip(PEAK_OUTPUTS.values(), last)}
+    peaks.update({name: float(value) for name, value in zip(method, last[len(PEAK_OUTPUTS):])})
+    if not histories:
+        return peaks
+    import pandas as pd
+
+    return peaks, pd.DataFrame(rows, columns=["time", *outputs])

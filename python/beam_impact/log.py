@@ -1,0 +1,204 @@
+"""Load a beam-impact MCAP log into numpy arrays (or a pandas DataFrame of the step channel).
+
+    from beam_impact import load_log
+    log = load_log("paper.mcap")
+    log.steps["time"], log.steps["lower_tip_deflection"], ...   every scalar field of beam_impact.Step
+    log.steps["energy.kinetic"], log.steps["peaks.contact_force"], ...   nested fields, dotted
+    log.dataframe()         the same columns as a pandas.DataFrame, one row per internal step
+    log.modal_coordinates   (steps x coordinates), float32 as stored
+    log.nodal_shapes        (nodes x coordinates): nodal deflections w = nodal_shapes @ q
+    log.lower_nodes, log.upper_nodes   node positions from clamp / hinge, m
+    log.events              list of dicts (start, time, time_ns, step, relative_velocity)
+    log.scenario_toml, log.metadata, log.log_times (every message's log_time, file order)
+    log.complete            False for the log of a killed run (no summary and footer)
+
+The file is read front to back with the `mcap` package's StreamReader (CRCs checked), not through
+the summary at its end: the log of a killed writer has every complete chunk and no summary, and
+loads up to its last complete chunk, with `complete` False and `problem` saying where it ends.
+Every channel carries its protobuf schema (a FileDescriptorSet), so `mcap-protobuf-support`
+decodes it without generated code. Step 0 is the initial state.
+"""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass, field
+
+import numpy as np
+
+STEP_TOPIC = "/beam/step"
+CONTACT_TOPIC = "/beam/contact"
+MODEL_TOPIC = "/beam/model"
+
+SCALARS = [
+    "step",
+    "time_ns",
+    "time",
+    "step_size",
+    "contact",
+    "lower_tip_deflection",
+    "upper_contact_deflection",
+    "upper_tip_deflection",
+    "lower_clamp_bending_stress",
+    "lower_clamp_shear_stress",
+    "upper_contact_bending_stress",
+    "contact_force",
+    "contact_stress",
+    "lower_clamp_reaction_force",
+    "lower_clamp_reaction_moment",
+    "upper_hinge_reaction_force",
+    "lower_tip_velocity",
+    "upper_tip_velocity",
+]
+ENERGY = ["kinetic", "strain", "gravity_potential", "external_work", "damping_dissipation", "residual"]
+PEAKS = [
+    "lower_tip_deflection",
+    "lower_clamp_bending_stress",
+    "lower_clamp_shear_stress",
+    "upper_contact_bending_stress",
+    "contact_force",
+]
+INTEGER = {"step": np.uint64, "time_ns": np.uint64, "contact": np.bool_}
+
+
+@dataclass
+class Log:
+    steps: dict[str, np.ndarray]
+    modal_coordinates: np.ndarray
+    nodal_shapes: np.ndarray
+    lower_nodes: np.ndarray
+    upper_nodes: np.ndarray
+    events: list[dict]
+    scenario_toml: str
+    metadata: dict[str, str]
+    log_times: np.ndarray
+    counts: dict[str, int] = field(default_factory=dict)
+    #: False when the file ends before its summary and footer (a killed run).
+    complete: bool = True
+    #: Why the reading stopped early ("" for a complete file).
+    problem: str = ""
+
+    def dataframe(self):
+        """The step channel as a pandas.DataFrame, one row per internal step (step 0 first)."""
+        import pandas as pd
+
+        return pd.DataFrame(self.steps)
+
+
+def load_log(path: str) -> Log:
+    """Reads the log at `path` (also the log of a killed run: every complete chunk)."""
+    from mcap.records import Channel, DataEnd, Footer, Message, Metadata, Schema
+    from mcap.stream_reader import StreamReader
+    from mcap_protobuf.decoder import DecoderFactory
+
+    columns: dict[str, list] = {name: [] for name in SCALARS}
+    columns.update({f"energy.{n}": [] for n in ENERGY})
+    columns.update({f"peaks.{n}": [] for n in PEAKS})
+    coordinates: list = []
+    events: list[dict] = []
+    log_times: list[int] = []
+    counts: dict[str, int] = {}
+    metadata: dict[str, str] = {}
+    schemas: dict[int, Schema] = {}
+    channels: dict[int, Channel] = {}
+    decoders: dict[int, object] = {}
+    factory = DecoderFactory()
+    model = None
+    complete, problem = False, ""
+    with open(path, "rb") as f:
+        records = iter(StreamReader(f, validate_crcs=True).records)
+        while True:
+            try:
+                record = next(records)
+            except StopIteration:
+                break
+            except Exception as e:  # the end of a killed run's file: keep every complete chunk
+                complete, problem = False, f"{type(e).__name__}: {e}".strip()
+                break
+            if isinstance(record, Schema):
+                schemas[record.id] = record
+            elif isinstance(record, Channel):
+                channels[record.id] = record
+            elif isinstance(record, Metadata):
+                if record.name == "scenario":
+                    metadata = dict(record.metadata)
+            elif isinstance(record, (DataEnd, Footer)):
+                complete = True
+            elif isinstance(record, Message):
+                channel = channels[record.channel_id]
+                decode = decoders.get(record.channel_id)
+                if decode is None:
+                    decode = factory.decoder_for(channel.message_encoding, schemas.get(channel.schema_id))
+                    if decode is None:
+                        raise ValueError(f"{path}: channel {channel.topic} is not protobuf")
+                    decoders[record.channel_id] = decode
+                log_times.append(record.log_time)
+                counts[channel.topic] = counts.get(channel.topic, 0) + 1
+                proto = decode(record.data)
+                if channel.topic == STEP_TOPIC:
+                    for name in SCALARS:
+                        columns[name].append(getattr(proto, name))
+                    for name in ENERGY:
+                        columns[f"energy.{name}"].append(getattr(proto.energy, name))
+                    for name in PEAKS:
+                        columns[f"peaks.{name}"].append(getattr(proto.peaks, name))
+                    coordinates.append(proto.modal_coordinates)
+                elif channel.topic == CONTACT_TOPIC:
+                    events.append(
+                        {
+                            "start": proto.start,
+                            "time": proto.time,
+                            "time_ns": proto.time_ns,
+                            "step": proto.step,
+                            "relative_velocity": proto.relative_velocity,
+                        }
+                    )
+                elif channel.topic == MODEL_TOPIC:
+                    model = proto
+    if not complete and not problem:
+        problem = "the file ends before its summary and footer (the writer never finished)"
+    if model is None:
+        raise ValueError(f"{path}: no {MODEL_TOPIC} message" + (f" ({problem})" if problem else ""))
+    steps = {name: np.asarray(values, dtype=INTEGER.get(name, np.float64)) for name, values in columns.items()}
+    shapes = np.asarray(model.nodal_shapes, dtype=np.float64).reshape(model.shape_rows, model.shape_cols)
+    return Log(
+        steps=steps,
+        modal_coordinates=np.asarray(coordinates, dtype=np.float32),
+        nodal_shapes=shapes,
+        lower_nodes=np.asarray(model.lower_nodes),
+        upper_nodes=np.asarray(model.upper_nodes),
+        events=events,
+        scenario_toml=model.scenario_toml,
+        metadata=metadata,
+        log_times=np.asarray(log_times, dtype=np.uint64),
+        counts=counts,
+        complete=complete,
+        problem=problem,
+    )
+
+
+def main(argv: list[str]) -> int:
+    """Prints a log's contents: `python -m beam_impact log FILE.mcap`."""
+    if len(argv) != 2:
+        print(__doc__)
+        return 2
+    log = load_log(argv[1])
+    s = log.steps
+    print(f"{argv[1]}: {len(s['step'])} step messages to t = {s['time'][-1]:.6f} s; messages {log.counts}")
+    if not log.complete:
+        print(f"incomplete log (a killed run?): {log.problem}")
+    peak = int(np.argmax(np.abs(s["lower_tip_deflection"])))
+    print(f"largest arrestor end deflection {abs(s['lower_tip_deflection'][peak]):.4f} m at t = {s['time'][peak]:.5f} s")
+    for name in ["lower_clamp_bending_stress", "lower_clamp_shear_stress", "upper_contact_bending_stress"]:
+        k = int(np.argmax(np.abs(s[name])))
+        print(f"largest |{name}| {abs(s[name][k]) / 1e6:.2f} MPa at t = {s['time'][k]:.5f} s")
+    starts = [e["time"] for e in log.events if e["start"]]
+    print(f"{len(log.events)} contact events, first contact at t = {starts[0] if starts else float('nan'):.6f} s")
+    # The deflected shape at the largest deflection, from the modal coordinates.
+    w = log.nodal_shapes @ log.modal_coordinates[peak].astype(np.float64)
+    print(f"bridge nodal deflections at the largest arrestor deflection, m: {np.array2string(w[len(log.lower_nodes):], precision=3)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

@@ -1,0 +1,864 @@
+//! Design sweeps: a scenario varied over a full factorial grid of its fields, every scenario run
+//! unrecorded in parallel, one row of results per scenario (CSV and JSON); and the `KEY=VALUE`
+//! overrides of `beam-impact run --set`.
+//!
+//! Names are the scenario's dotted field names ([`crate::model::parameters::PARAMETERS`], plus the
+//! constant tip forces [`TIP_FORCES`]); values are read per field: reals, whole numbers, `"auto"`
+//! for the time steps (0 in the FMU's form), `mean` / `left` / `right` for `stress_recovery`.
+//!
+//! A grid is the product of its axes in the order given, the last axis varying fastest (as
+//! Python's `itertools.product`). An axis is `start:stop:count` (inclusive, linear: value i is
+//! `start + (stop - start) * i / (count - 1)` to 15 significant digits, the last one `stop`
+//! exactly; count 1 is `start`) or a comma list; an integer field's values are rounded and its
+//! duplicates dropped (first kept).
+//! The Python package `beam_impact` parses the same specs with the same arithmetic, so both give
+//! the same bits.
+//!
+//! A row is the run's [`Summary`] reduced to what a design envelope needs: the four Table 1 peaks
+//! and the contact force peak, when each was reached, the energy approach, the largest energy
+//! residual and the trust verdict. Each run is the `run` command's (`Simulation::new`, the step
+//! count check, `run` into a [`NullRecorder`]), so a row equals the single run of its scenario to
+//! the bit. A scenario that fails validation, or whose run fails, gives a row with the error.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::mpsc;
+
+use crate::error::{Error, Result};
+use crate::model::parameters::{self, Kind, Parameter};
+use crate::model::{Scenario, StressRecovery};
+use crate::record::NullRecorder;
+use crate::results::{Peaks, Summary};
+use crate::solver::EnergyMethod;
+use crate::Simulation;
+
+/// Scenario fields beyond [`parameters::PARAMETERS`] that `--set` and `--vary` accept: the constant tip
+/// forces (the FMU's inputs, so not among its parameters).
+pub static TIP_FORCES: [Parameter; 2] = [
+    Parameter {
+        name: "upper.tip_force",
+        unit: "N",
+        description: "Constant vertical force at the bridge's free end, up positive",
+        kind: Kind::Real,
+        get: |s| s.upper.tip_force,
+        put: |s, v| {
+            s.upper.tip_force = v;
+            Ok(())
+        },
+    },
+    Parameter {
+        name: "lower.tip_force",
+        unit: "N",
+        description: "Constant vertical force at the arrestor's free end, up positive",
+        kind: Kind::Real,
+        get: |s| s.lower.tip_force,
+        put: |s, v| {
+            s.lower.tip_force = v;
+            Ok(())
+        },
+    },
+];
+
+/// The field named `name` (the dotted names of `beam-impact scenario`).
+pub fn field(name: &str) -> Result<&'static Parameter> {
+    parameters::find(name).or_else(|_| {
+        TIP_FORCES.iter().find(|p| p.name == name).ok_or_else(|| {
+            Error::Other(format!(
+                "unknown parameter `{name}`: the names are those of `beam-impact scenario`, dotted ({})",
+                "drop_height, damping_ratio, upper.mass, lower.elements, ..."
+            ))
+        })
+    })
+}
+
+fn is_time_step(field: &Parameter) -> bool {
+    matches!(field.name, "step_free" | "step_contact")
+}
+
+fn is_stress_recovery(field: &Parameter) -> bool {
+    field.name == "stress_recovery"
+}
+
+const RECOVERY_NAMES: [&str; 3] = ["mean", "left", "right"];
+
+/// What a value of `field` looks like, for messages.
+fn expected(field: &Parameter) -> String {
+    if is_time_step(field) {
+        "a time step in s or \"auto\"".into()
+    } else if is_stress_recovery(field) {
+        "mean, left or right".into()
+    } else if field.kind == Kind::Integer {
+        "a whole number".into()
+    } else if field.unit.is_empty() || field.unit == "1" {
+        "a number".into()
+    } else {
+        format!("a number in {}", field.unit)
+    }
+}
+
+/// Reads one value of `field` in its parameter form: a number; `auto` (0) for the time steps;
+/// `mean`, `left`, `right` (0, 1, 2) for `stress_recovery`.
+pub fn parse_value(field: &Parameter, text: &str) -> Result<f64> {
+    let text = text.trim();
+    if is_time_step(field) && text == "auto" {
+        return Ok(0.0);
+    }
+    if is_stress_recovery(field) {
+        if let Some(k) = RECOVERY_NAMES.iter().position(|&n| n == text) {
+            return Ok(k as f64);
+        }
+    }
+    text.parse::<f64>().map_err(|_| Error::Other(format!("{} takes {}, got `{text}`", field.name, expected(field))))
+}
+
+/// A value of `field` as the CSV writes it (and as `parse_value` reads it back): `auto`, a stress
+/// recovery's name, a whole number, or the shortest decimal that gives the same f64.
+pub fn format_value(field: &Parameter, value: f64) -> String {
+    if is_time_step(field) && value == 0.0 {
+        "auto".into()
+    } else if is_stress_recovery(field) {
+        StressRecovery::from_index(value)
+            .map_or_else(|| format!("{value}"), |r| RECOVERY_NAMES[r.index() as usize].into())
+    } else {
+        format!("{value}")
+    }
+}
+
+/// A value of `field` as JSON: a string for `auto` and the stress recoveries, else a number.
+fn json_value(field: &Parameter, value: f64) -> String {
+    if (is_time_step(field) && value == 0.0) || is_stress_recovery(field) {
+        json_string(&format_value(field, value))
+    } else if field.kind == Kind::Integer && value.fract() == 0.0 && value.abs() < 9e15 {
+        format!("{}", value as i64)
+    } else {
+        json_number(value)
+    }
+}
+
+/// One `KEY=VALUE` override.
+#[derive(Clone, Copy, Debug)]
+pub struct Setting {
+    /// The field.
+    pub field: &'static Parameter,
+    /// Its value in the parameter form (see [`parse_value`]).
+    pub value: f64,
+}
+
+fn split_assignment<'a>(option: &str, text: &'a str, what: &str) -> Result<(&'a str, &'a str)> {
+    match text.split_once('=') {
+        Some((key, value)) if !key.trim().is_empty() => Ok((key.trim(), value)),
+        _ => Err(Error::Other(format!("{option} expects KEY={what}, got `{text}`"))),
+    }
+}
+
+/// Reads `--set KEY=VALUE`.
+pub fn parse_setting(text: &str) -> Result<Setting> {
+    let (key, value) = split_assignment("--set", text, "VALUE")?;
+    let field = field(key).map_err(|e| Error::Other(format!("--set {text}: {e}")))?;
+    let value = parse_value(field, value).map_err(|e| Error::Other(format!("--set {text}: {e}")))?;
+    Ok(Setting { field, value })
+}
+
+/// Reads every `--set`.
+pub fn parse_settings(texts: &[String]) -> Result<Vec<Setting>> {
+    texts.iter().map(|t| parse_setting(t)).collect()
+}
+
+/// Sets one field (integers must be whole), without validating the scenario.
+pub fn set(scenario: &mut Scenario, field: &Parameter, value: f64) -> Result<()> {
+    parameters::set(scenario, field, value)
+}
+
+/// Validates a whole scenario: every invalid field, each named, in one error.
+pub fn validate(scenario: &Scenario) -> Result<()> {
+    let mut errors = scenario.validation_errors();
+    match errors.len() {
+        0 => Ok(()),
+        1 => Err(errors.remove(0)),
+        _ => Err(Error::Invalid(errors)),
+    }
+}
+
+/// Applies the settings in order (a later one wins) and validates the result.
+pub fn apply_settings(scenario: &mut Scenario, settings: &[Setting]) -> Result<()> {
+    for s in settings {
+        set(scenario, s.field, s.value)?;
+    }
+    validate(scenario)
+}
+
+/// The default log of a `run` with `--set`: `<stem>-set-<hash>.mcap` in the working directory,
+/// the stem the scenario file's (`paper` without one) and the hash the resolved scenario's
+/// (FNV-1a of its TOML, 32 bits in hex), so that it never overwrites the unmodified run's
+/// `paper.mcap` and the same overrides find the same file. Without settings: `paper.mcap`.
+pub fn default_log(file: Option<&Path>, settings: &[Setting], scenario: &Scenario) -> PathBuf {
+    if settings.is_empty() {
+        return PathBuf::from("paper.mcap");
+    }
+    let stem = file.and_then(|f| f.file_stem()).map_or_else(|| "paper".into(), |s| s.to_string_lossy().into_owned());
+    let hash = fnv1a(scenario.to_toml().as_bytes());
+    PathBuf::from(format!("{stem}-set-{:08x}.mcap", (hash ^ (hash >> 32)) as u32))
+}
+
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3))
+}
+
+/// One varied field and its values, in order.
+#[derive(Clone, Debug)]
+pub struct Axis {
+    /// The field.
+    pub field: &'static Parameter,
+    /// Its values in the parameter form.
+    pub values: Vec<f64>,
+}
+
+/// `count` values from `start` to `stop` inclusive: `start + (stop - start) * i / (count - 1)`
+/// rounded to 15 significant digits (so that 0.2:1:3 gives 0.6, not 0.6000000000000001), the
+/// last exactly `stop`; one value is `start`. Python's `float(f"{x:.14e}")` rounds the same way
+/// (both correctly rounded), so the package's grids are these bits.
+pub fn linspace(start: f64, stop: f64, count: usize) -> Vec<f64> {
+    let snap = |x: f64| format!("{x:.14e}").parse::<f64>().unwrap_or(x);
+    (0..count)
+        .map(|i| match i {
+            0 => start,
+            i if i + 1 == count => stop,
+            i => snap(start + (stop - start) * i as f64 / (count - 1) as f64),
+        })
+        .collect()
+}
+
+/// Reads `--vary KEY=SPEC`: `start:stop:count` (inclusive, linear) or a comma list. Integer
+/// fields are rounded (half away from zero) and their duplicates dropped, the first kept.
+pub fn parse_axis(text: &str) -> Result<Axis> {
+    let context = |e: Error| Error::Other(format!("--vary {text}: {e}"));
+    let (key, spec) = split_assignment("--vary", text, "SPEC")?;
+    let field = field(key).map_err(context)?;
+    let values = if spec.contains(':') {
+        let parts: Vec<&str> = spec.split(':').collect();
+        let [start, stop, count] = parts[..] else {
+            return Err(context(Error::Other(format!(
+                "SPEC is start:stop:count (inclusive, linear) or a comma list, got `{spec}`"
+            ))));
+        };
+        let count: usize = count.trim().parse().ok().filter(|&n| n >= 1).ok_or_else(|| {
+            context(Error::Other(format!("the count of start:stop:count must be a whole number >= 1, got `{count}`")))
+        })?;
+        linspace(parse_value(field, start).map_err(context)?, parse_value(field, stop).map_err(context)?, count)
+    } else {
+        spec.split(',').map(|v| parse_value(field, v).map_err(context)).collect::<Result<Vec<f64>>>()?
+    };
+    Ok(Axis { field, values: normalize(field, values) })
+}
+
+/// Integer fields: rounded, duplicates dropped (the first kept). Reals: as given.
+pub fn normalize(field: &Parameter, values: Vec<f64>) -> Vec<f64> {
+    if field.kind != Kind::Integer {
+        return values;
+    }
+    let mut out: Vec<f64> = Vec::with_capacity(values.len());
+    for v in values.into_iter().map(f64::round) {
+        if !out.contains(&v) {
+            out.push(v);
+        }
+    }
+    out
+}
+
+/// Reads every `--vary`; a field given twice is an error.
+pub fn parse_axes(texts: &[String]) -> Result<Vec<Axis>> {
+    let axes = texts.iter().map(|t| parse_axis(t)).collect::<Result<Vec<Axis>>>()?;
+    for (k, a) in axes.iter().enumerate() {
+        if axes[..k].iter().any(|b| b.field.name == a.field.name) {
+            return Err(Error::Other(format!("--vary {} is given twice", a.field.name)));
+        }
+    }
+    Ok(axes)
+}
+
+/// Scenarios in the grid: the product of the axes' lengths (1 without axes).
+pub fn grid_len(axes: &[Axis]) -> Result<usize> {
+    axes.iter()
+        .try_fold(1usize, |n, a| n.checked_mul(a.values.len()))
+        .filter(|&n| n <= MAX_SCENARIOS)
+        .ok_or_else(|| Error::Other(format!("the grid has more than {MAX_SCENARIOS} scenarios: split the sweep")))
+}
+
+/// Largest grid a sweep runs: a billion scenarios is months of CPU on the paper mesh.
+pub const MAX_SCENARIOS: usize = 1_000_000_000;
+
+/// The values of grid point `index` (0-based, grid order: the last axis fastest), one per axis.
+pub fn grid_point(axes: &[Axis], mut index: usize) -> Vec<f64> {
+    let mut point = vec![0.0; axes.len()];
+    for (value, axis) in point.iter_mut().zip(axes).rev() {
+        let n = axis.values.len();
+        *value = axis.values[index % n];
+        index /= n;
+    }
+    point
+}
+
+/// The whole grid in order (as `itertools.product(*values)`).
+pub fn expand(axes: &[Axis]) -> Vec<Vec<f64>> {
+    let n = axes.iter().map(|a| a.values.len()).product();
+    (0..n).map(|i| grid_point(axes, i)).collect()
+}
+
+/// The names of the five peaks, as in `summary.peaks` and in [`Peaks::as_array`]'s order.
+pub const PEAK_NAMES: [&str; 5] = [
+    "lower_tip_deflection",
+    "lower_clamp_bending_stress",
+    "lower_clamp_shear_stress",
+    "upper_contact_bending_stress",
+    "contact_force",
+];
+
+type MethodField = (&'static str, fn(&EnergyMethod) -> f64);
+
+/// Every field of [`EnergyMethod`], in declaration order (a unit test checks it against serde).
+pub const ENERGY_METHOD_FIELDS: [MethodField; 11] = [
+    ("flexion_stiffness", |e| e.flexion_stiffness),
+    ("tip_deflection", |e| e.tip_deflection),
+    ("force", |e| e.force),
+    ("clamp_bending_stress", |e| e.clamp_bending_stress),
+    ("clamp_shear_stress", |e| e.clamp_shear_stress),
+    ("strain_energy", |e| e.strain_energy),
+    ("bridge_deceleration", |e| e.bridge_deceleration),
+    ("bridge_contact_moment", |e| e.bridge_contact_moment),
+    ("bridge_bending_stress", |e| e.bridge_bending_stress),
+    ("bridge_strain_energy", |e| e.bridge_strain_energy),
+    ("bridge_strain_ratio", |e| e.bridge_strain_ratio),
+];
+
+/// What a row keeps of a run: no histories, no windows, no modes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RowResults {
+    /// Peaks max |.| over the run (Table 1 and the contact force), SI units.
+    pub peaks: Peaks,
+    /// When each peak was reached, s.
+    pub peak_times: Peaks,
+    /// The energy approach of Section 3.
+    pub energy_method: EnergyMethod,
+    /// Largest |energy residual| of the run, J.
+    pub max_energy_residual: f64,
+    /// The run's energy verdict (`summary.quality.trusted`).
+    pub trusted: bool,
+}
+
+impl From<&Summary> for RowResults {
+    fn from(s: &Summary) -> Self {
+        RowResults {
+            peaks: s.peaks,
+            peak_times: s.peak_times,
+            energy_method: s.energy_method,
+            max_energy_residual: s.max_energy_residual,
+            trusted: s.quality.trusted,
+        }
+    }
+}
+
+/// One scenario of the grid: its values (one per axis) and its results or error message.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Row {
+    /// The varied fields' values, parameter form, in the order of the axes.
+    pub values: Vec<f64>,
+    /// The results, or the one-line error.
+    pub outcome: std::result::Result<RowResults, String>,
+}
+
+/// The column names: the varied fields, the peaks, `<peak>_time`, `energy_method.<field>`,
+/// `max_energy_residual`, `trusted`, `error`.
+pub fn columns(axes: &[Axis]) -> Vec<String> {
+    let mut c: Vec<String> = axes.iter().map(|a| a.field.name.to_string()).collect();
+    c.extend(PEAK_NAMES.iter().map(|n| n.to_string()));
+    c.extend(PEAK_NAMES.iter().map(|n| format!("{n}_time")));
+    c.extend(ENERGY_METHOD_FIELDS.iter().map(|(n, _)| format!("energy_method.{n}")));
+    c.extend(["max_energy_residual", "trusted", "error"].map(String::from));
+    c
+}
+
+/// A cell before formatting.
+enum Cell {
+    Value(&'static Parameter, f64),
+    Number(f64),
+    Bool(bool),
+    Text(String),
+    Empty,
+}
+
+fn cells(axes: &[Axis], row: &Row) -> Vec<Cell> {
+    let mut c: Vec<Cell> = axes.iter().zip(&row.values).map(|(a, &v)| Cell::Value(a.field, v)).collect();
+    match &row.outcome {
+        Ok(r) => {
+            c.extend(r.peaks.as_array().map(Cell::Number));
+            c.extend(r.peak_times.as_array().map(Cell::Number));
+            c.extend(ENERGY_METHOD_FIELDS.iter().map(|(_, get)| Cell::Number(get(&r.energy_method))));
+            c.extend([Cell::Number(r.max_energy_residual), Cell::Bool(r.trusted), Cell::Text(String::new())]);
+        }
+        Err(message) => {
+            c.extend((0..2 * PEAK_NAMES.len() + ENERGY_METHOD_FIELDS.len() + 2).map(|_| Cell::Empty));
+            c.push(Cell::Text(one_line(message)));
+        }
+    }
+    c
+}
+
+fn one_line(text: &str) -> String {
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// A CSV field, quoted when it holds a comma, a quote or a line break (RFC 4180).
+fn csv_field(text: &str) -> String {
+    if text.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text.to_string()
+    }
+}
+
+/// The CSV header line (with its line break).
+pub fn csv_header(axes: &[Axis]) -> String {
+    columns(axes).iter().map(|c| csv_field(c)).collect::<Vec<_>>().join(",") + "\n"
+}
+
+/// One CSV line: numbers as the shortest decimal that gives the same f64, `true`/`false`, and
+/// empty cells for the results of a failed scenario.
+pub fn csv_line(axes: &[Axis], row: &Row) -> String {
+    let text: Vec<String> = cells(axes, row)
+        .into_iter()
+        .map(|cell| match cell {
+            Cell::Value(field, v) => csv_field(&format_value(field, v)),
+            Cell::Number(x) => format!("{x}"),
+            Cell::Bool(b) => format!("{b}"),
+            Cell::Text(t) => csv_field(&t),
+            Cell::Empty => String::new(),
+        })
+        .collect();
+    text.join(",") + "\n"
+}
+
+fn json_string(text: &str) -> String {
+    serde_json::to_string(text).unwrap_or_else(|_| "\"\"".into())
+}
+
+fn json_number(x: f64) -> String {
+    // serde_json writes the shortest round-trip decimal, and null for NaN and infinities.
+    serde_json::to_string(&x).unwrap_or_else(|_| "null".into())
+}
+
+/// One row as a JSON object, the keys in column order; a failed scenario's results are null and
+/// `error` is its message (an empty string when fine).
+pub fn json_object(axes: &[Axis], row: &Row) -> String {
+    let mut s = String::from("{");
+    for (k, (name, cell)) in columns(axes).iter().zip(cells(axes, row)).enumerate() {
+        let value = match cell {
+            Cell::Value(field, v) => json_value(field, v),
+            Cell::Number(x) => json_number(x),
+            Cell::Bool(b) => format!("{b}"),
+            Cell::Text(t) => json_string(&t),
+            Cell::Empty => "null".into(),
+        };
+        let _ = write!(s, "{}{}: {value}", if k == 0 { "" } else { ", " }, json_string(name));
+    }
+    s + "}"
+}
+
+/// A sweep: the base scenario, the grid and the step limit of each run.
+#[derive(Clone, Debug)]
+pub struct Sweep {
+    /// The scenario every grid point starts from (a file or the paper's, with `--set` applied).
+    pub base: Scenario,
+    /// The varied fields, outermost first.
+    pub axes: Vec<Axis>,
+    /// Largest number of internal steps a run may need (as `run --max-steps`).
+    pub max_steps: u64,
+}
+
+/// How a sweep went.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Tally {
+    /// Scenarios run.
+    pub scenarios: usize,
+    /// Scenarios with an error (invalid, or the run failed).
+    pub failed: usize,
+    /// Scenarios that ran but are not trusted by their energy balance.
+    pub untrusted: usize,
+}
+
+impl Sweep {
+    /// A sweep of `base` over `axes`; checks the grid's size.
+    pub fn new(base: Scenario, axes: Vec<Axis>, max_steps: u64) -> Result<Sweep> {
+        grid_len(&axes)?;
+        Ok(Sweep { base, axes, max_steps })
+    }
+
+    /// Scenarios in the grid.
+    pub fn len(&self) -> usize {
+        self.axes.iter().map(|a| a.values.len()).product()
+    }
+
+    /// Whether the grid is empty (never: an axis has at least one value).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The scenario of grid point `values`, validated (every invalid field in one error).
+    pub fn scenario(&self, values: &[f64]) -> Result<Scenario> {
+        let mut scenario = self.base.clone();
+        for (axis, &value) in self.axes.iter().zip(values) {
+            set(&mut scenario, axis.field, value)?;
+        }
+        validate(&scenario)?;
+        Ok(scenario)
+    }
+
+    /// Runs grid point `index` as `beam-impact run --no-mcap` does; an error or a panic becomes the
+    /// row's message.
+    pub fn run_one(&self, index: usize) -> Row {
+        let values = grid_point(&self.axes, index);
+        let run = || -> Result<RowResults> {
+            let scenario = self.scenario(&values)?;
+            let mut simulation = Simulation::new(&scenario)?;
+            simulation.check_step_count(scenario.duration_ns(), self.max_steps)?;
+            let summary = simulation.run(&mut NullRecorder)?;
+            Ok(RowResults::from(&summary))
+        };
+        let outcome = match std::panic::catch_unwind(std::panic::AssertUnwindSafe(run)) {
+            Ok(result) => result.map_err(|e| e.to_string()),
+            Err(panic) => Err(format!(
+                "internal error: {}",
+                panic
+                    .downcast_ref::<String>()
+                    .map(String::as_str)
+                    .or_else(|| panic.downcast_ref::<&str>().copied())
+                    .unwrap_or("panic")
+            )),
+        };
+        Row { values, outcome }
+    }
+
+    /// Runs every scenario on `jobs` threads (each takes the next grid point when it is free) and
+    /// hands the rows to `write` in grid order as soon as they and all before them are done, so
+    /// that only the rows finished out of order are held. `done` is called after each scenario
+    /// with the number finished so far. A `write` error stops the sweep (the running scenarios
+    /// finish, no new one starts) and is returned.
+    pub fn run(
+        &self,
+        jobs: usize,
+        done: &mut dyn FnMut(usize),
+        write: &mut dyn FnMut(&Row) -> Result<()>,
+    ) -> Result<Tally> {
+        let n = self.len();
+        let jobs = jobs.clamp(1, n.max(1));
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(jobs)
+            .thread_name(|k| format!("sweep-{k}"))
+            .build()
+            .map_err(|e| Error::Other(format!("cannot start {jobs} sweep threads: {e}")))?;
+        let next = AtomicUsize::new(0);
+        let stop = AtomicBool::new(false);
+        let (sender, receiver) = mpsc::channel::<(usize, Row)>();
+        let mut tally = Tally::default();
+        std::thread::scope(|scope| {
+            let (next, stop) = (&next, &stop);
+            scope.spawn(move || {
+                pool.broadcast(|_| loop {
+                    let index = next.fetch_add(1, Ordering::Relaxed);
+                    if index >= n || stop.load(Ordering::Relaxed) {
+                        break;
+                    }
+                    if sender.send((index, self.run_one(index))).is_err() {
+                        break;
+                    }
+                });
+                // `sender` drops here: the receiving loop ends once every row is in.
+            });
+            let mut pending: BTreeMap<usize, Row> = BTreeMap::new();
+            let mut expected = 0;
+            for (finished, (index, row)) in receiver.iter().enumerate() {
+                done(finished + 1);
+                pending.insert(index, row);
+                while let Some(row) = pending.remove(&expected) {
+                    tally.scenarios += 1;
+                    match &row.outcome {
+                        Err(_) => tally.failed += 1,
+                        Ok(r) if !r.trusted => tally.untrusted += 1,
+                        Ok(_) => {}
+                    }
+                    if let Err(e) = write(&row) {
+                        stop.store(true, Ordering::Relaxed);
+                        return Err(e);
+                    }
+                    expected += 1;
+                }
+            }
+            Ok(())
+        })?;
+        Ok(tally)
+    }
+
+    /// Runs the sweep into `csv` (and `json`, an array of row objects, one per line), writing each
+    /// row as soon as it is in grid order; `done` as in [`Sweep::run`].
+    pub fn write(
+        &self,
+        jobs: usize,
+        csv: &mut dyn Write,
+        mut json: Option<&mut dyn Write>,
+        done: &mut dyn FnMut(usize),
+    ) -> std::result::Result<Tally, SweepWriteError> {
+        csv.write_all(csv_header(&self.axes).as_bytes()).map_err(SweepWriteError::Csv)?;
+        if let Some(j) = json.as_deref_mut() {
+            j.write_all(b"[").map_err(SweepWriteError::Json)?;
+        }
+        let mut first = true;
+        let mut failure = None;
+        let result = self.run(jobs, done, &mut |row| {
+            let outcome =
+                csv.write_all(csv_line(&self.axes, row).as_bytes()).map_err(SweepWriteError::Csv).and_then(|()| {
+                    match json.as_deref_mut() {
+                        Some(j) => {
+                            let separator = if first { "\n" } else { ",\n" };
+                            j.write_all(format!("{separator}{}", json_object(&self.axes, row)).as_bytes())
+                                .map_err(SweepWriteError::Json)
+                        }
+                        None => Ok(()),
+                    }
+                });
+            first = false;
+            outcome.map_err(|e| {
+                let message = e.to_string();
+                failure = Some(e);
+                Error::Other(message)
+            })
+        });
+        let tally = match result {
+            Ok(tally) => tally,
+            Err(e) => return Err(failure.unwrap_or(SweepWriteError::Run(e))),
+        };
+        csv.flush().map_err(SweepWriteError::Csv)?;
+        if let Some(j) = json {
+            j.write_all(b"\n]\n").and_then(|()| j.flush()).map_err(SweepWriteError::Json)?;
+        }
+        Ok(tally)
+    }
+}
+
+/// Why [`Sweep::write`] stopped: which output failed, or the sweep itself.
+#[derive(Debug, thiserror::Error)]
+pub enum SweepWriteError {
+    /// Writing the CSV failed.
+    #[error("CSV: {0}")]
+    Csv(std::io::Error),
+    /// Writing the JSON failed.
+    #[error("JSON: {0}")]
+    Json(std::io::Error),
+    /// The sweep could not start.
+    #[error("{0}")]
+    Run(Error),
+}
+
+/// Threads a sweep uses by default: every core.
+pub fn default_jobs() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn axis(text: &str) -> Axis {
+        parse_axis(text).unwrap()
+    }
+
+    /// The grid is `itertools.product` of the axes: the first axis outermost, the last fastest.
+    /// Source: the Python documentation of itertools.product, whose example
+    /// product('AB', 'xy') is Ax Ay Bx By.
+    #[test]
+    fn grid_is_the_product_with_the_last_axis_fastest() {
+        let axes = [axis("drop_height=1,2"), axis("damping_ratio=0.1,0.2,0.3")];
+        let grid = expand(&axes);
+        let expected: Vec<Vec<f64>> =
+            [1.0, 2.0].iter().flat_map(|&h| [0.1, 0.2, 0.3].iter().map(move |&g| vec![h, g])).collect();
+        assert_eq!(grid, expected);
+        assert_eq!(grid_len(&axes).unwrap(), 6);
+        for (i, point) in grid.iter().enumerate() {
+            assert_eq!(&grid_point(&axes, i), point);
+        }
+        // No axis: one scenario, the base (product() yields one empty tuple).
+        assert_eq!(expand(&[]), vec![Vec::<f64>::new()]);
+    }
+
+    /// start:stop:count is inclusive and linear, to 15 significant digits (Python's
+    /// `float(f"{start + (stop - start) * i / (count - 1):.14e}")`, the same bits).
+    #[test]
+    fn ranges_are_inclusive_and_linear() {
+        assert_eq!(axis("drop_height=0.1:0.5:5").values, vec![0.1, 0.2, 0.3, 0.4, 0.5]);
+        assert_eq!(axis("drop_height=0.2:1:3").values, vec![0.2, 0.6, 1.0]);
+        assert_eq!(axis("drop_height=0.7:2:1").values, vec![0.7]);
+        assert_eq!(axis("drop_height=1:0:3").values, vec![1.0, 0.5, 0.0]);
+        let v = axis("damping_ratio=0.005:0.05:10").values;
+        assert_eq!(v.len(), 10);
+        assert_eq!((v[0], v[9]), (0.005, 0.05));
+    }
+
+    /// Integer fields: rounded half away from zero, duplicates dropped with the first kept.
+    #[test]
+    fn integer_fields_are_rounded_and_deduplicated() {
+        assert_eq!(axis("lower.elements=4:8:9").values, vec![4.0, 5.0, 6.0, 7.0, 8.0]);
+        assert_eq!(axis("lower.elements=7,3,7,2.5").values, vec![7.0, 3.0]);
+        // Reals are kept as given, repeats too.
+        assert_eq!(axis("drop_height=0.5,0.5").values, vec![0.5, 0.5]);
+    }
+
+    /// Names per field: `auto` for the time steps, the stress recoveries by name (a range too).
+    #[test]
+    fn values_are_read_per_field_and_written_back() {
+        let steps = axis("step_free=auto,5e-5");
+        assert_eq!(steps.values, vec![0.0, 5e-5]);
+        assert_eq!(format_value(steps.field, 0.0), "auto");
+        let recovery = axis("stress_recovery=mean:right:3");
+        assert_eq!(recovery.values, vec![0.0, 1.0, 2.0]);
+        assert_eq!(format_value(recovery.field, 2.0), "right");
+        assert_eq!(axis("upper.tip_force=-1000,0").values, vec![-1000.0, 0.0]);
+        for (field, text) in [("drop_height", "0.30000000000000004"), ("lower.elements", "7"), ("step_free", "auto")] {
+            let f = super::field(field).unwrap();
+            assert_eq!(format_value(f, parse_value(f, text).unwrap()), text);
+        }
+    }
+
+    /// Bad options are one-line errors naming the key.
+    #[test]
+    fn bad_specs_name_the_key() {
+        for (text, needle) in [
+            ("nonsense=1,2", "unknown parameter `nonsense`"),
+            ("drop_height", "--vary expects KEY=SPEC"),
+            ("drop_height=1:2", "start:stop:count"),
+            ("drop_height=1:2:0", "count"),
+            ("drop_height=1,,2", "drop_height takes a number in m, got ``"),
+            ("stress_recovery=middle", "stress_recovery takes mean, left or right, got `middle`"),
+            ("step_free=fast", "step_free takes a time step in s or \"auto\""),
+        ] {
+            let e = parse_axis(text).unwrap_err().to_string();
+            assert!(e.contains(needle), "{text}: {e}");
+            assert_eq!(e.lines().count(), 1);
+        }
+        let twice = parse_axes(&["drop_height=1".into(), "drop_height=2".into()]).unwrap_err().to_string();
+        assert!(twice.contains("drop_height is given twice"), "{twice}");
+        let e = parse_setting("upper.mass").unwrap_err().to_string();
+        assert!(e.contains("--set expects KEY=VALUE"), "{e}");
+    }
+
+    /// `--set` changes the named fields and validates the whole scenario; the default log is the
+    /// scenario's own and never `paper.mcap`.
+    #[test]
+    fn settings_apply_validate_and_name_their_log() {
+        let settings =
+            parse_settings(&["upper.mass=14000".into(), "drop_height=0.8".into(), "step_contact=auto".into()]).unwrap();
+        let mut s = Scenario::paper();
+        apply_settings(&mut s, &settings).unwrap();
+        assert_eq!((s.upper.mass, s.drop_height, s.step_contact), (14000.0, 0.8, crate::model::TimeStep::Auto));
+        let log = default_log(None, &settings, &s);
+        assert_ne!(log, PathBuf::from("paper.mcap"));
+        assert!(log.to_string_lossy().starts_with("paper-set-"), "{}", log.display());
+        assert_eq!(default_log(None, &settings, &s), log, "the same settings, the same log");
+        let other = default_log(Some(Path::new("dir/arrestor.toml")), &settings[..1], &Scenario::paper());
+        assert!(other.to_string_lossy().starts_with("arrestor-set-"), "{}", other.display());
+        assert_eq!(default_log(None, &[], &s), PathBuf::from("paper.mcap"));
+
+        let mut bad = Scenario::paper();
+        let e = apply_settings(&mut bad, &parse_settings(&["drop_height=-1".into()]).unwrap()).unwrap_err();
+        assert!(e.to_string().starts_with("drop_height must be"), "{e}");
+        let e = apply_settings(&mut Scenario::paper(), &parse_settings(&["lower.elements=2.5".into()]).unwrap())
+            .unwrap_err();
+        assert!(e.to_string().contains("lower.elements"), "{e}");
+    }
+
+    /// The column list names every peak of `summary.peaks` and every field of EnergyMethod, by
+    /// their serde names (so a new field cannot be left out silently).
+    #[test]
+    fn columns_cover_every_peak_and_energy_method_field() {
+        let keys = |v: serde_json::Value| -> Vec<String> {
+            let mut k: Vec<String> = v.as_object().unwrap().keys().cloned().collect();
+            k.sort();
+            k
+        };
+        let mut peaks: Vec<String> = PEAK_NAMES.iter().map(|s| s.to_string()).collect();
+        peaks.sort();
+        assert_eq!(keys(serde_json::to_value(Peaks::default()).unwrap()), peaks);
+        let method = EnergyMethod::new(&Scenario::default());
+        let mut names: Vec<String> = ENERGY_METHOD_FIELDS.iter().map(|(n, _)| n.to_string()).collect();
+        names.sort();
+        assert_eq!(keys(serde_json::to_value(method).unwrap()), names);
+        let json = serde_json::to_value(method).unwrap();
+        for (name, get) in ENERGY_METHOD_FIELDS {
+            assert_eq!(json[name].as_f64().unwrap(), get(&method), "{name}");
+        }
+        // Peaks::as_array's order is PEAK_NAMES's.
+        let p = Peaks {
+            lower_tip_deflection: 1.0,
+            lower_clamp_bending_stress: 2.0,
+            lower_clamp_shear_stress: 3.0,
+            upper_contact_bending_stress: 4.0,
+            contact_force: 5.0,
+        };
+        let json = serde_json::to_value(p).unwrap();
+        for (name, value) in PEAK_NAMES.iter().zip(p.as_array()) {
+            assert_eq!(json[name].as_f64().unwrap(), value, "{name}");
+        }
+    }
+
+    /// Rows arrive in grid order whatever the thread count; a failing writer stops the sweep with
+    /// its error (no hang, no further scenarios started).
+    #[test]
+    fn rows_come_in_grid_order_and_a_write_error_stops_the_sweep() {
+        let base = Scenario { duration: 0.002, ..Scenario::paper() };
+        let axes = vec![axis("drop_height=0.2:0.8:4"), axis("contact_position=13,40")];
+        let sweep = Sweep::new(base, axes, crate::model::scenario::MAX_STEPS).unwrap();
+        let mut seen = Vec::new();
+        let mut finished = 0;
+        let tally = sweep
+            .run(3, &mut |n| finished = n, &mut |row| {
+                seen.push(row.values.clone());
+                Ok(())
+            })
+            .unwrap();
+        assert_eq!(seen, expand(&sweep.axes));
+        assert_eq!((finished, tally), (8, Tally { scenarios: 8, failed: 4, untrusted: 0 }));
+
+        struct Failing(usize);
+        impl Write for Failing {
+            fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+                if self.0 == 0 {
+                    return Err(std::io::Error::other("disk full"));
+                }
+                self.0 -= 1;
+                Ok(buf.len())
+            }
+            fn flush(&mut self) -> std::io::Result<()> {
+                Ok(())
+            }
+        }
+        let e = sweep.write(2, &mut Failing(3), None, &mut |_| {}).unwrap_err();
+        assert!(matches!(e, SweepWriteError::Csv(_)), "{e}");
+        assert_eq!(e.to_string(), "CSV: disk full");
+    }
+
+    /// Rows: an error is quoted in CSV when it holds a comma, results are empty there; JSON rows
+    /// parse, with null results.
+    #[test]
+    fn csv_and_json_rows() {
+        let axes = vec![axis("drop_height=0.5"), axis("step_free=auto")];
+        let failed = Row { values: vec![0.5, 0.0], outcome: Err("a, \"b\"\nc".into()) };
+        let line = csv_line(&axes, &failed);
+        assert!(line.starts_with("0.5,auto,,"), "{line}");
+        assert!(line.ends_with(",\"a, \"\"b\"\" c\"\n"), "{line}");
+        assert_eq!(csv_header(&axes).split(',').count(), columns(&axes).len());
+        let doc: serde_json::Value = serde_json::from_str(&json_object(&axes, &failed)).unwrap();
+        assert_eq!(doc["step_free"], "auto");
+        assert!(doc["lower_tip_deflection"].is_null());
+        assert_eq!(doc["error"], "a, \"b\" c");
+    }
+}

@@ -1,0 +1,205 @@
+"""The `beam_impact` Python package (issue 10): sweeps of the FMU as Dask tasks, against the CLI.
+
+Goal: `beam_impact.sweep` on a 2-worker LocalCluster gives, row for row and in the same grid
+order, the peaks and energy-approach values of `beam-impact sweep` of the same grid; a scenario
+the FMU refuses is a row with the FMU's message and the sweep goes on; the local scheduler gives
+the cluster's very numbers; the SPEC syntax gives the CLI's grid to the bit; `simulate` returns the
+peaks and histories and logs only when asked; `load_log` reads a complete log and a killed run's.
+
+Tolerances: the issue asks for 0.5 %; the FMU at one communication step over the run takes the
+CLI's very internal steps (README "Co-simulation grid"), so the peaks are compared to 1e-9
+relative (round-off), like tests/python/test_fmu.py. Both sides use automatic time steps: a scenario
+file without steps on the CLI, the FMU's default 0 (`beam-impact sweep` without a file would run
+the paper's 5e-5 / 2.5e-5 s pair).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import beam_impact
+from beam_impact.grid import parse_vary
+
+ROOT = Path(__file__).resolve().parents[2]
+FMU_DIR = Path(os.environ.get("BEAM_IMPACT_FMU_DIR", str(ROOT / "target" / "fmu")))
+PEAKS = [
+    "lower_tip_deflection",
+    "lower_clamp_bending_stress",
+    "lower_clamp_shear_stress",
+    "upper_contact_bending_stress",
+    "contact_force",
+]
+METHOD = [f"energy_method.{n}" for n in ["tip_deflection", "force", "clamp_bending_stress", "clamp_shear_stress",
+                                         "strain_energy"]]
+# Two drop heights x two damping ratios x a contact point inside and one beyond the 29 m bridge.
+VARY = ["drop_height=0.3:1.2:2", "damping_ratio=0.02,0.05", "contact_position=13,40"]
+
+
+def fmu_path(version: str = "fmi2") -> str:
+    path = FMU_DIR / version / "BeamImpact.fmu"
+    assert path.exists(), f"{path} not found: run `beam-impact pack` or set BEAM_IMPACT_FMU_DIR"
+    return str(path)
+
+
+def binary() -> str:
+    path = os.environ.get("BEAM_IMPACT_BIN", str(ROOT / "target" / "release" / "beam-impact"))
+    assert Path(path).exists(), f"{path} not found: build with `cargo build --release` or set BEAM_IMPACT_BIN"
+    return path
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    from distributed import Client, LocalCluster
+
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as c:
+        with Client(c) as client:
+            yield client
+
+
+@pytest.fixture(scope="module")
+def cli_rows(tmp_path_factory):
+    directory = tmp_path_factory.mktemp("cli")
+    scenario, out = directory / "auto.toml", directory / "rows.csv"
+    scenario.write_text("# the defaults, automatic time steps (the FMU's default)\n")
+    args = [binary(), "sweep", str(scenario), "--out", str(out)]
+    for v in VARY:
+        args += ["--vary", v]
+    subprocess.run(args, check=True, capture_output=True)
+    rows = pd.read_csv(out, keep_default_na=False, na_values=[""])
+    rows["error"] = rows["error"].fillna("")
+    return rows
+
+
+@pytest.fixture(scope="module")
+def cluster_rows(cluster):
+    return beam_impact.sweep(parse_vary(VARY), client=cluster, fmu=fmu_path(), progress=False)
+
+
+def test_local_cluster_sweep_equals_the_cli_sweep(cli_rows, cluster_rows):
+    py, cli = cluster_rows, cli_rows
+    assert list(py.columns) == ["drop_height", "damping_ratio", "contact_position", *PEAKS, *METHOD, "error"]
+    assert len(py) == len(cli) == 8
+    for column in ["drop_height", "damping_ratio", "contact_position"]:
+        assert py[column].tolist() == cli[column].tolist(), column
+    ok = py["error"] == ""
+    assert ok.tolist() == (cli["error"] == "").tolist() == [True, False] * 4
+    worst = 0.0
+    for column in PEAKS + METHOD:
+        got, want = py.loc[ok, column].to_numpy(), cli.loc[ok, column].to_numpy()
+        rel = np.abs(got - want) / np.abs(want)
+        worst = max(worst, rel.max())
+        assert rel.max() <= 1e-9, f"{column}: FMU {got} vs CLI {want}"
+    print(f"LocalCluster vs CLI: largest relative difference {worst:.3e} over {ok.sum()} scenarios")
+
+
+def test_a_failing_scenario_is_a_row_with_the_fmu_message(cli_rows, cluster_rows):
+    failed = cluster_rows[cluster_rows["error"] != ""]
+    assert (failed["contact_position"] == 40).all() and len(failed) == 4
+    for message, cli_message in zip(failed["error"], cli_rows.loc[failed.index, "error"]):
+        assert "contact_position must be inside the upper beam" in message, message
+        assert "contact_position must be inside the upper beam" in cli_message, cli_message
+    assert failed[PEAKS].isna().all().all()
+
+
+def test_the_local_scheduler_gives_the_cluster_numbers(cluster_rows):
+    local = beam_impact.sweep(parse_vary(VARY), fmu=fmu_path(), progress=False)
+    pd.testing.assert_frame_equal(local, cluster_rows, check_exact=True)
+
+
+def test_spec_syntax_gives_the_cli_grid(tmp_path):
+    vary = ["drop_height=0.1:2:7", "lower.elements=4:8:9", "step_free=auto,2e-5", "stress_recovery=mean,right"]
+    grid = parse_vary(vary)
+    assert grid["lower.elements"] == [4.0, 5.0, 6.0, 7.0, 8.0]
+    assert parse_vary(["drop_height=0.2:1:3"])["drop_height"] == [0.2, 0.6, 1.0]
+    points = beam_impact.expand(grid)
+    assert len(points) == 7 * 5 * 2 * 2
+    assert points[0] == {"drop_height": 0.1, "lower.elements": 4.0, "step_free": 0.0, "stress_recovery": 0.0}
+    assert points[1]["stress_recovery"] == 2.0 and points[2]["step_free"] == 2e-5  # the last varies fastest
+    out = tmp_path / "grid.csv"
+    args = [binary(), "sweep", "--set", "duration=0.001", "--out", str(out)]
+    for v in vary:
+        args += ["--vary", v]
+    subprocess.run(args, check=True, capture_output=True)
+    cli = pd.read_csv(out, keep_default_na=False, dtype=str)
+    from beam_impact.grid import display
+
+    for k, point in enumerate(points):
+        row = cli.iloc[k]
+        for name, value in point.items():
+            shown = display(name, value)
+            assert (float(row[name]) if isinstance(shown, float) else row[name]) == (
+                shown if isinstance(shown, float) else str(shown)), (k, name, row[name], shown)
+    with pytest.raises(ValueError, match="upper.lenght"):
+        beam_impact.sweep({"upper.lenght": [1.0]}, fmu=fmu_path())
+    with pytest.raises(ValueError, match="start:stop:count"):
+        parse_vary(["drop_height=1:2"])
+
+
+@pytest.mark.parametrize("version", ["fmi2", "fmi3"])
+def test_simulate_peaks_histories_and_log(version, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    peaks = beam_impact.simulate(fmu_path(version), {"drop_height": 0.8, "duration": 0.5})
+    assert set(peaks) == set(PEAKS + METHOD)
+    assert list(tmp_path.iterdir()) == [], "logging is off unless asked"
+    log_path = tmp_path / "run.mcap"
+    again, histories = beam_impact.simulate(fmu_path(version), {"drop_height": 0.8, "duration": 0.5},
+                                            log_path=str(log_path), histories=True)
+    assert again == peaks, "the communication interval does not change the peaks"
+    assert histories["time"].iloc[-1] == pytest.approx(0.5)
+    assert len(histories) == 501
+    assert histories["peak.lower.tip_deflection"].iloc[-1] == peaks["lower_tip_deflection"]
+    log = beam_impact.load_log(str(log_path))
+    assert log.complete and log.problem == ""
+    frame = log.dataframe()
+    assert frame["time_ns"].iloc[-1] == 500_000_000
+    assert frame["peaks.lower_tip_deflection"].iloc[-1] == peaks["lower_tip_deflection"]
+    with pytest.raises(beam_impact.SimulationError, match="drop_height must be >= 0 m, got -1"):
+        beam_impact.simulate(fmu_path(version), {"drop_height": -1})
+
+
+def test_load_log_reads_a_killed_run(tmp_path):
+    """A log cut short (the file a killed writer leaves: no summary, no footer, maybe half a
+    chunk) loads up to its last complete chunk, flagged incomplete."""
+    path = tmp_path / "full.mcap"
+    subprocess.run([binary(), "run", "--set", "duration=0.3", "--mcap", str(path)], check=True, capture_output=True)
+    full = beam_impact.load_log(str(path))
+    assert full.complete
+    data = path.read_bytes()
+    cut = tmp_path / "killed.mcap"
+    cut.write_bytes(data[: len(data) * 6 // 10])
+    killed = beam_impact.load_log(str(cut))
+    assert not killed.complete and killed.problem, killed.problem
+    n = len(killed.steps["step"])
+    assert 0 < n < len(full.steps["step"])
+    for name, values in killed.steps.items():
+        assert np.array_equal(values, full.steps[name][:n]), name
+    # The old import path keeps working (tests/python/load_log.py re-exports the package's loader).
+    sys.path.insert(0, str(Path(__file__).parent))
+    from load_log import load_log as old_load_log
+
+    assert old_load_log is beam_impact.load_log
+
+
+def test_python_m_beam_impact_sweep(tmp_path):
+    out = tmp_path / "rows.csv"
+    run = subprocess.run(
+        [sys.executable, "-m", "beam_impact", "sweep", "--fmu", fmu_path("fmi3"), "--stop-time", "0.5",
+         "--vary", "drop_height=0.5,-1", "--out", str(out)],
+        capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert "1 of 2 scenarios failed" in run.stderr
+    rows = pd.read_csv(out, keep_default_na=False, na_values=[""])
+    assert rows["drop_height"].tolist() == [0.5, -1.0]
+    assert rows["lower_tip_deflection"].iloc[0] > 0.1 and math.isnan(rows["lower_tip_deflection"].iloc[1])
+    assert "drop_height must be >= 0 m, got -1" in rows["error"].iloc[1]
+    bad = subprocess.run([sys.executable, "-m", "beam_impact", "sweep", "--fmu", fmu_path(), "--vary", "nonsense=1",
+                          "--out", str(out)], capture_output=True, text=True)
+    assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "nonsense" in bad.stderr, bad.stderr
