@@ -465,7 +465,11 @@ fn report(file: &Path, out: Option<PathBuf>) -> Result<()> {
     let out = out.unwrap_or_else(|| beam_impact::record::report::default_out_dir(file));
     let stdout = std::io::stdout();
     let mut lock = stdout.lock();
-    beam_impact::record::report::report(file, &out, &mut lock)?;
+    // A reader that went away (`report log.mcap | head`) ends the output quietly, as `run` does.
+    match beam_impact::record::report::report(file, &out, &mut lock) {
+        Err(Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::BrokenPipe => return Ok(()),
+        outcome => outcome?,
+    }
     lock.flush().ok();
     Ok(())
 }

@@ -157,3 +157,26 @@ fn output_and_input_paths_are_checked() {
     let out = beam_impact().args(["run", "--mcap", "/dev/null", "--json", "/dev/null"]).output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
 }
+
+/// `report log.mcap | head` (issue 11): the reader going away ends the report quietly, exit 0,
+/// nothing on stderr, as `run` already does.
+#[test]
+fn report_into_a_closed_pipe_is_quiet() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = dir.path().join("short.toml");
+    std::fs::write(&scenario, "duration = 0.05\n").unwrap();
+    let log = dir.path().join("short.mcap");
+    let out = beam_impact().args(["run", "--mcap"]).arg(&log).arg(&scenario).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let mut child = beam_impact()
+        .arg("report")
+        .arg(&log)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take()); // the reader closes before the report is written
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(out.stderr.is_empty(), "{}", String::from_utf8_lossy(&out.stderr));
+}
