@@ -89,8 +89,30 @@ pub fn min_max_decimate(points: &[(f64, f64)], buckets: usize) -> Vec<(f64, f64)
     out
 }
 
-/// The four figures of the paper from the steps of a run.
-pub fn paper_figures(steps: &[StepResult], cut_short: bool) -> Vec<Figure> {
+/// The paper's node numbers of the probes, for any mesh: the arrestor's nodes first (the clamp is
+/// node 1, its end node n_l + 1), then the bridge's from its hinge, so its contact node is
+/// n_l + 2 + elements_to_contact (8 and 16 on the paper's 7 + 7/7 mesh).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NodeNumbers {
+    /// The arrestor's clamp.
+    pub clamp: u32,
+    /// The arrestor's end.
+    pub lower_tip: u32,
+    /// The bridge's contact node.
+    pub upper_contact: u32,
+}
+
+impl NodeNumbers {
+    /// The node numbers of a scenario's mesh.
+    pub fn of(scenario: &crate::model::Scenario) -> NodeNumbers {
+        let lower = scenario.lower.elements;
+        NodeNumbers { clamp: 1, lower_tip: lower + 1, upper_contact: lower + 2 + scenario.upper.elements_to_contact }
+    }
+}
+
+/// The four figures of the paper from the steps of a run, labelled with the mesh's node numbers.
+pub fn paper_figures(steps: &[StepResult], cut_short: bool, nodes: NodeNumbers) -> Vec<Figure> {
+    let NodeNumbers { clamp, lower_tip, upper_contact } = nodes;
     let series = |name: &str, color: RGBColor, f: &dyn Fn(&StepResult) -> f64| Series {
         name: name.to_string(),
         color,
@@ -103,27 +125,31 @@ pub fn paper_figures(steps: &[StepResult], cut_short: bool) -> Vec<Figure> {
     vec![
         Figure {
             stem: "fig6-deflection",
-            caption: format!("Figure 6. Deflection of arrestor end (node 8) and bridge at contact (node 16){note}"),
+            caption: format!(
+                "Figure 6. Deflection of arrestor end (node {lower_tip}) and bridge at contact (node {upper_contact}){note}"
+            ),
             y_label: "deflection, m (up positive)",
             series: vec![
-                series("arrestor end, node 8", ARRESTOR, &|r| r.lower_tip_deflection),
-                series("bridge contact node 16", BRIDGE, &|r| r.upper_contact_deflection),
+                series(&format!("arrestor end, node {lower_tip}"), ARRESTOR, &|r| r.lower_tip_deflection),
+                series(&format!("bridge contact, node {upper_contact}"), BRIDGE, &|r| r.upper_contact_deflection),
             ],
         },
         Figure {
             stem: "fig7-bending-stress",
-            caption: format!("Figure 7. Bending stress at arrestor clamp (node 1) and bridge contact (node 16){note}"),
+            caption: format!(
+                "Figure 7. Bending stress at arrestor clamp (node {clamp}) and bridge contact (node {upper_contact}){note}"
+            ),
             y_label: "bending stress, MPa",
             series: vec![
-                series("arrestor clamp, node 1", ARRESTOR, &|r| r.lower_clamp_bending_stress * 1e-6),
-                series("bridge contact node 16", BRIDGE, &|r| r.upper_contact_bending_stress * 1e-6),
+                series(&format!("arrestor clamp, node {clamp}"), ARRESTOR, &|r| r.lower_clamp_bending_stress * 1e-6),
+                series(&format!("bridge contact, node {upper_contact}"), BRIDGE, &|r| r.upper_contact_bending_stress * 1e-6),
             ],
         },
         Figure {
             stem: "fig8-shear-stress",
-            caption: format!("Figure 8. Shear stress of arrestor at the clamp (node 1){note}"),
+            caption: format!("Figure 8. Shear stress of arrestor at the clamp (node {clamp}){note}"),
             y_label: "shear stress, MPa",
-            series: vec![series("arrestor clamp, node 1", ARRESTOR, &|r| r.lower_clamp_shear_stress * 1e-6)],
+            series: vec![series(&format!("arrestor clamp, node {clamp}"), ARRESTOR, &|r| r.lower_clamp_shear_stress * 1e-6)],
         },
         Figure {
             stem: "fig9-contact-stress",
@@ -204,11 +230,22 @@ where
 }
 
 /// Writes Figures 6-9 as `<stem>.svg` and `<stem>.png` into `dir`; returns the files written.
-pub fn write_figures(steps: &[StepResult], summary: &Summary, dir: &Path, cut_short: bool) -> Result<Vec<PathBuf>> {
+/// Contact is shaded by window with bounces closer than 10 ms merged (raw windows would shade as
+/// slivers).
+pub fn write_figures(
+    steps: &[StepResult],
+    summary: &Summary,
+    nodes: NodeNumbers,
+    dir: &Path,
+    cut_short: bool,
+) -> Result<Vec<PathBuf>> {
     register_fonts();
-    let windows: Vec<(f64, f64)> = summary.contact_windows.iter().map(|w| (w.start, w.end)).collect();
+    let windows: Vec<(f64, f64)> = crate::compare::merged_windows(&summary.contact_windows, crate::results::BOUNCE_GAP)
+        .iter()
+        .map(|w| (w.start, w.end))
+        .collect();
     let mut files = Vec::new();
-    for figure in paper_figures(steps, cut_short) {
+    for figure in paper_figures(steps, cut_short, nodes) {
         let svg = dir.join(format!("{}.svg", figure.stem));
         draw(&SVGBackend::new(&svg, SIZE).into_drawing_area(), &figure, &windows, 2)?;
         files.push(svg);
@@ -222,6 +259,21 @@ pub fn write_figures(steps: &[StepResult], summary: &Summary, dir: &Path, cut_sh
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Captions and legends name the model's nodes (issue 11): the paper's 7 + 7/7 mesh gives
+    /// nodes 1, 8 and 16; 14 arrestor and 10 + 20 bridge elements give 1, 15 and 26.
+    #[test]
+    fn figures_name_the_nodes_of_the_model() {
+        let mut s = crate::model::Scenario::paper();
+        assert_eq!(NodeNumbers::of(&s), NodeNumbers { clamp: 1, lower_tip: 8, upper_contact: 16 });
+        (s.lower.elements, s.upper.elements_to_contact, s.upper.elements_beyond_contact) = (14, 10, 20);
+        let nodes = NodeNumbers::of(&s);
+        assert_eq!(nodes, NodeNumbers { clamp: 1, lower_tip: 15, upper_contact: 26 });
+        let figures = paper_figures(&[StepResult::default()], false, nodes);
+        assert!(figures[0].caption.contains("node 15") && figures[0].caption.contains("node 26"));
+        assert_eq!(figures[0].series[1].name, "bridge contact, node 26");
+        assert!(!figures.iter().any(|f| f.caption.contains("node 8") || f.caption.contains("node 16")));
+    }
 
     /// The PNG path draws text with the compiled-in font, whatever fonts the machine has: the
     /// caption band of a rendered figure holds dark pixels (glyphs), and only there above the plot.

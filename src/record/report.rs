@@ -445,7 +445,8 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
         let note = format!("\nfigures: not drawn: {reason}\n");
         return out.write_all(note.as_bytes()).map_err(io);
     }
-    let files = super::figures::write_figures(&data.steps, &summary, out_dir, !data.complete)?;
+    let nodes = super::figures::NodeNumbers::of(&scenario);
+    let files = super::figures::write_figures(&data.steps, &summary, nodes, out_dir, !data.complete)?;
     let mut listing = String::from("\nfigures:\n");
     for f in files {
         listing.push_str(&format!("  {}\n", f.display()));
