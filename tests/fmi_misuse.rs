@@ -407,3 +407,30 @@ fn free_of_a_null_state_is_ignored() {
     assert_eq!(unsafe { free3(fmu3.c, &mut null_state) }, OK, "{}", fmu3.log.text());
     assert!(fmu.log.all().iter().chain(fmu3.log.all().iter()).all(|m| m.status == OK), "nothing but OK logged");
 }
+
+/// Issue 9: the tip-force bound |F| <= 1e9 N holds in every state (before, 1e30 N in Step mode
+/// was accepted and the next step reported a 6e21 m deflection); a non-UTF-8 `log.path` is
+/// refused, never rewritten to U+FFFD characters.
+#[test]
+fn input_bound_in_step_mode_and_non_utf8_paths_are_errors() {
+    let fmu = fresh();
+    assert_eq!(fmu.set_string("log.path", ""), OK);
+    assert_eq!(fmu.initialize(), OK, "{}", fmu.log.text());
+    assert_eq!(fmu.do_step(0.0, 0.01), OK);
+    assert_eq!(fmu.set("upper.tip_force", 1e30), ERROR);
+    assert!(
+        fmu.log.text().contains("upper.tip_force must be finite with |F| <= 1e9 N, got 1e30"),
+        "{}",
+        fmu.log.text()
+    );
+    assert_eq!(fmu.set("lower.tip_force", -2e5), OK, "a sane force is still accepted");
+    let bad = std::ffi::CString::new(vec![0xff, 0xfe, b'x']).unwrap();
+    let other = fresh();
+    let f: libloading::Symbol<unsafe extern "C" fn(*mut c_void, *const u32, usize, *const *const c_char) -> c_int> =
+        // SAFETY: the signature of fmi2SetString.
+        unsafe { other.lib.get(b"fmi2SetString\0") }.unwrap();
+    // SAFETY: one value reference and one NUL-terminated string.
+    let status = unsafe { f(other.c, [vr("log.path")].as_ptr(), 1, [bad.as_ptr()].as_ptr()) };
+    assert_eq!(status, ERROR);
+    assert!(other.log.text().contains("not valid UTF-8"), "{}", other.log.text());
+}

@@ -69,21 +69,32 @@ fn cli_pack(args: &[&str], path: &std::path::Path, target_dir: &std::path::Path)
     (out.status.success(), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
 }
 
+/// What the stand-in zigbuild produces: the host library with `marker` appended.
+fn zigbuilt(marker: &str) -> Vec<u8> {
+    let mut bytes = host_library();
+    bytes.extend_from_slice(marker.as_bytes());
+    bytes
+}
+
 /// The host build the CLI packs by default: libbeam_impact.so next to the executable.
 fn host_library() -> Vec<u8> {
     let exe = std::path::Path::new(env!("CARGO_BIN_EXE_beam-impact"));
     std::fs::read(exe.with_file_name("libbeam_impact.so")).unwrap()
 }
 
-/// A stand-in `cargo-zigbuild` on PATH: records its arguments and writes `library` where the real
-/// one puts its build (`<--target-dir>/x86_64-unknown-linux-gnu/release/`), or fails.
-fn fake_zigbuild(dir: &std::path::Path, library: &str, fail: bool) {
+/// A stand-in `cargo-zigbuild` on PATH: records its arguments and writes the host library with
+/// `marker` appended (still a valid FMU library, and told apart from the host build) where the
+/// real one puts its build (`<--target-dir>/x86_64-unknown-linux-gnu/release/`), or fails.
+fn fake_zigbuild(dir: &std::path::Path, marker: &str, fail: bool) {
     use std::os::unix::fs::PermissionsExt;
+    let built = dir.join("built.so");
+    std::fs::write(&built, zigbuilt(marker)).unwrap();
     let script = format!(
         "#!/bin/sh\nPATH=/usr/bin:/bin\nprintf '%s\\n' \"$@\" > '{log}'\n{fail}\nwhile [ $# -gt 0 ]; do [ \"$1\" = --target-dir ] && dir=\"$2\"; \
-         shift; done\nmkdir -p \"$dir/x86_64-unknown-linux-gnu/release\"\nprintf '{library}' > \
+         shift; done\nmkdir -p \"$dir/x86_64-unknown-linux-gnu/release\"\ncp '{built}' \
          \"$dir/x86_64-unknown-linux-gnu/release/libbeam_impact.so\"\n",
         log = dir.join("args").display(),
+        built = built.display(),
         fail = if fail { "exit 1" } else { "" },
     );
     let path = dir.join("cargo-zigbuild");
@@ -123,7 +134,7 @@ fn pack_builds_and_packs_the_glibc_2_17_library_when_cargo_zigbuild_is_on_path()
     assert_eq!(args, expected);
     for (fmu, platform) in [("fmi2", "linux64"), ("fmi3", "x86_64-linux")] {
         let so = read(&out.path().join(fmu).join("BeamImpact.fmu"), &format!("binaries/{platform}/BeamImpact.so"));
-        assert_eq!(so, b"built for glibc 2.17", "{fmu}");
+        assert!(so == zigbuilt("built for glibc 2.17"), "{fmu} holds another library than the zigbuilt one");
     }
 
     // A failed build is an error (exit 2) naming it, not a silent host build.
@@ -160,4 +171,28 @@ fn without_cargo_zigbuild_pack_warns_once_and_packs_the_host_build() {
     assert!(stderr.starts_with("beam-impact: warning: cargo-zigbuild is not on PATH"), "{stderr}");
     let so = read(&out.path().join("fmi2/BeamImpact.fmu"), "binaries/linux64/BeamImpact.so");
     assert!(so == host_library(), "the FMU holds another library than the host build");
+}
+
+/// Issue 9: `pack --library` refuses a file that is not the FMU library (random bytes, an ELF
+/// executable without the FMI entry points) with a one-line reason, exit 2, writing no FMU.
+#[test]
+fn pack_refuses_a_library_that_is_not_an_fmu_binary() {
+    let dir = tempfile::tempdir().unwrap();
+    let random = dir.path().join("random.bin");
+    std::fs::write(&random, (0..4096u32).map(|i| (i.wrapping_mul(2654435761) >> 13) as u8).collect::<Vec<u8>>())
+        .unwrap();
+    for (library, why) in [(random.as_path(), "not an ELF file"), (std::path::Path::new("/bin/true"), "")] {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_beam-impact"))
+            .args(["pack", "--no-zigbuild", "--out"])
+            .arg(dir.path().join("fmu"))
+            .arg("--library")
+            .arg(library)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stdout));
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(stderr.contains("cannot be packed") && stderr.contains(why), "{stderr}");
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    }
+    assert!(!dir.path().join("fmu").exists());
 }

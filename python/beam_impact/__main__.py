@@ -34,7 +34,11 @@ def main(argv: list[str] | None = None) -> int:
     if args.command == "log":
         from .log import main as log_main
 
-        return log_main(["log", args.file])
+        try:
+            return log_main(["log", args.file])
+        except BrokenPipeError:  # `| head`: the reader went away
+            sys.stdout = None
+            return 0
 
     from .dask_sweep import sweep
     from .grid import parse_vary

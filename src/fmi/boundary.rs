@@ -124,6 +124,23 @@ pub unsafe fn string(ptr: *const c_char, name: &'static str) -> Result<String, N
     Ok(unsafe { CStr::from_ptr(ptr) }.to_string_lossy().into_owned())
 }
 
+/// A NUL-terminated C string that must be UTF-8 (a value such as a path: rewriting invalid bytes
+/// would silently name another file).
+///
+/// # Safety
+/// A non-null `ptr` must point to a NUL-terminated string valid for `'a`.
+pub unsafe fn utf8_string(ptr: *const c_char, name: &'static str) -> Result<String, String> {
+    if ptr.is_null() {
+        return Err(NullArgument(name).to_string());
+    }
+    // SAFETY: non-null and NUL-terminated by the caller's contract.
+    let bytes = unsafe { CStr::from_ptr(ptr) };
+    bytes
+        .to_str()
+        .map(str::to_owned)
+        .map_err(|e| format!("{name} is not valid UTF-8 ({e}): a path is taken as given or refused, never rewritten"))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

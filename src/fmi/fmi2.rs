@@ -7,7 +7,7 @@
 
 use std::ffi::{c_char, c_int, c_uint, c_void};
 
-use super::boundary::{out, slice, slice_mut, string};
+use super::boundary::{out, slice, slice_mut, string, utf8_string};
 use super::description;
 use super::instance::{log_with, Instance, Logger, Version};
 use super::resource;
@@ -333,7 +333,7 @@ pub unsafe extern "C" fn fmi2SetString(
 ) -> Status {
     ffi_boundary! {
         setter!(c, "fmi2SetString", allowed::SET_STRING, vr, nvr, value, set_string, |p: *const c_char| {
-            unsafe { string(p, "value[i]") }.map_err(|e| e.to_string())
+            unsafe { utf8_string(p, "value[i]") }
         })
     }
 }

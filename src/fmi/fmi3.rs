@@ -7,7 +7,7 @@
 
 use std::ffi::{c_char, c_int, c_void};
 
-use super::boundary::{out, slice, slice_mut, string};
+use super::boundary::{out, slice, slice_mut, string, utf8_string};
 use super::description;
 use super::instance::{log_with, Instance, Logger, Version};
 use super::resource;
@@ -628,7 +628,7 @@ pub unsafe extern "C" fn fmi3SetString(
 ) -> Status {
     ffi_boundary! {
         setter!(instance, "fmi3SetString", allowed::SET_STRING, value_references, n_value_references, values, n_values, set_string,
-            |p: *const c_char| unsafe { string(p, "values[i]") }.map_err(e))
+            |p: *const c_char| unsafe { utf8_string(p, "values[i]") })
     }
 }
 

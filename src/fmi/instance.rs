@@ -17,6 +17,7 @@ use super::status::{Mask, State, Status};
 use super::variables::{table, Column, Source, Tip, Type, Variable};
 use crate::error::Error;
 use crate::model::parameters::{self, find};
+use crate::model::scenario::MAX_TIP_FORCE;
 use crate::record::mcap::McapRecorder;
 use crate::record::{Recorder, RunInfo};
 use crate::results::{seconds, ContactEvent, StepResult};
@@ -761,6 +762,10 @@ impl Instance {
                 self.simulation = None;
             }
             Source::Input(tip) => {
+                // The bound holds in every state, not only before initialization.
+                if value.abs() > MAX_TIP_FORCE {
+                    return Err(format!("{} must be finite with |F| <= {MAX_TIP_FORCE:e} N, got {value:e}", v.name));
+                }
                 let mut forces = self.forces();
                 match tip {
                     Tip::Upper => forces.upper = value,

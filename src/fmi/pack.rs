@@ -71,10 +71,38 @@ fn write_fmu(fmu: &Path, xml: &str, platform: &str, library: &[u8], docs: &[(Str
     Ok(())
 }
 
-/// Packs `library` (the crate's `libbeam_impact.so`) into both FMUs under `out_root`; returns
-/// their paths.
+/// The entry points an importer looks up first, as they stand in the dynamic string table.
+const ENTRY_POINTS: [&[u8]; 2] = [b"\0fmi2Instantiate\0", b"\0fmi3InstantiateCoSimulation\0"];
+
+/// Checks that `binary` is what an FMU must carry: a 64-bit little-endian x86-64 ELF shared
+/// object (e_type ET_DYN) that names the FMI 2 and FMI 3 entry points.
+pub fn check_library(binary: &[u8]) -> std::result::Result<(), String> {
+    if binary.len() < 64 || &binary[..4] != b"\x7fELF" {
+        return Err(format!("not an ELF file ({} bytes, no ELF magic)", binary.len()));
+    }
+    let (class, data) = (binary[4], binary[5]);
+    let e_type = u16::from_le_bytes([binary[16], binary[17]]);
+    let machine = u16::from_le_bytes([binary[18], binary[19]]);
+    if class != 2 || data != 1 || machine != 62 {
+        return Err(format!("not a 64-bit little-endian x86-64 ELF (class {class}, data {data}, machine {machine})"));
+    }
+    if e_type != 3 {
+        return Err(format!("not a shared object (ELF type {e_type}, a shared object is 3)"));
+    }
+    for name in ENTRY_POINTS {
+        if !binary.windows(name.len()).any(|w| w == name) {
+            let shown = String::from_utf8_lossy(&name[1..name.len() - 1]).into_owned();
+            return Err(format!("it does not export {shown}: not the beam-impact library"));
+        }
+    }
+    Ok(())
+}
+
+/// Packs `library` (the crate's `libbeam_impact.so`, checked by [`check_library`]) into both FMUs
+/// under `out_root`; returns their paths.
 pub fn pack(library: &Path, out_root: &Path) -> Result<Vec<PathBuf>> {
     let binary = std::fs::read(library).map_err(io("cannot read the shared library to pack", library))?;
+    check_library(&binary).map_err(|why| Error::Other(format!("{} cannot be packed: {why}", library.display())))?;
     let docs = documentation_files(&documentation_dir())?;
     if !docs.iter().any(|(name, _)| name == "index.html") {
         return Err(Error::Other(format!(
