@@ -444,13 +444,7 @@ fn pack(out: &Path, library: Option<PathBuf>, no_zigbuild: bool) -> Result<()> {
                              this machine's glibc or newer (pip install ziglang cargo-zigbuild for a glibc 2.17 build)"
                         );
                     }
-                    std::env::current_exe()
-                        .map_err(|source| Error::Io {
-                            action: "cannot locate",
-                            path: "the running executable".into(),
-                            source,
-                        })?
-                        .with_file_name("libbeam_impact.so")
+                    host_library()?
                 }
             }
         }
@@ -459,6 +453,26 @@ fn pack(out: &Path, library: Option<PathBuf>, no_zigbuild: bool) -> Result<()> {
         emit(&format!("wrote {}\n", path.display()))?;
     }
     Ok(())
+}
+
+/// The host build of the library: beside the running executable (`cargo build`), or in its
+/// `deps/` (`cargo test` builds it there only); an installed executable has none, so the error
+/// says how to pack one.
+fn host_library() -> Result<PathBuf> {
+    let exe = std::env::current_exe().map_err(|source| Error::Io {
+        action: "cannot locate",
+        path: "the running executable".into(),
+        source,
+    })?;
+    let beside = exe.with_file_name("libbeam_impact.so");
+    let candidates = [beside.clone(), exe.with_file_name("deps").join("libbeam_impact.so")];
+    candidates.into_iter().find(|p| p.is_file()).ok_or_else(|| {
+        Error::Other(format!(
+            "no libbeam_impact.so beside {} (an installed beam-impact carries no library): run `cargo run --release \
+             -- pack` in the source tree, or pass --library PATH to a built libbeam_impact.so",
+            exe.display()
+        ))
+    })
 }
 
 fn report(file: &Path, out: Option<PathBuf>) -> Result<()> {

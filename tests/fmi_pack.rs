@@ -79,7 +79,27 @@ fn zigbuilt(marker: &str) -> Vec<u8> {
 /// The host build the CLI packs by default: libbeam_impact.so next to the executable.
 fn host_library() -> Vec<u8> {
     let exe = std::path::Path::new(env!("CARGO_BIN_EXE_beam-impact"));
-    std::fs::read(exe.with_file_name("libbeam_impact.so")).unwrap()
+    // `cargo build` puts it beside the executable; `cargo test` alone only in deps/.
+    let beside = exe.with_file_name("libbeam_impact.so");
+    std::fs::read(&beside)
+        .unwrap_or_else(|_| std::fs::read(exe.with_file_name("deps").join("libbeam_impact.so")).unwrap())
+}
+
+/// Issue 11: an installed `beam-impact` (no library beside it) says how to pack: one line naming
+/// `--library`, exit 2.
+#[test]
+fn pack_without_a_library_beside_the_executable_says_how() {
+    let dir = tempfile::tempdir().unwrap();
+    let installed = dir.path().join("beam-impact");
+    std::fs::copy(env!("CARGO_BIN_EXE_beam-impact"), &installed).unwrap();
+    let out = std::process::Command::new(&installed)
+        .args(["pack", "--no-zigbuild", "--out"])
+        .arg(dir.path().join("fmu"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("--library") && stderr.lines().count() == 1, "{stderr}");
 }
 
 /// A stand-in `cargo-zigbuild` on PATH: records its arguments and writes the host library with
