@@ -105,6 +105,9 @@ struct RunArgs {
     /// `energy_tolerance`).
     #[arg(long)]
     strict: bool,
+    /// Stop the MCAP log at this size, bytes (the run goes on unrecorded, with a warning).
+    #[arg(long, default_value_t = beam_impact::record::mcap::MAX_LOG_BYTES)]
+    max_log_bytes: u64,
     /// Refuse runs that need more internal steps than this (duration over the smaller step).
     #[arg(long, default_value_t = beam_impact::model::scenario::MAX_STEPS)]
     max_steps: u64,
@@ -205,12 +208,16 @@ fn run(args: &RunArgs) -> Result<bool> {
     let mut recorder: Box<dyn Recorder> = if args.no_mcap {
         Box::new(NullRecorder)
     } else {
-        let options = RecorderOptions { allow_devices: true, ..RecorderOptions::default() };
+        let options =
+            RecorderOptions { allow_devices: true, max_bytes: args.max_log_bytes, ..RecorderOptions::default() };
         Box::new(McapRecorder::with_options(&mcap, options)?)
     };
     let mut progress = Progress::new(recorder.as_mut(), scenario.duration_ns());
     simulation.run(&mut progress)?;
     progress.bar.finish_and_clear();
+    if let Some(reason) = progress.stopped_early() {
+        eprintln!("beam-impact: warning: {reason}");
+    }
     let wall = started.elapsed();
     let summary = simulation.summary();
 
@@ -362,6 +369,9 @@ impl Recorder for Progress<'_> {
     }
     fn wants_details(&self) -> bool {
         self.inner.wants_details()
+    }
+    fn stopped_early(&self) -> Option<&str> {
+        self.inner.stopped_early()
     }
 }
 

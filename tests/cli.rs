@@ -180,3 +180,29 @@ fn report_into_a_closed_pipe_is_quiet() {
     assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(out.stderr.is_empty(), "{}", String::from_utf8_lossy(&out.stderr));
 }
+
+/// Issue 9: the log has a size cap (`--max-log-bytes`, 2 GiB by default): at the cap it ends as a
+/// valid file with a warning, and the run goes on to its end unrecorded.
+#[test]
+fn the_log_stops_at_its_size_cap_and_the_run_goes_on() {
+    let dir = tempfile::tempdir().unwrap();
+    let log = dir.path().join("capped.mcap");
+    let json = dir.path().join("capped.json");
+    let out = beam_impact()
+        .args(["run", "--max-log-bytes", "1000000", "--mcap"])
+        .arg(&log)
+        .arg("--json")
+        .arg(&json)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("reached its size cap of 1000000 bytes"));
+    let size = std::fs::metadata(&log).unwrap().len();
+    // The cap is checked at every flush (1000 steps, about 0.35 MB): one flush and the summary
+    // beyond it at most.
+    assert!((1_000_000..2_000_000).contains(&size), "{size} bytes");
+    let doc: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(doc["summary"]["time"], 3.0, "the run went on to its end");
+    let out = beam_impact().arg("report").arg(&log).arg("--out").arg(dir.path().join("fig")).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+}

@@ -84,7 +84,8 @@ pub struct StepOutcome {
     pub early_return: bool,
     /// FMU time reached, s.
     pub last_successful_time: f64,
-    /// The run's energy residual crossed its tolerance in this step (logged; return a warning).
+    /// The run's energy residual crossed its tolerance, or its log reached its size cap, in this
+    /// step (logged; return a warning).
     pub untrusted: bool,
 }
 
@@ -115,6 +116,8 @@ pub struct Instance {
     before_error: State,
     /// Whether the energy residual's crossing of `energy_tolerance` has been reported (once).
     untrusted_reported: bool,
+    /// Whether the MCAP log's size cap has been reported (once).
+    log_cap_reported: bool,
 }
 
 /// `log.path`'s start value, which stands for the default log: a new file per instance and run in
@@ -235,6 +238,7 @@ impl Instance {
             strings: Vec::new(),
             before_error: State::Instantiated,
             untrusted_reported: false,
+            log_cap_reported: false,
         }
     }
 
@@ -587,6 +591,14 @@ impl Instance {
         if early_return {
             self.log(Status::Ok, "logEvents", &format!("early return at t = {time:.9} s (contact change)"));
         }
+        let mut capped_now = false;
+        if let Some(reason) = self.recorder.as_ref().and_then(|r| r.capped()).map(str::to_owned) {
+            if !self.log_cap_reported {
+                self.log_cap_reported = true;
+                capped_now = true;
+                self.log(Status::Warning, Status::Warning.category(), &reason);
+            }
+        }
         let quality = self.simulation.as_ref().ok_or("no simulation")?.quality();
         let untrusted = !quality.trusted && !self.untrusted_reported;
         if untrusted {
@@ -597,7 +609,7 @@ impl Instance {
                 &format!("at t = {time} s the results are no longer trusted: {}", quality.reasons.join("; ")),
             );
         }
-        Ok(StepOutcome { early_return, last_successful_time: time, untrusted })
+        Ok(StepOutcome { early_return, last_successful_time: time, untrusted: untrusted || capped_now })
     }
 
     /// Completes the MCAP log; its error is returned (and so logged).

@@ -66,7 +66,13 @@ pub struct RecorderOptions {
     pub timing: bool,
     /// Accept a device as the log (the CLI's `/dev/null`); the FMU wants a regular file.
     pub allow_devices: bool,
+    /// Size at which the log stops (checked at every flush), bytes: the run goes on unrecorded
+    /// and [`McapRecorder::capped`] says so. [`MAX_LOG_BYTES`] by default.
+    pub max_bytes: u64,
 }
+
+/// Default size cap of a log: 2 GiB, about 7 million steps of the paper's model (300 B each).
+pub const MAX_LOG_BYTES: u64 = 2 << 30;
 
 impl Default for RecorderOptions {
     fn default() -> Self {
@@ -79,6 +85,7 @@ impl Default for RecorderOptions {
             scene_interval_ns: 1_000_000,
             timing: false,
             allow_devices: false,
+            max_bytes: MAX_LOG_BYTES,
         }
     }
 }
@@ -117,6 +124,10 @@ pub struct McapRecorder {
     steps_since_flush: u64,
     timing: RecorderTiming,
     finished: bool,
+    /// Why the log stopped early (its size cap), if it did.
+    capped: Option<String>,
+    /// Time of the latest step recorded, ns.
+    last_time_ns: u64,
 }
 
 impl std::fmt::Debug for McapRecorder {
@@ -180,6 +191,8 @@ impl McapRecorder {
             steps_since_flush: 0,
             timing: RecorderTiming::default(),
             finished: false,
+            capped: None,
+            last_time_ns: 0,
         };
         let writer = write_options.create(BufWriter::with_capacity(128 * 1024, file)).map_err(|e| recorder.err(e))?;
         recorder.writer = Some(writer);
@@ -255,7 +268,33 @@ impl McapRecorder {
             self.timing.write += t.elapsed();
         }
         self.steps_since_flush = 0;
+        let written = std::fs::metadata(&self.path).map_or(0, |m| m.len());
+        if self.capped.is_none() && written >= self.options.max_bytes {
+            let reason = format!(
+                "the MCAP log {} reached its size cap of {} bytes at {written} bytes: it ends here, the run goes on \
+                 unrecorded",
+                self.path.display(),
+                self.options.max_bytes
+            );
+            // The log itself says why it ends early.
+            let log = LogMessage {
+                timestamp: Some(TimeMessage::from_ns(self.last_time_ns)),
+                level: schema::LOG_LEVEL_WARNING,
+                message: reason.clone(),
+                name: "beam-impact".into(),
+                file: String::new(),
+                line: 0,
+            };
+            self.encode(&log);
+            self.write_buffer(self.channels.log, self.last_time_ns)?;
+            self.capped = Some(reason);
+        }
         Ok(())
+    }
+
+    /// Why the log stopped before the run's end (it reached its size cap), if it did.
+    pub fn capped(&self) -> Option<&str> {
+        self.capped.as_deref()
     }
 
     /// Adds an attachment (the FMU's modelDescription.xml, for example).
@@ -349,6 +388,10 @@ impl Recorder for McapRecorder {
     }
 
     fn step(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()> {
+        if self.capped.is_some() {
+            return Ok(());
+        }
+        self.last_time_ns = result.time_ns;
         let started = self.options.timing.then(Instant::now);
         self.message.fill(result, modal_coordinates);
         encode_into(&mut self.buffer, &self.message);
@@ -375,7 +418,14 @@ impl Recorder for McapRecorder {
         Ok(())
     }
 
+    fn stopped_early(&self) -> Option<&str> {
+        self.capped()
+    }
+
     fn contact_event(&mut self, event: &ContactEvent) -> Result<()> {
+        if self.capped.is_some() {
+            return Ok(());
+        }
         let message = ContactEventMessage::from(event);
         self.encode(&message);
         self.write_buffer(self.channels.contact, event.time_ns)?;

@@ -43,6 +43,10 @@ pub trait Recorder {
     fn wants_details(&self) -> bool {
         true
     }
+    /// Why the record stopped before the run's end (a log at its size cap), if it did.
+    fn stopped_early(&self) -> Option<&str> {
+        None
+    }
 }
 
 /// A recorder that keeps nothing.
