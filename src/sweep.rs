@@ -193,14 +193,20 @@ pub fn apply_settings(scenario: &mut Scenario, settings: &[Setting]) -> Result<(
 /// The default log of a `run` with `--set`: `<stem>-set-<hash>.mcap` in the working directory,
 /// the stem the scenario file's (`paper` without one) and the hash the resolved scenario's
 /// (FNV-1a of its TOML, 32 bits in hex), so that it never overwrites the unmodified run's
-/// `paper.mcap` and the same overrides find the same file. Without settings: `paper.mcap`.
+/// `paper.mcap` and the same overrides find the same file. Without settings: `FILE.mcap` beside the scenario file, `paper.mcap` for the paper run.
 pub fn default_log(file: Option<&Path>, settings: &[Setting], scenario: &Scenario) -> PathBuf {
+    // A scenario file's log sits beside it under its name (rerunning the file replaces its own
+    // log; two files never share one); the paper run's is paper.mcap; standard input's stdin.mcap.
+    let base = match file {
+        Some(f) if f.as_os_str() == "-" => PathBuf::from("stdin"),
+        Some(f) => f.with_extension(""),
+        None => PathBuf::from("paper"),
+    };
     if settings.is_empty() {
-        return PathBuf::from("paper.mcap");
+        return base.with_extension("mcap");
     }
-    let stem = file.and_then(|f| f.file_stem()).map_or_else(|| "paper".into(), |s| s.to_string_lossy().into_owned());
     let hash = fnv1a(scenario.to_toml().as_bytes());
-    PathBuf::from(format!("{stem}-set-{:08x}.mcap", (hash ^ (hash >> 32)) as u32))
+    PathBuf::from(format!("{}-set-{:08x}.mcap", base.display(), (hash ^ (hash >> 32)) as u32))
 }
 
 fn fnv1a(bytes: &[u8]) -> u64 {

@@ -206,3 +206,17 @@ fn the_log_stops_at_its_size_cap_and_the_run_goes_on() {
     let out = beam_impact().arg("report").arg(&log).arg("--out").arg(dir.path().join("fig")).output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
 }
+
+/// Issue 11: `run FILE.toml` logs to `FILE.mcap` beside it, so a user scenario never overwrites
+/// the paper run's `paper.mcap` and two files never share a log.
+#[test]
+fn a_scenario_file_logs_beside_itself() {
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["a", "b"] {
+        std::fs::write(dir.path().join(format!("{name}.toml")), "duration = 0.01\n").unwrap();
+        let out = beam_impact().args(["run", &format!("{name}.toml")]).current_dir(dir.path()).output().unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        assert!(dir.path().join(format!("{name}.mcap")).is_file());
+    }
+    assert!(!dir.path().join("paper.mcap").exists());
+}
