@@ -771,7 +771,7 @@ mod tests {
         assert!(log.to_string_lossy().starts_with("paper-set-"), "{}", log.display());
         assert_eq!(default_log(None, &settings, &s), log, "the same settings, the same log");
         let other = default_log(Some(Path::new("dir/arrestor.toml")), &settings[..1], &Scenario::paper());
-        assert!(other.to_string_lossy().starts_with("arrestor-set-"), "{}", other.display());
+        assert!(other.to_string_lossy().starts_with("dir/arrestor-set-"), "{}", other.display());
         assert_eq!(default_log(None, &[], &s), PathBuf::from("paper.mcap"));
 
         let mut bad = Scenario::paper();
