@@ -106,7 +106,8 @@ fn rollbacks_keep_the_last_branch() {
 }
 
 /// Writes the seeds of the cargo-fuzz targets `log_file` (the committed log corpus) and
-/// `log_chunk` (the decompressed records of each chunk of a real log, and all of them at once):
+/// `log_chunk` (the decompressed records of each chunk of a real log, and all of them at once,
+/// schema data left out):
 /// `cargo test --release --test fuzz_log_reader -- --ignored write_fuzz_seeds`.
 #[test]
 #[ignore]
@@ -120,8 +121,9 @@ fn write_fuzz_seeds() {
     }
     let mut all = Vec::new();
     edit_chunks(&real_log_bytes(), &mut |i, records| {
-        std::fs::write(chunks.join(format!("real-chunk-{i}")), &records).unwrap();
-        all.extend_from_slice(&records);
+        let stripped = fuzz_support::strip_schema_data(&records);
+        std::fs::write(chunks.join(format!("real-chunk-{i}")), &stripped).unwrap();
+        all.extend_from_slice(&stripped);
         records
     });
     std::fs::write(chunks.join("real-all-chunks"), all).unwrap();
@@ -141,4 +143,50 @@ fn the_fuzz_corpora_replay() {
             check(&path.display().to_string(), &bytes);
         }
     }
+}
+
+/// Prints the time to read the log `$BEAM_IMPACT_BENCH_LOG` with the bounded reader (framing,
+/// zstd, CRCs) and with the mcap crate's `ChunkFlattener` (what `report` used before issue 9), best
+/// of 5; a measurement, not a test:
+/// `BEAM_IMPACT_BENCH_LOG=paper.mcap cargo test --release --test fuzz_log_reader -- --ignored --nocapture bench_readers`.
+#[test]
+#[ignore]
+fn bench_readers() {
+    use beam_impact::record::safe_read::{read_records, Limits};
+    use std::time::{Duration, Instant};
+    let path = std::env::var("BEAM_IMPACT_BENCH_LOG").expect("BEAM_IMPACT_BENCH_LOG");
+    let bytes = std::fs::read(&path).unwrap();
+    let best = |f: &dyn Fn() -> usize| {
+        let mut best = Duration::MAX;
+        let mut n = 0;
+        for _ in 0..5 {
+            let t = Instant::now();
+            n = f();
+            best = best.min(t.elapsed());
+        }
+        (best, n)
+    };
+    let (ours, n_ours) = best(&|| {
+        let mut n = 0;
+        read_records::<()>(&bytes, Limits::default(), &mut |_, _| {
+            n += 1;
+            Ok(())
+        })
+        .unwrap();
+        n
+    });
+    let (theirs, n_theirs) = best(&|| {
+        use mcap::read::{ChunkFlattener, Options};
+        let reader = ChunkFlattener::new_with_options(&bytes, Options::ValidateChunkCrcs | Options::IgnoreEndMagic);
+        reader.unwrap().inspect(|r| assert!(r.is_ok())).count()
+    });
+    let (full, _) = best(&|| read_log_bytes(&bytes, Path::new(&path)).unwrap().steps.len());
+    println!(
+        "{path} ({} bytes): safe_read {:.1} ms ({n_ours} records), mcap ChunkFlattener {:.1} ms ({n_theirs} records), \
+         read_log_bytes (decoding every message) {:.1} ms",
+        bytes.len(),
+        ours.as_secs_f64() * 1e3,
+        theirs.as_secs_f64() * 1e3,
+        full.as_secs_f64() * 1e3
+    );
 }

@@ -248,6 +248,7 @@ fn write_measurement_logs() {
     for i in 0..fuzz_support::iterations(1000) {
         std::fs::write(mutations.join(format!("mutation-{i:04}.mcap")), mutate_log(&real, &mut rng)).unwrap();
     }
+    std::fs::write(big.join("compressible-events-60mib.mcap"), fuzz_support::compressible_events_log()).unwrap();
     let options = beam_impact::record::mcap::RecorderOptions { scene_interval_ns: 0, ..Default::default() };
     let scenario = beam_impact::Scenario::default();
     synthetic_log(&big.join("linear-320000.mcap"), &scenario, 320_000, false, options);
@@ -256,4 +257,18 @@ fn write_measurement_logs() {
     // chunking without rollbacks, for a comparison at equal file structure.
     let every_step = beam_impact::record::mcap::RecorderOptions { flush_every: 1, ..options };
     synthetic_log(&big.join("linear-320000-chunk-per-step.mcap"), &scenario, 320_000, false, every_step);
+}
+
+/// The worst memory per file byte: a 1 MiB log whose chunk decompresses (within the 64x budget)
+/// to 2 million contact events; the reader stops at what it may keep and says so.
+#[test]
+fn what_the_reader_keeps_is_bounded_by_the_file() {
+    use beam_impact::record::report::{read_log_bytes, RETAINED_RATIO, RETAINED_SLACK};
+    let bytes = fuzz_support::compressible_events_log();
+    let log = read_log_bytes(&bytes, Path::new("events")).unwrap();
+    assert!(log.damaged, "{:?}", log.problem);
+    assert!(log.problem.as_deref().unwrap().contains("the log decodes to more than"), "{:?}", log.problem);
+    let kept = (log.events.len() * std::mem::size_of::<beam_impact::results::ContactEvent>()) as u64;
+    assert!(kept <= RETAINED_RATIO * bytes.len() as u64 + RETAINED_SLACK);
+    assert!(log.events.len() > 100_000);
 }

@@ -94,7 +94,10 @@ pub const RETAINED_SLACK: u64 = 16 << 20;
 /// Reads every complete chunk of the log at `path`; a log cut short is not an error (see
 /// [`LogData::complete`] and [`LogData::problem`]), an unreadable or foreign file is.
 pub fn read_log(path: &Path) -> Result<LogData> {
-    let bytes = std::fs::read(path).map_err(|source| Error::Io {
+    // A FIFO or socket is refused rather than waited on.
+    let mut file = super::output::open_input(path, "cannot read MCAP log")?;
+    let mut bytes = Vec::new();
+    std::io::Read::read_to_end(&mut file, &mut bytes).map_err(|source| Error::Io {
         action: "cannot read MCAP log",
         path: path.display().to_string(),
         source,

@@ -549,3 +549,61 @@ pub fn wrap_chunk_records(records: &[u8]) -> Vec<u8> {
     log.extend_from_slice(MAGIC);
     log
 }
+
+/// `records` (a chunk's) with every schema's data emptied: our schemas are protobuf descriptor
+/// sets of ~10 KB that no reader of ours interprets, so fuzz inputs without them are small.
+pub fn strip_schema_data(records: &[u8]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(records.len());
+    let mut pos = 0;
+    while pos + 9 <= records.len() {
+        let len = u64::from_le_bytes(records[pos + 1..pos + 9].try_into().unwrap()) as usize;
+        let Some(body) = records.get(pos + 9..pos + 9 + len) else { break };
+        let stripped = (|| {
+            if records[pos] != op::SCHEMA {
+                return None;
+            }
+            let name = 2 + 4 + u32::from_le_bytes(body.get(2..6)?.try_into().ok()?) as usize;
+            let encoding = name + 4 + u32::from_le_bytes(body.get(name..name + 4)?.try_into().ok()?) as usize;
+            let mut b = body.get(..encoding)?.to_vec();
+            b.extend_from_slice(&0u32.to_le_bytes());
+            Some(record(op::SCHEMA, &b))
+        })();
+        match stripped {
+            Some(r) => out.extend(r),
+            None => out.extend_from_slice(&records[pos..pos + 9 + len]),
+        }
+        pos += 9 + len;
+    }
+    out.extend_from_slice(&records[pos..]);
+    out
+}
+
+/// A ~1 MiB log whose one zstd chunk declares 60 MiB of empty contact messages (each decodes to
+/// an event kept in memory): within the decompression budget (64x the file, which a 1 MiB
+/// attachment of random bytes makes large enough), beyond what the reader keeps (16x the file
+/// + 16 MiB). The worst case of memory per file byte.
+pub fn compressible_events_log() -> Vec<u8> {
+    let mut channel = 1u16.to_le_bytes().to_vec();
+    channel.extend_from_slice(&0u16.to_le_bytes());
+    channel.extend(string("/beam/contact"));
+    channel.extend(string("protobuf"));
+    channel.extend_from_slice(&0u32.to_le_bytes());
+    let mut records = record(op::CHANNEL, &channel);
+    let one = message(1, 0, b"");
+    while records.len() + one.len() <= 60 << 20 {
+        records.extend_from_slice(&one);
+    }
+    let mut b = start();
+    let mut rng = Rng(60);
+    let noise: Vec<u8> = (0..1 << 20).map(|_| rng.next_u64() as u8).collect();
+    let mut attachment = vec![0u8; 16];
+    attachment.extend(string("noise.bin"));
+    attachment.extend(string("application/octet-stream"));
+    attachment.extend_from_slice(&(noise.len() as u64).to_le_bytes());
+    attachment.extend_from_slice(&noise);
+    attachment.extend_from_slice(&0u32.to_le_bytes());
+    b.extend(record(op::ATTACHMENT, &attachment));
+    b.extend(chunk(&records, true, None));
+    end(&mut b);
+    b
+}
