@@ -5,8 +5,8 @@
 use std::fmt::Write;
 
 use crate::error::Result;
-use crate::record::NullRecorder;
-use crate::results::Summary;
+use crate::record::{NullRecorder, Recorder, RunInfo};
+use crate::results::{ContactEvent, StepResult, Summary};
 use crate::{Scenario, Simulation};
 
 /// The damping ratios of Appendix A.
@@ -19,6 +19,78 @@ pub fn run(scenario: &Scenario, ratios: &[f64]) -> Result<Vec<(f64, Summary)>> {
         .map(|&damping_ratio| {
             let s = Scenario { damping_ratio, ..scenario.clone() };
             Ok((damping_ratio, Simulation::new(&s)?.run(&mut NullRecorder)?))
+        })
+        .collect()
+}
+
+/// What the study's figures draw of one step (Figures A2-A13: deflections and bending stresses).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct HistoryPoint {
+    /// Time since impact, s.
+    pub time: f64,
+    /// Deflection of the arrestor's end, m.
+    pub lower_tip_deflection: f64,
+    /// Deflection of the bridge's contact node, m.
+    pub upper_contact_deflection: f64,
+    /// Bending stress at the arrestor's clamp, Pa.
+    pub lower_clamp_bending_stress: f64,
+    /// Bending stress at the bridge's contact node, Pa.
+    pub upper_contact_bending_stress: f64,
+}
+
+/// A recorder that keeps the [`HistoryPoint`] of every step (40 bytes a step, not the whole
+/// step result and modal coordinates), for the study's figures.
+#[derive(Clone, Debug, Default)]
+pub struct HistoryRecorder {
+    /// Every step, in order.
+    pub points: Vec<HistoryPoint>,
+}
+
+impl Recorder for HistoryRecorder {
+    fn start(&mut self, _: &RunInfo<'_>) -> Result<()> {
+        Ok(())
+    }
+    fn step(&mut self, r: &StepResult, _: &[f64]) -> Result<()> {
+        self.points.push(HistoryPoint {
+            time: r.time,
+            lower_tip_deflection: r.lower_tip_deflection,
+            upper_contact_deflection: r.upper_contact_deflection,
+            lower_clamp_bending_stress: r.lower_clamp_bending_stress,
+            upper_contact_bending_stress: r.upper_contact_bending_stress,
+        });
+        Ok(())
+    }
+    fn contact_event(&mut self, _: &ContactEvent) -> Result<()> {
+        Ok(())
+    }
+    fn finish(&mut self) -> Result<()> {
+        Ok(())
+    }
+    fn wants_details(&self) -> bool {
+        false
+    }
+}
+
+/// One run of the study with its time history.
+#[derive(Clone, Debug)]
+pub struct StudyRun {
+    /// The scenario run (the study's scenario with this run's damping ratio).
+    pub scenario: Scenario,
+    /// Its summary.
+    pub summary: Summary,
+    /// Every step's deflections and stresses.
+    pub history: Vec<HistoryPoint>,
+}
+
+/// Runs `scenario` once per damping ratio, keeping each run's time history (for the figures).
+pub fn run_with_histories(scenario: &Scenario, ratios: &[f64]) -> Result<Vec<StudyRun>> {
+    ratios
+        .iter()
+        .map(|&damping_ratio| {
+            let s = Scenario { damping_ratio, ..scenario.clone() };
+            let mut recorder = HistoryRecorder::default();
+            let summary = Simulation::new(&s)?.run(&mut recorder)?;
+            Ok(StudyRun { scenario: s, summary, history: recorder.points })
         })
         .collect()
 }

@@ -10,7 +10,7 @@ use clap::{Args, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use beam_impact::model::TimeStep;
-use beam_impact::record::mcap::{McapRecorder, RecorderOptions};
+use beam_impact::record::mcap::{LogCompression, McapRecorder, RecorderOptions};
 use beam_impact::record::output::{open_input, open_output};
 use beam_impact::record::{NullRecorder, Recorder, RunInfo};
 use beam_impact::results::{ContactEvent, StepResult};
@@ -39,6 +39,24 @@ enum Command {
     Damping {
         /// Scenario file (default: the paper scenario).
         file: Option<PathBuf>,
+        /// Also write the study's figures (SVG and PNG) into DIR: per damping ratio the
+        /// deflections (Figures A2-A7) and bending stresses (A8-A13), and the peaks against the
+        /// damping ratio; of this FE model, not of the paper's simplified Figure A1 model.
+        #[arg(long, value_name = "DIR")]
+        figures: Option<PathBuf>,
+    },
+    /// Figures 10-12 of a scenario (default: the paper's): the first natural modes of the
+    /// arrestor alone, the bridge alone and the two coupled, with their frequencies (SVG and PNG;
+    /// `report` writes them too, beside Figures 6-9).
+    Modes {
+        /// Scenario file (default: the paper scenario).
+        file: Option<PathBuf>,
+        /// Change a scenario field, KEY=VALUE, as `run --set` (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Directory for the figures.
+        #[arg(long, value_name = "DIR", default_value = "modes-figures")]
+        out: PathBuf,
     },
     /// Write the FMI 2.0 and FMI 3.0 co-simulation FMUs. With cargo-zigbuild on PATH the library
     /// is first built for glibc 2.17 (manylinux2014) and that build is packed; without it, the
@@ -55,13 +73,21 @@ enum Command {
         #[arg(long)]
         no_zigbuild: bool,
     },
-    /// Read an MCAP log: print its summary and write Figures 6-9 (SVG and PNG).
+    /// Read an MCAP log: print its summary and write Figures 6-9 (SVG and PNG), and Figures 10-12
+    /// (natural modes) of its scenario.
     Report {
         /// The log.
         file: PathBuf,
         /// Directory for the figures (default: <log stem>-figures next to the log).
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Also write the step channel as CSV to this file (`-`: standard output, instead of the
+        /// summary): a header row of the `beam_impact.Step` field paths (`energy.kinetic`,
+        /// `peaks.contact_force`, ...), one row per step kept (after rollbacks), numbers that
+        /// round-trip. SI units: time s, time_ns ns, deflections m, stresses Pa, forces N,
+        /// moment N m, velocities m/s, energies J; contact true/false.
+        #[arg(long, value_name = "FILE.csv")]
+        csv: Option<PathBuf>,
     },
     /// Time the production stepper against the dense oracle, the per-step cost at finer
     /// meshes, and the recorded run.
@@ -111,6 +137,19 @@ struct RunArgs {
     /// Refuse runs that need more internal steps than this (duration over the smaller step).
     #[arg(long, default_value_t = beam_impact::model::scenario::MAX_STEPS)]
     max_steps: u64,
+    /// Record every Nth internal step to the MCAP log (for long runs). Step 0, the last step,
+    /// the steps on both sides of a contact change and every step where a running peak changes
+    /// are recorded whatever N.
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
+    record_every: u64,
+    /// Leave the modal coordinates (topic /beam/modes) out of the MCAP log; the 3D scene is still
+    /// drawn, `report` then cannot give the bridge's strain energy at the peak deflection.
+    #[arg(long)]
+    no_modal_coordinates: bool,
+    /// Chunk compression of the MCAP log: none (the default: recording keeps pace with the
+    /// solver), lz4 (~20 % smaller, about 2x the writer's work) or zstd (~35 % smaller, slower).
+    #[arg(long, value_name = "none|lz4|zstd", default_value = "none")]
+    log_compression: LogCompression,
     /// Change a scenario field, KEY=VALUE with the dotted names of `beam-impact scenario`
     /// (repeatable): `--set upper.mass=14000 --set step_free=auto --set stress_recovery=left`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
@@ -156,9 +195,10 @@ fn main() -> ExitCode {
             outcome => outcome.map(|_| ()),
         },
         Command::Scenario => emit(&Scenario::default().to_toml()),
-        Command::Damping { file } => damping(file.as_deref()),
+        Command::Damping { file, figures } => damping(file.as_deref(), figures.as_deref()),
+        Command::Modes { file, set, out } => modes(file.as_deref(), &set, &out),
         Command::Pack { out, library, no_zigbuild } => pack(&out, library, no_zigbuild),
-        Command::Report { file, out } => report(&file, out),
+        Command::Report { file, out, csv } => report(&file, out, csv.as_deref()),
         Command::Bench { runs } => bench(runs),
         Command::Verify { file, json, tolerance } => verify(file.as_deref(), json.as_deref(), tolerance),
         Command::Sweep(args) => sweep(&args),
@@ -189,6 +229,11 @@ fn run(args: &RunArgs) -> Result<bool> {
     let mut simulation = Simulation::new(&scenario)?;
     simulation.check_step_count(scenario.duration_ns(), args.max_steps)?;
     // Open every output before the run, so that a bad path fails at once, not after it.
+    if let Some(file) = args.file.as_deref().filter(|_| !args.no_mcap) {
+        if same_file(file, &mcap) {
+            return Err(Error::Other(format!("the MCAP log would overwrite the scenario file {}", file.display())));
+        }
+    }
     if let Some(json) = args.json.as_deref().filter(|_| !args.no_mcap) {
         if same_file(json, &mcap) {
             return Err(Error::Other(format!("--json and --mcap name the same file {}", json.display())));
@@ -208,8 +253,14 @@ fn run(args: &RunArgs) -> Result<bool> {
     let mut recorder: Box<dyn Recorder> = if args.no_mcap {
         Box::new(NullRecorder)
     } else {
-        let options =
-            RecorderOptions { allow_devices: true, max_bytes: args.max_log_bytes, ..RecorderOptions::default() };
+        let options = RecorderOptions {
+            allow_devices: true,
+            max_bytes: args.max_log_bytes,
+            record_every: args.record_every,
+            modal_coordinates: !args.no_modal_coordinates,
+            compression: args.log_compression,
+            ..RecorderOptions::default()
+        };
         Box::new(McapRecorder::with_options(&mcap, options)?)
     };
     let mut progress = Progress::new(recorder.as_mut(), scenario.duration_ns());
@@ -375,13 +426,46 @@ impl Recorder for Progress<'_> {
     }
 }
 
-fn damping(file: Option<&Path>) -> Result<()> {
+fn damping(file: Option<&Path>, figures: Option<&Path>) -> Result<()> {
+    use beam_impact::damping_study::{run_with_histories, table, RATIOS};
     let scenario = match file {
         Some(path) => read_scenario(path)?,
         None => Scenario::paper(),
     };
-    let rows = beam_impact::damping_study::run(&scenario, &beam_impact::damping_study::RATIOS)?;
-    emit(&beam_impact::damping_study::table(&rows))
+    let Some(dir) = figures else {
+        let rows = beam_impact::damping_study::run(&scenario, &RATIOS)?;
+        return emit(&table(&rows));
+    };
+    let runs = run_with_histories(&scenario, &RATIOS)?;
+    let rows: Vec<_> = runs.iter().map(|r| (r.scenario.damping_ratio, r.summary.clone())).collect();
+    let mut text = table(&rows);
+    text += "\nfigures (of this FE model, not of the paper's simplified Figure A1 model):\n";
+    for file in beam_impact::record::damping_figures::write_damping_figures(&scenario, &runs, dir)? {
+        text += &format!("  {}\n", file.display());
+    }
+    emit(&text)
+}
+
+/// Figures 10-12 of a scenario, with the frequencies of Table 2.
+fn modes(file: Option<&Path>, set: &[String], out: &Path) -> Result<()> {
+    let mut scenario = match file {
+        Some(path) => read_scenario(path)?,
+        None => Scenario::paper(),
+    };
+    beam_impact::sweep::apply_settings(&mut scenario, &beam_impact::sweep::parse_settings(set)?)?;
+    // The model and its modes only: no time step is involved.
+    let model = beam_impact::model::Model::new(&scenario)?;
+    let modal = beam_impact::solver::ModalSystem::new(&model)?;
+    let mut text = String::from("natural frequencies, rad/s (the first 5 of each column of Table 2):\n");
+    for (name, modes) in [("arrestor", &modal.lower), ("bridge", &modal.upper), ("coupled", &modal.coupled)] {
+        let values: Vec<String> = modes.omega.iter().take(5).map(|w| format!("{w:.2}")).collect();
+        text += &format!("  {name:9} {}\n", values.join(", "));
+    }
+    text += "figures:\n";
+    for file in beam_impact::record::mode_figures::write_mode_figures(&model, &modal, out)? {
+        text += &format!("  {}\n", file.display());
+    }
+    emit(&text)
 }
 
 /// Packs `library`, or else the glibc 2.17 build that cargo-zigbuild makes when it is on PATH (and
@@ -485,12 +569,52 @@ fn host_library() -> Result<PathBuf> {
     })
 }
 
-fn report(file: &Path, out: Option<PathBuf>) -> Result<()> {
+fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>) -> Result<()> {
     let out = out.unwrap_or_else(|| beam_impact::record::report::default_out_dir(file));
     let stdout = std::io::stdout();
     let mut lock = stdout.lock();
+    let csv_to_stdout = csv.is_some_and(|path| path.as_os_str() == "-");
+    if let Some(path) = csv {
+        if !csv_to_stdout && same_file(path, file) {
+            return Err(Error::Other(format!("--csv names the log itself, {}", path.display())));
+        }
+        // Opened before the log is read, so that a bad path fails at once.
+        let target = if csv_to_stdout {
+            None
+        } else {
+            let file = open_output(path, true, "cannot create CSV")?;
+            if file.metadata().is_ok_and(|m| m.is_file()) {
+                file.set_len(0).map_err(|source| io("cannot truncate CSV", path, source))?;
+            }
+            Some(file)
+        };
+        let data = beam_impact::record::report::read_log(file)?;
+        if csv_to_stdout && !data.complete {
+            // The summary, which would say so, is not printed.
+            eprintln!(
+                "beam-impact: warning: {}: {}; the CSV holds the {} step messages before it",
+                file.display(),
+                data.problem.as_deref().unwrap_or("incomplete log"),
+                data.steps.len()
+            );
+        }
+        let written = match target {
+            Some(target) => beam_impact::record::csv::write_steps(&data.steps, &mut std::io::BufWriter::new(target))
+                .map_err(|source| io("cannot write CSV", path, source)),
+            None => match beam_impact::record::csv::write_steps(&data.steps, &mut std::io::BufWriter::new(&mut lock)) {
+                // `report log.mcap --csv - | head`: the reader went away, quietly.
+                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => return Ok(()),
+                outcome => outcome.map_err(|source| io("cannot write", Path::new("standard output"), source)),
+            },
+        };
+        written?;
+    }
+    // With `--csv -` the standard output is the CSV: the summary goes nowhere, the figures are
+    // still written.
+    let mut sink = std::io::sink();
+    let summary: &mut dyn Write = if csv_to_stdout { &mut sink } else { &mut lock };
     // A reader that went away (`report log.mcap | head`) ends the output quietly, as `run` does.
-    match beam_impact::record::report::report(file, &out, &mut lock) {
+    match beam_impact::record::report::report(file, &out, summary) {
         Err(Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::BrokenPipe => return Ok(()),
         outcome => outcome?,
     }

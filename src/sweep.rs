@@ -196,14 +196,22 @@ pub fn apply_settings(scenario: &mut Scenario, settings: &[Setting]) -> Result<(
 /// `paper.mcap` and the same overrides find the same file. Without settings: `FILE.mcap` beside the scenario file, `paper.mcap` for the paper run.
 pub fn default_log(file: Option<&Path>, settings: &[Setting], scenario: &Scenario) -> PathBuf {
     // A scenario file's log sits beside it under its name (rerunning the file replaces its own
-    // log; two files never share one); the paper run's is paper.mcap; standard input's stdin.mcap.
+    // log): FILE.toml logs to FILE.mcap, any other name to NAME.mcap with its extension kept
+    // (`s.mcap` to `s.mcap.mcap`, never onto the scenario itself); the paper run's is paper.mcap;
+    // standard input's stdin.mcap.
     let base = match file {
         Some(f) if f.as_os_str() == "-" => PathBuf::from("stdin"),
-        Some(f) => f.with_extension(""),
+        Some(f) if f.extension().is_some_and(|e| e == "toml") => f.with_extension(""),
+        Some(f) => f.to_path_buf(),
         None => PathBuf::from("paper"),
     };
+    let with_mcap = |base: &Path| {
+        let mut name = base.as_os_str().to_owned();
+        name.push(".mcap");
+        PathBuf::from(name)
+    };
     if settings.is_empty() {
-        return base.with_extension("mcap");
+        return with_mcap(&base);
     }
     let hash = fnv1a(scenario.to_toml().as_bytes());
     PathBuf::from(format!("{}-set-{:08x}.mcap", base.display(), (hash ^ (hash >> 32)) as u32))

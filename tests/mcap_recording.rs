@@ -5,9 +5,9 @@
 //! recorder's copy, contact events on their own channel and as `foxglove.Log` lines, a scene
 //! every 1 ms of simulated time, the scenario as Metadata and attachment, time stamps that never
 //! decrease; and the summary rebuilt from the log alone equals the simulation's own.
-//! Tolerances: step values are compared exactly (f64 round-trips through protobuf); modal
-//! coordinates are stored as f32, so they and E_def,b (quadratic in them) are compared to f32's
-//! relative precision.
+//! Tolerances: step values are compared exactly (f64 round-trips through protobuf); E_def,b is
+//! rebuilt from the stored f64 modal coordinates in another summation order (1e-5 relative is
+//! far above that round-off; it held f32 coordinates in log format 1).
 
 use beam_impact::record::mcap::{McapRecorder, RecorderOptions};
 use beam_impact::record::report::{read_log, report, summary_from_log};

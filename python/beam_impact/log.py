@@ -5,7 +5,8 @@
     log.steps["time"], log.steps["lower_tip_deflection"], ...   every scalar field of beam_impact.Step
     log.steps["energy.kinetic"], log.steps["peaks.contact_force"], ...   nested fields, dotted
     log.dataframe()         the same columns as a pandas.DataFrame, one row per internal step
-    log.modal_coordinates   (steps x coordinates), float32 as stored
+    log.modal_coordinates   (messages x coordinates), float64; row k is step log.modal_steps[k]
+    log.modal_steps, log.modal_times   the step and time (s) of each row
     log.nodal_shapes        (nodes x coordinates): nodal deflections w = nodal_shapes @ q
     log.lower_nodes, log.upper_nodes   node positions from clamp / hinge, m
     log.events              list of dicts (start, time, time_ns, step, relative_velocity)
@@ -17,6 +18,11 @@ the summary at its end: the log of a killed writer has every complete chunk and 
 loads up to its last complete chunk, with `complete` False and `problem` saying where it ends.
 Every channel carries its protobuf schema (a FileDescriptorSet), so `mcap-protobuf-support`
 decodes it without generated code. Step 0 is the initial state.
+
+Both log formats load. Format 2 (metadata `log_format` = 2) keeps the modal coordinates on
+`/beam/modes` (every 1 ms, at contact changes, at the arrestor's peak deflection and at the last
+step), leaves a step's `peaks` out when they equal the previous step's (carried forward here) and
+leaves out `time` (= time_ns / 1e9, computed here). Format 1 had float32 coordinates in every step.
 """
 
 from __future__ import annotations
@@ -29,6 +35,7 @@ import numpy as np
 STEP_TOPIC = "/beam/step"
 CONTACT_TOPIC = "/beam/contact"
 MODEL_TOPIC = "/beam/model"
+MODES_TOPIC = "/beam/modes"
 
 SCALARS = [
     "step",
@@ -65,6 +72,8 @@ INTEGER = {"step": np.uint64, "time_ns": np.uint64, "contact": np.bool_}
 class Log:
     steps: dict[str, np.ndarray]
     modal_coordinates: np.ndarray
+    modal_steps: np.ndarray
+    modal_times: np.ndarray
     nodal_shapes: np.ndarray
     lower_nodes: np.ndarray
     upper_nodes: np.ndarray
@@ -95,6 +104,8 @@ def load_log(path: str) -> Log:
     columns.update({f"energy.{n}": [] for n in ENERGY})
     columns.update({f"peaks.{n}": [] for n in PEAKS})
     coordinates: list = []
+    modal_steps: list[int] = []
+    modal_times: list[float] = []
     events: list[dict] = []
     log_times: list[int] = []
     counts: dict[str, int] = {}
@@ -138,11 +149,23 @@ def load_log(path: str) -> Log:
                 if channel.topic == STEP_TOPIC:
                     for name in SCALARS:
                         columns[name].append(getattr(proto, name))
+                    # Format 2 leaves out the time in seconds: it is time_ns / 1e9.
+                    columns["time"][-1] = proto.time_ns * 1e-9
                     for name in ENERGY:
                         columns[f"energy.{name}"].append(getattr(proto.energy, name))
+                    # Format 2 leaves out peaks equal to the previous step's.
+                    carried = not proto.HasField("peaks") and len(columns["peaks.contact_force"]) > 0
                     for name in PEAKS:
-                        columns[f"peaks.{name}"].append(getattr(proto.peaks, name))
-                    coordinates.append(proto.modal_coordinates)
+                        column = columns[f"peaks.{name}"]
+                        column.append(column[-1] if carried else getattr(proto.peaks, name))
+                    if len(proto.modal_coordinates) > 0:  # format 1
+                        coordinates.append(np.asarray(proto.modal_coordinates, dtype=np.float64))
+                        modal_steps.append(proto.step)
+                        modal_times.append(proto.time_ns * 1e-9)
+                elif channel.topic == MODES_TOPIC:
+                    coordinates.append(np.asarray(proto.coordinates, dtype=np.float64))
+                    modal_steps.append(proto.step)
+                    modal_times.append(proto.time_ns * 1e-9)
                 elif channel.topic == CONTACT_TOPIC:
                     events.append(
                         {
@@ -163,7 +186,9 @@ def load_log(path: str) -> Log:
     shapes = np.asarray(model.nodal_shapes, dtype=np.float64).reshape(model.shape_rows, model.shape_cols)
     return Log(
         steps=steps,
-        modal_coordinates=np.asarray(coordinates, dtype=np.float32),
+        modal_coordinates=np.asarray(coordinates, dtype=np.float64).reshape(len(coordinates), model.shape_cols),
+        modal_steps=np.asarray(modal_steps, dtype=np.uint64),
+        modal_times=np.asarray(modal_times, dtype=np.float64),
         nodal_shapes=shapes,
         lower_nodes=np.asarray(model.lower_nodes),
         upper_nodes=np.asarray(model.upper_nodes),
@@ -194,9 +219,11 @@ def main(argv: list[str]) -> int:
         print(f"largest |{name}| {abs(s[name][k]) / 1e6:.2f} MPa at t = {s['time'][k]:.5f} s")
     starts = [e["time"] for e in log.events if e["start"]]
     print(f"{len(log.events)} contact events, first contact at t = {starts[0] if starts else float('nan'):.6f} s")
-    # The deflected shape at the largest deflection, from the modal coordinates.
-    w = log.nodal_shapes @ log.modal_coordinates[peak].astype(np.float64)
-    print(f"bridge nodal deflections at the largest arrestor deflection, m: {np.array2string(w[len(log.lower_nodes):], precision=3)}")
+    # The deflected shape at the largest deflection, from the modal coordinates of that step.
+    rows = np.flatnonzero(log.modal_steps == s["step"][peak])
+    if rows.size:
+        w = log.nodal_shapes @ log.modal_coordinates[rows[-1]]
+        print(f"bridge nodal deflections at the largest arrestor deflection, m: {np.array2string(w[len(log.lower_nodes):], precision=3)}")
     return 0
 
 

@@ -1,13 +1,14 @@
 //! `beam-impact bench`: the paper run with every step recorded to MCAP, against the same run
-//! unrecorded. Each recorded run is timed from building the simulation to a finished file; the
-//! recorder's own clocks split it into solve, encode (protobuf) and compress + write (chunking,
-//! zstd, CRCs, file writes, flushes, finish).
+//! unrecorded, measured side by side (alternating runs) for each chunk compression. Each recorded
+//! run is timed from building the simulation to a finished file; the recorder's clocks give the
+//! writer thread's work, encode (protobuf) and compress + write (chunking, compression, CRCs,
+//! file writes, flushes, finish), and how long the solver's thread waited for the queue.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-use super::mcap::{McapRecorder, RecorderOptions};
+use super::mcap::{LogCompression, McapRecorder, RecorderOptions};
 use super::{NullRecorder, Recorder};
 use crate::error::{Error, Result};
 use crate::model::Scenario;
@@ -18,6 +19,9 @@ struct Sample {
     total: Duration,
     encode: Duration,
     write: Duration,
+    queue_wait: Duration,
+    solver_cpu: Duration,
+    writer_cpu: Duration,
     messages: u64,
     bytes: u64,
     steps: u64,
@@ -36,27 +40,34 @@ impl Drop for Scratch {
     }
 }
 
-fn recorded_run(scenario: &Scenario, path: &std::path::Path) -> Result<Sample> {
+fn recorded_run(scenario: &Scenario, path: &std::path::Path, compression: LogCompression) -> Result<Sample> {
     let started = Instant::now();
-    let options = RecorderOptions { timing: true, ..RecorderOptions::default() };
+    let cpu = cpu_time::ThreadTime::now();
+    let options = RecorderOptions { timing: true, compression, ..RecorderOptions::default() };
     let mut recorder = McapRecorder::with_options(path, options)?;
     let mut simulation = Simulation::new(scenario)?;
     let summary = simulation.run(&mut recorder)?;
+    // run() finished the log: the writer thread has ended and the file is complete.
     let total = started.elapsed();
+    let solver_cpu = cpu.elapsed();
     let timing = recorder.timing();
     let bytes = std::fs::metadata(path).map(|m| m.len()).unwrap_or(0);
     Ok(Sample {
         total,
         encode: timing.encode,
         write: timing.write,
+        queue_wait: timing.queue_wait,
+        solver_cpu,
+        writer_cpu: timing.writer_cpu,
         messages: timing.messages,
         bytes,
         steps: summary.steps,
     })
 }
 
-/// Runs the paper scenario `runs` times recorded and `runs` times unrecorded; returns the table
-/// of medians (the CLI prints it).
+/// Runs the paper scenario `runs` times unrecorded and `runs` times recorded with each chunk
+/// compression, alternating, so every ratio compares runs made under the same machine load;
+/// returns the table of medians (the CLI prints it).
 pub fn recording_benchmark(runs: usize) -> Result<String> {
     let runs = runs.max(1);
     let scenario = Scenario::paper();
@@ -67,47 +78,74 @@ pub fn recording_benchmark(runs: usize) -> Result<String> {
         source,
     })?;
     let scratch = Scratch(dir);
+    let kinds = [LogCompression::None, LogCompression::Lz4, LogCompression::Zstd];
     let mut plain = Vec::with_capacity(runs);
-    let mut samples = Vec::with_capacity(runs);
+    let mut plain_cpu = Vec::with_capacity(runs);
+    let mut samples: Vec<Vec<Sample>> = vec![Vec::with_capacity(runs); kinds.len()];
     for run in 0..runs {
         let started = Instant::now();
+        let cpu = cpu_time::ThreadTime::now();
         let mut simulation = Simulation::new(&scenario)?;
         let mut null = NullRecorder;
         simulation.run(&mut null as &mut dyn Recorder)?;
         plain.push(started.elapsed());
-        samples.push(recorded_run(&scenario, &scratch.0.join(format!("run{run}.mcap")))?);
+        plain_cpu.push(cpu.elapsed());
+        for (k, &kind) in kinds.iter().enumerate() {
+            samples[k].push(recorded_run(&scenario, &scratch.0.join(format!("run{run}-{kind}.mcap")), kind)?);
+        }
     }
-    let total = crate::bench::median(samples.iter().map(|s| s.total).collect());
-    let encode = crate::bench::median(samples.iter().map(|s| s.encode).collect());
-    let write = crate::bench::median(samples.iter().map(|s| s.write).collect());
-    let solve = crate::bench::median(samples.iter().map(|s| s.total.saturating_sub(s.encode + s.write)).collect());
     let unrecorded = crate::bench::median(plain);
-    let last = samples[samples.len() - 1];
+    let unrecorded_cpu = crate::bench::median(plain_cpu);
     let mut out = String::new();
     let build =
         if cfg!(debug_assertions) { "debug build: use --release for meaningful times" } else { "release build" };
+    let steps = samples[0][0].steps;
     let _ = writeln!(
         out,
-        "recording benchmark: paper scenario, {} internal steps, median of {runs} runs ({build})",
-        last.steps
-    );
-    let _ = writeln!(out, "  unrecorded run                 {:8.1} ms", ms(unrecorded));
-    let _ = writeln!(out, "  recorded run, start to file    {:8.1} ms", ms(total));
-    let _ = writeln!(out, "    solve (simulation)           {:8.1} ms", ms(solve));
-    let _ = writeln!(out, "    encode (protobuf)            {:8.1} ms", ms(encode));
-    let _ = writeln!(out, "    compress + write (zstd, io)  {:8.1} ms", ms(write));
-    let _ = writeln!(
-        out,
-        "  {} messages, {:.2} MB file ({:.1} B per step), recording overhead {:.1} ms",
-        last.messages,
-        last.bytes as f64 / 1e6,
-        last.bytes as f64 / last.steps.max(1) as f64,
-        ms(total.saturating_sub(unrecorded))
+        "recording benchmark: paper scenario, {steps} internal steps, median of {runs} runs ({build}); the writer \
+         thread encodes and writes while the solver's thread steps"
     );
     let _ = writeln!(
         out,
-        "  recorded / unrecorded: {:.2}x",
-        total.as_secs_f64() / unrecorded.as_secs_f64().max(f64::MIN_POSITIVE)
+        "  unrecorded run                              {:8.1} ms   (CPU {:.1} ms)",
+        ms(unrecorded),
+        ms(unrecorded_cpu)
     );
+    for (kind, samples) in kinds.iter().zip(&samples) {
+        let median = |f: &dyn Fn(&Sample) -> Duration| crate::bench::median(samples.iter().map(f).collect());
+        let total = median(&|s| s.total);
+        let encode = median(&|s| s.encode);
+        let write = median(&|s| s.write);
+        let wait = median(&|s| s.queue_wait);
+        let solver_cpu = median(&|s| s.solver_cpu);
+        let writer_cpu = median(&|s| s.writer_cpu);
+        let last = samples[samples.len() - 1];
+        let busy = (encode + write).as_secs_f64().max(f64::MIN_POSITIVE);
+        let _ = writeln!(out, "  recorded run, {:<4} chunks, start to file   {:8.1} ms", kind.to_string(), ms(total));
+        let _ = writeln!(out, "    writer thread: encode (protobuf)          {:8.1} ms", ms(encode));
+        let _ = writeln!(out, "    writer thread: compress + write           {:8.1} ms", ms(write));
+        let _ = writeln!(out, "    solver thread waiting for the queue       {:8.1} ms", ms(wait));
+        let _ = writeln!(
+            out,
+            "    CPU: solver thread {:.1} ms, writer thread {:.1} ms; the busier over unrecorded: {:.2}x (the \
+             ratio on two idle cores)",
+            ms(solver_cpu),
+            ms(writer_cpu),
+            solver_cpu.max(writer_cpu).as_secs_f64() / unrecorded_cpu.as_secs_f64().max(f64::MIN_POSITIVE)
+        );
+        let _ = writeln!(
+            out,
+            "    {} messages, {:.2} MB file ({:.1} B per step); writer throughput {:.0} messages/s",
+            last.messages,
+            last.bytes as f64 / 1e6,
+            last.bytes as f64 / last.steps.max(1) as f64,
+            last.messages as f64 / busy
+        );
+        let _ = writeln!(
+            out,
+            "    recorded / unrecorded: {:.2}x",
+            total.as_secs_f64() / unrecorded.as_secs_f64().max(f64::MIN_POSITIVE)
+        );
+    }
     Ok(out)
 }

@@ -8,35 +8,60 @@
 //! | topic | schema | what |
 //! |---|---|---|
 //! | `/beam/model` | `beam_impact.Model` | once at t = 0: scenario, nodes, nodal shape matrix |
-//! | `/beam/step` | `beam_impact.Step` | every internal step, step 0 = initial state |
+//! | `/beam/step` | `beam_impact.Step` | every internal step (or every Nth, see below), step 0 = initial state |
+//! | `/beam/modes` | `beam_impact.ModalCoordinates` | modal coordinates: see [`RecorderOptions::modes_interval_ns`] |
 //! | `/beam/contact` | `beam_impact.ContactEvent` | contact starts and ends |
 //! | `/beam/log` | `foxglove.Log` | the same events as text lines |
 //! | `/beam/scene` | `foxglove.SceneUpdate` | both beams as line strips, every [`RecorderOptions::scene_interval_ns`] |
 //!
-//! The scenario is also an MCAP Metadata record (`scenario`, flattened dotted keys) and a TOML
-//! attachment (`scenario.toml`). Chunks are zstd-compressed without worker threads (this runs
-//! inside FMI hosts too); the writer flushes at contact events and every
-//! [`RecorderOptions::flush_every`] steps, so a killed process loses at most the open chunk.
+//! The scenario is also an MCAP Metadata record (`scenario`, flattened dotted keys, with
+//! `log_format` = [`LOG_FORMAT`]) and a TOML attachment (`scenario.toml`).
+//!
+//! **Log format 2** (this one): the modal coordinates left the step message (in format 1 they were
+//! 43 single-precision floats in every step, most of the log's bytes and of its compression time)
+//! for `/beam/modes`; a step message whose running peaks equal the previous one's leaves them out
+//! (they change in few steps; a reader carries them forward), and every step message leaves out
+//! `time` (it is `time_ns` / 1e9; the MCAP log time is the same). `/beam/modes` is written at step 0, every [`RecorderOptions::modes_interval_ns`] of simulated
+//! time, at the steps where contact starts or ends, at the last step, and at the latest step of
+//! each interval at which the arrestor's deflection reached a new peak (so the shape at the peak
+//! deflection is in the log; that message is written, and stamped, when its interval ends: its
+//! `step` and `time` fields say which step it belongs to). Every step's results stay in
+//! `/beam/step`; [`super::report`] reads both formats.
+//!
+//! **Threads.** The solver's thread only copies each step's results into a batch; a writer thread
+//! owned by the recorder ([`super::writer`]) encodes, compresses and writes them. The queue holds
+//! [`QUEUE_BATCHES`] batches of [`BATCH_STEPS`] steps, so memory stays flat and a slow disk holds
+//! the solver back. The writer flushes at contact events and every [`RecorderOptions::flush_every`]
+//! steps: a killed process loses at most the open chunk, the queue and the batch being gathered,
+//! [`UNFLUSHED_STEPS_BOUND`] steps with the defaults. An error of the writer (a full disk) is
+//! returned by the recorder's next call.
+//!
+//! **Decimation** ([`RecorderOptions::record_every`] = N > 1, for long runs): step 0, every Nth
+//! step, every step at which a running peak changes, the steps where contact starts or ends and
+//! the last step are recorded; the others are not.
 
-use std::borrow::Cow;
 use std::collections::BTreeMap;
-use std::fs::File;
-use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::mpsc::{sync_channel, SyncSender};
+use std::sync::{Arc, OnceLock};
+use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
-use ::mcap::records::{MessageHeader, Metadata};
-use ::mcap::{Attachment, Compression, WriteOptions, Writer};
+use ::mcap::{Compression, WriteOptions};
 use prost::Message;
 
 use super::scene::SceneBuilder;
-use super::schema::{self, ContactEventMessage, LogMessage, ModelMessage, StepMessage, TimeMessage};
+use super::schema::{self, ModelMessage};
+use super::writer::{error_chain, Batch, Channels, Item, LogWriter, StartRecord};
+pub use super::writer::{BATCH_STEPS, QUEUE_BATCHES};
 use super::{Recorder, RunInfo};
 use crate::error::{Error, Result};
 use crate::results::{ContactEvent, StepResult};
 
 /// Topic of the step messages.
 pub const STEP_TOPIC: &str = "/beam/step";
+/// Topic of the modal coordinates (log format 2).
+pub const MODES_TOPIC: &str = "/beam/modes";
 /// Topic of the contact events.
 pub const CONTACT_TOPIC: &str = "/beam/contact";
 /// Topic of the one-off model message.
@@ -49,19 +74,68 @@ pub const LOG_TOPIC: &str = "/beam/log";
 pub const SCENARIO_METADATA: &str = "scenario";
 /// Name of the scenario's TOML attachment.
 pub const SCENARIO_ATTACHMENT: &str = "scenario.toml";
+/// Key of the log format in the scenario's Metadata record (absent in format 1 logs).
+pub const LOG_FORMAT_KEY: &str = "log_format";
+/// The format this recorder writes: 2 = modal coordinates on `/beam/modes`.
+pub const LOG_FORMAT: u32 = 2;
 
-/// How the log is written. The defaults are the issue's: zstd, chunks up to 256 KiB, a flush every
-/// 1000 steps and at contact events, a scene every 1 ms of simulated time.
+/// How the log's chunks are compressed.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum LogCompression {
+    /// None, the default: the solver's results are doubles that compress poorly (LZ4 saves
+    /// about 20 %, zstd 35 %) while compressing takes the writer thread longer than the solver's
+    /// step takes (see `beam-impact bench`); without it recording keeps pace with the solver.
+    #[default]
+    None,
+    /// LZ4 frames: a 20 % smaller file, at about twice the writer thread's work.
+    Lz4,
+    /// zstd at [`RecorderOptions::compression_level`]: the smallest file, the slowest writer.
+    Zstd,
+}
+
+impl std::str::FromStr for LogCompression {
+    type Err = String;
+    fn from_str(s: &str) -> std::result::Result<Self, String> {
+        match s {
+            "lz4" => Ok(LogCompression::Lz4),
+            "zstd" => Ok(LogCompression::Zstd),
+            "none" => Ok(LogCompression::None),
+            other => Err(format!("log compression must be lz4, zstd or none, got \"{other}\"")),
+        }
+    }
+}
+
+impl std::fmt::Display for LogCompression {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            LogCompression::Lz4 => "lz4",
+            LogCompression::Zstd => "zstd",
+            LogCompression::None => "none",
+        })
+    }
+}
+
+/// How the log is written. The defaults: no compression, chunks up to 256 KiB, a flush every 1000 steps and
+/// at contact events, a scene and modal coordinates every 1 ms of simulated time, every step.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RecorderOptions {
     /// Target uncompressed chunk size, bytes (64-256 KiB: a killed run loses at most one).
     pub chunk_size: u64,
-    /// zstd level (1 is the fastest; 0 means zstd's default, 3).
+    /// Chunk compression.
+    pub compression: LogCompression,
+    /// zstd level (1 is the fastest; 0 means zstd's default, 3); LZ4 ignores it.
     pub compression_level: u32,
     /// Steps between flushes (each flush closes the chunk and hands it to the OS).
     pub flush_every: u64,
     /// Simulated time between two scene updates, ns (0: no scene).
     pub scene_interval_ns: u64,
+    /// Simulated time between two regular `/beam/modes` messages, ns (0: only at step 0, peaks,
+    /// contact changes and the last step).
+    pub modes_interval_ns: u64,
+    /// Write `/beam/modes` at all (the scene is drawn either way).
+    pub modal_coordinates: bool,
+    /// Record every Nth step (1: every step); see the module's decimation rule.
+    pub record_every: u64,
     /// Measure the time spent encoding and writing (for the benchmark).
     pub timing: bool,
     /// Accept a device as the log (the CLI's `/dev/null`); the FMU wants a regular file.
@@ -71,8 +145,12 @@ pub struct RecorderOptions {
     pub max_bytes: u64,
 }
 
-/// Default size cap of a log: 2 GiB, about 7 million steps of the paper's model (300 B each).
+/// Default size cap of a log: 2 GiB, about 13 million steps of the paper's model (160 B each).
 pub const MAX_LOG_BYTES: u64 = 2 << 30;
+
+/// Steps a killed process may lose with the default options: the writer's open chunk (a flush
+/// every 1000 steps), the queue and the batch the writer is on, and the batch being gathered.
+pub const UNFLUSHED_STEPS_BOUND: u64 = 1000 + ((QUEUE_BATCHES + 2) * BATCH_STEPS) as u64;
 
 impl Default for RecorderOptions {
     fn default() -> Self {
@@ -80,9 +158,13 @@ impl Default for RecorderOptions {
             // A chunk closes once it passes this size, so it ends at most one message (< 1 KiB)
             // above it: 255 KiB keeps every chunk within 256 KiB.
             chunk_size: 255 * 1024,
+            compression: LogCompression::default(),
             compression_level: 1,
             flush_every: 1000,
             scene_interval_ns: 1_000_000,
+            modes_interval_ns: 1_000_000,
+            modal_coordinates: true,
+            record_every: 1,
             timing: false,
             allow_devices: false,
             max_bytes: MAX_LOG_BYTES,
@@ -93,41 +175,43 @@ impl Default for RecorderOptions {
 /// Time spent in the recorder, filled when [`RecorderOptions::timing`] is on.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct RecorderTiming {
-    /// Building and protobuf-encoding messages.
+    /// Building and protobuf-encoding messages (writer thread).
     pub encode: Duration,
-    /// Handing messages to the writer: chunking, zstd, CRCs, file writes, flushes, finish.
+    /// Handing messages to the MCAP writer: chunking, compression, CRCs, file writes, flushes,
+    /// finish (writer thread).
     pub write: Duration,
+    /// Time the solver's thread waited for room in the queue (the writer was behind).
+    pub queue_wait: Duration,
+    /// CPU time of the writer thread, start to finish (what it costs a second core).
+    pub writer_cpu: Duration,
     /// Messages written.
     pub messages: u64,
 }
 
-#[derive(Clone, Copy, Debug, Default)]
-struct Channels {
-    model: u16,
-    step: u16,
-    contact: u16,
-    log: u16,
-    scene: u16,
-}
-
-/// Writes every step of a run to an MCAP file.
+/// Writes the steps of a run to an MCAP file, on a writer thread of its own.
 pub struct McapRecorder {
     path: PathBuf,
     options: RecorderOptions,
-    writer: Option<Writer<BufWriter<File>>>,
-    channels: Channels,
-    sequences: [u32; 5],
-    message: StepMessage,
-    buffer: Vec<u8>,
-    scene: Option<SceneBuilder>,
-    next_scene_ns: u64,
-    steps_since_flush: u64,
+    queue: Option<SyncSender<Batch>>,
+    thread: Option<JoinHandle<Result<RecorderTiming>>>,
+    batch: Batch,
+    capped: Arc<OnceLock<String>>,
     timing: RecorderTiming,
     finished: bool,
-    /// Why the log stopped early (its size cap), if it did.
-    capped: Option<String>,
-    /// Time of the latest step recorded, ns.
-    last_time_ns: u64,
+    /// The latest step seen, and whether it was left out by decimation (not yet recorded).
+    previous: Option<StepResult>,
+    pending: bool,
+    /// Modal coordinates of `previous`, and whether they were sent.
+    coordinates: Vec<f64>,
+    coordinates_sent: bool,
+    /// The step (number, time) at which the arrestor's deflection last reached a new peak, with
+    /// its modal coordinates, while they wait to be written (at the next modes tick, contact
+    /// change or the end: one message per tick, not one per rising step).
+    peak: Option<(u64, u64)>,
+    peak_coordinates: Vec<f64>,
+    next_scene_ns: u64,
+    next_modes_ns: u64,
+    has_scene: bool,
 }
 
 impl std::fmt::Debug for McapRecorder {
@@ -140,25 +224,18 @@ impl std::fmt::Debug for McapRecorder {
     }
 }
 
-fn channel_index(channel: u16, c: &Channels) -> usize {
-    match channel {
-        x if x == c.model => 0,
-        x if x == c.step => 1,
-        x if x == c.contact => 2,
-        x if x == c.log => 3,
-        _ => 4,
-    }
-}
-
 impl McapRecorder {
     /// Creates (truncates) the file at `path`; the error names the path.
     pub fn create(path: &Path) -> Result<Self> {
         Self::with_options(path, RecorderOptions::default())
     }
 
-    /// Like [`McapRecorder::create`], with explicit options.
+    /// Like [`McapRecorder::create`], with explicit options. The file is created, locked and given
+    /// its header and channels here, on the caller's thread; then the writer thread starts.
     pub fn with_options(path: &Path, options: RecorderOptions) -> Result<Self> {
         let io_error = |action, source| Error::Io { action, path: path.display().to_string(), source };
+        let mcap_error =
+            |e: ::mcap::McapError| Error::Mcap { path: path.display().to_string(), message: error_chain(&e) };
         // Open without truncating, take an exclusive lock, then truncate: two writers given the same
         // path (two FMU instances with the default log.path) get an error, not an interleaved file.
         let file = super::output::open_output(path, options.allow_devices, "cannot create MCAP log")?;
@@ -172,142 +249,144 @@ impl McapRecorder {
         if file.metadata().is_ok_and(|m| m.is_file()) {
             file.set_len(0).map_err(|source| io_error("cannot truncate MCAP log", source))?;
         }
+        let compression = match options.compression {
+            LogCompression::Lz4 => Some(Compression::Lz4),
+            LogCompression::Zstd => Some(Compression::Zstd),
+            LogCompression::None => None,
+        };
         let write_options = WriteOptions::new()
             .profile("beam-impact")
-            .compression(Some(Compression::Zstd))
+            .compression(compression)
             .compression_level(options.compression_level)
             .compression_threads(0)
             .chunk_size(Some(options.chunk_size));
-        let mut recorder = McapRecorder {
+        let mut writer =
+            write_options.create(std::io::BufWriter::with_capacity(128 * 1024, file)).map_err(mcap_error)?;
+        let channels = add_channels(&mut writer).map_err(mcap_error)?;
+        let capped = Arc::new(OnceLock::new());
+        let log_writer = LogWriter::new(path.to_path_buf(), options, writer, channels, Arc::clone(&capped));
+        let (queue, receiver) = sync_channel(QUEUE_BATCHES);
+        let thread = std::thread::Builder::new()
+            .name("beam-impact-mcap".into())
+            .spawn(move || log_writer.run(receiver))
+            .map_err(|source| io_error("cannot start the MCAP writer thread for", source))?;
+        Ok(McapRecorder {
             path: path.to_path_buf(),
             options,
-            writer: None,
-            channels: Channels::default(),
-            sequences: [0; 5],
-            message: StepMessage::default(),
-            buffer: Vec::with_capacity(4096),
-            scene: None,
-            next_scene_ns: 0,
-            steps_since_flush: 0,
+            queue: Some(queue),
+            thread: Some(thread),
+            batch: Batch::new(),
+            capped,
             timing: RecorderTiming::default(),
             finished: false,
-            capped: None,
-            last_time_ns: 0,
-        };
-        let writer = write_options.create(BufWriter::with_capacity(128 * 1024, file)).map_err(|e| recorder.err(e))?;
-        recorder.writer = Some(writer);
-        recorder.add_channels()?;
-        Ok(recorder)
+            previous: None,
+            pending: false,
+            coordinates: Vec::new(),
+            coordinates_sent: false,
+            peak: None,
+            peak_coordinates: Vec::new(),
+            next_scene_ns: 0,
+            next_modes_ns: 0,
+            has_scene: false,
+        })
     }
 
     fn err(&self, e: impl std::fmt::Display) -> Error {
         Error::Mcap { path: self.path.display().to_string(), message: e.to_string() }
     }
 
-    fn writer(&mut self) -> Result<&mut Writer<BufWriter<File>>> {
-        let path = self.path.display().to_string();
-        self.writer.as_mut().ok_or(Error::Mcap { path, message: "the log is already finished".into() })
-    }
-
-    fn add_channels(&mut self) -> Result<()> {
-        let beam = schema::beam_impact_descriptor();
-        let none = BTreeMap::new();
-        let path = self.path.display().to_string();
-        let w = self.writer()?;
-        let err = |e: ::mcap::McapError| Error::Mcap { path: path.clone(), message: e.to_string() };
-        let step_schema = w.add_schema(schema::STEP_SCHEMA, "protobuf", &beam).map_err(err)?;
-        let contact_schema = w.add_schema(schema::CONTACT_SCHEMA, "protobuf", &beam).map_err(err)?;
-        let model_schema = w.add_schema(schema::MODEL_SCHEMA, "protobuf", &beam).map_err(err)?;
-        let scene_schema =
-            w.add_schema(schema::SCENE_SCHEMA, "protobuf", &schema::scene_update_descriptor()).map_err(err)?;
-        let log_schema = w.add_schema(schema::LOG_SCHEMA, "protobuf", &schema::log_descriptor()).map_err(err)?;
-        let channels = Channels {
-            model: w.add_channel(model_schema, MODEL_TOPIC, "protobuf", &none).map_err(err)?,
-            step: w.add_channel(step_schema, STEP_TOPIC, "protobuf", &none).map_err(err)?,
-            contact: w.add_channel(contact_schema, CONTACT_TOPIC, "protobuf", &none).map_err(err)?,
-            log: w.add_channel(log_schema, LOG_TOPIC, "protobuf", &none).map_err(err)?,
-            scene: w.add_channel(scene_schema, SCENE_TOPIC, "protobuf", &none).map_err(err)?,
+    /// Hands the gathered batch to the writer thread (waiting while the queue is full). If the
+    /// writer stopped at an error, that error.
+    fn send(&mut self) -> Result<()> {
+        if self.batch.items.is_empty() {
+            self.batch.steps = 0;
+            return Ok(());
+        }
+        let batch = std::mem::replace(&mut self.batch, Batch::new());
+        let Some(queue) = self.queue.as_ref() else {
+            return Err(self.err("the log is already finished"));
         };
-        self.channels = channels;
-        Ok(())
-    }
-
-    /// Writes the encoded `self.buffer` on `channel` at `time_ns`.
-    fn write_buffer(&mut self, channel: u16, time_ns: u64) -> Result<()> {
-        let index = channel_index(channel, &self.channels);
-        let header = MessageHeader {
-            channel_id: channel,
-            sequence: self.sequences[index],
-            log_time: time_ns,
-            publish_time: time_ns,
-        };
-        self.sequences[index] = self.sequences[index].wrapping_add(1);
         let started = self.options.timing.then(Instant::now);
-        let writer = self.writer.as_mut();
-        let result = match writer {
-            Some(w) => w.write_to_known_channel(&header, &self.buffer),
-            None => return Err(self.err("the log is already finished")),
-        };
-        result.map_err(|e| self.err(e))?;
-        if let Some(t) = started {
-            self.timing.write += t.elapsed();
+        if queue.send(batch).is_err() {
+            // The writer ended early: its error says why.
+            self.queue = None;
+            return Err(match self.join() {
+                Err(e) => e,
+                Ok(_) => self.err("the MCAP writer thread ended early"),
+            });
         }
-        self.timing.messages += 1;
+        if let Some(t) = started {
+            self.timing.queue_wait += t.elapsed();
+        }
         Ok(())
     }
 
-    fn encode(&mut self, message: &impl Message) {
-        encode_into(&mut self.buffer, message);
+    /// Waits for the writer thread and takes what it measured (or its error).
+    fn join(&mut self) -> Result<RecorderTiming> {
+        match self.thread.take() {
+            Some(thread) => thread.join().map_err(|_| self.err("the MCAP writer thread panicked"))?,
+            None => Err(self.err("the log is already finished")),
+        }
     }
 
-    fn flush(&mut self) -> Result<()> {
-        let started = self.options.timing.then(Instant::now);
-        let result = self.writer()?.flush();
-        result.map_err(|e| self.err(e))?;
-        if let Some(t) = started {
-            self.timing.write += t.elapsed();
+    fn push(&mut self, item: Item) {
+        self.batch.items.push(item);
+    }
+
+    /// Queues the modal coordinates of `previous` (held in `self.coordinates`).
+    fn push_modes(&mut self, log: bool, scene: bool) {
+        let Some(r) = self.previous else { return };
+        let offset = self.batch.coordinates.len();
+        let len = self.coordinates.len();
+        self.batch.coordinates.extend_from_slice(&self.coordinates);
+        self.push(Item::Modes { step: r.step, time_ns: r.time_ns, log_time_ns: r.time_ns, offset, len, log, scene });
+        self.coordinates_sent |= log;
+        if log && self.peak.is_some_and(|(step, _)| step == r.step) {
+            self.peak = None;
         }
-        self.steps_since_flush = 0;
-        let written = std::fs::metadata(&self.path).map_or(0, |m| m.len());
-        if self.capped.is_none() && written >= self.options.max_bytes {
-            let reason = format!(
-                "the MCAP log {} reached its size cap of {} bytes at {written} bytes: it ends here, the run goes on \
-                 unrecorded",
-                self.path.display(),
-                self.options.max_bytes
-            );
-            // The log itself says why it ends early.
-            let log = LogMessage {
-                timestamp: Some(TimeMessage::from_ns(self.last_time_ns)),
-                level: schema::LOG_LEVEL_WARNING,
-                message: reason.clone(),
-                name: "beam-impact".into(),
-                file: String::new(),
-                line: 0,
-            };
-            self.encode(&log);
-            self.write_buffer(self.channels.log, self.last_time_ns)?;
-            self.capped = Some(reason);
+    }
+
+    /// Queues the modal coordinates at the latest peak of the arrestor's deflection, if they
+    /// are still owed.
+    fn push_peak(&mut self) {
+        if let Some((step, time_ns)) = self.peak.take() {
+            let offset = self.batch.coordinates.len();
+            let len = self.peak_coordinates.len();
+            self.batch.coordinates.extend_from_slice(&self.peak_coordinates);
+            // Written now, stamped now: log times never decrease; the message says its step.
+            let log_time_ns = self.previous.map_or(time_ns, |p| p.time_ns.max(time_ns));
+            self.push(Item::Modes { step, time_ns, log_time_ns, offset, len, log: true, scene: false });
+            if self.previous.is_some_and(|p| p.step == step) {
+                self.coordinates_sent = true;
+            }
         }
-        Ok(())
+    }
+
+    /// Records the latest step if decimation left it out, with its modal coordinates, and the
+    /// coordinates of the latest deflection peak.
+    fn record_pending(&mut self) {
+        if let (true, Some(r)) = (self.pending, self.previous) {
+            self.push(Item::Step(r));
+            self.pending = false;
+        }
+        self.push_peak();
+        if !self.coordinates_sent && self.options.modal_coordinates {
+            self.push_modes(true, false);
+        }
     }
 
     /// Why the log stopped before the run's end (it reached its size cap), if it did.
     pub fn capped(&self) -> Option<&str> {
-        self.capped.as_deref()
+        self.capped.get().map(String::as_str)
     }
 
     /// Adds an attachment (the FMU's modelDescription.xml, for example).
     pub fn attach(&mut self, name: &str, media_type: &str, data: &[u8]) -> Result<()> {
-        let attachment = Attachment {
-            log_time: 0,
-            create_time: 0,
-            name: name.to_string(),
-            media_type: media_type.to_string(),
-            data: Cow::Borrowed(data),
-        };
-        let result = self.writer()?.attach(&attachment);
-        result.map_err(|e| self.err(e))
+        if self.finished {
+            return Err(self.err("the log is already finished"));
+        }
+        self.push(Item::Attach { name: name.into(), media_type: media_type.into(), data: data.to_vec() });
+        Ok(())
     }
 
     /// The file being written.
@@ -320,17 +399,38 @@ impl McapRecorder {
         &self.options
     }
 
-    /// Time spent encoding and writing so far (zero unless [`RecorderOptions::timing`]).
+    /// Time spent encoding and writing (zero unless [`RecorderOptions::timing`]; the writer
+    /// thread's share is known once [`Recorder::finish`] returned).
     pub fn timing(&self) -> RecorderTiming {
         self.timing
     }
+}
+
+/// Adds the log's schemas and channels (the same for every log).
+fn add_channels<W: std::io::Write + std::io::Seek>(w: &mut ::mcap::Writer<W>) -> ::mcap::McapResult<Channels> {
+    let beam = schema::beam_impact_descriptor();
+    let none = BTreeMap::new();
+    let step_schema = w.add_schema(schema::STEP_SCHEMA, "protobuf", &beam)?;
+    let contact_schema = w.add_schema(schema::CONTACT_SCHEMA, "protobuf", &beam)?;
+    let model_schema = w.add_schema(schema::MODEL_SCHEMA, "protobuf", &beam)?;
+    let modes_schema = w.add_schema(schema::MODES_SCHEMA, "protobuf", &beam)?;
+    let scene_schema = w.add_schema(schema::SCENE_SCHEMA, "protobuf", &schema::scene_update_descriptor())?;
+    let log_schema = w.add_schema(schema::LOG_SCHEMA, "protobuf", &schema::log_descriptor())?;
+    Ok(Channels {
+        model: w.add_channel(model_schema, MODEL_TOPIC, "protobuf", &none)?,
+        step: w.add_channel(step_schema, STEP_TOPIC, "protobuf", &none)?,
+        contact: w.add_channel(contact_schema, CONTACT_TOPIC, "protobuf", &none)?,
+        log: w.add_channel(log_schema, LOG_TOPIC, "protobuf", &none)?,
+        scene: w.add_channel(scene_schema, SCENE_TOPIC, "protobuf", &none)?,
+        modes: w.add_channel(modes_schema, MODES_TOPIC, "protobuf", &none)?,
+    })
 }
 
 /// How the log line of a rollback starts (the reader recognises it).
 pub const ROLLBACK_LINE: &str = "rolled back to";
 
 /// Encodes `message` into the cleared `buffer`. Encoding into a Vec cannot fail: it grows.
-fn encode_into(buffer: &mut Vec<u8>, message: &impl Message) {
+pub(super) fn encode_into(buffer: &mut Vec<u8>, message: &impl Message) {
     buffer.clear();
     message.encode(buffer).expect("encoding into a Vec cannot run out of space");
 }
@@ -372,48 +472,72 @@ impl Recorder for McapRecorder {
             shape_cols: shapes.ncols() as u32,
             nodal_shapes: (0..shapes.nrows()).flat_map(|r| (0..shapes.ncols()).map(move |c| shapes[(r, c)])).collect(),
         };
-        self.encode(&model);
-        self.write_buffer(self.channels.model, 0)?;
         let mut metadata = flatten_toml(&toml);
         metadata.insert("paper".into(), info.scenario.is_paper().to_string());
         metadata.insert("beam_impact_version".into(), env!("CARGO_PKG_VERSION").into());
-        let result = self.writer()?.write_metadata(&Metadata { name: SCENARIO_METADATA.into(), metadata });
-        result.map_err(|e| self.err(e))?;
-        self.attach(SCENARIO_ATTACHMENT, "application/toml", toml.as_bytes())?;
-        if self.options.scene_interval_ns > 0 {
-            self.scene = Some(SceneBuilder::new(info));
-        }
+        metadata.insert(LOG_FORMAT_KEY.into(), LOG_FORMAT.to_string());
+        self.has_scene = self.options.scene_interval_ns > 0;
+        let scene = self.has_scene.then(|| SceneBuilder::new(info));
+        self.push(Item::Start(Box::new(StartRecord { model, metadata, scenario_toml: toml, scene })));
         self.next_scene_ns = 0;
+        self.next_modes_ns = 0;
+        self.previous = None;
+        self.pending = false;
         Ok(())
     }
 
     fn step(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()> {
-        if self.capped.is_some() {
+        if self.finished {
+            return Err(self.err("the log is already finished"));
+        }
+        if self.capped.get().is_some() {
             return Ok(());
         }
-        self.last_time_ns = result.time_ns;
-        let started = self.options.timing.then(Instant::now);
-        self.message.fill(result, modal_coordinates);
-        encode_into(&mut self.buffer, &self.message);
-        if let Some(t) = started {
-            self.timing.encode += t.elapsed();
+        let (peaks_changed, stage_changed, deflection_peak) = match &self.previous {
+            None => (true, true, true),
+            Some(p) => (
+                p.peaks != result.peaks,
+                p.contact != result.contact,
+                p.peaks.lower_tip_deflection != result.peaks.lower_tip_deflection,
+            ),
+        };
+        let every = self.options.record_every.max(1);
+        let keep = peaks_changed || stage_changed || result.step.is_multiple_of(every);
+        self.previous = Some(*result);
+        self.coordinates.clear();
+        self.coordinates.extend_from_slice(modal_coordinates);
+        self.coordinates_sent = false;
+        self.pending = !keep;
+        if keep {
+            self.push(Item::Step(*result));
         }
-        self.write_buffer(self.channels.step, result.time_ns)?;
-        if self.scene.is_some() && result.time_ns >= self.next_scene_ns {
-            let started = self.options.timing.then(Instant::now);
+        if deflection_peak && self.options.modal_coordinates {
+            self.peak = Some((result.step, result.time_ns));
+            self.peak_coordinates.clear();
+            self.peak_coordinates.extend_from_slice(modal_coordinates);
+        }
+        let scene = self.has_scene && result.time_ns >= self.next_scene_ns;
+        if scene {
             let interval = self.options.scene_interval_ns;
             self.next_scene_ns = (result.time_ns / interval + 1) * interval;
-            if let Some(scene) = self.scene.as_mut() {
-                encode_into(&mut self.buffer, scene.update(result.time_ns, modal_coordinates));
-            }
-            if let Some(t) = started {
-                self.timing.encode += t.elapsed();
-            }
-            self.write_buffer(self.channels.scene, result.time_ns)?;
         }
-        self.steps_since_flush += 1;
-        if self.steps_since_flush >= self.options.flush_every {
-            self.flush()?;
+        let mut modes = stage_changed;
+        if self.options.modes_interval_ns > 0 && result.time_ns >= self.next_modes_ns {
+            let interval = self.options.modes_interval_ns;
+            self.next_modes_ns = (result.time_ns / interval + 1) * interval;
+            modes = true;
+        }
+        let log = modes && self.options.modal_coordinates;
+        if log || scene {
+            self.push_modes(log, scene);
+        }
+        if log {
+            // The peak's shape from an earlier step of this tick.
+            self.push_peak();
+        }
+        self.batch.steps += 1;
+        if self.batch.steps >= BATCH_STEPS {
+            self.send()?;
         }
         Ok(())
     }
@@ -423,66 +547,63 @@ impl Recorder for McapRecorder {
     }
 
     fn contact_event(&mut self, event: &ContactEvent) -> Result<()> {
-        if self.capped.is_some() {
+        if self.finished {
+            return Err(self.err("the log is already finished"));
+        }
+        if self.capped.get().is_some() {
             return Ok(());
         }
-        let message = ContactEventMessage::from(event);
-        self.encode(&message);
-        self.write_buffer(self.channels.contact, event.time_ns)?;
-        let text = format!(
-            "contact {} at t = {:.6} s (step {}), relative velocity {:.4} m/s",
-            if event.start { "starts" } else { "ends" },
-            message.time,
-            event.step,
-            event.relative_velocity
-        );
-        let log = LogMessage {
-            timestamp: Some(TimeMessage::from_ns(event.time_ns)),
-            level: schema::LOG_LEVEL_INFO,
-            message: text,
-            name: "beam-impact".into(),
-            file: String::new(),
-            line: 0,
-        };
-        self.encode(&log);
-        self.write_buffer(self.channels.log, event.time_ns)?;
-        self.flush()
+        // The step the event follows is recorded, whatever the decimation.
+        self.record_pending();
+        self.push(Item::Contact(*event));
+        // The writer flushes at events; hand it what it has so the event reaches the file.
+        self.send()
     }
 
     fn rollback(&mut self, result: &StepResult) -> Result<()> {
-        let log = LogMessage {
-            timestamp: Some(TimeMessage::from_ns(result.time_ns)),
-            level: schema::LOG_LEVEL_WARNING,
-            message: format!(
-                "{ROLLBACK_LINE} t = {:.6} s (step {}): the steps recorded after it are superseded",
-                result.time, result.step
-            ),
-            name: "beam-impact".into(),
-            file: String::new(),
-            line: 0,
-        };
-        self.encode(&log);
-        self.write_buffer(self.channels.log, result.time_ns)?;
-        self.flush()
+        // A step left out by decimation is recorded if it is the one restored; the later ones
+        // are superseded anyway.
+        if self.previous.is_some_and(|p| p.step == result.step) {
+            self.record_pending();
+        }
+        if self.peak.is_some_and(|(step, _)| step <= result.step) {
+            self.push_peak();
+        }
+        self.peak = None;
+        self.push(Item::Rollback(*result));
+        self.previous = Some(*result);
+        self.pending = false;
+        // The restored step's coordinates are not known here: none are owed for it.
+        self.coordinates_sent = true;
+        self.send()
     }
 
     fn finish(&mut self) -> Result<()> {
         if self.finished {
             return Ok(());
         }
-        let started = self.options.timing.then(Instant::now);
-        let mut writer = self.writer.take().ok_or_else(|| self.err("the log was never opened"))?;
         self.finished = true;
-        writer.finish().map_err(|e| self.err(e))?;
-        let mut file = writer.into_inner();
-        file.flush().map_err(|source| Error::Io {
-            action: "cannot write MCAP log",
-            path: self.path.display().to_string(),
-            source,
-        })?;
-        if let Some(t) = started {
-            self.timing.write += t.elapsed();
+        // The last step is always recorded, with its modal coordinates.
+        if self.capped.get().is_none() {
+            self.record_pending();
         }
+        let sent = self.send();
+        // Closing the queue ends the writer thread, which then writes the summary and footer.
+        self.queue = None;
+        let joined = self.join();
+        sent?;
+        let writer = joined?;
+        self.timing = RecorderTiming { queue_wait: self.timing.queue_wait, ..writer };
         Ok(())
+    }
+}
+
+impl Drop for McapRecorder {
+    /// A recorder dropped unfinished (an FMU freed without Terminate, an error on the way) still
+    /// ends its thread and completes the file: nothing keeps running after the owner is gone.
+    fn drop(&mut self) {
+        if !self.finished {
+            let _ = self.finish();
+        }
     }
 }

@@ -113,8 +113,12 @@ pub mod mcap;
 pub mod output;
 
 pub mod bench;
+pub mod csv;
+pub mod damping_figures;
 pub mod figures;
+pub mod mode_figures;
 pub mod report;
 pub mod safe_read;
 pub mod scene;
 pub mod schema;
+pub mod writer;

@@ -18,9 +18,12 @@ use std::path::Path;
 
 use prost::Message;
 
-use super::mcap::{CONTACT_TOPIC, LOG_TOPIC, MODEL_TOPIC, SCENARIO_ATTACHMENT, SCENARIO_METADATA, STEP_TOPIC};
+use super::mcap::{
+    CONTACT_TOPIC, LOG_FORMAT, LOG_FORMAT_KEY, LOG_TOPIC, MODEL_TOPIC, MODES_TOPIC, SCENARIO_ATTACHMENT,
+    SCENARIO_METADATA, STEP_TOPIC,
+};
 use super::safe_read::{read_records, Ending, Limits, Place, Record};
-use super::schema::{ContactEventMessage, LogMessage, ModelMessage, StepMessage};
+use super::schema::{ContactEventMessage, LogMessage, ModalCoordinatesMessage, ModelMessage, StepMessage};
 use crate::error::{Error, Result};
 use crate::model::Scenario;
 use crate::results::{
@@ -67,6 +70,9 @@ pub struct LogData {
     pub damaged: bool,
     /// Size of the file, bytes.
     pub file_size: u64,
+    /// The log's format: 1 (modal coordinates in every step message; no `log_format` metadata) or
+    /// 2 (modal coordinates on `/beam/modes`).
+    pub log_format: u32,
 }
 
 impl LogData {
@@ -83,8 +89,8 @@ fn mcap_err(path: &Path, e: impl std::fmt::Display) -> Error {
 
 /// What the reader may keep from a log, as a multiple of the file's size (plus
 /// [`RETAINED_SLACK`]): the decoded steps, events, log lines, topics, metadata and scenario.
-/// A step message of ours is ~330 bytes in the file and 216 bytes decoded, so real logs keep
-/// under 1x; the bound stops a crafted log of highly compressible messages from growing the
+/// A step message of ours is ~280 bytes in the file (format 2, uncompressed; ~330 compressed in
+/// format 1) and 216 bytes decoded, so real logs keep under 1x; the bound stops a crafted log of highly compressible messages from growing the
 /// reader's memory to the 64x its chunks may decompress to (see [`super::safe_read::Limits`]).
 pub const RETAINED_RATIO: u64 = 16;
 
@@ -134,6 +140,23 @@ pub fn read_log_bytes(bytes: &[u8], path: &Path) -> Result<LogData> {
         data.problem = Some(problem);
     }
     data.complete = data.problem.is_none();
+    data.log_format = match data.metadata.get(LOG_FORMAT_KEY) {
+        None => 1,
+        Some(text) => match text.parse::<u32>() {
+            Ok(format) if (1..=LOG_FORMAT).contains(&format) => format,
+            _ => {
+                return Err(mcap_err(
+                    path,
+                    format!(
+                        "log format \"{}\" is not one this reader knows (1 to {LOG_FORMAT}): written by a newer \
+                         beam-impact? (its version: {})",
+                        text.escape_debug(),
+                        data.metadata.get("beam_impact_version").map_or("not recorded", |v| v.as_str())
+                    ),
+                ))
+            }
+        },
+    };
     if data.scenario_toml.is_none() {
         data.scenario_toml = state.model_toml;
     }
@@ -193,7 +216,9 @@ impl ReadState {
                         self.keep(std::mem::size_of::<StepResult>(), at, "step message")?;
                         self.step.clear();
                         self.step.merge(bytes).map_err(|e| bad("step", e))?;
-                        let result = self.step.result();
+                        let mut result = self.step.result();
+                        // Format 2 leaves out the time in seconds: it is time_ns / 1e9 (format 1's).
+                        result.time = seconds(result.time_ns);
                         let rollback = data.steps.last().is_some_and(|last| result.step <= last.step);
                         data.monotonic &= !decreasing || rollback;
                         if rollback {
@@ -211,6 +236,10 @@ impl ReadState {
                                 data.peak_deflection_coordinates.clear();
                             }
                         }
+                        // Format 2 leaves out peaks equal to the previous step's.
+                        if self.step.peaks.is_none() {
+                            result.peaks = data.steps.last().map(|r| r.peaks).unwrap_or_default();
+                        }
                         let previous = data.steps.last().map(|r| r.peaks.lower_tip_deflection);
                         if previous.is_none_or(|p| result.peaks.lower_tip_deflection != p) {
                             data.peak_deflection_coordinates.clear();
@@ -219,6 +248,17 @@ impl ReadState {
                             data.peak_deflection_step = result.step;
                         }
                         data.steps.push(result);
+                    }
+                    MODES_TOPIC => {
+                        data.monotonic &= !decreasing;
+                        let m = ModalCoordinatesMessage::decode(bytes).map_err(|e| bad("modes", e))?;
+                        // Kept only at the arrestor's peak deflection (the summary's E_def,b).
+                        let at_peak =
+                            data.peak_deflection_coordinates.is_empty() && m.step == data.peak_deflection_step;
+                        if at_peak {
+                            self.keep(8 * m.coordinates.len(), at, "modes message")?;
+                            data.peak_deflection_coordinates = m.coordinates;
+                        }
                     }
                     CONTACT_TOPIC => {
                         self.keep(std::mem::size_of::<ContactEvent>(), at, "contact message")?;
@@ -389,7 +429,7 @@ fn summary_text(data: &LogData, scenario: &Scenario, summary: &Summary, out: &mu
     );
 }
 
-/// Reads the log at `mcap`, prints the summary to `out` and writes Figures 6-9 (SVG and PNG)
+/// Reads the log at `mcap`, prints the summary to `out` and writes Figures 6-12 (SVG and PNG)
 /// into `out_dir` (created if missing).
 pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
     let data = read_log(mcap)?;
@@ -448,8 +488,8 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
         let note = format!("\nfigures: not drawn: {reason}\n");
         return out.write_all(note.as_bytes()).map_err(io);
     }
-    let nodes = super::figures::NodeNumbers::of(&scenario);
-    let files = super::figures::write_figures(&data.steps, &summary, nodes, out_dir, !data.complete)?;
+    let mut files = super::figures::write_figures(&data.steps, &summary, &scenario, out_dir, !data.complete)?;
+    files.extend(super::mode_figures::write_mode_figures(simulation.model(), simulation.modal(), out_dir)?);
     let mut listing = String::from("\nfigures:\n");
     for f in files {
         listing.push_str(&format!("  {}\n", f.display()));

@@ -17,7 +17,8 @@
 //!   bounds the bytes decompressed, hence the time, to a fixed multiple of the file);
 //! - zstd decompresses in one call into a buffer of exactly the declared size (the bulk API:
 //!   no window buffer, output capped at the buffer), which must then be exactly full and match
-//!   the chunk's CRC-32;
+//!   the chunk's CRC-32; an LZ4 frame (lz4_flex, pure Rust) is read into the same exactly sized
+//!   buffer, and a frame that holds more or less than declared is refused;
 //! - chunks nest no further: a chunk inside a chunk is skipped, not opened.
 //!
 //! So memory is the file plus one chunk buffer, and time is linear in the file (each byte is
@@ -719,6 +720,29 @@ impl Reader<'_> {
                 let found = decompressor
                     .decompress_to_buffer(data, &mut self.buffer[..])
                     .map_err(|e| ReadError::Decompress { at, detail: e.to_string() })?;
+                if found != size {
+                    return Err(ReadError::SizeMismatch { at, declared, found: found as u64 }.into());
+                }
+                &self.buffer[..]
+            }
+            "lz4" => {
+                // An LZ4 frame decoded into exactly the declared size: one byte more is an error.
+                let size = declared as usize;
+                self.buffer.clear();
+                self.buffer.resize(size, 0);
+                let mut decoder = lz4_flex::frame::FrameDecoder::new(data);
+                let decompress = |e: std::io::Error| ReadError::Decompress { at, detail: e.to_string() };
+                let mut found = 0;
+                while found < size {
+                    match std::io::Read::read(&mut decoder, &mut self.buffer[found..]).map_err(decompress)? {
+                        0 => break,
+                        n => found += n,
+                    }
+                }
+                let mut extra = [0u8; 1];
+                if found == size && std::io::Read::read(&mut decoder, &mut extra).map_err(decompress)? > 0 {
+                    found += 1;
+                }
                 if found != size {
                     return Err(ReadError::SizeMismatch { at, declared, found: found as u64 }.into());
                 }

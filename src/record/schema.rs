@@ -1,26 +1,42 @@
 //! The protobuf messages of the log and their self-describing schemas.
 //!
-//! The structs below are encoded with prost; the `FileDescriptorSet`s that describe them are
-//! built here in code (no `protoc`, no build script) and embedded in the MCAP schema records,
-//! so Foxglove, the Python `mcap-protobuf-support` decoder and our own reader all decode the
-//! same bytes. Field numbers are part of the file format: never renumber, only append.
+//! Generated at build time from the `.proto` files in `proto/`, the one source of truth:
+//! `build.rs` compiles them with protox (no system `protoc`) and prost-build, into the Rust types
+//! of the [`beam_impact`] and [`foxglove`] modules here and into the serialized
+//! `FileDescriptorSet`s embedded in the MCAP schema records ([`beam_impact_descriptor`],
+//! [`scene_update_descriptor`], [`log_descriptor`]). So Foxglove, the Python
+//! `mcap-protobuf-support` decoder and our own reader all decode the same bytes by the same
+//! definition. Field numbers are part of the file format: never renumber, only append.
 //!
-//! Messages of the `beam_impact` package:
+//! Messages of the `beam_impact` package (`proto/beam_impact.proto`):
 //! - [`StepMessage`] (`beam_impact.Step`, one per internal step),
 //! - [`ContactEventMessage`] (`beam_impact.ContactEvent`, contact starts and ends),
-//! - [`ModelMessage`] (`beam_impact.Model`, once: node positions and the nodal shape matrix).
+//! - [`ModelMessage`] (`beam_impact.Model`, once: node positions and the nodal shape matrix),
+//! - [`ModalCoordinatesMessage`] (`beam_impact.ModalCoordinates`, the deflected shapes' coordinates).
 //!
-//! Foxglove's well-known `foxglove.SceneUpdate` and `foxglove.Log` are described in full (every
-//! field of the published schemas), though only the fields we fill have prost structs here.
-
-use prost::Message;
-use prost_types::field_descriptor_proto::{Label, Type};
-use prost_types::{
-    DescriptorProto, EnumDescriptorProto, EnumValueDescriptorProto, FieldDescriptorProto, FileDescriptorProto,
-    FileDescriptorSet,
-};
+//! Foxglove's well-known `foxglove.SceneUpdate` and `foxglove.Log` (`proto/foxglove/`, one file
+//! per message as Foxglove publishes them) are described in full in the schema records; the
+//! generated Rust types leave out the fields this crate never fills (see `OMITTED_FIELDS` in
+//! `build.rs`), and a line's `foxglove.Point3` points are [`Vector3Message`]s (same fields).
+//! `google.protobuf.Timestamp` and `Duration` are both [`TimeMessage`].
 
 use crate::results::{ContactEvent, EnergyAccount, Peaks, StepResult};
+
+// The generated modules: clippy's lints are prost-build's business there; rustc's stay on, so
+// `missing_docs` asks for a comment on every message, field and enum value in the `.proto` files.
+
+/// The `beam_impact` package, generated from `proto/beam_impact.proto`.
+#[allow(clippy::all)]
+pub mod beam_impact {
+    include!(concat!(env!("OUT_DIR"), "/beam_impact.rs"));
+}
+
+/// The `foxglove` package (the messages of `foxglove.SceneUpdate` and `foxglove.Log` that this
+/// crate fills), generated from `proto/foxglove/`.
+#[allow(clippy::all)]
+pub mod foxglove {
+    include!(concat!(env!("OUT_DIR"), "/foxglove.rs"));
+}
 
 /// Schema name of the step messages.
 pub const STEP_SCHEMA: &str = "beam_impact.Step";
@@ -28,127 +44,72 @@ pub const STEP_SCHEMA: &str = "beam_impact.Step";
 pub const CONTACT_SCHEMA: &str = "beam_impact.ContactEvent";
 /// Schema name of the one-off model message.
 pub const MODEL_SCHEMA: &str = "beam_impact.Model";
+/// Schema name of the modal coordinates (log format 2: every scene interval, every step where a
+/// running peak changes, at contact events and at the last step).
+pub const MODES_SCHEMA: &str = "beam_impact.ModalCoordinates";
 /// Foxglove's 3D scene schema.
 pub const SCENE_SCHEMA: &str = "foxglove.SceneUpdate";
 /// Foxglove's log line schema.
 pub const LOG_SCHEMA: &str = "foxglove.Log";
 
+/// One internal solver step (`beam_impact.Step`).
+pub type StepMessage = beam_impact::Step;
 /// The energy account of one step (`beam_impact.EnergyAccount`), J.
-#[derive(Clone, Copy, PartialEq, Message)]
-pub struct EnergyMessage {
-    /// Kinetic energy of both beams.
-    #[prost(double, tag = "1")]
-    pub kinetic: f64,
-    /// Strain energy of both beams and of the bar while in contact.
-    #[prost(double, tag = "2")]
-    pub strain: f64,
-    /// Gravity potential from the undeformed position.
-    #[prost(double, tag = "3")]
-    pub gravity_potential: f64,
-    /// Work of the external tip forces since t = 0.
-    #[prost(double, tag = "4")]
-    pub external_work: f64,
-    /// Energy dissipated by damping since t = 0.
-    #[prost(double, tag = "5")]
-    pub damping_dissipation: f64,
-    /// Balance residual.
-    #[prost(double, tag = "6")]
-    pub residual: f64,
-}
-
+pub type EnergyMessage = beam_impact::EnergyAccount;
 /// Running peaks max |.| since t = 0 (`beam_impact.Peaks`).
-#[derive(Clone, Copy, PartialEq, Message)]
-pub struct PeaksMessage {
-    /// Arrestor end deflection, m.
-    #[prost(double, tag = "1")]
-    pub lower_tip_deflection: f64,
-    /// Bending stress at the clamp, Pa.
-    #[prost(double, tag = "2")]
-    pub lower_clamp_bending_stress: f64,
-    /// Shear stress at the clamp, Pa.
-    #[prost(double, tag = "3")]
-    pub lower_clamp_shear_stress: f64,
-    /// Bending stress at the bridge's contact node, Pa.
-    #[prost(double, tag = "4")]
-    pub upper_contact_bending_stress: f64,
-    /// Contact bar force, N.
-    #[prost(double, tag = "5")]
-    pub contact_force: f64,
+pub type PeaksMessage = beam_impact::Peaks;
+/// A contact stage starts or ends (`beam_impact.ContactEvent`).
+pub type ContactEventMessage = beam_impact::ContactEvent;
+/// What is needed once to redraw both beams at any step (`beam_impact.Model`, at t = 0).
+pub type ModelMessage = beam_impact::Model;
+/// The modal coordinates of the displacement at one step (`beam_impact.ModalCoordinates`).
+pub type ModalCoordinatesMessage = beam_impact::ModalCoordinates;
+/// `foxglove.Vector3` (and `foxglove.Point3`, same layout).
+pub type Vector3Message = foxglove::Vector3;
+/// `foxglove.Quaternion`.
+pub type QuaternionMessage = foxglove::Quaternion;
+/// `foxglove.Pose`.
+pub type PoseMessage = foxglove::Pose;
+/// `foxglove.Color`, components in 0..1.
+pub type ColorMessage = foxglove::Color;
+/// `foxglove.LinePrimitive` (the fields we use).
+pub type LinePrimitiveMessage = foxglove::LinePrimitive;
+/// `foxglove.KeyValuePair`.
+pub type KeyValueMessage = foxglove::KeyValuePair;
+/// `foxglove.SceneEntity` (the fields we use).
+pub type SceneEntityMessage = foxglove::SceneEntity;
+/// `foxglove.SceneUpdate` (entities only: nothing is ever deleted).
+pub type SceneUpdateMessage = foxglove::SceneUpdate;
+/// `foxglove.Log`.
+pub type LogMessage = foxglove::Log;
+
+/// `foxglove.Log.Level.INFO`.
+pub const LOG_LEVEL_INFO: i32 = foxglove::log::Level::Info as i32;
+/// `foxglove.Log.Level.WARNING`.
+pub const LOG_LEVEL_WARNING: i32 = foxglove::log::Level::Warning as i32;
+
+/// `google.protobuf.Timestamp` / `Duration` (same wire layout); the generated Foxglove messages
+/// use it for both (see `EXTERN_TYPES` in `build.rs`).
+#[derive(Clone, Copy, PartialEq, Eq, Hash, prost::Message)]
+pub struct TimeMessage {
+    /// Whole seconds.
+    #[prost(int64, tag = "1")]
+    pub seconds: i64,
+    /// Nanoseconds within the second.
+    #[prost(int32, tag = "2")]
+    pub nanos: i32,
 }
 
-/// One internal solver step (`beam_impact.Step`): every field of [`StepResult`] and the modal
-/// coordinates (nodal deflections = `ModelMessage::nodal_shapes` * `modal_coordinates`).
-#[derive(Clone, PartialEq, Message)]
-pub struct StepMessage {
-    /// Steps since t = 0 (0 is the initial state).
-    #[prost(uint64, tag = "1")]
-    pub step: u64,
-    /// Simulated time, ns (also the message's log and publish time).
-    #[prost(uint64, tag = "2")]
-    pub time_ns: u64,
-    /// Simulated time, s.
-    #[prost(double, tag = "3")]
-    pub time: f64,
-    /// Size of the step that ended here, s.
-    #[prost(double, tag = "4")]
-    pub step_size: f64,
-    /// Contact stage of the step: true when taken in contact (Eq. 6 at its start).
-    #[prost(bool, tag = "5")]
-    pub contact: bool,
-    /// Deflection of the arrestor's end (node 8), m.
-    #[prost(double, tag = "6")]
-    pub lower_tip_deflection: f64,
-    /// Deflection of the bridge's contact node (node 16), m.
-    #[prost(double, tag = "7")]
-    pub upper_contact_deflection: f64,
-    /// Deflection of the bridge's free end, m.
-    #[prost(double, tag = "8")]
-    pub upper_tip_deflection: f64,
-    /// Bending stress at the clamp (node 1), Pa.
-    #[prost(double, tag = "9")]
-    pub lower_clamp_bending_stress: f64,
-    /// Shear stress at the clamp, Pa.
-    #[prost(double, tag = "10")]
-    pub lower_clamp_shear_stress: f64,
-    /// Bending stress at the bridge's contact node, Pa.
-    #[prost(double, tag = "11")]
-    pub upper_contact_bending_stress: f64,
-    /// Contact bar force, N (negative in compression).
-    #[prost(double, tag = "12")]
-    pub contact_force: f64,
-    /// Contact bar stress, Pa.
-    #[prost(double, tag = "13")]
-    pub contact_stress: f64,
-    /// Energy account.
-    #[prost(message, optional, tag = "14")]
-    pub energy: Option<EnergyMessage>,
-    /// Running peaks.
-    #[prost(message, optional, tag = "15")]
-    pub peaks: Option<PeaksMessage>,
-    /// Modal coordinates of the displacement, single precision (7 significant digits: enough
-    /// to redraw the deflected shapes, at half the bytes of the largest part of the message).
-    #[prost(float, repeated, tag = "16")]
-    pub modal_coordinates: Vec<f32>,
-    /// Vertical force of the clamp on the arrestor, N, up positive.
-    #[prost(double, tag = "17")]
-    pub lower_clamp_reaction_force: f64,
-    /// Moment of the clamp on the arrestor, N m, counter-clockwise positive.
-    #[prost(double, tag = "18")]
-    pub lower_clamp_reaction_moment: f64,
-    /// Vertical force of the hinge on the bridge, N, up positive.
-    #[prost(double, tag = "19")]
-    pub upper_hinge_reaction_force: f64,
-    /// Vertical velocity of the arrestor's end, m/s.
-    #[prost(double, tag = "20")]
-    pub lower_tip_velocity: f64,
-    /// Vertical velocity of the bridge's free end, m/s.
-    #[prost(double, tag = "21")]
-    pub upper_tip_velocity: f64,
+impl TimeMessage {
+    /// From integer nanoseconds.
+    pub fn from_ns(ns: u64) -> Self {
+        TimeMessage { seconds: (ns / 1_000_000_000) as i64, nanos: (ns % 1_000_000_000) as i32 }
+    }
 }
 
 impl StepMessage {
-    /// Overwrites every field from `result` and `coordinates`, reusing the coordinate buffer.
-    pub fn fill(&mut self, r: &StepResult, coordinates: &[f64]) {
+    /// Overwrites every field from `result` (log format 2: the modal coordinates stay empty).
+    pub fn fill(&mut self, r: &StepResult) {
         self.step = r.step;
         self.time_ns = r.time_ns;
         self.time = r.time;
@@ -185,7 +146,6 @@ impl StepMessage {
             contact_force: p.contact_force,
         });
         self.modal_coordinates.clear();
-        self.modal_coordinates.extend(coordinates.iter().map(|&q| q as f32));
     }
 
     /// The [`StepResult`] this message carries.
@@ -230,26 +190,6 @@ impl StepMessage {
     }
 }
 
-/// A contact stage starts or ends (`beam_impact.ContactEvent`).
-#[derive(Clone, Copy, PartialEq, Message)]
-pub struct ContactEventMessage {
-    /// True when contact starts, false when the beams separate.
-    #[prost(bool, tag = "1")]
-    pub start: bool,
-    /// Time at which Eq. (6) changed, ns.
-    #[prost(uint64, tag = "2")]
-    pub time_ns: u64,
-    /// Index of the first step in the new stage.
-    #[prost(uint64, tag = "3")]
-    pub step: u64,
-    /// Relative velocity of the contact points, m/s (negative approaching).
-    #[prost(double, tag = "4")]
-    pub relative_velocity: f64,
-    /// Time at which Eq. (6) changed, s.
-    #[prost(double, tag = "5")]
-    pub time: f64,
-}
-
 impl From<&ContactEvent> for ContactEventMessage {
     fn from(e: &ContactEvent) -> Self {
         ContactEventMessage {
@@ -268,517 +208,349 @@ impl From<&ContactEventMessage> for ContactEvent {
     }
 }
 
-/// What is needed once to redraw both beams at any step (`beam_impact.Model`, at t = 0).
-#[derive(Clone, PartialEq, Message)]
-pub struct ModelMessage {
-    /// The scenario, as TOML.
-    #[prost(string, tag = "1")]
-    pub scenario_toml: String,
-    /// Arrestor node positions from the clamp, m.
-    #[prost(double, repeated, tag = "2")]
-    pub lower_nodes: Vec<f64>,
-    /// Bridge node positions from the hinge, m.
-    #[prost(double, repeated, tag = "3")]
-    pub upper_nodes: Vec<f64>,
-    /// Rows of the nodal shape matrix (arrestor nodes then bridge nodes).
-    #[prost(uint32, tag = "4")]
-    pub shape_rows: u32,
-    /// Columns of the nodal shape matrix (modal coordinates).
-    #[prost(uint32, tag = "5")]
-    pub shape_cols: u32,
-    /// The nodal shape matrix, row-major: w = shapes * q, m.
-    #[prost(double, repeated, tag = "6")]
-    pub nodal_shapes: Vec<f64>,
-}
-
-/// `google.protobuf.Timestamp` / `Duration` (same wire layout).
-#[derive(Clone, Copy, PartialEq, Message)]
-pub struct TimeMessage {
-    /// Whole seconds.
-    #[prost(int64, tag = "1")]
-    pub seconds: i64,
-    /// Nanoseconds within the second.
-    #[prost(int32, tag = "2")]
-    pub nanos: i32,
-}
-
-impl TimeMessage {
-    /// From integer nanoseconds.
-    pub fn from_ns(ns: u64) -> Self {
-        TimeMessage { seconds: (ns / 1_000_000_000) as i64, nanos: (ns % 1_000_000_000) as i32 }
-    }
-}
-
-/// `foxglove.Vector3` (and `Point3`, same layout).
-#[derive(Clone, Copy, PartialEq, Message)]
-pub struct Vector3Message {
-    /// x.
-    #[prost(double, tag = "1")]
-    pub x: f64,
-    /// y.
-    #[prost(double, tag = "2")]
-    pub y: f64,
-    /// z.
-    #[prost(double, tag = "3")]
-    pub z: f64,
-}
-
-/// `foxglove.Quaternion`.
-#[derive(Clone, Copy, PartialEq, Message)]
-pub struct QuaternionMessage {
-    /// x.
-    #[prost(double, tag = "1")]
-    pub x: f64,
-    /// y.
-    #[prost(double, tag = "2")]
-    pub y: f64,
-    /// z.
-    #[prost(double, tag = "3")]
-    pub z: f64,
-    /// w.
-    #[prost(double, tag = "4")]
-    pub w: f64,
-}
-
-/// `foxglove.Pose`.
-#[derive(Clone, Copy, PartialEq, Message)]
-pub struct PoseMessage {
-    /// Position.
-    #[prost(message, optional, tag = "1")]
-    pub position: Option<Vector3Message>,
-    /// Orientation.
-    #[prost(message, optional, tag = "2")]
-    pub orientation: Option<QuaternionMessage>,
-}
-
-/// `foxglove.Color`, components in 0..1.
-#[derive(Clone, Copy, PartialEq, Message)]
-pub struct ColorMessage {
-    /// Red.
-    #[prost(double, tag = "1")]
-    pub r: f64,
-    /// Green.
-    #[prost(double, tag = "2")]
-    pub g: f64,
-    /// Blue.
-    #[prost(double, tag = "3")]
-    pub b: f64,
-    /// Alpha.
-    #[prost(double, tag = "4")]
-    pub a: f64,
-}
-
-/// `foxglove.LinePrimitive` (the fields we use).
-#[derive(Clone, PartialEq, Message)]
-pub struct LinePrimitiveMessage {
-    /// 0 = LINE_STRIP.
-    #[prost(int32, tag = "1")]
-    pub r#type: i32,
-    /// Origin of the points.
-    #[prost(message, optional, tag = "2")]
-    pub pose: Option<PoseMessage>,
-    /// Line thickness.
-    #[prost(double, tag = "3")]
-    pub thickness: f64,
-    /// Thickness in pixels rather than metres.
-    #[prost(bool, tag = "4")]
-    pub scale_invariant: bool,
-    /// Points of the strip.
-    #[prost(message, repeated, tag = "5")]
-    pub points: Vec<Vector3Message>,
-    /// Colour of the whole line.
-    #[prost(message, optional, tag = "6")]
-    pub color: Option<ColorMessage>,
-}
-
-/// `foxglove.KeyValuePair`.
-#[derive(Clone, PartialEq, Message)]
-pub struct KeyValueMessage {
-    /// Key.
-    #[prost(string, tag = "1")]
-    pub key: String,
-    /// Value.
-    #[prost(string, tag = "2")]
-    pub value: String,
-}
-
-/// `foxglove.SceneEntity` (the fields we use).
-#[derive(Clone, PartialEq, Message)]
-pub struct SceneEntityMessage {
-    /// Time of the entity.
-    #[prost(message, optional, tag = "1")]
-    pub timestamp: Option<TimeMessage>,
-    /// Frame the entity is drawn in.
-    #[prost(string, tag = "2")]
-    pub frame_id: String,
-    /// Entity id: re-sending the same id replaces (animates) it.
-    #[prost(string, tag = "3")]
-    pub id: String,
-    /// Lifetime (zero: until replaced).
-    #[prost(message, optional, tag = "4")]
-    pub lifetime: Option<TimeMessage>,
-    /// Whether to move with the frame.
-    #[prost(bool, tag = "5")]
-    pub frame_locked: bool,
-    /// Extra information shown in the 3D panel.
-    #[prost(message, repeated, tag = "6")]
-    pub metadata: Vec<KeyValueMessage>,
-    /// Line primitives.
-    #[prost(message, repeated, tag = "11")]
-    pub lines: Vec<LinePrimitiveMessage>,
-}
-
-/// `foxglove.SceneUpdate` (entities only: nothing is ever deleted).
-#[derive(Clone, PartialEq, Message)]
-pub struct SceneUpdateMessage {
-    /// Entities added or replaced.
-    #[prost(message, repeated, tag = "2")]
-    pub entities: Vec<SceneEntityMessage>,
-}
-
-/// `foxglove.Log`.
-#[derive(Clone, PartialEq, Message)]
-pub struct LogMessage {
-    /// Time of the line.
-    #[prost(message, optional, tag = "1")]
-    pub timestamp: Option<TimeMessage>,
-    /// 2 = INFO.
-    #[prost(int32, tag = "2")]
-    pub level: i32,
-    /// The text.
-    #[prost(string, tag = "3")]
-    pub message: String,
-    /// Source name.
-    #[prost(string, tag = "4")]
-    pub name: String,
-    /// Source file.
-    #[prost(string, tag = "5")]
-    pub file: String,
-    /// Source line.
-    #[prost(fixed32, tag = "6")]
-    pub line: u32,
-}
-
-/// `foxglove.Log.Level.INFO`.
-pub const LOG_LEVEL_INFO: i32 = 2;
-/// `foxglove.Log.Level.WARNING`.
-pub const LOG_LEVEL_WARNING: i32 = 3;
-
 // ---------------------------------------------------------------------------------------------
-// Descriptors.
+// Descriptors (written by build.rs from the same `.proto` files).
 
-fn scalar(name: &str, number: i32, ty: Type) -> FieldDescriptorProto {
-    FieldDescriptorProto {
-        name: Some(name.to_string()),
-        number: Some(number),
-        label: Some(Label::Optional as i32),
-        r#type: Some(ty as i32),
-        json_name: Some(json_name(name)),
-        ..Default::default()
+/// `beam_impact.proto` and its imports (none).
+const BEAM_IMPACT_DESCRIPTOR: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/beam_impact.fds.bin"));
+/// `foxglove/SceneUpdate.proto` and everything it imports.
+const SCENE_UPDATE_DESCRIPTOR: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/foxglove_scene_update.fds.bin"));
+/// `foxglove/Log.proto` and everything it imports.
+const LOG_DESCRIPTOR: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/foxglove_log.fds.bin"));
+
+/// The `FileDescriptorSet` of the `beam_impact` messages (one set serves all their schemas).
+pub fn beam_impact_descriptor() -> Vec<u8> {
+    BEAM_IMPACT_DESCRIPTOR.to_vec()
+}
+
+/// The `FileDescriptorSet` of `foxglove.SceneUpdate` with every file it imports, as published
+/// by Foxglove (field names, numbers and types).
+pub fn scene_update_descriptor() -> Vec<u8> {
+    SCENE_UPDATE_DESCRIPTOR.to_vec()
+}
+
+/// The `FileDescriptorSet` of `foxglove.Log` with `google/protobuf/timestamp.proto`.
+pub fn log_descriptor() -> Vec<u8> {
+    LOG_DESCRIPTOR.to_vec()
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::{BTreeMap, HashMap};
+
+    use prost::Message;
+    use prost_types::field_descriptor_proto::{Label, Type};
+    use prost_types::{DescriptorProto, FileDescriptorSet};
+
+    use super::*;
+
+    /// Every message of a descriptor set by its fully qualified name (`.package.Name`).
+    fn messages(bytes: &[u8]) -> HashMap<String, DescriptorProto> {
+        let set = FileDescriptorSet::decode(bytes).unwrap();
+        let mut out = HashMap::new();
+        for file in set.file {
+            let package = file.package().to_string();
+            for m in file.message_type {
+                out.insert(format!(".{package}.{}", m.name()), m);
+            }
+        }
+        out
     }
-}
 
-fn repeated(name: &str, number: i32, ty: Type) -> FieldDescriptorProto {
-    FieldDescriptorProto { label: Some(Label::Repeated as i32), ..scalar(name, number, ty) }
-}
+    fn varint(bytes: &mut &[u8]) -> u64 {
+        let mut value = 0;
+        for shift in (0..64).step_by(7) {
+            let (&b, rest) = bytes.split_first().expect("truncated varint");
+            *bytes = rest;
+            value |= u64::from(b & 0x7f) << shift;
+            if b < 0x80 {
+                return value;
+            }
+        }
+        panic!("varint too long")
+    }
 
-fn message(name: &str, number: i32, type_name: &str) -> FieldDescriptorProto {
-    FieldDescriptorProto { type_name: Some(type_name.to_string()), ..scalar(name, number, Type::Message) }
-}
+    fn take<'a>(bytes: &mut &'a [u8], n: usize) -> &'a [u8] {
+        let (head, rest) = bytes.split_at(n);
+        *bytes = rest;
+        head
+    }
 
-fn messages(name: &str, number: i32, type_name: &str) -> FieldDescriptorProto {
-    FieldDescriptorProto { label: Some(Label::Repeated as i32), ..message(name, number, type_name) }
-}
+    /// Decodes `bytes` as message `name` from the descriptor set alone, as a reader holding only
+    /// the schema record does: every field on the wire must be declared there, with its wire
+    /// type; messages are followed. Returns the raw value of each scalar field by dotted path
+    /// (doubles as bits, the last element of a packed run).
+    fn decode_by_schema(
+        types: &HashMap<String, DescriptorProto>,
+        name: &str,
+        mut bytes: &[u8],
+    ) -> BTreeMap<String, u64> {
+        let mut out = BTreeMap::new();
+        let message = types.get(name).unwrap_or_else(|| panic!("{name} is not in the set"));
+        while !bytes.is_empty() {
+            let key = varint(&mut bytes);
+            let (number, wire) = ((key >> 3) as i32, key & 7);
+            let field = message
+                .field
+                .iter()
+                .find(|f| f.number() == number)
+                .unwrap_or_else(|| panic!("{name}: field {number} is on the wire but not in the schema"));
+            let scalar_wire = match field.r#type() {
+                Type::Double | Type::Fixed64 | Type::Sfixed64 => 1,
+                Type::Float | Type::Fixed32 | Type::Sfixed32 => 5,
+                Type::String | Type::Bytes | Type::Message | Type::Group => 2,
+                _ => 0,
+            };
+            // proto3 packs repeated scalars.
+            let packed = field.label() == Label::Repeated && scalar_wire != 2;
+            let expected = if packed { 2 } else { scalar_wire };
+            assert_eq!(wire, expected, "{name}.{}: wire type {wire}, schema type {:?}", field.name(), field.r#type());
+            let path = field.name().to_string();
+            let element = |bytes: &mut &[u8], wire: u64| match wire {
+                0 => varint(bytes),
+                1 => u64::from_le_bytes(take(bytes, 8).try_into().unwrap()),
+                5 => u64::from(u32::from_le_bytes(take(bytes, 4).try_into().unwrap())),
+                _ => unreachable!(),
+            };
+            if wire == 2 {
+                let len = varint(&mut bytes) as usize;
+                let mut payload = take(&mut bytes, len);
+                if field.r#type() == Type::Message {
+                    for (k, v) in decode_by_schema(types, field.type_name(), payload) {
+                        out.insert(format!("{path}.{k}"), v);
+                    }
+                } else if packed {
+                    while !payload.is_empty() {
+                        out.insert(path.clone(), element(&mut payload, scalar_wire));
+                    }
+                } else {
+                    out.insert(path, payload.len() as u64);
+                }
+            } else {
+                out.insert(path, element(&mut bytes, wire));
+            }
+        }
+        out
+    }
 
-fn enumeration(name: &str, number: i32, type_name: &str) -> FieldDescriptorProto {
-    FieldDescriptorProto { type_name: Some(type_name.to_string()), ..scalar(name, number, Type::Enum) }
-}
+    fn fields(message: &DescriptorProto) -> Vec<(&str, i32, Type, Label)> {
+        message.field.iter().map(|f| (f.name(), f.number(), f.r#type(), f.label())).collect()
+    }
 
-fn json_name(name: &str) -> String {
-    let mut out = String::with_capacity(name.len());
-    let mut upper = false;
-    for c in name.chars() {
-        if c == '_' {
-            upper = true;
-        } else if upper {
-            out.extend(c.to_uppercase());
-            upper = false;
-        } else {
-            out.push(c);
+    #[test]
+    fn step_and_modal_coordinates_are_described_field_by_field() {
+        use Type::{Bool, Double, Float, Message as Msg, Uint64};
+        let types = messages(&beam_impact_descriptor());
+        let o = Label::Optional;
+        let step = fields(&types[".beam_impact.Step"]);
+        let names = [
+            "step",
+            "time_ns",
+            "time",
+            "step_size",
+            "contact",
+            "lower_tip_deflection",
+            "upper_contact_deflection",
+            "upper_tip_deflection",
+            "lower_clamp_bending_stress",
+            "lower_clamp_shear_stress",
+            "upper_contact_bending_stress",
+            "contact_force",
+            "contact_stress",
+            "energy",
+            "peaks",
+            "modal_coordinates",
+            "lower_clamp_reaction_force",
+            "lower_clamp_reaction_moment",
+            "upper_hinge_reaction_force",
+            "lower_tip_velocity",
+            "upper_tip_velocity",
+        ];
+        assert_eq!(step.len(), 21);
+        for (k, (field, name)) in step.iter().zip(names).enumerate() {
+            let number = k as i32 + 1;
+            let (ty, label) = match number {
+                1 | 2 => (Uint64, o),
+                5 => (Bool, o),
+                14 | 15 => (Msg, o),
+                16 => (Float, Label::Repeated),
+                _ => (Double, o),
+            };
+            assert_eq!(*field, (name, number, ty, label));
+        }
+        let step = &types[".beam_impact.Step"];
+        assert_eq!(step.field[13].type_name(), ".beam_impact.EnergyAccount");
+        assert_eq!(step.field[14].type_name(), ".beam_impact.Peaks");
+        assert_eq!(
+            fields(&types[".beam_impact.ModalCoordinates"]),
+            [
+                ("step", 1, Uint64, o),
+                ("time_ns", 2, Uint64, o),
+                ("time", 3, Double, o),
+                ("coordinates", 4, Double, Label::Repeated)
+            ]
+        );
+        let names: Vec<&str> = fields(&types[".beam_impact.EnergyAccount"]).iter().map(|f| f.0).collect();
+        assert_eq!(
+            names,
+            ["kinetic", "strain", "gravity_potential", "external_work", "damping_dissipation", "residual"]
+        );
+        assert_eq!(fields(&types[".beam_impact.Peaks"]).len(), 5);
+        assert_eq!(fields(&types[".beam_impact.ContactEvent"]).len(), 5);
+        assert_eq!(fields(&types[".beam_impact.Model"]).len(), 6);
+    }
+
+    #[test]
+    fn an_encoded_step_decodes_by_its_embedded_schema() {
+        // Every double field k holds k + 0.5, so a name bound to the wrong number shows.
+        let step = StepMessage {
+            step: 1,
+            time_ns: 2,
+            time: 3.5,
+            step_size: 4.5,
+            contact: true,
+            lower_tip_deflection: 6.5,
+            upper_contact_deflection: 7.5,
+            upper_tip_deflection: 8.5,
+            lower_clamp_bending_stress: 9.5,
+            lower_clamp_shear_stress: 10.5,
+            upper_contact_bending_stress: 11.5,
+            contact_force: 12.5,
+            contact_stress: 13.5,
+            energy: Some(EnergyMessage {
+                kinetic: 1.5,
+                strain: 2.5,
+                gravity_potential: 3.5,
+                external_work: 4.5,
+                damping_dissipation: 5.5,
+                residual: 6.5,
+            }),
+            peaks: Some(PeaksMessage {
+                lower_tip_deflection: 1.5,
+                lower_clamp_bending_stress: 2.5,
+                lower_clamp_shear_stress: 3.5,
+                upper_contact_bending_stress: 4.5,
+                contact_force: 5.5,
+            }),
+            modal_coordinates: vec![16.0, 16.5],
+            lower_clamp_reaction_force: 17.5,
+            lower_clamp_reaction_moment: 18.5,
+            upper_hinge_reaction_force: 19.5,
+            lower_tip_velocity: 20.5,
+            upper_tip_velocity: 21.5,
+        };
+        let types = messages(&beam_impact_descriptor());
+        let decoded = decode_by_schema(&types, ".beam_impact.Step", &step.encode_to_vec());
+        for (prefix, name) in
+            [("", ".beam_impact.Step"), ("energy.", ".beam_impact.EnergyAccount"), ("peaks.", ".beam_impact.Peaks")]
+        {
+            for f in types[name].field.iter().filter(|f| f.r#type() == Type::Double) {
+                let value = decoded.get(&format!("{prefix}{}", f.name())).map(|&bits| f64::from_bits(bits));
+                assert_eq!(value, Some(f.number() as f64 + 0.5), "{prefix}{}", f.name());
+            }
+        }
+        assert_eq!(decoded["step"], 1);
+        assert_eq!(decoded["time_ns"], 2);
+        assert_eq!(decoded["contact"], 1);
+        assert_eq!(f32::from_bits(decoded["modal_coordinates"] as u32), 16.5);
+        assert_eq!(decoded.len(), 21 - 2 + 6 + 5, "{decoded:?}");
+
+        let modes = ModalCoordinatesMessage { step: 7, time_ns: 8, time: 3.5, coordinates: vec![1.0, 4.5] };
+        let decoded = decode_by_schema(&types, ".beam_impact.ModalCoordinates", &modes.encode_to_vec());
+        assert_eq!(decoded["step"], 7);
+        assert_eq!(decoded["time_ns"], 8);
+        assert_eq!(f64::from_bits(decoded["time"]), 3.5);
+        assert_eq!(f64::from_bits(decoded["coordinates"]), 4.5);
+    }
+
+    #[test]
+    fn scene_and_log_messages_decode_by_foxglove_schemas() {
+        let types = messages(&scene_update_descriptor());
+        // The schema record carries Foxglove's whole SceneEntity, though the Rust type is a subset.
+        let entity: Vec<(&str, i32)> =
+            types[".foxglove.SceneEntity"].field.iter().map(|f| (f.name(), f.number())).collect();
+        assert_eq!(entity.len(), 14);
+        assert_eq!(entity[10], ("lines", 11));
+        assert_eq!(entity[13], ("models", 14));
+        assert_eq!(types[".foxglove.LinePrimitive"].field.len(), 8);
+        assert_eq!(types[".foxglove.LinePrimitive"].field[4].type_name(), ".foxglove.Point3");
+        let line = LinePrimitiveMessage {
+            r#type: foxglove::line_primitive::Type::LineList as i32,
+            pose: Some(PoseMessage {
+                position: Some(Vector3Message { x: 1.0, y: 2.0, z: 3.0 }),
+                orientation: Some(QuaternionMessage { x: 0.5, y: 0.5, z: 0.5, w: 0.5 }),
+            }),
+            thickness: 0.25,
+            scale_invariant: true,
+            points: vec![Vector3Message { x: 1.0, y: 2.0, z: 3.0 }, Vector3Message { x: 4.0, y: 5.0, z: 6.0 }],
+            color: Some(ColorMessage { r: 1.0, g: 0.5, b: 0.25, a: 1.0 }),
+        };
+        let update = SceneUpdateMessage {
+            entities: vec![SceneEntityMessage {
+                timestamp: Some(TimeMessage::from_ns(1_500_000_000)),
+                frame_id: "world".into(),
+                id: "bridge".into(),
+                lifetime: Some(TimeMessage { seconds: 2, nanos: 0 }),
+                frame_locked: true,
+                metadata: vec![KeyValueMessage { key: "k".into(), value: "v".into() }],
+                lines: vec![line],
+            }],
+        };
+        let decoded = decode_by_schema(&types, ".foxglove.SceneUpdate", &update.encode_to_vec());
+        assert_eq!(decoded["entities.timestamp.seconds"], 1);
+        assert_eq!(decoded["entities.timestamp.nanos"], 500_000_000);
+        assert_eq!(decoded["entities.lifetime.seconds"], 2);
+        assert_eq!(decoded["entities.lines.type"], 2);
+        assert_eq!(f64::from_bits(decoded["entities.lines.points.z"]), 6.0);
+        assert_eq!(f64::from_bits(decoded["entities.lines.pose.orientation.w"]), 0.5);
+        assert_eq!(f64::from_bits(decoded["entities.lines.color.b"]), 0.25);
+        assert_eq!(decoded["entities.metadata.value"], 1);
+
+        let types = messages(&log_descriptor());
+        let log = LogMessage {
+            timestamp: Some(TimeMessage::from_ns(3)),
+            level: LOG_LEVEL_WARNING,
+            message: "m".into(),
+            name: "beam-impact".into(),
+            file: "f".into(),
+            line: 42,
+        };
+        let decoded = decode_by_schema(&types, ".foxglove.Log", &log.encode_to_vec());
+        assert_eq!(decoded["timestamp.nanos"], 3);
+        assert_eq!(decoded["level"], 3);
+        assert_eq!(decoded["line"], 42);
+        assert_eq!(decoded["name"], "beam-impact".len() as u64);
+        assert_eq!((LOG_LEVEL_INFO, LOG_LEVEL_WARNING), (2, 3));
+    }
+
+    #[test]
+    fn descriptor_sets_are_self_contained_and_carry_no_comments() {
+        let beam = FileDescriptorSet::decode(beam_impact_descriptor().as_slice()).unwrap();
+        assert_eq!(beam.file.len(), 1);
+        assert_eq!((beam.file[0].name(), beam.file[0].package()), ("beam_impact.proto", "beam_impact"));
+        for bytes in [beam_impact_descriptor(), scene_update_descriptor(), log_descriptor()] {
+            let set = FileDescriptorSet::decode(bytes.as_slice()).unwrap();
+            let mut seen: Vec<&str> = Vec::new();
+            let mut declared = Vec::new();
+            for file in &set.file {
+                assert_eq!(file.syntax(), "proto3", "{}", file.name());
+                assert!(file.source_code_info.is_none(), "{} carries its comments", file.name());
+                for dependency in &file.dependency {
+                    assert!(seen.contains(&dependency.as_str()), "{} before its import {dependency}", file.name());
+                }
+                seen.push(file.name());
+                for m in &file.message_type {
+                    declared.push(format!(".{}.{}", file.package(), m.name()));
+                    declared
+                        .extend(m.enum_type.iter().map(|e| format!(".{}.{}.{}", file.package(), m.name(), e.name())));
+                }
+            }
+            let types = messages(&bytes);
+            for (name, m) in &types {
+                for f in m.field.iter().filter(|f| f.type_name.is_some()) {
+                    assert!(declared.contains(&f.type_name().to_string()), "{name}.{}: {}", f.name(), f.type_name());
+                }
+            }
         }
     }
-    out
-}
-
-fn descriptor(name: &str, field: Vec<FieldDescriptorProto>) -> DescriptorProto {
-    DescriptorProto { name: Some(name.to_string()), field, ..Default::default() }
-}
-
-fn enum_type(name: &str, values: &[(&str, i32)]) -> EnumDescriptorProto {
-    EnumDescriptorProto {
-        name: Some(name.to_string()),
-        value: values
-            .iter()
-            .map(|(n, v)| EnumValueDescriptorProto { name: Some(n.to_string()), number: Some(*v), options: None })
-            .collect(),
-        ..Default::default()
-    }
-}
-
-fn file(name: &str, package: &str, dependency: &[&str], message_type: Vec<DescriptorProto>) -> FileDescriptorProto {
-    FileDescriptorProto {
-        name: Some(name.to_string()),
-        package: Some(package.to_string()),
-        dependency: dependency.iter().map(|d| d.to_string()).collect(),
-        message_type,
-        syntax: Some("proto3".to_string()),
-        ..Default::default()
-    }
-}
-
-fn encode_set(file: Vec<FileDescriptorProto>) -> Vec<u8> {
-    FileDescriptorSet { file }.encode_to_vec()
-}
-
-/// `beam_impact.proto`: Step, EnergyAccount, Peaks, ContactEvent, Model.
-fn beam_impact_file() -> FileDescriptorProto {
-    use Type::{Bool, Double, Float, String as Str, Uint32, Uint64};
-    let d = |n: &str, k: i32| scalar(n, k, Double);
-    let energy = descriptor(
-        "EnergyAccount",
-        vec![
-            d("kinetic", 1),
-            d("strain", 2),
-            d("gravity_potential", 3),
-            d("external_work", 4),
-            d("damping_dissipation", 5),
-            d("residual", 6),
-        ],
-    );
-    let peaks = descriptor(
-        "Peaks",
-        vec![
-            d("lower_tip_deflection", 1),
-            d("lower_clamp_bending_stress", 2),
-            d("lower_clamp_shear_stress", 3),
-            d("upper_contact_bending_stress", 4),
-            d("contact_force", 5),
-        ],
-    );
-    let step = descriptor(
-        "Step",
-        vec![
-            scalar("step", 1, Uint64),
-            scalar("time_ns", 2, Uint64),
-            d("time", 3),
-            d("step_size", 4),
-            scalar("contact", 5, Bool),
-            d("lower_tip_deflection", 6),
-            d("upper_contact_deflection", 7),
-            d("upper_tip_deflection", 8),
-            d("lower_clamp_bending_stress", 9),
-            d("lower_clamp_shear_stress", 10),
-            d("upper_contact_bending_stress", 11),
-            d("contact_force", 12),
-            d("contact_stress", 13),
-            message("energy", 14, ".beam_impact.EnergyAccount"),
-            message("peaks", 15, ".beam_impact.Peaks"),
-            repeated("modal_coordinates", 16, Float),
-            d("lower_clamp_reaction_force", 17),
-            d("lower_clamp_reaction_moment", 18),
-            d("upper_hinge_reaction_force", 19),
-            d("lower_tip_velocity", 20),
-            d("upper_tip_velocity", 21),
-        ],
-    );
-    let event = descriptor(
-        "ContactEvent",
-        vec![
-            scalar("start", 1, Bool),
-            scalar("time_ns", 2, Uint64),
-            scalar("step", 3, Uint64),
-            d("relative_velocity", 4),
-            d("time", 5),
-        ],
-    );
-    let model = descriptor(
-        "Model",
-        vec![
-            scalar("scenario_toml", 1, Str),
-            repeated("lower_nodes", 2, Double),
-            repeated("upper_nodes", 3, Double),
-            scalar("shape_rows", 4, Uint32),
-            scalar("shape_cols", 5, Uint32),
-            repeated("nodal_shapes", 6, Double),
-        ],
-    );
-    file("beam_impact.proto", "beam_impact", &[], vec![step, energy, peaks, event, model])
-}
-
-/// The `FileDescriptorSet` of the `beam_impact` messages (one set serves all three schemas).
-pub fn beam_impact_descriptor() -> Vec<u8> {
-    encode_set(vec![beam_impact_file()])
-}
-
-fn google_time_files() -> Vec<FileDescriptorProto> {
-    let seconds_nanos =
-        |name: &str| descriptor(name, vec![scalar("seconds", 1, Type::Int64), scalar("nanos", 2, Type::Int32)]);
-    vec![
-        file("google/protobuf/timestamp.proto", "google.protobuf", &[], vec![seconds_nanos("Timestamp")]),
-        file("google/protobuf/duration.proto", "google.protobuf", &[], vec![seconds_nanos("Duration")]),
-    ]
-}
-
-/// The `FileDescriptorSet` of `foxglove.SceneUpdate` with every message it references, as
-/// published by Foxglove (field names, numbers and types).
-pub fn scene_update_descriptor() -> Vec<u8> {
-    use Type::{Bool, Bytes, Double, Fixed32, String as Str};
-    let d = |n: &str, k: i32| scalar(n, k, Double);
-    let pose = || message("pose", 1, ".foxglove.Pose");
-    let color = |k: i32| message("color", k, ".foxglove.Color");
-    let xyz = |name: &str| descriptor(name, vec![d("x", 1), d("y", 2), d("z", 3)]);
-    let mut line = descriptor(
-        "LinePrimitive",
-        vec![
-            enumeration("type", 1, ".foxglove.LinePrimitive.Type"),
-            message("pose", 2, ".foxglove.Pose"),
-            d("thickness", 3),
-            scalar("scale_invariant", 4, Bool),
-            messages("points", 5, ".foxglove.Point3"),
-            color(6),
-            messages("colors", 7, ".foxglove.Color"),
-            repeated("indices", 8, Fixed32),
-        ],
-    );
-    line.enum_type = vec![enum_type("Type", &[("LINE_STRIP", 0), ("LINE_LOOP", 1), ("LINE_LIST", 2)])];
-    let mut deletion = descriptor(
-        "SceneEntityDeletion",
-        vec![
-            message("timestamp", 1, ".google.protobuf.Timestamp"),
-            enumeration("type", 2, ".foxglove.SceneEntityDeletion.Type"),
-            scalar("id", 3, Str),
-        ],
-    );
-    deletion.enum_type = vec![enum_type("Type", &[("MATCHING_ID", 0), ("ALL", 1)])];
-    let types = vec![
-        descriptor(
-            "SceneUpdate",
-            vec![
-                messages("deletions", 1, ".foxglove.SceneEntityDeletion"),
-                messages("entities", 2, ".foxglove.SceneEntity"),
-            ],
-        ),
-        deletion,
-        descriptor(
-            "SceneEntity",
-            vec![
-                message("timestamp", 1, ".google.protobuf.Timestamp"),
-                scalar("frame_id", 2, Str),
-                scalar("id", 3, Str),
-                message("lifetime", 4, ".google.protobuf.Duration"),
-                scalar("frame_locked", 5, Bool),
-                messages("metadata", 6, ".foxglove.KeyValuePair"),
-                messages("arrows", 7, ".foxglove.ArrowPrimitive"),
-                messages("cubes", 8, ".foxglove.CubePrimitive"),
-                messages("spheres", 9, ".foxglove.SpherePrimitive"),
-                messages("cylinders", 10, ".foxglove.CylinderPrimitive"),
-                messages("lines", 11, ".foxglove.LinePrimitive"),
-                messages("triangles", 12, ".foxglove.TriangleListPrimitive"),
-                messages("texts", 13, ".foxglove.TextPrimitive"),
-                messages("models", 14, ".foxglove.ModelPrimitive"),
-            ],
-        ),
-        descriptor("KeyValuePair", vec![scalar("key", 1, Str), scalar("value", 2, Str)]),
-        descriptor(
-            "ArrowPrimitive",
-            vec![
-                pose(),
-                d("shaft_length", 2),
-                d("shaft_diameter", 3),
-                d("head_length", 4),
-                d("head_diameter", 5),
-                color(6),
-            ],
-        ),
-        descriptor("CubePrimitive", vec![pose(), message("size", 2, ".foxglove.Vector3"), color(3)]),
-        descriptor("SpherePrimitive", vec![pose(), message("size", 2, ".foxglove.Vector3"), color(3)]),
-        descriptor(
-            "CylinderPrimitive",
-            vec![pose(), message("size", 2, ".foxglove.Vector3"), d("bottom_scale", 3), d("top_scale", 4), color(5)],
-        ),
-        line,
-        descriptor(
-            "TriangleListPrimitive",
-            vec![
-                pose(),
-                messages("points", 2, ".foxglove.Point3"),
-                color(3),
-                messages("colors", 4, ".foxglove.Color"),
-                repeated("indices", 5, Fixed32),
-            ],
-        ),
-        descriptor(
-            "TextPrimitive",
-            vec![
-                pose(),
-                scalar("billboard", 2, Bool),
-                d("font_size", 3),
-                scalar("scale_invariant", 4, Bool),
-                color(5),
-                scalar("text", 6, Str),
-            ],
-        ),
-        descriptor(
-            "ModelPrimitive",
-            vec![
-                pose(),
-                message("scale", 2, ".foxglove.Vector3"),
-                color(3),
-                scalar("override_color", 4, Bool),
-                scalar("url", 5, Str),
-                scalar("media_type", 6, Str),
-                scalar("data", 7, Bytes),
-            ],
-        ),
-        descriptor(
-            "Pose",
-            vec![message("position", 1, ".foxglove.Vector3"), message("orientation", 2, ".foxglove.Quaternion")],
-        ),
-        xyz("Vector3"),
-        xyz("Point3"),
-        descriptor("Quaternion", vec![d("x", 1), d("y", 2), d("z", 3), d("w", 4)]),
-        descriptor("Color", vec![d("r", 1), d("g", 2), d("b", 3), d("a", 4)]),
-    ];
-    let mut files = google_time_files();
-    files.push(file(
-        "foxglove/SceneUpdate.proto",
-        "foxglove",
-        &["google/protobuf/timestamp.proto", "google/protobuf/duration.proto"],
-        types,
-    ));
-    encode_set(files)
-}
-
-/// The `FileDescriptorSet` of `foxglove.Log`.
-pub fn log_descriptor() -> Vec<u8> {
-    use Type::{Fixed32, String as Str};
-    let mut log = descriptor(
-        "Log",
-        vec![
-            message("timestamp", 1, ".google.protobuf.Timestamp"),
-            enumeration("level", 2, ".foxglove.Log.Level"),
-            scalar("message", 3, Str),
-            scalar("name", 4, Str),
-            scalar("file", 5, Str),
-            scalar("line", 6, Fixed32),
-        ],
-    );
-    log.enum_type = vec![enum_type(
-        "Level",
-        &[("UNKNOWN", 0), ("DEBUG", 1), ("INFO", 2), ("WARNING", 3), ("ERROR", 4), ("FATAL", 5)],
-    )];
-    let mut files = google_time_files();
-    files.truncate(1);
-    files.push(file("foxglove/Log.proto", "foxglove", &["google/protobuf/timestamp.proto"], vec![log]));
-    encode_set(files)
 }

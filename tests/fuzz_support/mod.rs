@@ -347,11 +347,12 @@ pub fn record_real_run(path: &Path, duration: f64, options: RecorderOptions) {
     Simulation::new(&scenario).unwrap().run(&mut recorder).unwrap();
 }
 
-/// The bytes of a short real log (2 ms after impact, several small chunks, ~50 KB).
+/// The bytes of a short real log (5 ms after impact, several small chunks, ~80 KB: its first
+/// quarter already holds step messages after the model, metadata and attachment).
 pub fn real_log_bytes() -> Vec<u8> {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("real.mcap");
-    record_real_run(&path, 0.002, small_chunks());
+    record_real_run(&path, 0.005, small_chunks());
     std::fs::read(&path).unwrap()
 }
 

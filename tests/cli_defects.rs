@@ -1,0 +1,111 @@
+//! Regression tests of small CLI defects of issue 11 that had none (the others are in
+//! `tests/cli.rs` and `tests/fmi_pack.rs`). Each fails on the behaviour it guards against.
+
+use std::process::Command;
+
+fn beam_impact() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_beam-impact"))
+}
+
+/// A scenario file with three bad fields names all three in its one-line error (it named only
+/// the first: fixing a file took one run per field).
+#[test]
+fn three_bad_fields_are_all_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("three.toml");
+    std::fs::write(&file, "damping_ratio = 1.5\n[upper]\nlength = -3.0\n[lower]\ntip_mass = -1.0\n").unwrap();
+    let out = beam_impact().args(["run", "--no-mcap"]).arg(&file).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    for field in ["damping_ratio must be", "upper.length must be", "lower.tip_mass must be"] {
+        assert!(stderr.contains(field), "{field:?} missing from: {stderr}");
+    }
+    assert!(out.stdout.is_empty());
+}
+
+/// `bench` says what it is doing on stderr while it runs (it was silent for tens of seconds) and
+/// judges nothing against targets (it ended with "target: ... MISSED" on a slower machine).
+#[test]
+fn bench_prints_progress_and_no_targets() {
+    let out = beam_impact().args(["bench", "--runs", "1"]).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    let progress: Vec<&str> = stderr.lines().filter(|l| l.starts_with("beam-impact bench: ")).collect();
+    assert_eq!(progress.len(), 2, "{stderr}");
+    assert!(progress[0].contains("1/2") && progress[1].contains("2/2"), "{stderr}");
+    for text in [&stdout, &stderr] {
+        let lower = text.to_lowercase();
+        assert!(!lower.contains("target") && !lower.contains("missed"), "{text}");
+    }
+    assert!(stdout.contains("ns/step") && stdout.contains("unrecorded"), "the measurements are printed:\n{stdout}");
+}
+
+/// `--json`: the raw contact windows stay under `summary.contact_windows` (old key), the bounces
+/// closer than 10 ms are merged under `merged_contact_windows` (they were not: 81 raw windows on
+/// the paper run for Figure 6's few), and a `units` object gives the SI unit of the fields
+/// (there were none).
+#[test]
+fn json_has_merged_windows_old_keys_and_units() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = dir.path().join("paper.json");
+    let out = beam_impact().args(["run", "--no-mcap", "--json"]).arg(&json).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let doc: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    for key in ["scenario", "summary", "quality", "wall_time_s"] {
+        assert!(doc.get(key).is_some(), "old key {key} kept");
+    }
+    let window = |w: &serde_json::Value| (w["start"].as_f64().unwrap(), w["end"].as_f64().unwrap());
+    let raw: Vec<(f64, f64)> = doc["summary"]["contact_windows"].as_array().unwrap().iter().map(window).collect();
+    let merged: Vec<(f64, f64)> =
+        doc["merged_contact_windows"].as_array().expect("merged_contact_windows").iter().map(window).collect();
+    assert!(!merged.is_empty() && merged.len() < raw.len(), "{} merged of {} raw", merged.len(), raw.len());
+    // Merged windows are ordered, apart by at least the bounce gap, and cover every raw window;
+    // each starts and ends where a raw one does.
+    let gap = beam_impact::results::BOUNCE_GAP;
+    assert!(merged.windows(2).all(|w| w[1].0 - w[0].1 >= gap), "{merged:?}");
+    for &(start, end) in &raw {
+        assert!(merged.iter().any(|&(s, e)| s <= start && end <= e), "raw window {start}..{end} not covered");
+    }
+    for &(s, e) in &merged {
+        assert!(raw.iter().any(|r| r.0 == s) && raw.iter().any(|r| r.1 == e), "{s}..{e}");
+    }
+    let units = doc["units"].as_object().expect("a units object");
+    let unit_of = |field: &str| {
+        units
+            .iter()
+            .find(|(k, _)| k.split(',').any(|part| part.split_whitespace().next() == Some(field)))
+            .map(|(_, v)| v.as_str().unwrap().to_string())
+            .unwrap_or_else(|| panic!("no unit for {field} in {units:?}"))
+    };
+    assert_eq!(unit_of("lower_tip_deflection"), "m");
+    assert_eq!(unit_of("contact_force"), "N");
+    assert_eq!(unit_of("time"), "s");
+    assert_eq!(unit_of("modes"), "rad/s");
+    assert_eq!(unit_of("wall_time_s"), "s");
+    assert!(units.iter().any(|(k, v)| k.contains("_stress") && v == "Pa"), "{units:?}");
+}
+
+/// A scenario file that is not `.toml` keeps its name in its log's (`s.mcap` logs to
+/// `s.mcap.mcap`): the default log used to replace the extension, so `run s.mcap` overwrote the
+/// scenario with its own log. An explicit `--mcap` naming the scenario is refused.
+#[test]
+fn a_scenario_file_is_never_overwritten_by_its_log() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = "duration = 0.01\n";
+    let file = dir.path().join("s.mcap");
+    std::fs::write(&file, scenario).unwrap();
+    let out = beam_impact().current_dir(dir.path()).args(["run", "s.mcap"]).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), scenario);
+    assert!(dir.path().join("s.mcap.mcap").is_file());
+
+    let other = dir.path().join("t.txt");
+    std::fs::write(&other, scenario).unwrap();
+    let out = beam_impact().arg("run").arg(&other).arg("--mcap").arg(&other).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(stderr.contains("would overwrite the scenario file"), "{stderr}");
+    assert_eq!(std::fs::read_to_string(&other).unwrap(), scenario);
+}
