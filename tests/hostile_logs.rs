@@ -88,7 +88,7 @@ fn mutations_of_a_real_log_exit_0_or_2() {
     assert!(stdout.contains("status: complete"), "{stdout}");
     let count = fuzz_support::iterations(300);
     let (mut ok, mut refused) = (0, 0);
-    // Two workers: each mutation is a process that writes eight figures.
+    // Two workers: each mutation is a process that writes the figures (6-12, SVG and PNG).
     std::thread::scope(|s| {
         let workers: Vec<_> = (0..2u64)
             .map(|w| {

@@ -1,5 +1,5 @@
 //! `beam-impact report`: reads a log written by [`super::mcap::McapRecorder`], rebuilds the run's
-//! [`Summary`] from it and writes Figures 6-9.
+//! [`Summary`] from it and writes Figures 6-9 and the mode shapes of Figures 10-12.
 //!
 //! The log is read linearly, chunk by chunk, with chunk CRCs checked, so a file cut short by a
 //! killed process still yields every complete chunk; the report then says that it was cut short

@@ -167,3 +167,42 @@ def test_fmu_log_equals_fmu_outputs(tmp_path):
                 curvature = max(abs(values[j + 1] - 2 * values[j] + values[j - 1]) for j in (k, k + 1))
                 slack = curvature + 1e-9 * max(np.abs(values).max(), 1e-12)
                 assert abs(row[fmu_name] - chord) <= slack, (fmu, t, fmu_name, row[fmu_name], chord, slack)
+
+
+def test_a_format_1_log_still_loads():
+    """A log written before format 2 (float32 modal coordinates in every step message, zstd
+    chunks; the regression corpus's real 2 ms run) loads with one row of coordinates per step."""
+    log = load_log(str(ROOT / "tests" / "corpus" / "logs" / "real-2ms.mcap"))
+    assert "log_format" not in log.metadata
+    steps = len(log.steps["step"])
+    assert steps > 50 and log.complete
+    assert np.array_equal(log.modal_steps, log.steps["step"])
+    assert log.modal_coordinates.shape == (steps, log.nodal_shapes.shape[1])
+    # Format 1 stored the time in seconds; it equals time_ns / 1e9 as format 2 derives it.
+    assert np.array_equal(log.steps["time"], log.steps["time_ns"] * 1e-9)
+    # The stored shapes redraw the arrestor's end to float32's precision (7 digits of ~0.07 m).
+    w = log.modal_coordinates @ log.nodal_shapes.T
+    tip = w[:, len(log.lower_nodes) - 1]
+    assert np.max(np.abs(tip - log.steps["lower_tip_deflection"])) < 1e-6
+
+
+def test_a_decimated_log_without_modes_loads(tmp_path):
+    """`run --record-every 50 --no-modal-coordinates` over 2 s (peaks rise until ~0.75 s): fewer steps, the first and the last
+    kept, peaks carried forward where left out, no /beam/modes."""
+    path = tmp_path / "every50.mcap"
+    subprocess.run(
+        [binary(), "run", "--set", "duration=2", "--record-every", "50", "--no-modal-coordinates", "--mcap", str(path)],
+        check=True,
+        capture_output=True,
+    )
+    full = tmp_path / "full.mcap"
+    subprocess.run([binary(), "run", "--set", "duration=2", "--mcap", str(full)], check=True, capture_output=True)
+    log, reference = load_log(str(path)), load_log(str(full))
+    assert "/beam/modes" not in log.counts and log.modal_coordinates.shape[0] == 0
+    s, r = log.steps, reference.steps
+    assert s["step"][0] == 0 and s["step"][-1] == r["step"][-1]
+    assert len(s["step"]) < len(r["step"]) // 2
+    # Every kept row equals the full log's row of the same step, peaks included.
+    rows = np.searchsorted(r["step"], s["step"])
+    for name in ["lower_tip_deflection", "energy.residual", "peaks.lower_clamp_bending_stress", "time"]:
+        assert np.array_equal(s[name], r[name][rows]), name
