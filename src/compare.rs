@@ -117,11 +117,19 @@ pub fn table1(summary: &Summary, paper: bool) -> String {
             String::new()
         }
     );
-    let _ = writeln!(
-        s,
-        "FEM bridge strain energy at the largest arrestor deflection = {:.2} kJ",
-        summary.upper_strain_at_peak_deflection / 1e3
-    );
+    if summary.upper_strain_at_peak_deflection.is_finite() {
+        let _ = writeln!(
+            s,
+            "FEM bridge strain energy at the largest arrestor deflection = {:.2} kJ",
+            summary.upper_strain_at_peak_deflection / 1e3
+        );
+    } else {
+        let _ = writeln!(
+            s,
+            "FEM bridge strain energy at the largest arrestor deflection: n/a (the log holds no modal coordinates \
+             of that step: recorded with --no-modal-coordinates, or rolled back past it)"
+        );
+    }
     let first = &summary.first_contact_peaks;
     let _ = writeln!(
         s,

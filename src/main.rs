@@ -589,12 +589,12 @@ fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>) -> Result<()> {
             Some(file)
         };
         let data = beam_impact::record::report::read_log(file)?;
-        if csv_to_stdout && !data.complete {
+        if csv_to_stdout && (!data.complete || data.stopped_early.is_some()) {
             // The summary, which would say so, is not printed.
             eprintln!(
                 "beam-impact: warning: {}: {}; the CSV holds the {} step messages before it",
                 file.display(),
-                data.problem.as_deref().unwrap_or("incomplete log"),
+                data.problem.as_deref().or(data.stopped_early.as_deref()).unwrap_or("incomplete log"),
                 data.steps.len()
             );
         }

@@ -205,6 +205,14 @@ fn the_log_stops_at_its_size_cap_and_the_run_goes_on() {
     assert_eq!(doc["summary"]["time"], 3.0, "the run went on to its end");
     let out = beam_impact().arg("report").arg(&log).arg("--out").arg(dir.path().join("fig")).output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    // The report says the log stopped early, not "complete" (it compared a few ms with the paper
+    // without a word).
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("status: STOPPED EARLY: the MCAP log") && text.contains("size cap"), "{text}");
+    assert!(!text.contains("status: complete"), "{text}");
+    let out = beam_impact().arg("report").arg(&log).args(["--csv", "-"]).output().unwrap();
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("size cap"), "{}", String::from_utf8_lossy(&out.stderr));
 }
 
 /// Issue 11: `run FILE.toml` logs to `FILE.mcap` beside it, so a user scenario never overwrites

@@ -131,6 +131,12 @@ fn without_modal_coordinates_the_modes_topic_is_empty_and_the_scene_stays() {
     assert_eq!(log.messages["/beam/scene"], 51);
     assert!(log.steps == memory.steps, "the logged steps differ from the run's");
     assert!(log.peak_deflection_coordinates.is_empty());
+    // The report says why the bridge's strain energy at the peak is missing (it printed NaN).
+    let mut out = Vec::new();
+    beam_impact::record::report::report(&path, &dir.path().join("fig"), &mut out).unwrap();
+    let text = String::from_utf8(out).unwrap();
+    assert!(text.contains("at the largest arrestor deflection: n/a (the log holds no modal"), "{text}");
+    assert!(!text.contains("NaN"), "{text}");
 }
 
 /// A writer error (the disk full) is returned by a later call of the recorder, naming the file,

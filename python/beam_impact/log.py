@@ -12,6 +12,8 @@
     log.events              list of dicts (start, time, time_ns, step, relative_velocity)
     log.scenario_toml, log.metadata, log.log_times (every message's log_time, file order)
     log.complete            False for the log of a killed run (no summary and footer)
+    log.stopped_early       why the log ended before the run (its size cap), "" if it did not
+    log.rollbacks           FMU states restored: the steps they superseded are left out, as `report` does
 
 The file is read front to back with the `mcap` package's StreamReader (CRCs checked), not through
 the summary at its end: the log of a killed writer has every complete chunk and no summary, and
@@ -27,6 +29,7 @@ leaves out `time` (= time_ns / 1e9, computed here). Format 1 had float32 coordin
 
 from __future__ import annotations
 
+import bisect
 import sys
 from dataclasses import dataclass, field
 
@@ -36,6 +39,7 @@ STEP_TOPIC = "/beam/step"
 CONTACT_TOPIC = "/beam/contact"
 MODEL_TOPIC = "/beam/model"
 MODES_TOPIC = "/beam/modes"
+LOG_TOPIC = "/beam/log"
 
 SCALARS = [
     "step",
@@ -86,6 +90,11 @@ class Log:
     complete: bool = True
     #: Why the reading stopped early ("" for a complete file).
     problem: str = ""
+    #: Why the recorder stopped before the run's end (the log's size cap), "" if it did not; the
+    #: file is complete, the run went on unrecorded.
+    stopped_early: str = ""
+    #: FMU states restored during the run: the steps each superseded are left out.
+    rollbacks: int = 0
 
     def dataframe(self):
         """The step channel as a pandas.DataFrame, one row per internal step (step 0 first)."""
@@ -106,6 +115,8 @@ def load_log(path: str) -> Log:
     coordinates: list = []
     modal_steps: list[int] = []
     modal_times: list[float] = []
+    rollbacks = 0
+    stopped_early = ""
     events: list[dict] = []
     log_times: list[int] = []
     counts: dict[str, int] = {}
@@ -147,10 +158,23 @@ def load_log(path: str) -> Log:
                 counts[channel.topic] = counts.get(channel.topic, 0) + 1
                 proto = decode(record.data)
                 if channel.topic == STEP_TOPIC:
+                    if columns["step"] and proto.step <= columns["step"][-1]:
+                        # A rollback (an FMU state restored): the steps from this one on are
+                        # superseded, and so are the events and modal coordinates after it.
+                        keep = bisect.bisect_left(columns["step"], proto.step)
+                        for column in columns.values():
+                            del column[keep:]
+                        events[:] = [e for e in events if e["step"] <= proto.step]
+                        # (Not sorted by step: a peak's coordinates follow later steps.)
+                        rows = [k for k, step in enumerate(modal_steps) if step < proto.step]
+                        coordinates[:] = [coordinates[k] for k in rows]
+                        modal_times[:] = [modal_times[k] for k in rows]
+                        modal_steps[:] = [modal_steps[k] for k in rows]
+                        rollbacks += 1
                     for name in SCALARS:
                         columns[name].append(getattr(proto, name))
                     # Format 2 leaves out the time in seconds: it is time_ns / 1e9.
-                    columns["time"][-1] = proto.time_ns * 1e-9
+                    columns["time"][-1] = proto.time_ns / 1e9
                     for name in ENERGY:
                         columns[f"energy.{name}"].append(getattr(proto.energy, name))
                     # Format 2 leaves out peaks equal to the previous step's.
@@ -161,11 +185,11 @@ def load_log(path: str) -> Log:
                     if len(proto.modal_coordinates) > 0:  # format 1
                         coordinates.append(np.asarray(proto.modal_coordinates, dtype=np.float64))
                         modal_steps.append(proto.step)
-                        modal_times.append(proto.time_ns * 1e-9)
+                        modal_times.append(proto.time_ns / 1e9)
                 elif channel.topic == MODES_TOPIC:
                     coordinates.append(np.asarray(proto.coordinates, dtype=np.float64))
                     modal_steps.append(proto.step)
-                    modal_times.append(proto.time_ns * 1e-9)
+                    modal_times.append(proto.time_ns / 1e9)
                 elif channel.topic == CONTACT_TOPIC:
                     events.append(
                         {
@@ -178,6 +202,8 @@ def load_log(path: str) -> Log:
                     )
                 elif channel.topic == MODEL_TOPIC:
                     model = proto
+                elif channel.topic == LOG_TOPIC and "reached its size cap" in proto.message:
+                    stopped_early = proto.message
     if not complete and not problem:
         problem = "the file ends before its summary and footer (the writer never finished)"
     if model is None:
@@ -199,6 +225,8 @@ def load_log(path: str) -> Log:
         counts=counts,
         complete=complete,
         problem=problem,
+        stopped_early=stopped_early,
+        rollbacks=rollbacks,
     )
 
 

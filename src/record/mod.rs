@@ -121,4 +121,5 @@ pub mod report;
 pub mod safe_read;
 pub mod scene;
 pub mod schema;
+pub mod step_encoding;
 pub mod writer;

@@ -70,6 +70,9 @@ pub struct LogData {
     pub damaged: bool,
     /// Size of the file, bytes.
     pub file_size: u64,
+    /// Why the recorder stopped before the run's end (the log reached its size cap: its last
+    /// `/beam/log` line says so), if it did. The file is complete; the run went on unrecorded.
+    pub stopped_early: Option<String>,
     /// The log's format: 1 (modal coordinates in every step message; no `log_format` metadata) or
     /// 2 (modal coordinates on `/beam/modes`).
     pub log_format: u32,
@@ -270,6 +273,9 @@ impl ReadState {
                         let m = LogMessage::decode(bytes).map_err(|e| bad("log", e))?;
                         self.keep(m.message.len() + std::mem::size_of::<String>(), at, "log message")?;
                         data.monotonic &= !decreasing || m.message.starts_with(super::mcap::ROLLBACK_LINE);
+                        if m.message.contains(super::mcap::SIZE_CAP_LINE) {
+                            data.stopped_early = Some(m.message.clone());
+                        }
                         data.log_lines.push(m.message);
                     }
                     MODEL_TOPIC => {
@@ -438,7 +444,14 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
     {
         use std::fmt::Write as _;
         let _ = writeln!(text, "MCAP log {} ({} bytes)", mcap.display(), data.file_size);
-        if data.complete {
+        if let (true, Some(reason)) = (data.complete, &data.stopped_early) {
+            let _ = writeln!(
+                text,
+                "status: STOPPED EARLY: {reason}; reporting the {} step messages before it (the peaks and figures \
+                 cover only them)",
+                data.steps.len()
+            );
+        } else if data.complete {
             let _ = writeln!(text, "status: complete (finished file, every chunk CRC checked)");
         } else {
             let _ = writeln!(

@@ -44,8 +44,8 @@ pub const STEP_SCHEMA: &str = "beam_impact.Step";
 pub const CONTACT_SCHEMA: &str = "beam_impact.ContactEvent";
 /// Schema name of the one-off model message.
 pub const MODEL_SCHEMA: &str = "beam_impact.Model";
-/// Schema name of the modal coordinates (log format 2: every scene interval, every step where a
-/// running peak changes, at contact events and at the last step).
+/// Schema name of the modal coordinates (log format 2: step 0, every 1 ms of simulated time,
+/// contact changes, the latest peak of the arrestor's deflection in each 1 ms, the last step).
 pub const MODES_SCHEMA: &str = "beam_impact.ModalCoordinates";
 /// Foxglove's 3D scene schema.
 pub const SCENE_SCHEMA: &str = "foxglove.SceneUpdate";

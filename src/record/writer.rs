@@ -19,11 +19,11 @@ use ::mcap::records::{MessageHeader, Metadata};
 use ::mcap::{Attachment, Writer};
 use prost::Message;
 
-use super::mcap::{RecorderOptions, RecorderTiming, ROLLBACK_LINE, SCENARIO_ATTACHMENT, SCENARIO_METADATA};
-use super::scene::SceneBuilder;
-use super::schema::{
-    self, ContactEventMessage, LogMessage, ModalCoordinatesMessage, ModelMessage, StepMessage, TimeMessage,
+use super::mcap::{
+    RecorderOptions, RecorderTiming, ROLLBACK_LINE, SCENARIO_ATTACHMENT, SCENARIO_METADATA, SIZE_CAP_LINE,
 };
+use super::scene::SceneBuilder;
+use super::schema::{self, ContactEventMessage, LogMessage, ModalCoordinatesMessage, ModelMessage, TimeMessage};
 use crate::error::{Error, Result};
 use crate::results::{ContactEvent, StepResult};
 
@@ -117,7 +117,6 @@ pub(super) struct LogWriter {
     pub channels: Channels,
     /// Per-channel sequence numbers, indexed like [`LogWriter::sequence_slot`].
     sequences: [u32; 6],
-    step: StepMessage,
     /// The running peaks of the latest step message: a step whose peaks are the same leaves them
     /// out (log format 2; the reader carries them forward).
     peaks: Option<crate::results::Peaks>,
@@ -145,7 +144,6 @@ impl LogWriter {
             writer,
             channels,
             sequences: [0; 6],
-            step: StepMessage::default(),
             peaks: None,
             modes: ModalCoordinatesMessage::default(),
             buffer: Vec::with_capacity(4096),
@@ -159,12 +157,13 @@ impl LogWriter {
 
     /// The thread's body: writes every batch until the queue closes, then finishes the file.
     pub fn run(mut self, queue: Receiver<Batch>) -> Result<RecorderTiming> {
-        let cpu = self.options.timing.then(cpu_time::ThreadTime::now);
+        // Two clock reads a run: always measured.
+        let cpu = cpu_time::ThreadTime::now();
         for batch in queue {
             self.write_batch(&batch)?;
         }
         let mut timing = self.finish()?;
-        timing.writer_cpu = cpu.map(|c| c.elapsed()).unwrap_or_default();
+        timing.writer_cpu = cpu.elapsed();
         Ok(timing)
     }
 
@@ -259,14 +258,11 @@ impl LogWriter {
     fn write_step(&mut self, result: &StepResult) -> Result<()> {
         self.last_time_ns = result.time_ns;
         let started = self.options.timing.then(Instant::now);
-        self.step.fill(result);
-        // Format 2: the time in seconds is time_ns / 1e9, left out (9 of ~190 bytes a step).
-        self.step.time = 0.0;
-        if self.peaks == Some(result.peaks) {
-            self.step.peaks = None;
-        }
+        // Format 2: no `time` (it is time_ns / 1e9), and no peaks when they are the previous
+        // step message's.
+        let with_peaks = self.peaks != Some(result.peaks);
         self.peaks = Some(result.peaks);
-        super::mcap::encode_into(&mut self.buffer, &self.step);
+        super::step_encoding::encode_step(&mut self.buffer, result, with_peaks);
         if let Some(t) = started {
             self.timing.encode += t.elapsed();
         }
@@ -364,7 +360,7 @@ impl LogWriter {
         let written = std::fs::metadata(&self.path).map_or(0, |m| m.len());
         if self.capped.get().is_none() && written >= self.options.max_bytes {
             let reason = format!(
-                "the MCAP log {} reached its size cap of {} bytes at {written} bytes: it ends here, the run goes on \
+                "the MCAP log {} {SIZE_CAP_LINE} of {} bytes at {written} bytes: it ends here, the run goes on \
                  unrecorded",
                 self.path.display(),
                 self.options.max_bytes

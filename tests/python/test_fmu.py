@@ -254,3 +254,57 @@ def test_fmpy_restore_flow_continues_to_the_uninterrupted_peaks(version, start, 
         assert restored[name][-1] == uninterrupted[name][-1], f"{name}: restored {restored[name][-1]} vs {uninterrupted[name][-1]}"
     logs = list(tmp_path.glob("BeamImpact-*.mcap"))
     assert len(logs) == 1 and logs[0].stat().st_size > 0, logs
+
+
+def test_a_rolled_back_fmu_log_loads_like_report_reads_it(tmp_path):
+    """getFMUstate, 150 steps, setFMUstate, 300 more steps with a new input: the log keeps both
+    branches; `load_log` drops the superseded one as `report --csv` does (it kept both, with the
+    step numbers going back), and its last peaks are the FMU's."""
+    import pandas as pd
+    from fmpy import extract, read_model_description
+    from fmpy.fmi2 import FMU2Slave
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from load_log import load_log
+
+    fmu = fmu_path("fmi2")
+    md = read_model_description(fmu)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    log_path = str(tmp_path / "rollback.mcap")
+    slave = FMU2Slave(
+        guid=md.guid, unzipDirectory=extract(fmu), modelIdentifier=md.coSimulation.modelIdentifier, instanceName="rb"
+    )
+    slave.instantiate()
+    slave.setString([vr["log.path"]], [log_path])
+    slave.setupExperiment(startTime=0.0, stopTime=0.5)
+    slave.enterInitializationMode()
+    slave.exitInitializationMode()
+    t, h = 0.0, 1e-3
+    for _ in range(200):
+        slave.doStep(t, h)
+        t += h
+    state, saved = slave.getFMUstate(), t
+    for _ in range(150):
+        slave.doStep(t, h)
+        t += h
+    slave.setFMUstate(state)
+    t = saved
+    slave.setReal([vr["lower.tip_force"]], [1e5])
+    for _ in range(300):
+        slave.doStep(t, h)
+        t += h
+    peak = slave.getReal([vr["peak.lower.tip_deflection"]])[0]
+    slave.terminate()
+    slave.freeInstance()
+
+    log = load_log(log_path)
+    assert log.rollbacks == 1 and log.complete
+    steps = log.steps["step"].astype(np.int64)
+    assert np.all(np.diff(steps) == 1) and steps[0] == 0
+    csv = tmp_path / "rollback.csv"
+    subprocess.run([binary(), "report", log_path, "--out", str(tmp_path / "fig"), "--csv", str(csv)], check=True, capture_output=True)
+    frame = pd.read_csv(csv)
+    assert len(frame) == len(steps)
+    assert np.array_equal(frame["step"].to_numpy(), steps)
+    assert np.array_equal(frame["lower_tip_deflection"].to_numpy(), log.steps["lower_tip_deflection"])
+    assert log.steps["peaks.lower_tip_deflection"][-1] == peak

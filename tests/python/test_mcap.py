@@ -179,7 +179,7 @@ def test_a_format_1_log_still_loads():
     assert np.array_equal(log.modal_steps, log.steps["step"])
     assert log.modal_coordinates.shape == (steps, log.nodal_shapes.shape[1])
     # Format 1 stored the time in seconds; it equals time_ns / 1e9 as format 2 derives it.
-    assert np.array_equal(log.steps["time"], log.steps["time_ns"] * 1e-9)
+    assert np.array_equal(log.steps["time"], log.steps["time_ns"] / 1e9)
     # The stored shapes redraw the arrestor's end to float32's precision (7 digits of ~0.07 m).
     w = log.modal_coordinates @ log.nodal_shapes.T
     tip = w[:, len(log.lower_nodes) - 1]
