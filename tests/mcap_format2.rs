@@ -8,31 +8,12 @@ use std::path::Path;
 
 use beam_impact::record::mcap::{LogCompression, McapRecorder, RecorderOptions, LOG_FORMAT, MODES_TOPIC};
 use beam_impact::record::report::{read_log, summary_from_log};
-use beam_impact::record::{MemoryRecorder, Recorder, RunInfo};
-use beam_impact::results::{ContactEvent, StepResult};
+use beam_impact::record::MemoryRecorder;
+use beam_impact::results::StepResult;
 use beam_impact::{Scenario, Simulation};
 
-/// Sends everything to two recorders.
-struct Tee<'a>(&'a mut dyn Recorder, &'a mut dyn Recorder);
-
-impl Recorder for Tee<'_> {
-    fn start(&mut self, info: &RunInfo<'_>) -> beam_impact::Result<()> {
-        self.0.start(info)?;
-        self.1.start(info)
-    }
-    fn step(&mut self, result: &StepResult, q: &[f64]) -> beam_impact::Result<()> {
-        self.0.step(result, q)?;
-        self.1.step(result, q)
-    }
-    fn contact_event(&mut self, event: &ContactEvent) -> beam_impact::Result<()> {
-        self.0.contact_event(event)?;
-        self.1.contact_event(event)
-    }
-    fn finish(&mut self) -> beam_impact::Result<()> {
-        self.0.finish()?;
-        self.1.finish()
-    }
-}
+mod recording_support;
+use recording_support::Tee;
 
 /// Runs `scenario` into a log with `options` and into memory.
 fn record(scenario: &Scenario, path: &Path, options: RecorderOptions) -> (MemoryRecorder, Simulation) {

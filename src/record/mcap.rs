@@ -341,10 +341,7 @@ impl McapRecorder {
     /// Queues the modal coordinates of `previous` (held in `self.coordinates`).
     fn push_modes(&mut self, log: bool, scene: bool) {
         let Some(r) = self.previous else { return };
-        let offset = self.batch.coordinates.len();
-        let len = self.coordinates.len();
-        self.batch.coordinates.extend_from_slice(&self.coordinates);
-        self.push(Item::Modes { step: r.step, time_ns: r.time_ns, log_time_ns: r.time_ns, offset, len, log, scene });
+        self.batch.push_modes(&self.coordinates, r.step, r.time_ns, r.time_ns, log, scene);
         self.coordinates_sent |= log;
         if log && self.peak.is_some_and(|(step, _)| step == r.step) {
             self.peak = None;
@@ -355,12 +352,9 @@ impl McapRecorder {
     /// are still owed.
     fn push_peak(&mut self) {
         if let Some((step, time_ns)) = self.peak.take() {
-            let offset = self.batch.coordinates.len();
-            let len = self.peak_coordinates.len();
-            self.batch.coordinates.extend_from_slice(&self.peak_coordinates);
             // Written now, stamped now: log times never decrease; the message says its step.
             let log_time_ns = self.previous.map_or(time_ns, |p| p.time_ns.max(time_ns));
-            self.push(Item::Modes { step, time_ns, log_time_ns, offset, len, log: true, scene: false });
+            self.batch.push_modes(&self.peak_coordinates, step, time_ns, log_time_ns, true, false);
             if self.previous.is_some_and(|p| p.step == step) {
                 self.coordinates_sent = true;
             }

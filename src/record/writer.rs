@@ -47,6 +47,13 @@ pub(super) fn error_chain(e: &dyn std::error::Error) -> String {
     text
 }
 
+/// Adds the time since `started` to `total` (when the recorder clocks its messages).
+fn lap(started: Option<Instant>, total: &mut std::time::Duration) {
+    if let Some(t) = started {
+        *total += t.elapsed();
+    }
+}
+
 /// What the recorder writes once, at the start of a run.
 #[derive(Debug)]
 pub(super) struct StartRecord {
@@ -95,6 +102,13 @@ pub(super) struct Batch {
 impl Batch {
     pub fn new() -> Self {
         Batch { items: Vec::with_capacity(BATCH_STEPS + 16), coordinates: Vec::new(), steps: 0 }
+    }
+
+    /// Queues the modal coordinates `q` of `step` (see [`Item::Modes`]).
+    pub fn push_modes(&mut self, q: &[f64], step: u64, time_ns: u64, log_time_ns: u64, log: bool, scene: bool) {
+        let offset = self.coordinates.len();
+        self.coordinates.extend_from_slice(q);
+        self.items.push(Item::Modes { step, time_ns, log_time_ns, offset, len: q.len(), log, scene });
     }
 }
 
@@ -217,9 +231,7 @@ impl LogWriter {
         let started = self.options.timing.then(Instant::now);
         let result = self.writer.write_to_known_channel(&header, &self.buffer);
         result.map_err(|e| self.err(e))?;
-        if let Some(t) = started {
-            self.timing.write += t.elapsed();
-        }
+        lap(started, &mut self.timing.write);
         self.timing.messages += 1;
         Ok(())
     }
@@ -227,9 +239,7 @@ impl LogWriter {
     fn encode(&mut self, message: &impl Message) {
         let started = self.options.timing.then(Instant::now);
         super::mcap::encode_into(&mut self.buffer, message);
-        if let Some(t) = started {
-            self.timing.encode += t.elapsed();
-        }
+        lap(started, &mut self.timing.encode);
     }
 
     fn start(&mut self, start: &StartRecord) -> Result<()> {
@@ -263,9 +273,7 @@ impl LogWriter {
         let with_peaks = self.peaks != Some(result.peaks);
         self.peaks = Some(result.peaks);
         super::step_encoding::encode_step(&mut self.buffer, result, with_peaks);
-        if let Some(t) = started {
-            self.timing.encode += t.elapsed();
-        }
+        lap(started, &mut self.timing.encode);
         self.write_buffer(self.channels.step, result.time_ns)?;
         self.steps_since_flush += 1;
         if self.steps_since_flush >= self.options.flush_every {
@@ -291,18 +299,14 @@ impl LogWriter {
             self.modes.coordinates.extend_from_slice(q);
             let started = self.options.timing.then(Instant::now);
             super::mcap::encode_into(&mut self.buffer, &self.modes);
-            if let Some(t) = started {
-                self.timing.encode += t.elapsed();
-            }
+            lap(started, &mut self.timing.encode);
             self.write_buffer(self.channels.modes, log_time_ns)?;
         }
         if scene {
             if let Some(builder) = self.scene.as_mut() {
                 let started = self.options.timing.then(Instant::now);
                 super::mcap::encode_into(&mut self.buffer, builder.update(time_ns, q));
-                if let Some(t) = started {
-                    self.timing.encode += t.elapsed();
-                }
+                lap(started, &mut self.timing.encode);
                 self.write_buffer(self.channels.scene, time_ns)?;
             }
         }
@@ -353,9 +357,7 @@ impl LogWriter {
         let started = self.options.timing.then(Instant::now);
         let result = self.writer.flush();
         result.map_err(|e| self.err(e))?;
-        if let Some(t) = started {
-            self.timing.write += t.elapsed();
-        }
+        lap(started, &mut self.timing.write);
         self.steps_since_flush = 0;
         let written = std::fs::metadata(&self.path).map_or(0, |m| m.len());
         if self.capped.get().is_none() && written >= self.options.max_bytes {
@@ -379,9 +381,7 @@ impl LogWriter {
         let mut timing = self.timing;
         let mut file = self.writer.into_inner();
         file.flush().map_err(|source| Error::Io { action: "cannot write MCAP log", path, source })?;
-        if let Some(t) = started {
-            timing.write += t.elapsed();
-        }
+        lap(started, &mut timing.write);
         Ok(timing)
     }
 }
