@@ -8,9 +8,11 @@
 
 #![warn(missing_docs)]
 
+pub mod answer;
 pub mod bench;
 pub mod compare;
 pub mod damping_study;
+pub mod discretise;
 pub mod error;
 pub mod fmi;
 pub mod model;

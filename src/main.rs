@@ -214,11 +214,13 @@ fn main() -> ExitCode {
 
 /// Runs a scenario; returns whether its numbers are trusted.
 fn run(args: &RunArgs) -> Result<bool> {
+    let settings = beam_impact::sweep::parse_settings(&args.set)?;
+    // Only a bare `beam-impact` runs the paper's method; a file or `--set` starts from the defaults.
     let mut scenario = match &args.file {
         Some(path) => read_scenario(path)?,
-        None => Scenario::paper(),
+        None if settings.is_empty() => Scenario::paper(),
+        None => Scenario::default(),
     };
-    let settings = beam_impact::sweep::parse_settings(&args.set)?;
     beam_impact::sweep::apply_settings(&mut scenario, &settings)?;
     let mcap = args
         .mcap
@@ -226,8 +228,9 @@ fn run(args: &RunArgs) -> Result<bool> {
         .unwrap_or_else(|| beam_impact::sweep::default_log(args.file.as_deref(), &settings, &scenario));
     let paper = scenario.is_paper();
     let started = Instant::now();
-    let mut simulation = Simulation::new(&scenario)?;
+    let simulation = Simulation::new(&scenario)?;
     simulation.check_step_count(scenario.duration_ns(), args.max_steps)?;
+    drop(simulation);
     // Open every output before the run, so that a bad path fails at once, not after it.
     if let Some(file) = args.file.as_deref().filter(|_| !args.no_mcap) {
         if same_file(file, &mcap) {
@@ -250,7 +253,7 @@ fn run(args: &RunArgs) -> Result<bool> {
         }
         None => None,
     };
-    let mut recorder: Box<dyn Recorder> = if args.no_mcap {
+    let mut recorder: Box<dyn Recorder + Send> = if args.no_mcap {
         Box::new(NullRecorder)
     } else {
         let options = RecorderOptions {
@@ -264,26 +267,33 @@ fn run(args: &RunArgs) -> Result<bool> {
         Box::new(McapRecorder::with_options(&mcap, options)?)
     };
     let mut progress = Progress::new(recorder.as_mut(), scenario.duration_ns());
-    simulation.run(&mut progress)?;
+    let options = beam_impact::answer::Options { max_steps: args.max_steps, ..Default::default() };
+    let answer = beam_impact::answer::run(&scenario, &mut progress, options)?;
     progress.bar.finish_and_clear();
     if let Some(reason) = progress.stopped_early() {
         eprintln!("beam-impact: warning: {reason}");
     }
     let wall = started.elapsed();
-    let summary = simulation.summary();
+    let summary = &answer.summary;
+    let resolved = &answer.resolved;
 
     let mut text = format!(
-        "beam-impact: {} scenario, {} + {} elements, {:.3} s simulated\n\n",
+        "beam-impact: {} scenario, method {}, {} + {} elements, {:.3} s simulated\n\n",
         if paper { "paper" } else { "user" },
-        scenario.lower.elements,
-        scenario.upper.elements_to_contact + scenario.upper.elements_beyond_contact,
+        if resolved.method == beam_impact::model::Method::Paper { "paper" } else { "converged" },
+        resolved.lower.elements,
+        resolved.upper.elements_to_contact + resolved.upper.elements_beyond_contact,
         scenario.duration
     );
-    text += &compare::comparison(&summary, paper);
-    let quality = &summary.quality;
+    text += &compare::comparison(summary, paper);
+    if paper {
+        text += "(Table 1's FEM column is bound to the paper's 7 + 7/7 mesh; the converged answer follows.)\n";
+    }
+    text += "\n";
+    text += &beam_impact::answer::table(&answer);
+    let quality = &answer.quality;
     text += &format!(
-        "time steps: {:e} s out of contact, {:e} s in contact{}\nquality: {} (energy residual {:.4} % of the energy \
-         that flows, tolerance {} %)\n",
+        "time steps: {:e} s out of contact, {:e} s in contact{}\n",
         summary.time_steps.free,
         summary.time_steps.contact,
         if scenario.step_free == TimeStep::Auto || scenario.step_contact == TimeStep::Auto {
@@ -291,9 +301,6 @@ fn run(args: &RunArgs) -> Result<bool> {
         } else {
             ""
         },
-        if quality.trusted { "trusted" } else { "NOT TRUSTED" },
-        quality.energy_residual_fraction * 100.0,
-        quality.energy_tolerance * 100.0
     );
     for line in quality.advisories.iter() {
         eprintln!("beam-impact: note: {line}");
@@ -307,10 +314,22 @@ fn run(args: &RunArgs) -> Result<bool> {
     }
     text += ")\n";
     if let Some((path, file)) = json_file {
+        let mut summary_json = serde_json::to_value(summary).map_err(|e| Error::Other(format!("JSON: {e}")))?;
+        summary_json["converged_peaks"] = serde_json::json!(answer.converged_peaks);
+        summary_json["converged_first_contact_peaks"] = serde_json::json!(answer.converged_first_contact_peaks);
+        summary_json["quality"] = serde_json::json!(answer.quality);
         let doc = serde_json::json!({
-            "scenario": scenario,
-            "summary": summary,
-            "quality": summary.quality,
+            "scenario": resolved,
+            "scenario_as_given": scenario,
+            "summary": summary_json,
+            "quality": answer.quality,
+            "design": answer.design,
+            "discretisation": {
+                "peaks": answer.discretisation_error,
+                "first_contact_peaks": answer.first_contact_discretisation_error,
+                "sensitivity_spread": answer.sensitivity_spread,
+                "runs": answer.runs,
+            },
             "merged_contact_windows": compare::merged_windows(&summary.contact_windows, beam_impact::results::BOUNCE_GAP),
             "units": json_units(),
             "wall_time_s": wall.as_secs_f64(),
@@ -322,11 +341,11 @@ fn run(args: &RunArgs) -> Result<bool> {
                 text += &format!("results written to {}\n", path.display());
             }
             // `--json -`: the JSON is the standard output, without the tables.
-            None => return emit(&format!("{json}\n")).map(|()| summary.quality.trusted),
+            None => return emit(&format!("{json}\n")).map(|()| answer.quality.trusted),
         }
     }
     emit(&text)?;
-    Ok(summary.quality.trusted)
+    Ok(answer.quality.trusted)
 }
 
 /// Reads and validates a scenario file (missing fields take their defaults); `-` is the standard
@@ -387,12 +406,12 @@ fn emit(text: &str) -> Result<()> {
 
 /// Shows a progress bar (on a terminal) while passing every step on to the real recorder.
 struct Progress<'a> {
-    inner: &'a mut dyn Recorder,
+    inner: &'a mut (dyn Recorder + Send),
     bar: ProgressBar,
 }
 
 impl<'a> Progress<'a> {
-    fn new(inner: &'a mut dyn Recorder, end_ns: u64) -> Self {
+    fn new(inner: &'a mut (dyn Recorder + Send), end_ns: u64) -> Self {
         let bar = ProgressBar::new(end_ns / 1_000_000);
         bar.set_style(
             ProgressStyle::with_template("{bar:40} {pos}/{len} ms simulated, {elapsed} ({eta} left)")

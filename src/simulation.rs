@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::model::system::PROBES;
-use crate::model::{Model, Probe, Scenario};
+use crate::model::{Method, Model, Probe, Scenario};
 use crate::record::{NullRecorder, Recorder, RunInfo};
 use crate::results::{
     seconds, ContactEvent, ContactWindow, EnergyAccount, FirstContact, ModeTable, Peaks, Quality, StepResult, Summary,
@@ -212,33 +212,49 @@ pub struct Simulation<S: Stepper = ModalStepper> {
 }
 
 impl Simulation<ModalStepper> {
-    /// Validates `scenario`, assembles the model, computes the modes, checks the time steps and
-    /// sets the initial conditions, with the production stepper.
+    /// Validates `scenario`, resolves its `"auto"` discretisation (see [`crate::discretise::printed`]),
+    /// assembles the model, computes the modes (truncated at the converged method's cut-off, with
+    /// the static correction), checks the time steps and sets the initial conditions, with the
+    /// production stepper.
     pub fn new(scenario: &Scenario) -> Result<Self> {
-        let model = Model::new(scenario)?;
-        let modal = ModalSystem::new(&model)?;
+        let resolved = crate::discretise::printed(scenario)?;
+        let model = Model::new(&resolved)?;
+        let full = ModalSystem::new(&model)?;
+        let physical = initial_physical_state(&model, &full)?;
+        let modal = match resolved.method {
+            Method::Converged if resolved.modal_cutoff > 0.0 => full.truncated(resolved.modal_cutoff)?,
+            _ => full,
+        };
         let stepper = ModalStepper::new(&model, modal.clone());
-        Self::with_stepper(model, modal, stepper)
+        Self::with_stepper(model, modal, stepper, &physical)
     }
 }
 
 impl Simulation<DenseStepper> {
-    /// The same run with the dense oracle of Eqs. (7)-(11) (tests and benchmarks).
+    /// The same run with the dense oracle of Eqs. (7)-(11) (tests and benchmarks): the full
+    /// modal basis of the resolved mesh, whatever the method.
     pub fn new_dense(scenario: &Scenario) -> Result<Self> {
-        let model = Model::new(scenario)?;
+        let model = Model::new(&crate::discretise::printed(scenario)?)?;
         let modal = ModalSystem::new(&model)?;
+        let physical = initial_physical_state(&model, &modal)?;
         let stepper = DenseStepper::new(&model, &modal);
-        Self::with_stepper(model, modal, stepper)
+        Self::with_stepper(model, modal, stepper, &physical)
     }
 }
 
+/// The initial state in physical coordinates (from the full basis: the bridge's quasi-static
+/// deflection of Eq. 24 in every mode).
+fn initial_physical_state(model: &Model, full: &ModalSystem) -> Result<Kinematics> {
+    let forces = TipForces { upper: model.scenario.upper.tip_force, lower: model.scenario.lower.tip_force };
+    initial_state(model, full, forces)
+}
+
 impl<S: Stepper> Simulation<S> {
-    fn with_stepper(model: Model, modal: ModalSystem, stepper: S) -> Result<Self> {
+    fn with_stepper(model: Model, modal: ModalSystem, stepper: S, physical: &Kinematics) -> Result<Self> {
         let plan = StepPlan::new(&model.scenario, &modal)?;
         let forces = TipForces { upper: model.scenario.upper.tip_force, lower: model.scenario.lower.tip_force };
-        let physical = initial_state(&model, &modal, forces)?;
-        let kinematics = stepper.own_coordinates(&physical);
-        let shapes = modal.shapes(&model);
+        let kinematics = stepper.own_coordinates(physical);
+        let shapes = modal.shapes();
         let nodal_shapes = nodal_shapes(&model, &shapes);
         let energy_method = EnergyMethod::new(&model.scenario);
         let state = RunState {
@@ -268,8 +284,7 @@ impl<S: Stepper> Simulation<S> {
     }
 
     fn evaluate_initial(&mut self) {
-        let probes = self.stepper.probes(&self.state.kinematics.displacement);
-        let energies = self.stepper.energies(&self.state.kinematics);
+        let (probes, energies) = self.stepper.measure(&self.state.kinematics, Stage::Free, self.state.forces);
         let mut result = self.outputs(&probes, Stage::Free);
         self.set_support_and_tips(&mut result, &self.state.kinematics);
         self.state.gap = probes[Probe::Gap as usize];
@@ -285,8 +300,10 @@ impl<S: Stepper> Simulation<S> {
     }
 
     /// Sets the support reactions and tip velocities of `kinematics` on `result`.
+    /// The stage is the one `result`'s step was taken in, the forces those applied.
     fn set_support_and_tips(&self, result: &mut StepResult, kinematics: &Kinematics) {
-        let d = self.stepper.support_and_tips(kinematics);
+        let stage = if result.contact { Stage::Contact } else { Stage::Free };
+        let d = self.stepper.support_and_tips(kinematics, stage, self.state.forces);
         result.lower_clamp_reaction_force = d.clamp_force;
         result.lower_clamp_reaction_moment = d.clamp_moment;
         result.upper_hinge_reaction_force = d.hinge_force;
@@ -357,8 +374,7 @@ impl<S: Stepper> Simulation<S> {
         if contact::stage(probes[Probe::Gap as usize]) != stage && step_ns > 1 {
             step_ns = self.locate_stage_change(stage, step_ns, probes[Probe::Gap as usize], forces);
             dt = seconds(step_ns);
-            probes = self.stepper.probes(&self.state.kinematics.displacement);
-            energies = self.stepper.energies(&self.state.kinematics);
+            (probes, energies) = self.stepper.measure(&self.state.kinematics, stage, forces);
         }
         if !(probes.iter().all(|p| p.is_finite()) && energies.kinetic.is_finite() && energies.beam_strain.is_finite()) {
             self.state.kinematics.copy_from(&self.backup);
@@ -444,7 +460,7 @@ impl<S: Stepper> Simulation<S> {
         let retake = |simulation: &mut Self, ns: u64| {
             simulation.state.kinematics.copy_from(&simulation.backup);
             simulation.stepper.step(&mut simulation.state.kinematics, stage, seconds(ns), forces);
-            simulation.stepper.probes(&simulation.state.kinematics.displacement)[Probe::Gap as usize] - threshold
+            simulation.stepper.measure(&simulation.state.kinematics, stage, forces).0[Probe::Gap as usize] - threshold
         };
         let mut bisect = false;
         while hi - lo > 1 {
@@ -598,8 +614,7 @@ impl<S: Stepper> Simulation<S> {
             velocity: &k0.velocity + &k0.acceleration * tau + &jerk * (0.5 * tau * tau),
             acceleration: &k0.acceleration + &jerk * tau,
         };
-        let probes = self.stepper.probes(&kinematics.displacement);
-        let energies = self.stepper.energies(&kinematics);
+        let (probes, energies) = self.stepper.measure(&kinematics, stage, before.forces);
         let mut result = self.outputs(&probes, stage);
         self.set_support_and_tips(&mut result, &kinematics);
         // The work and the dissipation up to the point, booked as the step books them: the tip
@@ -719,7 +734,7 @@ impl<S: Stepper> Simulation<S> {
     /// Restores a state saved from a simulation of the same scenario, after
     /// [`RunState::validate`]; a refused state leaves the simulation as it was.
     pub fn restore(&mut self, state: RunState) -> Result<()> {
-        state.validate(self.model.dofs(), self.plan.free_ns.max(self.plan.contact_ns))?;
+        state.validate(self.modal.dofs(), self.plan.free_ns.max(self.plan.contact_ns))?;
         let previous = std::mem::replace(&mut self.state, state);
         let previous_output = self.output;
         // The outputs at a communication point inside a step are recomputed from that step.

@@ -29,7 +29,7 @@ use std::sync::mpsc;
 
 use crate::error::{Error, Result};
 use crate::model::parameters::{self, Kind, Parameter};
-use crate::model::{Scenario, StressRecovery};
+use crate::model::Scenario;
 use crate::record::NullRecorder;
 use crate::results::{Peaks, Summary};
 use crate::solver::EnergyMethod;
@@ -74,22 +74,42 @@ pub fn field(name: &str) -> Result<&'static Parameter> {
     })
 }
 
+/// Fields whose 0 is `"auto"`: the time steps, the element counts and the modal cut-off.
 fn is_time_step(field: &Parameter) -> bool {
-    matches!(field.name, "step_free" | "step_contact")
+    matches!(
+        field.name,
+        "step_free"
+            | "step_contact"
+            | "lower.elements"
+            | "upper.elements_to_contact"
+            | "upper.elements_beyond_contact"
+            | "modal_cutoff"
+    )
+}
+
+/// The names of a symbolic field's values (their index is the parameter's value), if it has them.
+fn symbolic_names(field: &Parameter) -> Option<&'static [&'static str]> {
+    match field.name {
+        "stress_recovery" => Some(&RECOVERY_NAMES),
+        "method" => Some(&METHOD_NAMES),
+        _ => None,
+    }
 }
 
 fn is_stress_recovery(field: &Parameter) -> bool {
-    field.name == "stress_recovery"
+    symbolic_names(field).is_some()
 }
 
 const RECOVERY_NAMES: [&str; 3] = ["mean", "left", "right"];
 
+const METHOD_NAMES: [&str; 2] = ["converged", "paper"];
+
 /// What a value of `field` looks like, for messages.
 fn expected(field: &Parameter) -> String {
     if is_time_step(field) {
-        "a time step in s or \"auto\"".into()
-    } else if is_stress_recovery(field) {
-        "mean, left or right".into()
+        format!("{} or \"auto\"", if field.kind == Kind::Integer { "a whole number" } else { "a number" })
+    } else if let Some(names) = symbolic_names(field) {
+        names.join(", ")
     } else if field.kind == Kind::Integer {
         "a whole number".into()
     } else if field.unit.is_empty() || field.unit == "1" {
@@ -106,8 +126,8 @@ pub fn parse_value(field: &Parameter, text: &str) -> Result<f64> {
     if is_time_step(field) && text == "auto" {
         return Ok(0.0);
     }
-    if is_stress_recovery(field) {
-        if let Some(k) = RECOVERY_NAMES.iter().position(|&n| n == text) {
+    if let Some(names) = symbolic_names(field) {
+        if let Some(k) = names.iter().position(|&n| n == text) {
             return Ok(k as f64);
         }
     }
@@ -119,9 +139,13 @@ pub fn parse_value(field: &Parameter, text: &str) -> Result<f64> {
 pub fn format_value(field: &Parameter, value: f64) -> String {
     if is_time_step(field) && value == 0.0 {
         "auto".into()
-    } else if is_stress_recovery(field) {
-        StressRecovery::from_index(value)
-            .map_or_else(|| format!("{value}"), |r| RECOVERY_NAMES[r.index() as usize].into())
+    } else if let Some(names) = symbolic_names(field) {
+        let index = value as usize;
+        if value.fract() == 0.0 && value >= 0.0 && index < names.len() {
+            names[index].into()
+        } else {
+            format!("{value}")
+        }
     } else {
         format!("{value}")
     }

@@ -3,6 +3,7 @@
 pub mod assembly;
 pub mod beam;
 pub mod damping;
+pub mod discretisation;
 pub mod mesh;
 pub mod parameters;
 pub mod scenario;
@@ -11,6 +12,7 @@ pub mod system;
 pub mod time_step;
 
 pub use assembly::Beam;
+pub use discretisation::Method;
 pub use scenario::Scenario;
 pub use stress_recovery::StressRecovery;
 pub use system::{Model, Probe, Reaction, REACTIONS};

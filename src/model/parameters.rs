@@ -1,6 +1,7 @@
 //! The scenario's parameters as a flat, named table: the one place the FMU's parameter
 //! variables and the CLI's messages take names, units and descriptions from.
 
+use super::discretisation::Method;
 use super::scenario::Scenario;
 use super::stress_recovery::StressRecovery;
 use super::time_step::TimeStep;
@@ -109,12 +110,12 @@ pub const PARAMETERS: &[Parameter] = &[
     real!("upper.section_modulus", "m3", "Bridge section modulus for M/W", upper.section_modulus),
     integer!(
         "upper.elements_to_contact",
-        "Bridge elements from the hinge to the contact node",
+        "Bridge elements from the hinge to the contact node; 0: automatic",
         upper.elements_to_contact
     ),
     integer!(
         "upper.elements_beyond_contact",
-        "Bridge elements from the contact node to the free end",
+        "Bridge elements from the contact node to the free end; 0: automatic",
         upper.elements_beyond_contact
     ),
     real!("lower.length", "m", "Arrestor length l_l", lower.length),
@@ -124,7 +125,7 @@ pub const PARAMETERS: &[Parameter] = &[
     real!("lower.second_moment", "m4", "Arrestor second moment of area", lower.second_moment),
     real!("lower.section_modulus", "m3", "Arrestor section modulus for M/W", lower.section_modulus),
     real!("lower.shear_area", "m2", "Arrestor shear area for Q/A_s", lower.shear_area),
-    integer!("lower.elements", "Arrestor elements from the clamp to the free end", lower.elements),
+    integer!("lower.elements", "Arrestor elements from the clamp to the free end; 0: automatic", lower.elements),
     real!("contact.area", "m2", "Contact bar cross-section A_c", contact.area),
     real!("contact.length", "m", "Contact bar length l_c", contact.length),
     real!("contact.elastic_modulus", "Pa", "Contact bar Young's modulus", contact.elastic_modulus),
@@ -147,6 +148,51 @@ pub const PARAMETERS: &[Parameter] = &[
             Ok(())
         },
     },
+    Parameter {
+        name: "method",
+        unit: "",
+        description: "Solution method: 0 converged (fine mesh, truncated modal basis with static correction, \
+                      checked against a coarser rung), 1 paper (7 + 7/7 elements, full modal basis)",
+        kind: Kind::Integer,
+        get: |s| f64::from(s.method.index()),
+        put: |s, v| {
+            s.method =
+                Method::from_index(v).ok_or_else(|| Error::invalid("method", "0 (converged) or 1 (paper)", v))?;
+            Ok(())
+        },
+    },
+    real!(
+        "modal_cutoff",
+        "rad/s",
+        "Modal cut-off of the converged method; 0: automatic (the ladder's rung)",
+        modal_cutoff
+    ),
+    real!(
+        "discretisation_tolerance",
+        "1",
+        "Largest change of a peak against the coarser discretisation, and largest spread against the run's twin",
+        discretisation_tolerance
+    ),
+    real!(
+        "lower.allowable_bending_stress",
+        "Pa",
+        "Arrestor allowable bending stress (paper: 533 MPa)",
+        lower.allowable_bending_stress
+    ),
+    real!(
+        "lower.allowable_shear_stress",
+        "Pa",
+        "Arrestor allowable shear stress (paper: 355 MPa)",
+        lower.allowable_shear_stress
+    ),
+    real!(
+        "upper.allowable_bending_stress",
+        "Pa",
+        "Bridge allowable bending stress (paper: 533 MPa)",
+        upper.allowable_bending_stress
+    ),
+    real!("lower.yield_stress", "Pa", "Arrestor yield stress; 0: none given", lower.yield_stress),
+    real!("upper.yield_stress", "Pa", "Bridge yield stress; 0: none given", upper.yield_stress),
 ];
 
 /// Looks a parameter up by name.

@@ -3,6 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::discretisation::{auto_count, auto_real, Method, PAPER_ELEMENTS};
 use super::stress_recovery::StressRecovery;
 use super::time_step::TimeStep;
 use crate::error::{Error, Result};
@@ -21,10 +22,18 @@ pub struct UpperBeam {
     pub second_moment: f64,
     /// Section modulus W_b, m^3, for the bending stress M/W. Paper: 0.009978 m^3.
     pub section_modulus: f64,
-    /// Equal elements from the hinge to the contact node. Paper (Fig. 5): 7.
+    /// Equal elements from the hinge to the contact node, or `"auto"` (the default; 0 in the FMU):
+    /// the method's mesh (see [`Method`]). Paper (Fig. 5): 7.
+    #[serde(with = "auto_count")]
     pub elements_to_contact: u32,
-    /// Equal elements from the contact node to the free end. Paper (Fig. 5): 7.
+    /// Equal elements from the contact node to the free end, or `"auto"`. Paper (Fig. 5): 7.
+    #[serde(with = "auto_count")]
     pub elements_beyond_contact: u32,
+    /// Allowable bending stress of the bridge, Pa. Paper: 533 MPa.
+    pub allowable_bending_stress: f64,
+    /// Yield stress of the bridge, Pa, or 0 (the default): none given. Above it the elastic
+    /// model is out of its range and the run is not trusted.
+    pub yield_stress: f64,
     /// Constant vertical force at the free end, N, up positive (the FMU overrides it as an input).
     pub tip_force: f64,
 }
@@ -37,8 +46,10 @@ impl Default for UpperBeam {
             elastic_modulus: 2.1e11,
             second_moment: 0.01831,
             section_modulus: 0.009978,
-            elements_to_contact: 7,
-            elements_beyond_contact: 7,
+            elements_to_contact: 0,
+            elements_beyond_contact: 0,
+            allowable_bending_stress: PAPER_ALLOWABLE_BENDING,
+            yield_stress: 0.0,
             tip_force: 0.0,
         }
     }
@@ -62,8 +73,17 @@ pub struct LowerBeam {
     pub section_modulus: f64,
     /// Shear area A_s,a, m^2, for the shear stress Q/A_s. Paper: 0.012 m^2.
     pub shear_area: f64,
-    /// Equal elements from the clamp to the free end. Paper (Fig. 5): 7.
+    /// Equal elements from the clamp to the free end, or `"auto"` (the default; 0 in the FMU).
+    /// Paper (Fig. 5): 7.
+    #[serde(with = "auto_count")]
     pub elements: u32,
+    /// Allowable bending stress of the arrestor, Pa. Paper: 533 MPa.
+    pub allowable_bending_stress: f64,
+    /// Allowable shear stress of the arrestor, Pa. Paper: 355 MPa.
+    pub allowable_shear_stress: f64,
+    /// Yield stress of the arrestor, Pa, or 0 (the default): none given. The clamp's equivalent
+    /// stress max(sigma, sqrt(3) tau) above it puts the run out of the elastic model's range.
+    pub yield_stress: f64,
     /// Constant vertical force at the free end, N, up positive (the FMU overrides it as an input).
     pub tip_force: f64,
 }
@@ -78,7 +98,10 @@ impl Default for LowerBeam {
             second_moment: 0.002075,
             section_modulus: 0.01384,
             shear_area: 0.012,
-            elements: 7,
+            elements: 0,
+            allowable_bending_stress: PAPER_ALLOWABLE_BENDING,
+            allowable_shear_stress: PAPER_ALLOWABLE_SHEAR,
+            yield_stress: 0.0,
             tip_force: 0.0,
         }
     }
@@ -138,6 +161,17 @@ pub struct Scenario {
     /// flows in the run (the larger of m_u g h + |external work| and the largest strain energy).
     /// Default 0.01.
     pub energy_tolerance: f64,
+    /// The solution method: `"converged"` (the default) or `"paper"` (see [`Method`]).
+    pub method: Method,
+    /// Modal cut-off of the converged method, rad/s, or `"auto"` (the default; 0 in the FMU): the
+    /// ladder's. Each beam's modes above it are replaced by their static response; a cut-off
+    /// above every frequency keeps the full basis. Ignored by `method = "paper"`.
+    #[serde(with = "auto_real")]
+    pub modal_cutoff: f64,
+    /// Largest relative change of a peak against the next coarser discretisation, and largest
+    /// spread between the run and its twin (drop height changed by 1e-9), for the peak to be
+    /// vouched for. Default 0.01.
+    pub discretisation_tolerance: f64,
     /// Which element(s) give the bridge's bending moment at the contact node: `"mean"` (default),
     /// `"left"` (hinge side) or `"right"`.
     pub stress_recovery: StressRecovery,
@@ -162,6 +196,9 @@ impl Default for Scenario {
             duration: 3.0,
             gravity: 9.81,
             energy_tolerance: 0.01,
+            method: Method::Converged,
+            modal_cutoff: 0.0,
+            discretisation_tolerance: 0.01,
             stress_recovery: StressRecovery::Mean,
             upper: UpperBeam::default(),
             lower: LowerBeam::default(),
@@ -169,6 +206,12 @@ impl Default for Scenario {
         }
     }
 }
+
+/// The paper's allowable bending stress of both beams, Pa (533 MPa).
+pub const PAPER_ALLOWABLE_BENDING: f64 = 533e6;
+
+/// The paper's allowable shear stress of the arrestor, Pa (355 MPa).
+pub const PAPER_ALLOWABLE_SHEAR: f64 = 355e6;
 
 /// The paper's time step out of contact, s: the upper bound of the automatic step.
 pub const PAPER_STEP_FREE: f64 = 5e-5;
@@ -251,10 +294,24 @@ fn tip_force(name: &'static str, value: f64) -> Result<()> {
 }
 
 fn elements(name: &'static str, value: u32) -> Result<()> {
-    if (1..=MAX_ELEMENTS).contains(&value) {
+    if (0..=MAX_ELEMENTS).contains(&value) {
         Ok(())
     } else {
-        Err(Error::invalid(name, format!("between 1 and {MAX_ELEMENTS}"), value))
+        Err(Error::invalid(name, format!("between 1 and {MAX_ELEMENTS}, or \"auto\" (0 in the FMU)"), value))
+    }
+}
+
+/// A stress limit: > 0, at most 1e12 Pa.
+fn stress(name: &'static str, value: f64) -> Result<()> {
+    size(name, "Pa", value, 1e-3, 1e12)
+}
+
+/// An optional stress limit: 0 (none) or a stress.
+fn optional_stress(name: &'static str, value: f64) -> Result<()> {
+    if value == 0.0 {
+        Ok(())
+    } else {
+        within(name, "Pa (0: none)", value, 0.0, 1e12)
     }
 }
 
@@ -277,14 +334,28 @@ impl Scenario {
         toml::to_string(self).unwrap_or_else(|e| format!("# cannot serialize scenario: {e}\n"))
     }
 
-    /// The paper's scenario: the defaults with the paper's own step pair (5e-5 s out of contact,
-    /// 2.5e-5 s in contact), what `beam-impact` runs with no input.
+    /// The paper's scenario and method: the defaults with the paper's mesh (7 + 7/7 elements, the
+    /// full modal basis) and its own step pair (5e-5 s out of contact, 2.5e-5 s in contact), what
+    /// a bare `beam-impact` runs.
     pub fn paper() -> Scenario {
-        Scenario {
+        let mut s = Scenario {
+            method: Method::Paper,
             step_free: TimeStep::Fixed(PAPER_STEP_FREE),
             step_contact: TimeStep::Fixed(PAPER_STEP_CONTACT),
             ..Scenario::default()
-        }
+        };
+        s.lower.elements = PAPER_ELEMENTS;
+        s.upper.elements_to_contact = PAPER_ELEMENTS;
+        s.upper.elements_beyond_contact = PAPER_ELEMENTS;
+        s
+    }
+
+    /// True when an element count or the modal cut-off is still `"auto"`.
+    pub fn has_auto_discretisation(&self) -> bool {
+        self.lower.elements == 0
+            || self.upper.elements_to_contact == 0
+            || self.upper.elements_beyond_contact == 0
+            || (self.method == Method::Converged && self.modal_cutoff == 0.0)
     }
 
     /// True when this is the paper's scenario (the comparison with the paper applies).
@@ -348,6 +419,8 @@ impl Scenario {
         check(size("upper.section_modulus", "m^3", u.section_modulus, 1e-12, 1e3));
         check(elements("upper.elements_to_contact", u.elements_to_contact));
         check(elements("upper.elements_beyond_contact", u.elements_beyond_contact));
+        check(stress("upper.allowable_bending_stress", u.allowable_bending_stress));
+        check(optional_stress("upper.yield_stress", u.yield_stress));
         check(tip_force("upper.tip_force", u.tip_force));
 
         check(size("lower.length", "m", l.length, 0.01, 1e3));
@@ -358,6 +431,13 @@ impl Scenario {
         check(size("lower.section_modulus", "m^3", l.section_modulus, 1e-12, 1e3));
         check(size("lower.shear_area", "m^2", l.shear_area, 1e-12, 1e3));
         check(elements("lower.elements", l.elements));
+        check(stress("lower.allowable_bending_stress", l.allowable_bending_stress));
+        check(stress("lower.allowable_shear_stress", l.allowable_shear_stress));
+        check(optional_stress("lower.yield_stress", l.yield_stress));
+        check(within("modal_cutoff", "rad/s (0: auto)", self.modal_cutoff, 0.0, 1e12));
+        check(positive("discretisation_tolerance", "", self.discretisation_tolerance).and_then(|()| {
+            within("discretisation_tolerance", "(a fraction)", self.discretisation_tolerance, 0.0, 1.0)
+        }));
         check(tip_force("lower.tip_force", l.tip_force));
 
         check(size("contact.area", "m^2", c.area, 1e-12, 1e3));

@@ -69,6 +69,19 @@ impl Model {
     /// Validates the scenario and assembles both beams.
     pub fn new(scenario: &Scenario) -> Result<Model> {
         scenario.validate()?;
+        for (name, count) in [
+            ("lower.elements", scenario.lower.elements),
+            ("upper.elements_to_contact", scenario.upper.elements_to_contact),
+            ("upper.elements_beyond_contact", scenario.upper.elements_beyond_contact),
+        ] {
+            if count == 0 {
+                return Err(crate::error::Error::invalid(
+                    name,
+                    "resolved before a model is assembled (crate::discretise::printed resolves \"auto\")",
+                    "auto",
+                ));
+            }
+        }
         let s = scenario;
         let lower = Beam::assemble(
             Mesh::cantilever(s.lower.length, s.lower.elements as usize),

@@ -46,7 +46,7 @@ impl DenseStepper {
         let c =
             model.block_diagonal(&beam_damping(&model.lower, &modal.lower), &beam_damping(&model.upper, &modal.upper));
         let (upper_tip, lower_tip) = model.tip_force_vectors();
-        let mass_shapes = model.mass() * modal.shapes(model);
+        let mass_shapes = model.mass() * modal.shapes();
         DenseStepper {
             mass: model.mass(),
             damping: c,
@@ -114,7 +114,7 @@ impl Stepper for DenseStepper {
         out
     }
 
-    fn support_and_tips(&self, state: &Kinematics) -> SupportAndTips {
+    fn support_and_tips(&self, state: &Kinematics, _stage: Stage, _forces: TipForces) -> SupportAndTips {
         let (q, v, a) = (&state.displacement, &state.velocity, &state.acceleration);
         let r: Vec<f64> =
             self.reactions.iter().map(|r| r.stiffness.dot(q) + r.damping.dot(v) + r.mass.dot(a) - r.load).collect();

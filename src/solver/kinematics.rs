@@ -91,8 +91,15 @@ pub trait Stepper {
     /// a velocity vector, for rates), in the stepper's coordinates.
     fn probes(&self, displacement: &DVector<f64>) -> [f64; PROBES];
     /// Support reactions (the supports' rows of the unconstrained equations of motion: stiffness,
-    /// damping, consistent mass and loads) and tip velocities of the state.
-    fn support_and_tips(&self, state: &Kinematics) -> SupportAndTips;
+    /// damping, consistent mass and loads) and tip velocities of the state,
+    /// in `stage` under `forces` (a truncated basis adds its discarded modes' static response).
+    fn support_and_tips(&self, state: &Kinematics, stage: Stage, forces: TipForces) -> SupportAndTips;
+    /// The probes and energy terms of a state in `stage` under `forces`: [`Stepper::probes`] and
+    /// [`Stepper::energies`], with a truncated basis's static correction.
+    fn measure(&self, state: &Kinematics, stage: Stage, forces: TipForces) -> ([f64; PROBES], Energies) {
+        let _ = (stage, forces);
+        (self.probes(&state.displacement), self.energies(state))
+    }
     /// Energy terms of the state.
     fn energies(&self, state: &Kinematics) -> Energies;
     /// The stepper's state from physical kinematics.

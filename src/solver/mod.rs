@@ -11,6 +11,7 @@ pub mod modal;
 pub mod secular;
 pub mod step_plan;
 pub mod stepper;
+pub mod truncation;
 
 pub use contact::Stage;
 pub use dense::DenseStepper;

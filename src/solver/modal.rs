@@ -5,6 +5,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::eigen::{natural_modes, Modes};
 use super::secular::coupled_modes;
+use super::truncation::{block_columns, StaticCorrection};
 use crate::error::{Error, Result};
 use crate::model::scenario::{PAPER_STEP_CONTACT, PAPER_STEP_FREE};
 use crate::model::{damping, Model, REACTIONS};
@@ -41,6 +42,13 @@ pub struct ModalSystem {
     pub bar_stiffness: f64,
     /// The support reactions (clamp force, clamp moment, hinge force) in modal coordinates.
     pub reactions: [ModalReaction; REACTIONS],
+    /// The discarded modes' static response (all zero for the full basis); with it
+    /// `bar_stiffness` is the effective k_c / (1 + k_c f_r) (see [`super::truncation`]).
+    pub correction: StaticCorrection,
+    /// The cut-off frequency the basis was truncated at, rad/s (`None`: every mode of the mesh).
+    pub cutoff: Option<f64>,
+    /// Modal coordinates of the full basis (= physical DOFs of the mesh).
+    pub full_dofs: usize,
 }
 
 /// A support reaction in modal coordinates: R = d . q + v . q' + a . q'' - load.
@@ -104,6 +112,9 @@ impl ModalSystem {
             damping,
             contact,
             bar_stiffness,
+            correction: StaticCorrection::default(),
+            cutoff: None,
+            full_dofs: model.dofs(),
         };
         Ok(system)
     }
@@ -143,8 +154,14 @@ impl ModalSystem {
         Ok(())
     }
 
-    /// Global block-diagonal matrix of mode shapes (physical = shapes * modal).
-    pub fn shapes(&self, model: &Model) -> DMatrix<f64> {
-        model.block_diagonal(&self.lower.shapes, &self.upper.shapes)
+    /// Global block-diagonal matrix of mode shapes (physical = shapes * modal): one row per
+    /// physical DOF, one column per kept mode.
+    pub fn shapes(&self) -> DMatrix<f64> {
+        block_columns(&self.lower.shapes, &self.upper.shapes)
+    }
+
+    /// True when modes were discarded (the static correction is in use).
+    pub fn is_truncated(&self) -> bool {
+        self.dofs() < self.full_dofs
     }
 }

@@ -8,7 +8,7 @@ use super::contact::Stage;
 use super::kinematics::{Energies, Kinematics, Stepper, SupportAndTips, TipForces};
 use super::modal::ModalSystem;
 use crate::model::system::PROBES;
-use crate::model::Model;
+use crate::model::{Model, Probe, REACTIONS};
 
 /// S^-1 of one (stage, dt): diagonal part and the Sherman-Morrison correction.
 #[derive(Clone, Debug)]
@@ -37,6 +37,8 @@ pub struct ModalStepper {
     cache: [Option<StageInverse>; 2],
     /// Modal load for `load_forces`.
     load: DVector<f64>,
+    /// The static correction's gap shift b^T R (F_g + F_t) for `load_forces`, m (0 for a full basis).
+    shift: f64,
     load_forces: Option<TipForces>,
     /// Work vectors: z of Eq. (8) and D^-1 f.
     z: DVector<f64>,
@@ -46,7 +48,7 @@ pub struct ModalStepper {
 impl ModalStepper {
     /// A stepper over the modal form of `model`.
     pub fn new(model: &Model, system: ModalSystem) -> ModalStepper {
-        let projector = system.shapes(model).transpose() * model.mass();
+        let projector = system.shapes().transpose() * model.mass();
         let n = system.dofs();
         let probe_columns = system.probes.transpose();
         let [r0, r1, r2] = &system.reactions;
@@ -71,6 +73,7 @@ impl ModalStepper {
             detail_rows,
             cache: [None, None],
             load: DVector::zeros(n),
+            shift: 0.0,
             load_forces: None,
             z: DVector::zeros(n),
             y: DVector::zeros(n),
@@ -136,6 +139,7 @@ impl ModalStepper {
     ) -> ([f64; PROBES], Energies) {
         let contact = stage.is_contact();
         let s = &self.system;
+        let truncated = s.is_truncated();
         // S^-1 is recomputed (O(n)) only when the stage's step size changes.
         let slot = &mut self.cache[usize::from(contact)];
         let inv = match slot {
@@ -145,6 +149,7 @@ impl ModalStepper {
         // The modal load F = Phi^T (F_g + F_ext) changes only when the tip forces do.
         if self.load_forces != Some(forces) {
             self.load = &s.gravity + &s.upper_tip * forces.upper + &s.lower_tip * forces.lower;
+            self.shift = s.correction.gap_shift(forces.upper, forces.lower);
             self.load_forces = Some(forces);
         }
         let n = state.displacement.len();
@@ -170,7 +175,8 @@ impl ModalStepper {
         // Eq. (7): a+ = S^-1 f. Out of contact S is diagonal: a+ = D^-1 f = y. In contact the bar
         // adds kappa b b^T to K: f loses kappa b (b . z), and Sherman-Morrison corrects D^-1.
         if contact {
-            let bz: f64 = b.iter().zip(z.iter()).map(|(bi, zi)| bi * zi).sum();
+            // The truncated basis's bar acts on b^T z + s (the discarded modes' static gap).
+            let bz: f64 = b.iter().zip(z.iter()).map(|(bi, zi)| bi * zi).sum::<f64>() + self.shift;
             let kbz = s.bar_stiffness * bz;
             let mut by = 0.0;
             for i in 0..n {
@@ -206,9 +212,21 @@ impl ModalStepper {
             e.kinetic = 0.5 * dot(v, v);
             e.gravity_potential = -dot(&s.gravity.as_slice()[..n], q);
             e.dissipation_rate = weighted_squares(damping, v);
+            if truncated {
+                apply_correction(s, &mut probes, &mut e, contact, forces);
+            }
         }
         (probes, e)
     }
+}
+
+/// Adds the discarded modes' static response to measurements taken from the kept modes.
+fn apply_correction(s: &ModalSystem, probes: &mut [f64; PROBES], e: &mut Energies, contact: bool, forces: TipForces) {
+    let c = s.correction.evaluate(probes[Probe::Gap as usize], contact, forces.upper, forces.lower);
+    s.correction.correct_probes(probes, &c);
+    e.beam_strain += c.strain;
+    e.upper_strain += c.upper_strain;
+    e.gravity_potential += c.gravity_potential;
 }
 
 impl Stepper for ModalStepper {
@@ -230,7 +248,11 @@ impl Stepper for ModalStepper {
         // In modal coordinates M = I: a = F - diag(omega^2) q - diag(c) v - kappa b (b . q).
         let s = &self.system;
         let load = &s.gravity + &s.upper_tip * forces.upper + &s.lower_tip * forces.lower;
-        let bar = if stage.is_contact() { s.bar_stiffness * s.contact.dot(&state.displacement) } else { 0.0 };
+        let bar = if stage.is_contact() {
+            s.bar_stiffness * (s.contact.dot(&state.displacement) + s.correction.gap_shift(forces.upper, forces.lower))
+        } else {
+            0.0
+        };
         let (q, v) = (&state.displacement, &state.velocity);
         for i in 0..q.len() {
             state.acceleration[i] = load[i] - s.omega2[i] * q[i] - s.damping[i] * v[i] - bar * s.contact[i];
@@ -245,7 +267,16 @@ impl Stepper for ModalStepper {
         out
     }
 
-    fn support_and_tips(&self, state: &Kinematics) -> SupportAndTips {
+    fn measure(&self, state: &Kinematics, stage: Stage, forces: TipForces) -> ([f64; PROBES], Energies) {
+        let mut probes = self.probes(&state.displacement);
+        let mut e = self.energies(state);
+        if self.system.is_truncated() {
+            apply_correction(&self.system, &mut probes, &mut e, stage.is_contact(), forces);
+        }
+        (probes, e)
+    }
+
+    fn support_and_tips(&self, state: &Kinematics, stage: Stage, forces: TipForces) -> SupportAndTips {
         let s = &self.system;
         let (q, v, a) = (&state.displacement, &state.velocity, &state.acceleration);
         let [r0, r1, r2] = &s.reactions;
@@ -271,7 +302,15 @@ impl Stepper for ModalStepper {
                 + (even.velocity[k] + odd.velocity[k])
                 + (even.acceleration[k] + odd.acceleration[k])
         };
-        let sums = [row(0), row(1), row(2), even.velocity[3] + odd.velocity[3], even.velocity[4] + odd.velocity[4]];
+        let mut sums = [row(0), row(1), row(2), even.velocity[3] + odd.velocity[3], even.velocity[4] + odd.velocity[4]];
+        if s.is_truncated() {
+            // The discarded modes' static displacement loads the supports through their stiffness rows.
+            let gap = self.probe_columns.column(Probe::Gap as usize).dot(&state.displacement);
+            let c = s.correction.evaluate(gap, stage.is_contact(), forces.upper, forces.lower);
+            for (k, sum) in sums.iter_mut().take(REACTIONS).enumerate() {
+                *sum += s.correction.reaction(k, &c);
+            }
+        }
         SupportAndTips {
             clamp_force: sums[0] - r0.load,
             clamp_moment: sums[1] - r1.load,

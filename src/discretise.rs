@@ -1,0 +1,108 @@
+//! Resolves a scenario's `"auto"` discretisation into the meshes and modal cut-offs that are run:
+//! the rung a run prints and the coarser rung its discretisation check compares it with
+//! (see [`crate::model::discretisation`] for the ladder).
+
+use crate::error::Result;
+use crate::model::discretisation::{Method, DEFAULT_RUNG, LADDER, PAPER_ELEMENTS};
+use crate::model::{Model, Scenario};
+use crate::solver::ModalSystem;
+
+/// The scenario's reference frequency, rad/s: the highest natural frequency of either beam on the
+/// paper's mesh (7 + 7/7 elements), the scale of the automatic cut-offs.
+pub fn reference_frequency(scenario: &Scenario) -> Result<f64> {
+    let mut coarse = scenario.clone();
+    coarse.method = Method::Paper;
+    set_elements(&mut coarse, [PAPER_ELEMENTS; 3]);
+    let model = Model::new(&coarse)?;
+    let modal = ModalSystem::new(&model)?;
+    Ok(modal.omega_max(false))
+}
+
+fn set_elements(s: &mut Scenario, [lower, inner, outer]: [u32; 3]) {
+    if s.lower.elements == 0 {
+        s.lower.elements = lower;
+    }
+    if s.upper.elements_to_contact == 0 {
+        s.upper.elements_to_contact = inner;
+    }
+    if s.upper.elements_beyond_contact == 0 {
+        s.upper.elements_beyond_contact = outer;
+    }
+}
+
+/// The scenario as run and printed: `"auto"` element counts become the method's mesh (the
+/// paper's 7 per segment, or the ladder's default rung), an `"auto"` cut-off the rung's.
+pub fn printed(scenario: &Scenario) -> Result<Scenario> {
+    match scenario.method {
+        Method::Paper => {
+            let mut s = scenario.clone();
+            set_elements(&mut s, [PAPER_ELEMENTS; 3]);
+            Ok(s)
+        }
+        Method::Converged => rung(scenario, DEFAULT_RUNG, 1),
+    }
+}
+
+/// The discretisation a printed run is judged against: for the converged method the coarser rung
+/// (the ladder's previous rung, or half of each explicit element count); for the paper method the
+/// converged answer itself, with automatic steps (so its figure is the paper mesh's error).
+pub fn check(scenario: &Scenario) -> Result<Scenario> {
+    match scenario.method {
+        Method::Paper => {
+            let mut s = scenario.clone();
+            s.method = Method::Converged;
+            s.lower.elements = 0;
+            s.upper.elements_to_contact = 0;
+            s.upper.elements_beyond_contact = 0;
+            s.modal_cutoff = 0.0;
+            s.step_free = crate::model::TimeStep::Auto;
+            s.step_contact = crate::model::TimeStep::Auto;
+            printed(&s)
+        }
+        Method::Converged => rung(scenario, DEFAULT_RUNG - 1, 2),
+    }
+}
+
+/// The rung before [`check`]'s (converged method only): the ladder's rung two below the printed
+/// one, or a quarter of each explicit element count.
+pub fn coarse(scenario: &Scenario) -> Result<Scenario> {
+    rung(scenario, DEFAULT_RUNG - 2, 4)
+}
+
+/// The ladder's rung `index` for `"auto"` fields; explicit element counts are divided by
+/// `divisor` (rounded up) so that the check rung of an explicit mesh is half as fine.
+fn rung(scenario: &Scenario, index: usize, divisor: u32) -> Result<Scenario> {
+    let mut s = scenario.clone();
+    let r = LADDER[index];
+    for count in [&mut s.lower.elements, &mut s.upper.elements_to_contact, &mut s.upper.elements_beyond_contact] {
+        *count = if *count == 0 { r.elements } else { count.div_ceil(divisor) };
+    }
+    if s.modal_cutoff == 0.0 {
+        s.validate()?;
+        s.modal_cutoff = r.cutoff_factor * reference_frequency(scenario)?;
+    }
+    Ok(s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn auto_resolves_to_the_ladder_and_explicit_counts_are_kept() {
+        let s = Scenario::default();
+        let p = printed(&s).unwrap();
+        assert_eq!(p.lower.elements, LADDER[DEFAULT_RUNG].elements);
+        assert!(p.modal_cutoff > 0.0);
+        let c = check(&s).unwrap();
+        assert_eq!(c.lower.elements, LADDER[DEFAULT_RUNG - 1].elements);
+        let mut explicit = s.clone();
+        explicit.lower.elements = 40;
+        assert_eq!(printed(&explicit).unwrap().lower.elements, 40);
+        assert_eq!(check(&explicit).unwrap().lower.elements, 20);
+        assert_eq!(coarse(&explicit).unwrap().lower.elements, 10);
+        let paper = Scenario::paper();
+        assert_eq!(printed(&paper).unwrap(), paper);
+        assert_eq!(check(&paper).unwrap().method, Method::Converged);
+    }
+}
