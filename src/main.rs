@@ -158,7 +158,7 @@ struct RunArgs {
 
 #[derive(Args)]
 struct SweepArgs {
-    /// Scenario file (TOML) the grid starts from. Default: the paper scenario (the paper's steps).
+    /// Scenario file (TOML) the grid starts from. Default: the default scenario (`beam-impact scenario`: method converged, automatic mesh and steps), as `run --set`.
     file: Option<PathBuf>,
     /// A varied field, KEY=SPEC with SPEC `start:stop:count` (inclusive, linear) or a comma list
     /// (repeatable; the first is the outermost loop): `--vary drop_height=0.1:2:100`.
@@ -691,7 +691,7 @@ fn sweep(args: &SweepArgs) -> Result<()> {
     use beam_impact::sweep::{apply_settings, default_jobs, parse_axes, parse_settings, Sweep, SweepWriteError};
     let mut base = match &args.file {
         Some(path) => read_scenario(path)?,
-        None => Scenario::paper(),
+        None => Scenario::default(),
     };
     apply_settings(&mut base, &parse_settings(&args.set)?)?;
     let sweep = Sweep::new(base, parse_axes(&args.vary)?, args.max_steps)?;

@@ -14,11 +14,11 @@
 //! The Python package `beam_impact` parses the same specs with the same arithmetic, so both give
 //! the same bits.
 //!
-//! A row is the run's [`Summary`] reduced to what a design envelope needs: the four Table 1 peaks
-//! and the contact force peak, when each was reached, the energy approach, the largest energy
-//! residual and the trust verdict. Each run is the `run` command's (`Simulation::new`, the step
-//! count check, `run` into a [`NullRecorder`]), so a row equals the single run of its scenario to
-//! the bit. A scenario that fails validation, or whose run fails, gives a row with the error.
+//! A row is the run's [`crate::answer::Answer`] reduced to what a design envelope needs: the four
+//! Table 1 peaks and the contact force peak, when each was reached, the energy approach, the
+//! largest energy residual, the checks' figures, the design's utilisations and verdict, and the
+//! trust verdict. Each run is the `run` command's ([`crate::answer::run`] into a [`NullRecorder`]),
+//! so a row equals the single run of its scenario to the bit. A scenario that fails validation, or whose run fails, gives a row with the error.
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -31,9 +31,8 @@ use crate::error::{Error, Result};
 use crate::model::parameters::{self, Kind, Parameter};
 use crate::model::Scenario;
 use crate::record::NullRecorder;
-use crate::results::{Peaks, Summary};
+use crate::results::Peaks;
 use crate::solver::EnergyMethod;
-use crate::Simulation;
 
 /// Scenario fields beyond [`parameters::PARAMETERS`] that `--set` and `--vary` accept: the constant tip
 /// forces (the FMU's inputs, so not among its parameters).
@@ -106,10 +105,13 @@ const METHOD_NAMES: [&str; 2] = ["converged", "paper"];
 
 /// What a value of `field` looks like, for messages.
 fn expected(field: &Parameter) -> String {
-    if is_time_step(field) {
+    if matches!(field.name, "step_free" | "step_contact") {
+        "a time step in s or \"auto\"".into()
+    } else if is_time_step(field) {
         format!("{} or \"auto\"", if field.kind == Kind::Integer { "a whole number" } else { "a number" })
     } else if let Some(names) = symbolic_names(field) {
-        names.join(", ")
+        let (last, rest) = names.split_last().unwrap_or((&"", &[]));
+        format!("{} or {last}", rest.join(", "))
     } else if field.kind == Kind::Integer {
         "a whole number".into()
     } else if field.unit.is_empty() || field.unit == "1" {
@@ -382,21 +384,49 @@ pub struct RowResults {
     pub energy_method: EnergyMethod,
     /// Largest |energy residual| of the run, J.
     pub max_energy_residual: f64,
-    /// The run's energy verdict (`summary.quality.trusted`).
+    /// The largest discretisation figure of the peaks (a fraction; see [`crate::answer`]).
+    pub discretisation_error: f64,
+    /// The largest spread against the twin run (a fraction).
+    pub sensitivity_spread: f64,
+    /// The largest stress as a fraction of the yield stress (NaN, an empty cell: none given).
+    pub yield_utilisation: f64,
+    /// Each stress peak's utilisation, converged peak / allowable.
+    pub utilisation: crate::answer::DesignUtilisation,
+    /// Whether every utilisation is <= 1.
+    pub design_pass: bool,
+    /// The run's verdict: every check that ran passes (`quality.trusted` of `run --json`).
     pub trusted: bool,
 }
 
-impl From<&Summary> for RowResults {
-    fn from(s: &Summary) -> Self {
+impl From<&crate::answer::Answer> for RowResults {
+    fn from(a: &crate::answer::Answer) -> Self {
+        let s = &a.summary;
+        let c = &a.quality.checks;
         RowResults {
             peaks: s.peaks,
             peak_times: s.peak_times,
             energy_method: s.energy_method,
             max_energy_residual: s.max_energy_residual,
-            trusted: s.quality.trusted,
+            discretisation_error: c.discretisation.map_or(f64::NAN, |c| c.value),
+            sensitivity_spread: c.sensitivity.map_or(f64::NAN, |c| c.value),
+            yield_utilisation: c.yield_stress.map_or(f64::NAN, |c| c.value),
+            utilisation: a.design.utilisation,
+            design_pass: a.design.pass,
+            trusted: a.quality.trusted,
         }
     }
 }
+
+/// The columns of the checks and the design, between `max_energy_residual` and `trusted`.
+pub const CHECK_COLUMNS: [&str; 7] = [
+    "discretisation_error",
+    "sensitivity_spread",
+    "yield_utilisation",
+    "utilisation.lower_clamp_bending_stress",
+    "utilisation.lower_clamp_shear_stress",
+    "utilisation.upper_contact_bending_stress",
+    "design_pass",
+];
 
 /// One scenario of the grid: its values (one per axis) and its results or error message.
 #[derive(Clone, Debug, PartialEq)]
@@ -414,7 +444,9 @@ pub fn columns(axes: &[Axis]) -> Vec<String> {
     c.extend(PEAK_NAMES.iter().map(|n| n.to_string()));
     c.extend(PEAK_NAMES.iter().map(|n| format!("{n}_time")));
     c.extend(ENERGY_METHOD_FIELDS.iter().map(|(n, _)| format!("energy_method.{n}")));
-    c.extend(["max_energy_residual", "trusted", "error"].map(String::from));
+    c.push("max_energy_residual".into());
+    c.extend(CHECK_COLUMNS.iter().map(|n| n.to_string()));
+    c.extend(["trusted", "error"].map(String::from));
     c
 }
 
@@ -434,10 +466,16 @@ fn cells(axes: &[Axis], row: &Row) -> Vec<Cell> {
             c.extend(r.peaks.as_array().map(Cell::Number));
             c.extend(r.peak_times.as_array().map(Cell::Number));
             c.extend(ENERGY_METHOD_FIELDS.iter().map(|(_, get)| Cell::Number(get(&r.energy_method))));
-            c.extend([Cell::Number(r.max_energy_residual), Cell::Bool(r.trusted), Cell::Text(String::new())]);
+            c.push(Cell::Number(r.max_energy_residual));
+            let optional = |v: f64| if v.is_nan() { Cell::Empty } else { Cell::Number(v) };
+            c.extend([optional(r.discretisation_error), optional(r.sensitivity_spread), optional(r.yield_utilisation)]);
+            c.extend(r.utilisation.as_array().map(Cell::Number));
+            c.extend([Cell::Bool(r.design_pass), Cell::Bool(r.trusted), Cell::Text(String::new())]);
         }
         Err(message) => {
-            c.extend((0..2 * PEAK_NAMES.len() + ENERGY_METHOD_FIELDS.len() + 2).map(|_| Cell::Empty));
+            c.extend(
+                (0..2 * PEAK_NAMES.len() + ENERGY_METHOD_FIELDS.len() + 2 + CHECK_COLUMNS.len()).map(|_| Cell::Empty),
+            );
             c.push(Cell::Text(one_line(message)));
         }
     }
@@ -559,10 +597,9 @@ impl Sweep {
         let values = grid_point(&self.axes, index);
         let run = || -> Result<RowResults> {
             let scenario = self.scenario(&values)?;
-            let mut simulation = Simulation::new(&scenario)?;
-            simulation.check_step_count(scenario.duration_ns(), self.max_steps)?;
-            let summary = simulation.run(&mut NullRecorder)?;
-            Ok(RowResults::from(&summary))
+            let options = crate::answer::Options { max_steps: self.max_steps, ..Default::default() };
+            let answer = crate::answer::run(&scenario, &mut NullRecorder, options)?;
+            Ok(RowResults::from(&answer))
         };
         let outcome = match std::panic::catch_unwind(std::panic::AssertUnwindSafe(run)) {
             Ok(result) => result.map_err(|e| e.to_string()),
@@ -852,6 +889,7 @@ mod tests {
     /// its error (no hang, no further scenarios started).
     #[test]
     fn rows_come_in_grid_order_and_a_write_error_stops_the_sweep() {
+        // The paper's method: its mesh is flagged against the converged answer (not trusted).
         let base = Scenario { duration: 0.002, ..Scenario::paper() };
         let axes = vec![axis("drop_height=0.2:0.8:4"), axis("contact_position=13,40")];
         let sweep = Sweep::new(base, axes, crate::model::scenario::MAX_STEPS).unwrap();
@@ -864,7 +902,7 @@ mod tests {
             })
             .unwrap();
         assert_eq!(seen, expand(&sweep.axes));
-        assert_eq!((finished, tally), (8, Tally { scenarios: 8, failed: 4, untrusted: 0 }));
+        assert_eq!((finished, tally), (8, Tally { scenarios: 8, failed: 4, untrusted: 4 }));
 
         struct Failing(usize);
         impl Write for Failing {

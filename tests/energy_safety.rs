@@ -21,7 +21,7 @@ fn undamped_runs_over_drop_heights_and_contact_positions_keep_their_energy_with_
     let mut worst = (0.0f64, 0.0, 0.0);
     for drop_height in [0.1, 0.2, 0.567, 1.0, 2.0] {
         for contact_position in [10.0, 13.0, 16.0] {
-            let scenario = Scenario { drop_height, contact_position, damping_ratio: 0.0, ..Scenario::default() };
+            let scenario = Scenario { drop_height, contact_position, damping_ratio: 0.0, ..Scenario::paper_mesh() };
             let summary = Simulation::new(&scenario).unwrap().run(&mut NullRecorder).unwrap();
             let q = &summary.quality;
             assert!(q.trusted && q.reasons.is_empty(), "h = {drop_height}, d = {contact_position}: {q:?}");
@@ -71,26 +71,26 @@ fn energy_tolerance_decides_the_verdict() {
 /// arrestor with a coarse mesh the paper's steps themselves.
 #[test]
 fn automatic_steps_are_the_largest_energy_safe_whole_nanoseconds_under_the_papers() {
-    let simulation = Simulation::new(&Scenario::default()).unwrap();
+    let simulation = Simulation::new(&Scenario::paper_mesh()).unwrap();
     let (plan, modal) = (simulation.step_plan(), simulation.modal());
     for (ns, contact) in [(plan.free_ns, false), (plan.contact_ns, true)] {
         let omega = modal.omega_max(contact);
         assert!(ns as f64 * 1e-9 * omega <= 1.0 && (ns + 1) as f64 * 1e-9 * omega > 1.0, "{ns} ns, {omega}");
     }
     assert_eq!((plan.free_ns, plan.contact_ns), (22_876, 22_874));
-    let mut fine = Scenario::default();
+    let mut fine = Scenario::paper_mesh();
     fine.lower.elements *= 4;
     fine.upper.elements_to_contact *= 4;
     fine.upper.elements_beyond_contact *= 4;
     let fine_plan = *Simulation::new(&fine).unwrap().step_plan();
     let ratio = plan.free_ns as f64 / fine_plan.free_ns as f64;
     assert!((14.0..18.0).contains(&ratio), "{ratio}");
-    let mut soft = Scenario::default();
+    let mut soft = Scenario::paper_mesh();
     (soft.lower.elements, soft.upper.elements_to_contact, soft.upper.elements_beyond_contact) = (1, 1, 1);
     let soft_plan = *Simulation::new(&soft).unwrap().step_plan();
     assert_eq!((soft_plan.free_ns, soft_plan.contact_ns), (50_000, 25_000));
     assert_eq!(energy_safe_step(0.0, 5e-5), 5e-5);
     // A fixed step is taken as given.
-    let fixed = Scenario { step_free: TimeStep::Fixed(1e-5), ..Scenario::default() };
+    let fixed = Scenario { step_free: TimeStep::Fixed(1e-5), ..Scenario::paper_mesh() };
     assert_eq!(Simulation::new(&fixed).unwrap().step_plan().free_ns, 10_000);
 }

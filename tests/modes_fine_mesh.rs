@@ -21,7 +21,7 @@ use beam_impact::{Scenario, Simulation};
 /// The paper scenario with every element count multiplied by `factor` (1x: 7 arrestor elements,
 /// 7 + 7 bridge elements).
 fn refined(factor: u32) -> Scenario {
-    let mut s = Scenario::default();
+    let mut s = Scenario::paper_mesh();
     s.lower.elements *= factor;
     s.upper.elements_to_contact *= factor;
     s.upper.elements_beyond_contact *= factor;
@@ -102,7 +102,7 @@ fn first_three_modes_hold_from_paper_mesh_to_32x() {
 fn arrestor_tip_deflection_at_100_ms_converges_with_bridge_mesh() {
     let mut tips = Vec::new();
     for elements in [7, 50, 100, 200] {
-        let mut scenario = Scenario { duration: 0.1, ..Scenario::default() };
+        let mut scenario = Scenario { duration: 0.1, ..Scenario::paper_mesh() };
         scenario.upper.elements_to_contact = elements;
         scenario.upper.elements_beyond_contact = elements;
         let omega_max = modes(scenario.clone()).coupled.omega_max();

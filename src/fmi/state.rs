@@ -39,7 +39,7 @@ pub const MAGIC: &[u8; 8] = b"BEAMFMU\0";
 
 /// Version of the byte format; bump it when the layout, [`Snapshot`], [`RunState`] or the set of
 /// FMU parameters changes.
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 
 /// Bytes before the payload.
 pub const HEADER: usize = 24;
@@ -208,8 +208,8 @@ mod tests {
         let mut other = bytes.clone();
         other[8] = 9;
         match Snapshot::from_bytes(&other) {
-            Err(e @ Error::StateVersion { found: 9, expected: 2 }) => {
-                assert!(e.to_string().contains("format version 9, this binary reads version 2"))
+            Err(e @ Error::StateVersion { found: 9, expected: 3 }) => {
+                assert!(e.to_string().contains("format version 9, this binary reads version 3"))
             }
             other => panic!("{other:?}"),
         }
@@ -301,7 +301,7 @@ mod tests {
         out.insert(format!("{prefix}: {leaf}"));
     }
 
-    /// The payload's layout at FORMAT_VERSION 2: every field path of `Snapshot` and its type, the
+    /// The payload's layout at FORMAT_VERSION 3 (3: the method, modal cut-off, discretisation tolerance, allowables and yield stresses): every field path of `Snapshot` and its type, the
     /// FMU parameters by name. Version 2 (one bump for issues 7, 8 and 9): the energy verdict, the
     /// output time and input of grid-independent co-simulation, the first contact's peaks, the
     /// support reactions and tip velocities (RunState); the FMU parameters, the absolute start
@@ -313,16 +313,19 @@ mod tests {
     /// sizes; `null` an absent Option or the static column count.)
     #[test]
     fn snapshot_fields_are_pinned_at_format_version_2() {
-        const VERSION_2: &[&str] = &[
+        const VERSION_3: &[&str] = &[
             "initialized: bool",
             "parameters.contact.area: f64",
             "parameters.contact.elastic_modulus: f64",
             "parameters.contact.length: f64",
             "parameters.contact_position: f64",
             "parameters.damping_ratio: f64",
+            "parameters.discretisation_tolerance: f64",
             "parameters.drop_height: f64",
             "parameters.energy_tolerance: f64",
             "parameters.gravity: f64",
+            "parameters.lower.allowable_bending_stress: f64",
+            "parameters.lower.allowable_shear_stress: f64",
             "parameters.lower.elastic_modulus: f64",
             "parameters.lower.elements: f64",
             "parameters.lower.length: f64",
@@ -331,11 +334,15 @@ mod tests {
             "parameters.lower.section_modulus: f64",
             "parameters.lower.shear_area: f64",
             "parameters.lower.tip_mass: f64",
+            "parameters.lower.yield_stress: f64",
+            "parameters.method: f64",
+            "parameters.modal_cutoff: f64",
             "parameters.rayleigh_alpha: f64",
             "parameters.rayleigh_beta: f64",
             "parameters.step_contact: f64",
             "parameters.step_free: f64",
             "parameters.stress_recovery: f64",
+            "parameters.upper.allowable_bending_stress: f64",
             "parameters.upper.elastic_modulus: f64",
             "parameters.upper.elements_beyond_contact: f64",
             "parameters.upper.elements_to_contact: f64",
@@ -343,6 +350,7 @@ mod tests {
             "parameters.upper.mass: f64",
             "parameters.upper.second_moment: f64",
             "parameters.upper.section_modulus: f64",
+            "parameters.upper.yield_stress: f64",
             "run.contact_windows[].end: f64",
             "run.contact_windows[].start: f64",
             "run.dissipation_rate: f64",
@@ -424,7 +432,7 @@ mod tests {
         let found: Vec<&str> = found.iter().map(String::as_str).collect();
         assert_eq!(
             (FORMAT_VERSION, found.as_slice()),
-            (2, VERSION_2),
+            (3, VERSION_3),
             "Snapshot's fields changed: bump FORMAT_VERSION and update the pinned list"
         );
     }

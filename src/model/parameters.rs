@@ -204,7 +204,7 @@ pub fn find(name: &str) -> Result<&'static Parameter> {
 /// [`Scenario::validate`]).
 pub fn set(scenario: &mut Scenario, parameter: &Parameter, value: f64) -> Result<()> {
     if parameter.kind == Kind::Integer && !(value.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&value)) {
-        return Err(Error::invalid(parameter.name, "a whole number >= 1", value));
+        return Err(Error::invalid(parameter.name, "a whole number >= 0", value));
     }
     (parameter.put)(scenario, value)
 }

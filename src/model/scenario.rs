@@ -350,6 +350,12 @@ impl Scenario {
         s
     }
 
+    /// The paper's method and mesh (7 + 7/7 elements, full modal basis) with the default automatic
+    /// steps: the paper mesh as tests of it and `verify`'s base run use it.
+    pub fn paper_mesh() -> Scenario {
+        Scenario { step_free: TimeStep::Auto, step_contact: TimeStep::Auto, ..Scenario::paper() }
+    }
+
     /// True when an element count or the modal cut-off is still `"auto"`.
     pub fn has_auto_discretisation(&self) -> bool {
         self.lower.elements == 0

@@ -342,7 +342,7 @@ pub fn small_chunks() -> RecorderOptions {
 /// A short real run of the default scenario (automatic steps), recorded to `path`: `duration`
 /// seconds, with `options`.
 pub fn record_real_run(path: &Path, duration: f64, options: RecorderOptions) {
-    let scenario = Scenario { duration, ..Scenario::default() };
+    let scenario = Scenario { duration, ..Scenario::paper_mesh() };
     let mut recorder = McapRecorder::with_options(path, options).unwrap();
     Simulation::new(&scenario).unwrap().run(&mut recorder).unwrap();
 }
