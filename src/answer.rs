@@ -275,7 +275,7 @@ fn relative(value: f64, reference: f64) -> f64 {
 
 /// The discretisation figure of `fine` against `medium` (and `coarse`, when given).
 pub fn discretisation_figure(fine: f64, medium: f64, coarse: Option<f64>) -> f64 {
-    let change = relative(fine, medium);
+    let change = relative(medium, fine);
     match coarse.and_then(|c| richardson(c, medium, fine)) {
         Some(r) => relative(fine, r.estimate).min(change),
         None => change,
@@ -353,13 +353,13 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
         let flagged: Vec<String> = PEAK_NAMES
             .iter()
             .zip(discretisation_error.as_array())
-            .filter(|(_, e)| !(*e <= tolerance))
+            .filter(|(_, e)| e.is_nan() || *e > tolerance)
             .map(|(n, e)| format!("{n} {}", percent(e)))
             .chain(
                 PEAK_NAMES
                     .iter()
                     .zip(first_contact_discretisation_error.as_array())
-                    .filter(|(_, e)| !(*e <= tolerance))
+                    .filter(|(_, e)| e.is_nan() || *e > tolerance)
                     .map(|(n, e)| format!("first-contact {n} {}", percent(e))),
             )
             .collect();

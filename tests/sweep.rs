@@ -16,7 +16,7 @@ use std::process::{Command, Output};
 
 use beam_impact::model::parameters;
 use beam_impact::record::NullRecorder;
-use beam_impact::{Scenario, Simulation};
+use beam_impact::Scenario;
 
 fn beam_impact() -> Command {
     Command::new(env!("CARGO_BIN_EXE_beam-impact"))

@@ -28,10 +28,12 @@ impl Method {
 
     /// The method of an FMU Integer parameter value.
     pub fn from_index(value: f64) -> Option<Method> {
-        match value {
-            v if v == 0.0 => Some(Method::Converged),
-            v if v == 1.0 => Some(Method::Paper),
-            _ => None,
+        if value == 0.0 {
+            Some(Method::Converged)
+        } else if value == 1.0 {
+            Some(Method::Paper)
+        } else {
+            None
         }
     }
 }

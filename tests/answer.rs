@@ -1,0 +1,107 @@
+//! The checked answer (`src/answer.rs`): the design check against the allowables, the yield check,
+//! the discretisation figure and the reproducibility twin, on short runs.
+//!
+//! Sources: the paper's allowables (533 MPa bending, 355 MPa shear, Section 4); the Richardson
+//! extrapolation of three meshes refined by 2.
+
+use beam_impact::answer::{self, discretisation_figure, Design};
+use beam_impact::model::Method;
+use beam_impact::record::NullRecorder;
+use beam_impact::results::Peaks;
+use beam_impact::Scenario;
+
+fn short(duration: f64) -> Scenario {
+    Scenario { duration, ..Scenario::default() }
+}
+
+/// Utilisation is the converged peak over its allowable; the design passes at exactly 1 and fails
+/// just above it, whichever stress it is.
+#[test]
+fn utilisation_is_peak_over_allowable_and_the_design_fails_above_one() {
+    let s = Scenario::default();
+    let peaks = Peaks {
+        lower_clamp_bending_stress: 533e6,
+        lower_clamp_shear_stress: 177.5e6,
+        upper_contact_bending_stress: 266.5e6,
+        ..Peaks::default()
+    };
+    let d = Design::assess(&s, &peaks);
+    assert_eq!(d.utilisation.as_array(), [1.0, 0.5, 0.5]);
+    assert!(d.pass);
+    for k in 0..3 {
+        let mut p = peaks;
+        let values =
+            [&mut p.lower_clamp_bending_stress, &mut p.lower_clamp_shear_stress, &mut p.upper_contact_bending_stress];
+        *values.into_iter().nth(k).unwrap() *= 2.2;
+        assert!(!Design::assess(&s, &p).pass, "stress {k} above its allowable");
+    }
+}
+
+/// A run's design block speaks of the converged peaks it prints: on a 0.3 s run of the default
+/// scenario, utilisation = converged peak / allowable for each stress; lowering the arrestor's
+/// allowable bending stress below the peak fails the design without changing `trusted`.
+#[test]
+fn a_failing_design_is_reported_and_does_not_change_trust() {
+    let s = short(0.3);
+    let a = answer::run(&s, &mut NullRecorder, Default::default()).unwrap();
+    let p = a.converged_peaks;
+    assert_eq!(a.design.utilisation.lower_clamp_bending_stress, p.lower_clamp_bending_stress / 533e6);
+    assert_eq!(a.design.utilisation.lower_clamp_shear_stress, p.lower_clamp_shear_stress / 355e6);
+    assert_eq!(a.design.utilisation.upper_contact_bending_stress, p.upper_contact_bending_stress / 533e6);
+    let mut weak = s.clone();
+    weak.lower.allowable_bending_stress = 0.5 * p.lower_clamp_bending_stress;
+    let b = answer::run(&weak, &mut NullRecorder, Default::default()).unwrap();
+    assert!(!b.design.pass);
+    assert_eq!(b.design.utilisation.lower_clamp_bending_stress, 2.0);
+    assert_eq!(b.quality.trusted, a.quality.trusted);
+}
+
+/// A yield stress below the clamp's stress puts the run out of the elastic model's range: not
+/// trusted, with a reason; none given, the check does not run (null).
+#[test]
+fn stresses_above_the_yield_stress_are_not_trusted() {
+    let mut s = short(0.3);
+    let a = answer::run(&s, &mut NullRecorder, Default::default()).unwrap();
+    assert!(a.quality.checks.yield_stress.is_none());
+    s.lower.yield_stress = 0.5 * a.converged_peaks.lower_clamp_bending_stress;
+    let b = answer::run(&s, &mut NullRecorder, Default::default()).unwrap();
+    let check = b.quality.checks.yield_stress.unwrap();
+    assert!(!check.pass && (check.value - 2.0).abs() < 1e-12, "{check:?}");
+    assert!(!b.quality.trusted);
+    assert!(b.quality.reasons.iter().any(|r| r.contains("yield")), "{:?}", b.quality.reasons);
+}
+
+/// The figure: the change against the next rung, or the Richardson estimate of the printed value's
+/// own error where three rungs converge at a sane order (never more than the change).
+#[test]
+fn discretisation_figure_is_the_change_or_the_richardson_error() {
+    // Second order: 100, 104, 105 -> estimate 105 + 1/3; error of 105: (1/3) / (105 + 1/3).
+    let f = discretisation_figure(105.0, 104.0, Some(100.0));
+    assert!((f - (1.0 / 3.0) / (105.0 + 1.0 / 3.0)).abs() < 1e-12, "{f}");
+    // Oscillating: the plain change.
+    assert_eq!(discretisation_figure(105.0, 104.0, Some(106.0)), 1.0 / 105.0);
+    assert_eq!(discretisation_figure(105.0, 104.0, None), 1.0 / 105.0);
+    assert_eq!(discretisation_figure(105.0, 105.0, Some(100.0)), 0.0);
+}
+
+/// The default run is judged against two coarser rungs and a twin; a paper-method run against the
+/// converged answer, so its figure is the paper mesh's error (tau_a 14 % low on the paper
+/// scenario's first second, flagged) while the converged run of the same scenario vouches for every peak.
+#[test]
+fn the_paper_mesh_is_flagged_against_the_converged_answer() {
+    let paper = Scenario { duration: 1.0, ..Scenario::paper() };
+    let a = answer::run(&paper, &mut NullRecorder, Default::default()).unwrap();
+    assert_eq!(a.runs.iter().map(|r| r.role.as_str()).collect::<Vec<_>>(), ["printed", "check", "twin"]);
+    assert!(a.discretisation_error.lower_clamp_shear_stress > 0.1, "{:?}", a.discretisation_error);
+    assert!(!a.quality.checks.discretisation.unwrap().pass);
+    assert!(!a.quality.trusted);
+    assert_eq!(a.converged_peaks, a.runs[1].peaks);
+    let converged = Scenario { method: Method::Converged, ..Scenario::default() };
+    let b = answer::run(&Scenario { duration: 1.0, ..converged }, &mut NullRecorder, Default::default()).unwrap();
+    assert_eq!(b.runs.iter().map(|r| r.role.as_str()).collect::<Vec<_>>(), ["printed", "check", "coarse", "twin"]);
+    assert!(b.quality.checks.discretisation.unwrap().pass, "{:?}", b.discretisation_error);
+    assert!(b.quality.checks.sensitivity.unwrap().pass);
+    assert!(b.quality.trusted, "{:?}", b.quality.reasons);
+    // One rule: the paper run's converged answer is the converged run of the same scenario.
+    assert_eq!(a.converged_peaks, b.converged_peaks);
+}
