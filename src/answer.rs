@@ -52,7 +52,8 @@ pub struct Check {
 }
 
 impl Check {
-    fn new(value: f64, limit: f64) -> Check {
+    /// A check of `value` against `limit`: passes when finite and within it.
+    pub fn new(value: f64, limit: f64) -> Check {
         Check { pass: value.is_finite() && value <= limit, value, limit }
     }
 }
@@ -436,7 +437,7 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
 
 /// The yield check, as the largest stress's fraction of its beam's yield stress (limit 1), when a
 /// yield stress is given.
-fn yield_check(s: &Scenario, peaks: &Peaks) -> Option<Check> {
+pub fn yield_check(s: &Scenario, peaks: &Peaks) -> Option<Check> {
     let mut ratios = Vec::new();
     if s.lower.yield_stress > 0.0 {
         let equivalent = peaks.lower_clamp_bending_stress.max(3f64.sqrt() * peaks.lower_clamp_shear_stress);

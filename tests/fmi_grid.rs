@@ -13,7 +13,7 @@ mod fmi_common;
 use beam_impact::record::NullRecorder;
 use beam_impact::solver::TipForces;
 use beam_impact::{Scenario, Simulation};
-use fmi_common::importer::{Fmu2, Fmu3, OK};
+use fmi_common::importer::{Fmu2, Fmu3, OK, WARNING};
 
 const PEAKS: [&str; 4] = [
     "peak.lower.tip_deflection",
@@ -44,6 +44,18 @@ fn assert_close(what: &str, got: f64, expected: f64) {
     assert!(relative <= 1e-9, "{what}: FMU {got}, library {expected} (relative {relative:e})");
 }
 
+/// Every step returns OK, except that the step reaching the FMU's stop time warns when the
+/// discretisation check does not vouch for the whole run's peaks (the lightly damped low drop here:
+/// its late peaks move by several percent between rungs), as the FMU's output says.
+fn assert_step_status(status: i32, end: f64, figure: f64, log: &str) {
+    if status == WARNING {
+        assert!(end >= STOP && figure > 0.01, "step to {end}, figure {figure}: {log}");
+        assert!(log.contains("against the discretisation check"), "{log}");
+    } else {
+        assert_eq!(status, OK, "step to {end}: {log}");
+    }
+}
+
 fn fmi2(h: f64, gamma: f64, d: f64, interval: f64, input: Option<(f64, f64)>) -> [f64; 4] {
     let lib = fmi_common::importer::load();
     let fmu = Fmu2::new(&lib);
@@ -62,7 +74,8 @@ fn fmi2(h: f64, gamma: f64, d: f64, interval: f64, input: Option<(f64, f64)>) ->
             }
         }
         let next = (((n + 1) as f64) * interval).min(STOP);
-        assert_eq!(fmu.do_step(t, next - t), OK, "fmi2DoStep at {t}: {}", fmu.log.text());
+        let status = fmu.do_step(t, next - t);
+        assert_step_status(status, next, fmu.get("quality.discretisation_error"), &fmu.log.text());
         t = next;
         n += 1;
     }
@@ -82,7 +95,7 @@ fn fmi3(h: f64, gamma: f64, d: f64, interval: f64) -> [f64; 4] {
     while t < STOP - 1e-12 {
         let next = (((n + 1) as f64) * interval).min(STOP);
         let (status, _, _) = fmu.do_step(t, next - t);
-        assert_eq!(status, OK, "fmi3DoStep at {t}: {}", fmu.log.text());
+        assert_step_status(status, next, fmu.get("quality.discretisation_error"), &fmu.log.text());
         t = next;
         n += 1;
     }

@@ -14,7 +14,9 @@ const WARNING: i32 = 1;
 
 /// The paper's step pair on an undamped 0.2 m drop (residual 23 % of the energy that flows): FMI 2
 /// returns fmi2Warning from exactly one DoStep, the one in which the residual crosses 1 %, after
-/// logging the reason; every other step is OK. The same with the automatic steps: no warning.
+/// logging the reason; every other step is OK. The same with the automatic steps: no warning. The
+/// discretisation check is set aside (`discretisation_tolerance` = 1) to judge the energy alone:
+/// an undamped multi-bounce run's late peaks are not vouched for by it (`tests/fmi_grid.rs`).
 #[test]
 fn fmi2_warns_once_when_the_energy_residual_crosses_the_tolerance() {
     for (steps, expect_warning) in [((5e-5, 2.5e-5), true), ((0.0, 0.0), false)] {
@@ -22,9 +24,13 @@ fn fmi2_warns_once_when_the_energy_residual_crosses_the_tolerance() {
         let fmu = Fmu2::new(&lib);
         assert_eq!(fmu.setup(0.0, Some(3.0)), OK);
         assert_eq!(fmu.set_string("log.path", ""), OK);
-        for (name, value) in
-            [("drop_height", 0.2), ("damping_ratio", 0.0), ("step_free", steps.0), ("step_contact", steps.1)]
-        {
+        for (name, value) in [
+            ("drop_height", 0.2),
+            ("damping_ratio", 0.0),
+            ("step_free", steps.0),
+            ("step_contact", steps.1),
+            ("discretisation_tolerance", 1.0),
+        ] {
             assert_eq!(fmu.set(name, value), OK);
         }
         assert_eq!(fmu.initialize(), OK, "{}", fmu.log.text());
@@ -46,7 +52,13 @@ fn fmi3_warns_once_when_the_energy_residual_crosses_the_tolerance() {
     let lib = fmi_common::importer::load();
     let fmu = Fmu3::try_new(&lib, None, false).0.unwrap();
     assert_eq!(fmu.set_string("log.path", ""), OK);
-    for (name, value) in [("drop_height", 0.2), ("damping_ratio", 0.0), ("step_free", 5e-5), ("step_contact", 2.5e-5)] {
+    for (name, value) in [
+        ("drop_height", 0.2),
+        ("damping_ratio", 0.0),
+        ("step_free", 5e-5),
+        ("step_contact", 2.5e-5),
+        ("discretisation_tolerance", 1.0),
+    ] {
         assert_eq!(fmu.set(name, value), OK);
     }
     assert_eq!(fmu.initialize_until(Some(3.0)), OK, "{}", fmu.log.text());

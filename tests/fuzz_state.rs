@@ -26,6 +26,7 @@ fn real_states() -> Vec<Vec<u8>> {
             initialized: ns > 0,
             parameters: parameters_of(&scenario),
             run: sim.state().clone(),
+            checks: vec![sim.state().clone()],
         };
         out.push(snapshot.to_bytes().unwrap());
     }

@@ -89,6 +89,15 @@ pub struct StepOutcome {
     pub untrusted: bool,
 }
 
+/// |value - reference| / |reference| (0 when equal).
+fn relative_change(value: f64, reference: f64) -> f64 {
+    if value == reference {
+        0.0
+    } else {
+        (value - reference).abs() / reference.abs()
+    }
+}
+
 /// Internal result: the error message is logged by [`Instance::guard`].
 pub type Outcome<T> = std::result::Result<T, String>;
 
@@ -104,6 +113,10 @@ pub struct Instance {
     scenario: Scenario,
     log_path: String,
     simulation: Option<Simulation>,
+    /// The discretisation check's runs, stepped in lockstep with `simulation` (the coarser rungs
+    /// of the converged method, or the converged answer beside the paper method); `None` once a
+    /// state has been restored (they hold no state of their own): not checked from there on.
+    checks: Option<Vec<Simulation>>,
     recorder: Option<McapRecorder>,
     start_time: f64,
     stop_time: Option<f64>,
@@ -229,6 +242,7 @@ impl Instance {
             scenario: Scenario::default(),
             log_path: DEFAULT_LOG_PATH.to_string(),
             simulation: None,
+            checks: None,
             recorder: None,
             start_time: 0.0,
             stop_time: None,
@@ -419,7 +433,11 @@ impl Instance {
                 return Err(format!("invalid parameter: {last}"));
             }
             let simulation = Simulation::new(&self.scenario).map_err(|e| format!("invalid parameters: {e}"))?;
+            let checks = crate::answer::check_scenarios(&self.scenario)
+                .and_then(|scenarios| scenarios.iter().map(Simulation::new).collect::<crate::Result<Vec<_>>>())
+                .map_err(|e| format!("invalid parameters (discretisation check): {e}"))?;
             self.simulation = Some(simulation);
+            self.checks = Some(checks);
         }
         self.simulation.as_mut().ok_or_else(|| "no simulation".to_string())
     }
@@ -570,6 +588,21 @@ impl Instance {
         } else {
             simulation.advance_outputs_to(target_ns, &mut tap, early)
         };
+        if advance.is_ok() {
+            let reached = simulation.output().time_ns;
+            let forces = simulation.state().forces;
+            for check in self.checks.iter_mut().flatten() {
+                check.set_tip_forces(forces);
+                let moved = if at_stop {
+                    check.advance_to(reached, &mut crate::record::NullRecorder, false)
+                } else {
+                    check.advance_outputs_to(reached, &mut crate::record::NullRecorder, false)
+                };
+                if let Err(e) = moved {
+                    return Err(format!("the discretisation check's run: {e}"));
+                }
+            }
+        }
         let events = std::mem::take(&mut tap.events);
         for e in &events {
             self.log(
@@ -600,13 +633,32 @@ impl Instance {
             }
         }
         let quality = self.simulation.as_ref().ok_or("no simulation")?.quality();
-        let untrusted = !quality.trusted && !self.untrusted_reported;
+        let mut reasons = quality.reasons.clone();
+        // The discretisation figure speaks of the whole run's peaks (the early running peaks of
+        // the first contact transients differ between rungs by far more): judged at the stop time.
+        let (figure, tolerance) = (self.discretisation_error(), self.scenario.discretisation_tolerance);
+        if at_stop && figure > tolerance {
+            reasons.push(format!(
+                "a running peak changes by {} against the discretisation check (> discretisation_tolerance = {})",
+                crate::answer::percent(figure),
+                crate::answer::percent(tolerance)
+            ));
+        }
+        if let Some(c) = self.yield_check() {
+            if !c.pass {
+                reasons.push(format!(
+                    "the stresses reach {} of the yield stress: the elastic model is out of its range",
+                    crate::answer::percent(c.value)
+                ));
+            }
+        }
+        let untrusted = !reasons.is_empty() && !self.untrusted_reported;
         if untrusted {
             self.untrusted_reported = true;
             self.log(
                 Status::Warning,
                 Status::Warning.category(),
-                &format!("at t = {time} s the results are no longer trusted: {}", quality.reasons.join("; ")),
+                &format!("at t = {time} s the results are no longer trusted: {}", reasons.join("; ")),
             );
         }
         Ok(StepOutcome { early_return, last_successful_time: time, untrusted: untrusted || capped_now })
@@ -703,7 +755,18 @@ impl Instance {
                     .ok_or_else(|| format!("{}: {what} has only {} modes with this mesh", v.name, list.len()))?
             }
             Source::EnergyMethod(get) => get(self.computed(&v.name)?.energy_method()),
-            Source::LogPath | Source::ContactActive => return Err(format!("`{}` is not Real", v.name)),
+            Source::Utilisation(k) => {
+                let peaks = self.computed(&v.name)?.output().peaks;
+                crate::answer::Design::assess(&self.scenario, &peaks).utilisation.as_array()[k]
+            }
+            Source::DiscretisationError => {
+                self.computed(&v.name)?;
+                self.discretisation_error()
+            }
+            Source::SensitivitySpread => -1.0,
+            Source::LogPath | Source::ContactActive | Source::DesignPass | Source::Trusted => {
+                return Err(format!("`{}` is not Real", v.name))
+            }
         })
     }
 
@@ -721,6 +784,17 @@ impl Instance {
         let v = self.variable(vr, Type::Boolean)?;
         match v.source {
             Source::ContactActive => Ok(self.computed(&v.name)?.output().contact),
+            Source::DesignPass => {
+                let peaks = self.computed(&v.name)?.output().peaks;
+                Ok(crate::answer::Design::assess(&self.scenario, &peaks).pass)
+            }
+            Source::Trusted => {
+                let energy = self.computed(&v.name)?.quality().trusted;
+                let figure = self.discretisation_error();
+                Ok(energy
+                    && figure <= self.scenario.discretisation_tolerance
+                    && self.yield_check().is_none_or(|c| c.pass))
+            }
             _ => Err(format!("`{}` is not a Boolean", v.name)),
         }
     }
@@ -839,11 +913,13 @@ impl Instance {
     /// start time and whether the instance is initialized (not the stop time, not `log.path`).
     pub fn snapshot(&mut self) -> Outcome<Snapshot> {
         let run = self.simulation()?.state().clone();
+        let checks = self.checks.iter().flatten().map(|c| c.state().clone()).collect();
         Ok(Snapshot {
             start_time: self.start_time,
             initialized: self.initialized(),
             parameters: parameters_of(&self.scenario),
             run,
+            checks,
         })
     }
 
@@ -886,7 +962,23 @@ impl Instance {
             simulation.restore(snapshot.run.clone()).map_err(|e| e.to_string())?;
             self.simulation = Some(simulation);
         }
+        // The discretisation check's runs, restored from the snapshot's states (a state without
+        // them, or whose check runs do not fit, leaves the check off: not checked from there on).
+        let mut checks = match (same_model, self.checks.take()) {
+            (true, Some(checks)) => Some(checks),
+            _ => crate::answer::check_scenarios(&scenario)
+                .and_then(|s| s.iter().map(Simulation::new).collect::<crate::Result<Vec<_>>>())
+                .ok(),
+        };
+        if let Some(runs) = checks.as_mut() {
+            let fits = runs.len() == snapshot.checks.len()
+                && runs.iter_mut().zip(&snapshot.checks).all(|(run, state)| run.restore(state.clone()).is_ok());
+            if !fits {
+                checks = None;
+            }
+        }
         self.scenario = scenario;
+        self.checks = checks;
         self.start_time = snapshot.start_time;
         self.last_successful_time = self.time();
         if self.state == State::Error {
@@ -941,6 +1033,29 @@ impl Instance {
             ))));
         }
         Ok(Status::Ok)
+    }
+
+    /// The largest discretisation figure of the running peaks so far against the checks' runs
+    /// (see [`crate::answer`]); -1 when not checked (no simulation, or after a restored state).
+    fn discretisation_error(&self) -> f64 {
+        let (Some(simulation), Some(checks)) = (&self.simulation, &self.checks) else { return -1.0 };
+        let printed = simulation.output().peaks.as_array();
+        let runs: Vec<[f64; 5]> = checks.iter().map(|c| c.output().peaks.as_array()).collect();
+        let paper = self.scenario.method == crate::model::Method::Paper;
+        (0..5)
+            .map(|k| match (paper, runs.as_slice()) {
+                (true, [converged, ..]) => relative_change(printed[k], converged[k]),
+                (false, [check, coarse]) => crate::answer::discretisation_figure(printed[k], check[k], Some(coarse[k])),
+                (false, [check]) => crate::answer::discretisation_figure(printed[k], check[k], None),
+                _ => -1.0,
+            })
+            .fold(-1.0, f64::max)
+    }
+
+    /// The yield check of the running peaks (`None` without a yield stress).
+    fn yield_check(&self) -> Option<crate::answer::Check> {
+        let peaks = self.simulation.as_ref()?.output().peaks;
+        crate::answer::yield_check(&self.scenario, &peaks)
     }
 
     /// Logs `warning` (if any) and returns its status.

@@ -60,6 +60,9 @@ pub struct Snapshot {
     pub parameters: BTreeMap<String, f64>,
     /// The simulation's state.
     pub run: RunState,
+    /// The states of the discretisation check's runs (empty: not checked), in the order of
+    /// [`crate::answer::check_scenarios`].
+    pub checks: Vec<RunState>,
 }
 
 /// Every FMU parameter's value by name (the scenario fields the FMU exposes, so not the CLI's
@@ -164,6 +167,7 @@ mod tests {
             initialized: true,
             parameters: parameters_of(&Scenario::default()),
             run: state_at(ns),
+            checks: vec![state_at(ns)],
         }
     }
 
@@ -301,7 +305,8 @@ mod tests {
         out.insert(format!("{prefix}: {leaf}"));
     }
 
-    /// The payload's layout at FORMAT_VERSION 3 (3: the method, modal cut-off, discretisation tolerance, allowables and yield stresses): every field path of `Snapshot` and its type, the
+    /// The payload's layout at FORMAT_VERSION 3 (3: the method, modal cut-off, discretisation
+    /// tolerance, allowables and yield stresses; the discretisation check's run states): every field path of `Snapshot` and its type, the
     /// FMU parameters by name. Version 2 (one bump for issues 7, 8 and 9): the energy verdict, the
     /// output time and input of grid-independent co-simulation, the first contact's peaks, the
     /// support reactions and tip velocities (RunState); the FMU parameters, the absolute start
@@ -312,8 +317,80 @@ mod tests {
     /// list together. (A DVector is nalgebra's `[data, nrows, ncols]`: `[][]` the data, `[]` the
     /// sizes; `null` an absent Option or the static column count.)
     #[test]
-    fn snapshot_fields_are_pinned_at_format_version_2() {
+    fn snapshot_fields_are_pinned_at_format_version_3() {
         const VERSION_3: &[&str] = &[
+            "checks[].contact_windows[].end: f64",
+            "checks[].contact_windows[].start: f64",
+            "checks[].dissipation_rate: f64",
+            "checks[].first_contact.ended: bool",
+            "checks[].first_contact.last_contact: f64",
+            "checks[].first_contact.peaks.contact_force: f64",
+            "checks[].first_contact.peaks.lower_clamp_bending_stress: f64",
+            "checks[].first_contact.peaks.lower_clamp_shear_stress: f64",
+            "checks[].first_contact.peaks.lower_tip_deflection: f64",
+            "checks[].first_contact.peaks.upper_contact_bending_stress: f64",
+            "checks[].first_contact.pending.contact_force: f64",
+            "checks[].first_contact.pending.lower_clamp_bending_stress: f64",
+            "checks[].first_contact.pending.lower_clamp_shear_stress: f64",
+            "checks[].first_contact.pending.lower_tip_deflection: f64",
+            "checks[].first_contact.pending.upper_contact_bending_stress: f64",
+            "checks[].first_contact.window_start: f64",
+            "checks[].forces.lower: f64",
+            "checks[].forces.upper: f64",
+            "checks[].gap: f64",
+            "checks[].initial_energy: f64",
+            "checks[].input_forces.lower: f64",
+            "checks[].input_forces.upper: f64",
+            "checks[].kinematics.acceleration[]: null",
+            "checks[].kinematics.acceleration[]: u64",
+            "checks[].kinematics.acceleration[][]: f64",
+            "checks[].kinematics.displacement[]: null",
+            "checks[].kinematics.displacement[]: u64",
+            "checks[].kinematics.displacement[][]: f64",
+            "checks[].kinematics.velocity[]: null",
+            "checks[].kinematics.velocity[]: u64",
+            "checks[].kinematics.velocity[][]: f64",
+            "checks[].last_forces.lower: f64",
+            "checks[].last_forces.upper: f64",
+            "checks[].max_external_work: f64",
+            "checks[].max_residual: f64",
+            "checks[].max_strain_energy: f64",
+            "checks[].output_ns: u64",
+            "checks[].peak_times.contact_force: f64",
+            "checks[].peak_times.lower_clamp_bending_stress: f64",
+            "checks[].peak_times.lower_clamp_shear_stress: f64",
+            "checks[].peak_times.lower_tip_deflection: f64",
+            "checks[].peak_times.upper_contact_bending_stress: f64",
+            "checks[].result.contact: bool",
+            "checks[].result.contact_force: f64",
+            "checks[].result.contact_stress: f64",
+            "checks[].result.energy.damping_dissipation: f64",
+            "checks[].result.energy.external_work: f64",
+            "checks[].result.energy.gravity_potential: f64",
+            "checks[].result.energy.kinetic: f64",
+            "checks[].result.energy.residual: f64",
+            "checks[].result.energy.strain: f64",
+            "checks[].result.lower_clamp_bending_stress: f64",
+            "checks[].result.lower_clamp_reaction_force: f64",
+            "checks[].result.lower_clamp_reaction_moment: f64",
+            "checks[].result.lower_clamp_shear_stress: f64",
+            "checks[].result.lower_tip_deflection: f64",
+            "checks[].result.lower_tip_velocity: f64",
+            "checks[].result.peaks.contact_force: f64",
+            "checks[].result.peaks.lower_clamp_bending_stress: f64",
+            "checks[].result.peaks.lower_clamp_shear_stress: f64",
+            "checks[].result.peaks.lower_tip_deflection: f64",
+            "checks[].result.peaks.upper_contact_bending_stress: f64",
+            "checks[].result.step: u64",
+            "checks[].result.step_size: f64",
+            "checks[].result.time: f64",
+            "checks[].result.time_ns: u64",
+            "checks[].result.upper_contact_bending_stress: f64",
+            "checks[].result.upper_contact_deflection: f64",
+            "checks[].result.upper_hinge_reaction_force: f64",
+            "checks[].result.upper_tip_deflection: f64",
+            "checks[].result.upper_tip_velocity: f64",
+            "checks[].upper_strain_at_peak: f64",
             "initialized: bool",
             "parameters.contact.area: f64",
             "parameters.contact.elastic_modulus: f64",

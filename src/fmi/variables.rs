@@ -135,6 +135,17 @@ pub enum Source {
     Mode(Column, usize),
     /// A result of the energy approach of Section 3.
     EnergyMethod(fn(&EnergyMethod) -> f64),
+    /// A stress peak's utilisation (running peak / allowable), in the order of
+    /// [`crate::answer::DesignUtilisation::as_array`].
+    Utilisation(usize),
+    /// Whether every utilisation is <= 1.
+    DesignPass,
+    /// Whether every check that runs in the FMU passes (energy, discretisation, yield).
+    Trusted,
+    /// The largest discretisation figure of the running peaks so far (-1: not checked).
+    DiscretisationError,
+    /// The largest spread against the twin run (-1: not checked; the FMU runs no twin).
+    SensitivitySpread,
 }
 
 /// One model variable.
@@ -351,8 +362,12 @@ pub fn affects_values(p: &Parameter) -> bool {
 
 /// Whether a parameter came after the first release: its value reference follows every older
 /// variable's (the end of [`table`]), so that the older value references stay as they were.
+/// These are every parameter from `energy_tolerance` on in [`PARAMETERS`] (issue 7: the energy
+/// tolerance, the stress recovery; issue 15: the method, the modal cut-off, the discretisation
+/// tolerance, the allowables and the yield stresses), in that order.
 pub fn is_appended_parameter(p: &Parameter) -> bool {
-    matches!(p.name, "energy_tolerance" | "stress_recovery")
+    let index = |name: &str| PARAMETERS.iter().position(|q| q.name == name);
+    matches!((index(p.name), index("energy_tolerance")), (Some(i), Some(first)) if i >= first)
 }
 
 /// Every variable of the FMU, in value-reference order.
@@ -507,6 +522,72 @@ pub fn table() -> Vec<Variable> {
             Source::Output(get),
         );
     }
+    for (k, name) in ["lower.clamp_bending_stress", "lower.clamp_shear_stress", "upper.contact_bending_stress"]
+        .into_iter()
+        .enumerate()
+    {
+        push(
+            format!("utilisation.{name}"),
+            Type::Real,
+            Causality::Output,
+            Variability::Continuous,
+            Some(false),
+            Some("1"),
+            format!("Design check: running peak of {name} over its allowable stress (fails above 1)"),
+            None,
+            Source::Utilisation(k),
+        );
+    }
+    push(
+        "design.pass".into(),
+        Type::Boolean,
+        Causality::Output,
+        Variability::Discrete,
+        Some(false),
+        None,
+        "Design check: every utilisation.* <= 1".into(),
+        None,
+        Source::DesignPass,
+    );
+    push(
+        "quality.trusted".into(),
+        Type::Boolean,
+        Causality::Output,
+        Variability::Discrete,
+        Some(false),
+        None,
+        "Every check the FMU runs passes so far: energy balance, discretisation (the coarser rungs run in \
+         lockstep), yield"
+            .into(),
+        None,
+        Source::Trusted,
+    );
+    push(
+        "quality.discretisation_error".into(),
+        Type::Real,
+        Causality::Output,
+        Variability::Continuous,
+        Some(false),
+        Some("1"),
+        "Largest discretisation figure of the running peaks against the coarser rungs (paper method: against the \
+         converged answer); -1: not checked (after SetFMUState)"
+            .into(),
+        None,
+        Source::DiscretisationError,
+    );
+    push(
+        "quality.sensitivity_spread".into(),
+        Type::Real,
+        Causality::Output,
+        Variability::Continuous,
+        Some(false),
+        Some("1"),
+        "Largest spread of the peaks against a twin run with the drop height changed by 1e-9: -1, not checked by \
+         the FMU (the CLI checks it)"
+            .into(),
+        None,
+        Source::SensitivitySpread,
+    );
     for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && is_appended_parameter(p)) {
         let (name, ty, unit, description, start) = parameter(p);
         push(

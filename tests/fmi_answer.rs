@@ -1,0 +1,93 @@
+//! The checked answer through the FMU (issue 15): the design's utilisations and verdict, and the
+//! discretisation check run in lockstep, equal what `beam-impact run` prints for the same scenario.
+//!
+//! Oracle: `answer::run` (the CLI's run and its checks). With constant inputs the FMU takes the
+//! very same internal steps as the library run and its check runs (`tests/fmi_grid.rs`), so the
+//! utilisations are equal to the bit and the discretisation figure to round-off of the same
+//! numbers (tolerance 1e-12).
+
+mod fmi_common;
+
+use beam_impact::record::NullRecorder;
+use beam_impact::{answer, Scenario};
+use fmi_common::importer::{Fmu2, Fmu3, OK};
+
+const STOP: f64 = 1.0;
+
+fn cli(h: f64, gamma: f64) -> answer::Answer {
+    let s = Scenario { drop_height: h, damping_ratio: gamma, duration: STOP, ..Scenario::default() };
+    answer::run(&s, &mut NullRecorder, Default::default()).unwrap()
+}
+
+fn largest(p: &beam_impact::results::Peaks) -> f64 {
+    p.as_array().into_iter().fold(0.0, f64::max)
+}
+
+/// FMI 2 at 10 ms and FMI 3 at 1 ms over 1 s: `utilisation.*` and `design.pass` are the CLI's,
+/// `quality.discretisation_error` the largest of its whole-run figures, `quality.trusted` its
+/// verdict without the twin (the FMU runs none: `quality.sensitivity_spread` = -1).
+#[test]
+fn fmu_design_and_quality_outputs_equal_the_cli_answer() {
+    for (h, gamma) in [(0.567, 0.03), (1.5, 0.02)] {
+        let expected = cli(h, gamma);
+        let u = expected.design.utilisation;
+        let figure = largest(&expected.discretisation_error);
+        let trusted = expected.quality.checks.energy.unwrap().pass && figure <= 0.01;
+
+        let lib = fmi_common::importer::load();
+        let fmu = Fmu2::new(&lib);
+        assert_eq!(fmu.setup(0.0, Some(STOP)), OK);
+        assert_eq!(fmu.set_string("log.path", ""), OK);
+        assert_eq!(fmu.set("drop_height", h), OK);
+        assert_eq!(fmu.set("damping_ratio", gamma), OK);
+        assert_eq!(fmu.call0("fmi2EnterInitializationMode"), OK);
+        assert_eq!(fmu.call0("fmi2ExitInitializationMode"), OK, "{}", fmu.log.text());
+        let mut t: f64 = 0.0;
+        let mut n = 0;
+        while t < STOP - 1e-12 {
+            let next = ((n + 1) as f64 * 0.01).min(STOP);
+            let status = fmu.do_step(t, next - t);
+            assert!(status == OK || (status == 1 && !trusted), "{}", fmu.log.text());
+            t = next;
+            n += 1;
+        }
+        for (name, value) in [
+            ("utilisation.lower.clamp_bending_stress", u.lower_clamp_bending_stress),
+            ("utilisation.lower.clamp_shear_stress", u.lower_clamp_shear_stress),
+            ("utilisation.upper.contact_bending_stress", u.upper_contact_bending_stress),
+        ] {
+            assert_eq!(fmu.get(name), value, "{name} at h = {h}");
+        }
+        assert_eq!(fmu.get_boolean("design.pass"), expected.design.pass);
+        let got = fmu.get("quality.discretisation_error");
+        assert!((got - figure).abs() <= 1e-12, "h = {h}: FMU {got}, CLI {figure}");
+        assert_eq!(fmu.get_boolean("quality.trusted"), trusted, "h = {h}");
+        assert_eq!(fmu.get("quality.sensitivity_spread"), -1.0);
+    }
+}
+
+/// FMI 3, and a state saved mid-run restores the checks' runs too: the outputs after a rollback
+/// equal those of the run that was never rolled back.
+#[test]
+fn fmi3_quality_outputs_survive_a_rollback() {
+    let lib = fmi_common::importer::load();
+    let fmu = Fmu3::try_new(&lib, None, false).0.unwrap();
+    assert_eq!(fmu.set_string("log.path", ""), OK);
+    assert_eq!(fmu.initialize_until(Some(STOP)), OK, "{}", fmu.log.text());
+    for n in 0..50 {
+        assert_eq!(fmu.do_step(n as f64 * 0.01, 0.01).0, OK);
+    }
+    let state = fmu.get_state();
+    for n in 50..100 {
+        fmu.do_step(n as f64 * 0.01, 0.01);
+    }
+    let first = fmu.get("quality.discretisation_error");
+    assert!(first >= 0.0, "checked: {first}");
+    assert_eq!(fmu.set_state(state), OK);
+    for n in 50..100 {
+        fmu.do_step(n as f64 * 0.01, 0.01);
+    }
+    assert_eq!(fmu.get("quality.discretisation_error"), first);
+    let expected = cli(0.567, 0.03);
+    assert!((first - largest(&expected.discretisation_error)).abs() <= 1e-12);
+}
