@@ -97,5 +97,54 @@ pub fn stepper_benchmark(runs: usize) -> Result<String> {
             dofs as f64 / b_dofs as f64
         );
     }
+    out += &converged_benchmark(runs)?;
+    Ok(out)
+}
+
+/// The cost of a converged answer against the paper method, side by side in one process: the
+/// paper's 7 + 7/7 mesh with automatic steps (the reference cost), the converged method's printed
+/// rung alone, its check runs alone (the two coarser rungs and the twin), and the whole answer
+/// (`answer::run`: the four runs, on the available cores) and its CPU time; medians of `runs`.
+pub fn converged_benchmark(runs: usize) -> Result<String> {
+    let mut out = String::new();
+    let paper_mesh = Scenario::paper_mesh();
+    let converged = Scenario::default();
+    let time = |f: &dyn Fn() -> Result<()>| -> Result<Duration> {
+        let mut samples = Vec::with_capacity(runs);
+        for _ in 0..runs.max(1) {
+            let start = Instant::now();
+            f()?;
+            samples.push(start.elapsed());
+        }
+        Ok(median(samples))
+    };
+    let run = |s: &Scenario| -> Result<()> { Simulation::new(s)?.run(&mut NullRecorder).map(|_| ()) };
+    let paper = time(&|| run(&paper_mesh))?;
+    let printed = time(&|| run(&converged))?;
+    let mut checks = crate::answer::check_scenarios(&converged)?;
+    checks.push(crate::answer::twin_scenario(&converged));
+    let check_runs = time(&|| checks.iter().try_for_each(run))?;
+    let cpu = cpu_time::ProcessTime::now();
+    let whole = time(&|| crate::answer::run(&converged, &mut NullRecorder, Default::default()).map(|_| ()))?;
+    let cpu = cpu.elapsed() / runs.max(1) as u32;
+    let ms = |d: Duration| d.as_secs_f64() * 1e3;
+    let ratio = |d: Duration| d.as_secs_f64() / paper.as_secs_f64();
+    let _ = writeln!(out, "converged answer vs the paper method (paper scenario, 3 s, median of {runs} runs):");
+    let _ = writeln!(out, "  paper method, 7 + 7/7, auto steps   : {:8.1} ms  x1.00", ms(paper));
+    let _ = writeln!(out, "  converged, printed rung alone       : {:8.1} ms  x{:.2}", ms(printed), ratio(printed));
+    let _ = writeln!(
+        out,
+        "  its checks alone (2 rungs + twin)   : {:8.1} ms  x{:.2} (one after another)",
+        ms(check_runs),
+        ratio(check_runs)
+    );
+    let _ = writeln!(
+        out,
+        "  the whole answer (answer::run)      : {:8.1} ms  x{:.2} wall, {:.1} ms CPU x{:.2}",
+        ms(whole),
+        ratio(whole),
+        ms(cpu),
+        ratio(cpu)
+    );
     Ok(out)
 }
