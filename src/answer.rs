@@ -37,6 +37,11 @@ pub const PEAK_NAMES: [&str; 5] = [
     "contact_force",
 ];
 
+/// Below this damping ratio the late-impact peaks of a truncated basis are not vouched for: from
+/// 0.02 on the high modes are damped between impacts (the paper's Appendix A: the stresses level
+/// off from 0.02; measured: every whole-run peak at 0.03 within 0.2 % of the full basis).
+pub const LIGHT_DAMPING: f64 = 0.02;
+
 /// Relative change of the drop height in the twin run.
 pub const TWIN_PERTURBATION: f64 = 1e-9;
 
@@ -172,6 +177,9 @@ pub struct Answer {
     pub discretisation_error: Peaks,
     /// Each first-contact peak's discretisation figure.
     pub first_contact_discretisation_error: Peaks,
+    /// Whole-run peaks reached after the first sustained contact of a lightly damped converged run
+    /// (damping ratio below [`LIGHT_DAMPING`]): not vouched for, the rungs being all truncated.
+    pub unvouched_late_peaks: Vec<String>,
     /// Each whole-run peak's spread against the twin run (a fraction); null when not checked.
     pub sensitivity_spread: Option<Peaks>,
     /// The design check of the converged peaks.
@@ -349,8 +357,33 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
             (PEAK_NAMES[i].to_string(), a)
         }
     };
-    let discretisation = Check::new(worst_figure, tolerance);
-    if !discretisation.pass {
+    // Late-impact peaks of lightly damped runs: the modes above the cut-off, replaced by their
+    // static response, keep ringing in the full model from one impact to the next; the rungs (all
+    // truncated) cannot see it (measured: tau_a 13 % above the truncated answer at drop 0.3 m,
+    // contact 13 m, damping 0.01). Such a peak is not vouched for; the first-contact ones are.
+    let truncated = printed.modal_cutoff.is_some() && printed.modes[0] < printed.modes[1];
+    let unvouched_late_peaks: Vec<String> = if truncated && resolved.damping_ratio < LIGHT_DAMPING {
+        PEAK_NAMES
+            .iter()
+            .zip(summary.peaks.as_array().into_iter().zip(summary.first_contact_peaks.as_array()))
+            .filter(|(_, (whole, first))| whole > first)
+            .map(|(n, _)| n.to_string())
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let mut discretisation = Check::new(worst_figure, tolerance);
+    if !unvouched_late_peaks.is_empty() {
+        discretisation.pass = false;
+        reasons.push(format!(
+            "discretisation: late-impact peaks of a lightly damped run (damping_ratio = {} < {LIGHT_DAMPING}) are not \
+             vouched for by the truncated basis (its modes above the cut-off ring in the full model): {}; the \
+             first-contact peaks are",
+            resolved.damping_ratio,
+            unvouched_late_peaks.join(", ")
+        ));
+    }
+    if worst_figure.is_nan() || worst_figure > tolerance {
         let flagged: Vec<String> = PEAK_NAMES
             .iter()
             .zip(discretisation_error.as_array())
@@ -428,6 +461,7 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
         converged_first_contact_peaks: converged_first,
         discretisation_error,
         first_contact_discretisation_error,
+        unvouched_late_peaks,
         sensitivity_spread,
         design,
         quality,
@@ -515,6 +549,7 @@ pub fn table(answer: &Answer) -> String {
     let tolerance = r.discretisation_tolerance;
     for k in 0..5 {
         let (label, scale) = labels[k];
+        let late = answer.unvouched_late_peaks.iter().any(|n| n == PEAK_NAMES[k]);
         let flag = |v: f64| if v <= tolerance { " " } else { "!" };
         let _ = writeln!(
             s,
@@ -522,7 +557,7 @@ pub fn table(answer: &Answer) -> String {
             printed[k] * scale,
             converged[k] * scale,
             percent(errors[k]),
-            flag(errors[k]),
+            if late { "!" } else { flag(errors[k]) },
             spread.map_or("n/a".to_string(), |p| percent(p[k])),
             spread.map_or(" ", |p| flag(p[k])),
             first[k] * scale,

@@ -69,6 +69,21 @@ pub fn coarse(scenario: &Scenario) -> Result<Scenario> {
     rung(scenario, DEFAULT_RUNG - 2, 4)
 }
 
+/// The automatic cut-offs' multiplier: [`LIGHT_DAMPING_CUTOFF`] below a damping ratio of
+/// [`crate::answer::LIGHT_DAMPING`], else 1. With little damping the modes above the paper mesh's
+/// highest frequency still ring through the first sustained contact (measured at drop 0.3 m,
+/// contact 13 m, damping 0.01: first-contact tau_a 1.3 % below the full basis at 1x, 0.2 % at 2x).
+pub fn light_damping_factor(scenario: &Scenario) -> f64 {
+    if scenario.damping_ratio < crate::answer::LIGHT_DAMPING {
+        LIGHT_DAMPING_CUTOFF
+    } else {
+        1.0
+    }
+}
+
+/// The automatic cut-offs' multiplier for lightly damped runs.
+pub const LIGHT_DAMPING_CUTOFF: f64 = 2.0;
+
 /// The ladder's rung `index` for `"auto"` fields; explicit element counts are divided by
 /// `divisor` (rounded up) so that the check rung of an explicit mesh is half as fine.
 fn rung(scenario: &Scenario, index: usize, divisor: u32) -> Result<Scenario> {
@@ -79,7 +94,7 @@ fn rung(scenario: &Scenario, index: usize, divisor: u32) -> Result<Scenario> {
     }
     if s.modal_cutoff == 0.0 {
         s.validate()?;
-        s.modal_cutoff = r.cutoff_factor * reference_frequency(scenario)?;
+        s.modal_cutoff = r.cutoff_factor * light_damping_factor(scenario) * reference_frequency(scenario)?;
     }
     Ok(s)
 }

@@ -1,0 +1,125 @@
+//! The converged method's answers against references of the same model on fine meshes with the
+//! full modal basis (`tests/fixtures/converged_references.json`, made by
+//! `tests/fixtures/make_converged_references.py`): the paper scenario and drop 0.3 / 1 / 2 m x
+//! contact 10 / 13 / 16 m x damping 0.01 / 0.03, 3 s, at 56 and 112 elements per segment.
+//!
+//! A reference is a peak on which 56 and 112 elements agree within 0.3 % (where the 112-element
+//! run is in the fixture; otherwise the 56-element value, marked so). The rule (issue 15): the
+//! first-contact peaks, and the whole-run peaks at damping >= 0.02, are within 1 % of the
+//! reference; any other peak is within 1 % or flagged (its discretisation figure above the
+//! tolerance, a late-impact peak of a lightly damped run, or the run's sensitivity check failed:
+//! not trusted).
+
+use beam_impact::answer::{self, PEAK_NAMES};
+use beam_impact::model::{Method, TimeStep};
+use beam_impact::record::NullRecorder;
+use beam_impact::results::Peaks;
+use beam_impact::{Scenario, Simulation};
+use serde_json::Value;
+
+fn fixture() -> Value {
+    let text = include_str!("fixtures/converged_references.json");
+    serde_json::from_str(text).unwrap()
+}
+
+fn scenario(settings: &Value) -> Scenario {
+    let mut s = Scenario::default();
+    if let Some(h) = settings.get("drop_height") {
+        s.drop_height = h.as_f64().unwrap();
+    }
+    if let Some(d) = settings.get("contact_position") {
+        s.contact_position = d.as_f64().unwrap();
+    }
+    if let Some(g) = settings.get("damping_ratio") {
+        s.damping_ratio = g.as_f64().unwrap();
+    }
+    s
+}
+
+fn peak(p: &Peaks, name: &str) -> f64 {
+    p.as_array()[PEAK_NAMES.iter().position(|n| *n == name).unwrap()]
+}
+
+/// The references of `kind` ("peaks" or "first_contact_peaks"): (name, value, from 112 elements).
+fn references<'a>(row: &'a Value, kind: &str) -> Vec<(&'a str, f64, bool)> {
+    let fine = row.get("112").map(|r| &r[kind]);
+    let agree: Vec<&str> = row["agree"][kind].as_array().unwrap().iter().map(|v| v.as_str().unwrap()).collect();
+    PEAK_NAMES
+        .iter()
+        .filter_map(|&name| match fine {
+            Some(f) => agree.contains(&name).then(|| (name, f[name].as_f64().unwrap(), true)),
+            None => Some((name, row["56"][kind][name].as_f64().unwrap(), false)),
+        })
+        .collect()
+}
+
+#[test]
+fn converged_answers_are_within_one_percent_of_the_references_or_flagged() {
+    let doc = fixture();
+    let mut checked = 0;
+    let mut worst: (f64, String) = (0.0, String::new());
+    let mut unfiltered = Vec::new();
+    for (name, row) in doc.as_object().unwrap() {
+        let s = scenario(&row["scenario"]);
+        // Without the 112-element run the lightly damped references are not known to be converged
+        // themselves (their late peaks move by percents between meshes and are chaotic): those
+        // scenarios wait for it (`make_converged_references.py` makes both).
+        if row.get("112").is_none() && s.damping_ratio < answer::LIGHT_DAMPING {
+            unfiltered.push(name.clone());
+            continue;
+        }
+        let a = answer::run(&s, &mut NullRecorder, Default::default()).unwrap();
+        let tolerance = s.discretisation_tolerance;
+        let unreproducible = !a.quality.checks.sensitivity.unwrap().pass;
+        for (kind, values, figures) in [
+            ("peaks", &a.converged_peaks, &a.discretisation_error),
+            ("first_contact_peaks", &a.converged_first_contact_peaks, &a.first_contact_discretisation_error),
+        ] {
+            for (peak_name, reference, _) in references(row, kind) {
+                let value = peak(values, peak_name);
+                let error = (value - reference).abs() / reference.abs();
+                let late = kind == "peaks" && a.unvouched_late_peaks.iter().any(|n| n == peak_name);
+                let flagged = peak(figures, peak_name) > tolerance || unreproducible || late;
+                let must = kind == "first_contact_peaks" || s.damping_ratio >= 0.02;
+                let context = format!("{name} {kind}.{peak_name}: {value} vs reference {reference} ({error:e})");
+                if must {
+                    assert!(error <= 0.01, "{context}");
+                } else {
+                    assert!(error <= 0.01 || flagged, "{context}, not flagged");
+                }
+                if error > worst.0 && !flagged {
+                    worst = (error, context);
+                }
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked >= 10 * 5, "{checked} peaks checked");
+    eprintln!(
+        "{checked} peaks checked; largest unflagged error: {}; waiting for 112 elements: {unfiltered:?}",
+        worst.1
+    );
+}
+
+/// CI recomputes one reference: the paper scenario on 56 elements per segment with the full basis
+/// and automatic steps gives the fixture's numbers (the same code and steps: to 1e-9).
+#[test]
+fn one_reference_is_recomputed() {
+    let doc = fixture();
+    let row = &doc["paper"];
+    let mut s = Scenario {
+        method: Method::Paper,
+        step_free: TimeStep::Auto,
+        step_contact: TimeStep::Auto,
+        ..Scenario::default()
+    };
+    s.lower.elements = 56;
+    s.upper.elements_to_contact = 56;
+    s.upper.elements_beyond_contact = 56;
+    let summary = Simulation::new(&s).unwrap().run(&mut NullRecorder).unwrap();
+    for name in PEAK_NAMES {
+        let expected = row["56"]["peaks"][name].as_f64().unwrap();
+        let got = peak(&summary.peaks, name);
+        assert!((got - expected).abs() <= 1e-9 * expected.abs(), "{name}: {got} vs fixture {expected}");
+    }
+}
