@@ -232,9 +232,6 @@ pub struct FirstContact {
 impl FirstContact {
     /// Takes one step's results into account, in time order.
     pub fn observe(&mut self, result: &StepResult) {
-        if self.ended {
-            return;
-        }
         let values = [
             result.lower_tip_deflection,
             result.lower_clamp_bending_stress,
@@ -242,6 +239,16 @@ impl FirstContact {
             result.upper_contact_bending_stress,
             result.contact_force,
         ];
+        self.observe_values(result, &values);
+    }
+
+    /// [`FirstContact::observe`] with the step's peak values given (the largest |value| of each
+    /// output over the step, in the order of [`Peaks::as_array`]).
+    pub fn observe_values(&mut self, result: &StepResult, values: &[f64; 5]) {
+        if self.ended {
+            return;
+        }
+        let values = *values;
         if result.contact || self.last_contact.is_none() {
             // A step in contact, or before the first one (the impact instant itself).
             let pending = std::mem::take(&mut self.pending).as_array();

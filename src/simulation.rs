@@ -295,7 +295,7 @@ impl<S: Stepper> Simulation<S> {
         self.state.dissipation_rate = energies.dissipation_rate;
         self.state.max_strain_energy = energies.beam_strain;
         self.state.result = result;
-        self.update_peaks(energies.upper_strain);
+        self.update_peaks(energies.upper_strain, None);
         self.output = self.state.result;
     }
 
@@ -329,28 +329,71 @@ impl<S: Stepper> Simulation<S> {
         }
     }
 
-    fn update_peaks(&mut self, upper_strain: f64) {
+    /// Raises the running peaks by the latest step: its end values, or with `within_step` (the
+    /// converged method) the largest |value| of each output over the step and when it was reached.
+    fn update_peaks(&mut self, upper_strain: f64, within_step: Option<[(f64, f64); 5]>) {
         let r = &mut self.state.result;
-        let values = [
+        let ends = [
             r.lower_tip_deflection,
             r.lower_clamp_bending_stress,
             r.lower_clamp_shear_stress,
             r.upper_contact_bending_stress,
             r.contact_force,
         ];
-        let time = r.time;
-        self.state.first_contact.observe(r);
+        let extremes = within_step.unwrap_or(ends.map(|v| (v.abs(), r.time)));
+        self.state.first_contact.observe_values(r, &extremes.map(|(v, _)| v));
         for (k, (peak, when)) in
             r.peaks.as_mut_array().into_iter().zip(self.state.peak_times.as_mut_array()).enumerate()
         {
-            if values[k].abs() > *peak || r.step == 0 {
-                *peak = values[k].abs();
+            let (value, time) = extremes[k];
+            if value > *peak || r.step == 0 {
+                *peak = value;
                 *when = time;
                 if k == 0 {
                     self.state.upper_strain_at_peak = upper_strain;
                 }
             }
         }
+    }
+
+    /// Whether the running peaks are the largest |value| over each internal step (the converged
+    /// method) rather than at the steps' ends (the paper's method, as its Table 1 was made).
+    fn polynomial_peaks(&self) -> bool {
+        self.model.scenario.method == Method::Converged
+    }
+
+    /// The largest |value| of each peak output over the first `fraction` of the step just taken
+    /// (from `backup` to the current kinematics, in `stage` under `forces`), with its time, s: the
+    /// cubic of each output from its values and rates at the step's ends
+    /// ([`crate::solver::step_extrema`]). `end` holds the probes at the step's end.
+    fn step_extremes(
+        &self,
+        start: &StepResult,
+        end: &[f64; PROBES],
+        stage: Stage,
+        forces: TipForces,
+        fraction: f64,
+    ) -> [(f64, f64); 5] {
+        let s = &self.model.scenario;
+        let (k0, k1) = (&self.backup, &self.state.kinematics);
+        let dt = seconds(self.state.result.time_ns - start.time_ns);
+        let (p0, _) = self.stepper.measure(k0, stage, forces);
+        let (r0, r1) = (self.stepper.rates(k0, stage), self.stepper.rates(k1, stage));
+        let bar = if stage.is_contact() { self.model.bar_stiffness } else { 0.0 };
+        let outputs = [
+            (Probe::LowerTipDeflection, 1.0),
+            (Probe::ClampMoment, 1.0 / s.lower.section_modulus),
+            (Probe::ClampShear, 1.0 / s.lower.shear_area),
+            (Probe::UpperContactMoment, 1.0 / s.upper.section_modulus),
+            (Probe::Gap, bar),
+        ];
+        outputs.map(|(probe, scale)| {
+            let k = probe as usize;
+            let (value, at) =
+                crate::solver::step_extrema::cubic_extremum(p0[k], end[k], r0[k] * dt, r1[k] * dt, fraction);
+            // The time within the run (never past the step's end by round-off).
+            (value * scale.abs(), (seconds(start.time_ns) + at * dt).min(self.state.result.time))
+        })
     }
 
     /// Stage of the next step, by Eq. (6) on the current state.
@@ -423,7 +466,8 @@ impl<S: Stepper> Simulation<S> {
         self.state.dissipation_rate = energies.dissipation_rate;
         self.state.last_forces = forces;
         self.state.result = result;
-        self.update_peaks(energies.upper_strain);
+        let within_step = self.polynomial_peaks().then(|| self.step_extremes(&previous, &probes, stage, forces, 1.0));
+        self.update_peaks(energies.upper_strain, within_step);
 
         let windows = &mut self.state.contact_windows;
         if stage.is_contact() {
@@ -645,6 +689,13 @@ impl<S: Stepper> Simulation<S> {
         result.time = seconds(at_ns);
         result.step_size = dt;
         result.peaks = start.peaks;
+        if self.polynomial_peaks() {
+            // The running peaks up to the point: the largest |value| over the step's first part too,
+            // so that a peak output is never below an output at a communication point.
+            let (end, _) = self.stepper.measure(&self.state.kinematics, stage, before.forces);
+            let extremes = self.step_extremes(start, &end, stage, before.forces, tau / dt);
+            result.peaks.raise(&extremes.map(|(v, _)| v));
+        }
         result
     }
 

@@ -204,7 +204,14 @@ fn report_csv_is_the_step_channel() {
         assert!(json > 0.0, "{name}: the run has a peak");
         let last = *csv.column(&format!("peaks.{name}")).last().unwrap();
         assert!(close(last, json), "peaks.{name}: last row {last} vs --json {json}");
-        assert!(close(largest(name), json), "max |{name}| {} vs --json {json}", largest(name));
+        // The converged method's peaks are the largest |value| over each internal step, so at
+        // least every step's end value, and within 1e-3 of the largest of them: a step spans
+        // omega_max dt = 1 rad of the highest kept mode, whose share of the stress can crest between
+        // two step ends (measured on the clamp shear: 1.4e-4); the stiff bar's force, 1e-2 (it
+        // rises over a few steps at each impact: measured 2.0e-3).
+        let ends = largest(name);
+        let within = if name == "contact_force" { 1e-2 } else { 1e-3 };
+        assert!(ends <= json && json - ends <= within * json, "max |{name}| {ends} vs --json {json}");
     }
     let time = csv.column("time");
     assert!(close(*time.last().unwrap(), doc["summary"]["time"].as_f64().unwrap()));

@@ -90,6 +90,12 @@ pub trait Stepper {
     /// The model's probes (see [`crate::model::Probe`]) applied to a displacement vector (or to
     /// a velocity vector, for rates), in the stepper's coordinates.
     fn probes(&self, displacement: &DVector<f64>) -> [f64; PROBES];
+    /// The rates of the probes at a state in `stage` (the probes of the velocity, with a truncated
+    /// basis's static correction moving with the contact force).
+    fn rates(&self, state: &Kinematics, stage: Stage) -> [f64; PROBES] {
+        let _ = stage;
+        self.probes(&state.velocity)
+    }
     /// Support reactions (the supports' rows of the unconstrained equations of motion: stiffness,
     /// damping, consistent mass and loads) and tip velocities of the state,
     /// in `stage` under `forces` (a truncated basis adds its discarded modes' static response).

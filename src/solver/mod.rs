@@ -9,6 +9,7 @@ pub mod initial;
 pub mod kinematics;
 pub mod modal;
 pub mod secular;
+pub mod step_extrema;
 pub mod step_plan;
 pub mod stepper;
 pub mod truncation;

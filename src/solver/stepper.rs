@@ -276,6 +276,19 @@ impl Stepper for ModalStepper {
         (probes, e)
     }
 
+    fn rates(&self, state: &Kinematics, stage: Stage) -> [f64; PROBES] {
+        let mut rates = self.probes(&state.velocity);
+        let s = &self.system;
+        if s.is_truncated() && stage.is_contact() {
+            // The static correction's contact load -F_c = -k_eff (b . q + s) moves at -k_eff b . v.
+            let load_rate = -s.bar_stiffness * rates[Probe::Gap as usize];
+            for (rate, row) in rates.iter_mut().zip(&s.correction.probes) {
+                *rate += row[crate::solver::truncation::CONTACT] * load_rate;
+            }
+        }
+        rates
+    }
+
     fn support_and_tips(&self, state: &Kinematics, stage: Stage, forces: TipForces) -> SupportAndTips {
         let s = &self.system;
         let (q, v, a) = (&state.displacement, &state.velocity, &state.acceleration);
