@@ -328,6 +328,7 @@ fn run(args: &RunArgs) -> Result<bool> {
                 "peaks": answer.discretisation_error,
                 "first_contact_peaks": answer.first_contact_discretisation_error,
                 "sensitivity_spread": answer.sensitivity_spread,
+                "unvouched_late_peaks": answer.unvouched_late_peaks,
                 "runs": answer.runs,
             },
             "merged_contact_windows": compare::merged_windows(&summary.contact_windows, beam_impact::results::BOUNCE_GAP),
