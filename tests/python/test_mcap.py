@@ -153,10 +153,19 @@ def test_fmu_log_equals_fmu_outputs(tmp_path):
         for row in result:
             t = int(round(row["time"] * 1e9))
             k = int(np.searchsorted(times, t, side="right")) - 1  # latest internal step at or before t
-            assert row["peak.lower.tip_deflection"] == log.steps["peaks.lower_tip_deflection"][k], (fmu, t)
+            # The running peak up to t: the logged peak of the latest internal step, raised by the
+            # largest |value| over the next step's part up to t (the converged method's peaks
+            # between steps), so at most the next step's logged peak.
+            peaks = np.asarray(log.steps["peaks.lower_tip_deflection"])
+            if times[k] == t:
+                assert row["peak.lower.tip_deflection"] == peaks[k], (fmu, t)
+            else:
+                assert peaks[k] <= row["peak.lower.tip_deflection"] <= peaks[k + 1], (fmu, t)
             for fmu_name, log_name in names.items():
                 values = np.asarray(log.steps[log_name])
-                if times[k] == t or fmu_name.startswith("peak."):
+                if fmu_name.startswith("peak."):
+                    continue
+                if times[k] == t:
                     assert row[fmu_name] == values[k], (fmu, t, fmu_name)
                     continue
                 share = (t - times[k]) / (times[k + 1] - times[k])
