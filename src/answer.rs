@@ -274,7 +274,7 @@ fn rung_run(role: &str, sim: &Simulation, summary: &Summary) -> RungRun {
 }
 
 /// |value - reference| / |reference| (0 when equal).
-fn relative(value: f64, reference: f64) -> f64 {
+pub fn relative(value: f64, reference: f64) -> f64 {
     if value == reference {
         0.0
     } else {

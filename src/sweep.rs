@@ -348,13 +348,7 @@ pub fn expand(axes: &[Axis]) -> Vec<Vec<f64>> {
 }
 
 /// The names of the five peaks, as in `summary.peaks` and in [`Peaks::as_array`]'s order.
-pub const PEAK_NAMES: [&str; 5] = [
-    "lower_tip_deflection",
-    "lower_clamp_bending_stress",
-    "lower_clamp_shear_stress",
-    "upper_contact_bending_stress",
-    "contact_force",
-];
+pub use crate::answer::PEAK_NAMES;
 
 type MethodField = (&'static str, fn(&EnergyMethod) -> f64);
 

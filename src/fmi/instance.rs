@@ -89,15 +89,6 @@ pub struct StepOutcome {
     pub untrusted: bool,
 }
 
-/// |value - reference| / |reference| (0 when equal).
-fn relative_change(value: f64, reference: f64) -> f64 {
-    if value == reference {
-        0.0
-    } else {
-        (value - reference).abs() / reference.abs()
-    }
-}
-
 /// Internal result: the error message is logged by [`Instance::guard`].
 pub type Outcome<T> = std::result::Result<T, String>;
 
@@ -1044,7 +1035,7 @@ impl Instance {
         let paper = self.scenario.method == crate::model::Method::Paper;
         (0..5)
             .map(|k| match (paper, runs.as_slice()) {
-                (true, [converged, ..]) => relative_change(printed[k], converged[k]),
+                (true, [converged, ..]) => crate::answer::relative(printed[k], converged[k]),
                 (false, [check, coarse]) => crate::answer::discretisation_figure(printed[k], check[k], Some(coarse[k])),
                 (false, [check]) => crate::answer::discretisation_figure(printed[k], check[k], None),
                 _ => -1.0,
