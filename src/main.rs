@@ -1,7 +1,7 @@
 //! `beam-impact`: run the paper scenario or a user scenario, print the comparison with the
 //! paper, write FMUs, replay logs, benchmark. Thin: everything happens in the library.
 
-use std::io::{Read, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -11,7 +11,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use beam_impact::model::TimeStep;
 use beam_impact::record::mcap::{LogCompression, McapRecorder, RecorderOptions};
-use beam_impact::record::output::{open_input, open_output};
+use beam_impact::record::output::{check_distinct, open_input, read_bounded, OutputFile, MAX_SCENARIO_BYTES};
 use beam_impact::record::{NullRecorder, Recorder, RunInfo};
 use beam_impact::results::{ContactEvent, StepResult};
 use beam_impact::{compare, Error, Result, Scenario, Simulation};
@@ -206,10 +206,24 @@ fn main() -> ExitCode {
     match outcome {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("beam-impact: {e}");
+            eprintln!("beam-impact: {}", bounded_line(&e.to_string()));
             ExitCode::from(2)
         }
     }
+}
+
+/// An error as one line of bounded length: a value quoted from a hostile input (a 4 MiB string in
+/// a scenario) must not become a megabyte of standard error. Lines longer than 600 characters
+/// keep their first 400 and last 150, with the count cut between.
+fn bounded_line(message: &str) -> String {
+    let line = message.replace('\n', " ");
+    let chars: Vec<char> = line.chars().collect();
+    if chars.len() <= 600 {
+        return line;
+    }
+    let head: String = chars[..400].iter().collect();
+    let tail: String = chars[chars.len() - 150..].iter().collect();
+    format!("{head} [... {} characters cut ...] {tail}", chars.len() - 550)
 }
 
 /// Runs a scenario; returns whether its numbers are trusted.
@@ -231,26 +245,24 @@ fn run(args: &RunArgs) -> Result<bool> {
     let simulation = Simulation::new(&scenario)?;
     simulation.check_step_count(scenario.duration_ns(), args.max_steps)?;
     drop(simulation);
-    // Open every output before the run, so that a bad path fails at once, not after it.
-    if let Some(file) = args.file.as_deref().filter(|_| !args.no_mcap) {
-        if same_file(file, &mcap) {
-            return Err(Error::Other(format!("the MCAP log would overwrite the scenario file {}", file.display())));
-        }
+    // No two of the files name one (device and inode, or folder and name for a new file), and
+    // every output is open before the run, so that a bad path fails at once, not after it; the
+    // JSON is written beside and renamed into place at the end, so a failed run leaves the user's
+    // earlier file as it was.
+    let mut files: Vec<(&str, &Path)> = Vec::new();
+    if let Some(file) = args.file.as_deref() {
+        files.push(("the scenario file", file));
     }
-    if let Some(json) = args.json.as_deref().filter(|_| !args.no_mcap) {
-        if same_file(json, &mcap) {
-            return Err(Error::Other(format!("--json and --mcap name the same file {}", json.display())));
-        }
+    if let Some(json) = args.json.as_deref() {
+        files.push(("--json", json));
     }
+    if !args.no_mcap {
+        files.push(("--mcap", &mcap));
+    }
+    check_distinct(&files)?;
     let json_file = match &args.json {
         Some(path) if path.as_os_str() == "-" => Some((path, None)),
-        Some(path) => {
-            let file = open_output(path, true, "cannot create JSON")?;
-            if file.metadata().is_ok_and(|m| m.is_file()) {
-                file.set_len(0).map_err(|source| io("cannot truncate JSON", path, source))?;
-            }
-            Some((path, Some(file)))
-        }
+        Some(path) => Some((path, Some(OutputFile::create(path, true, "cannot create JSON")?))),
         None => None,
     };
     let mut recorder: Box<dyn Recorder + Send> = if args.no_mcap {
@@ -339,6 +351,7 @@ fn run(args: &RunArgs) -> Result<bool> {
         match file {
             Some(mut file) => {
                 writeln!(file, "{json}").map_err(|source| io("cannot write JSON", path, source))?;
+                file.commit()?;
                 text += &format!("results written to {}\n", path.display());
             }
             // `--json -`: the JSON is the standard output, without the tables.
@@ -352,13 +365,14 @@ fn run(args: &RunArgs) -> Result<bool> {
 /// Reads and validates a scenario file (missing fields take their defaults); `-` is the standard
 /// input. A FIFO or socket is refused rather than waited on.
 fn read_scenario(path: &Path) -> Result<Scenario> {
-    let mut text = String::new();
     if path.as_os_str() == "-" {
-        std::io::stdin().read_to_string(&mut text).map_err(|source| io("cannot read scenario", path, source))?;
+        let text = read_bounded(std::io::stdin().lock(), MAX_SCENARIO_BYTES, "the scenario")
+            .map_err(|source| io("cannot read scenario", Path::new("standard input"), source))?;
         return Scenario::from_toml(&text, "standard input");
     }
-    let mut file = open_input(path, "cannot read scenario")?;
-    file.read_to_string(&mut text).map_err(|source| io("cannot read scenario", path, source))?;
+    let file = open_input(path, "cannot read scenario")?;
+    let text = read_bounded(file, MAX_SCENARIO_BYTES, "the scenario")
+        .map_err(|source| io("cannot read scenario", path, source))?;
     Scenario::from_toml(&text, &path.display().to_string())
 }
 
@@ -378,16 +392,6 @@ fn json_units() -> serde_json::Value {
         "scenario": "SI, as in `beam-impact scenario`",
         "wall_time_s": "s"
     })
-}
-
-/// Whether two paths name the same file: the same inode if both exist (a device such as
-/// /dev/null can take any number of outputs), else the same path.
-fn same_file(a: &Path, b: &Path) -> bool {
-    use std::os::unix::fs::MetadataExt;
-    match (std::fs::metadata(a), std::fs::metadata(b)) {
-        (Ok(x), Ok(y)) => x.is_file() && x.dev() == y.dev() && x.ino() == y.ino(),
-        _ => a == b,
-    }
 }
 
 fn io(action: &'static str, path: &Path, source: std::io::Error) -> Error {
@@ -595,19 +599,16 @@ fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>) -> Result<()> {
     let mut lock = stdout.lock();
     let csv_to_stdout = csv.is_some_and(|path| path.as_os_str() == "-");
     if let Some(path) = csv {
-        if !csv_to_stdout && same_file(path, file) {
-            return Err(Error::Other(format!("--csv names the log itself, {}", path.display())));
+        check_distinct(&[("the log", file), ("--csv", path)])?;
+        if !csv_to_stdout && beam_impact::record::output::same_folder(path, &out) {
+            return Err(Error::Other(format!(
+                "--csv {} is inside the figure folder {}, which the figures are written to; give another folder",
+                path.display(),
+                out.display()
+            )));
         }
         // Opened before the log is read, so that a bad path fails at once.
-        let target = if csv_to_stdout {
-            None
-        } else {
-            let file = open_output(path, true, "cannot create CSV")?;
-            if file.metadata().is_ok_and(|m| m.is_file()) {
-                file.set_len(0).map_err(|source| io("cannot truncate CSV", path, source))?;
-            }
-            Some(file)
-        };
+        let target = if csv_to_stdout { None } else { Some(OutputFile::create(path, true, "cannot create CSV")?) };
         let data = beam_impact::record::report::read_log(file)?;
         if csv_to_stdout && (!data.complete || data.stopped_early.is_some()) {
             // The summary, which would say so, is not printed.
@@ -619,8 +620,14 @@ fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>) -> Result<()> {
             );
         }
         let written = match target {
-            Some(target) => beam_impact::record::csv::write_steps(&data.steps, &mut std::io::BufWriter::new(target))
-                .map_err(|source| io("cannot write CSV", path, source)),
+            Some(mut target) => {
+                let mut buffered = std::io::BufWriter::new(&mut target);
+                beam_impact::record::csv::write_steps(&data.steps, &mut buffered)
+                    .and_then(|()| buffered.flush())
+                    .map_err(|source| io("cannot write CSV", path, source))?;
+                drop(buffered);
+                target.commit()
+            }
             None => match beam_impact::record::csv::write_steps(&data.steps, &mut std::io::BufWriter::new(&mut lock)) {
                 // `report log.mcap --csv - | head`: the reader went away, quietly.
                 Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => return Ok(()),
@@ -657,10 +664,11 @@ fn verify(file: Option<&Path>, json: Option<&Path>, tolerance: f64) -> Result<()
         None => Scenario::paper(),
     };
     let plan = Plan::new(&scenario, tolerance)?;
+    let mut files: Vec<(&str, &Path)> = file.map(|f| ("the scenario file", f)).into_iter().collect();
+    files.extend(json.map(|j| ("--json", j)));
+    check_distinct(&files)?;
     let json_file = match json {
-        Some(path) => {
-            Some((path, std::fs::File::create(path).map_err(|source| io("cannot create JSON", path, source))?))
-        }
+        Some(path) => Some((path, OutputFile::create(path, true, "cannot create JSON")?)),
         None => None,
     };
     let started = Instant::now();
@@ -683,6 +691,7 @@ fn verify(file: Option<&Path>, json: Option<&Path>, tolerance: f64) -> Result<()
     if let Some((path, mut file)) = json_file {
         let json = serde_json::to_string_pretty(&verification).map_err(|e| Error::Other(format!("JSON: {e}")))?;
         writeln!(file, "{json}").map_err(|source| io("cannot write JSON", path, source))?;
+        file.commit()?;
         text += &format!("verdicts written to {}\n", path.display());
     }
     emit(&text)
@@ -697,9 +706,11 @@ fn sweep(args: &SweepArgs) -> Result<()> {
     apply_settings(&mut base, &parse_settings(&args.set)?)?;
     let sweep = Sweep::new(base, parse_axes(&args.vary)?, args.max_steps)?;
     let jobs = args.jobs.map_or_else(default_jobs, |j| usize::try_from(j).unwrap_or(usize::MAX));
-    let create = |path: &Path| {
-        std::fs::File::create(path).map(std::io::BufWriter::new).map_err(|source| io("cannot create", path, source))
-    };
+    let mut files: Vec<(&str, &Path)> = args.file.as_deref().map(|f| ("the scenario file", f)).into_iter().collect();
+    files.push(("--out", &args.out));
+    files.extend(args.json.as_deref().map(|j| ("--json", j)));
+    check_distinct(&files)?;
+    let create = |path: &Path| OutputFile::create(path, true, "cannot create").map(std::io::BufWriter::new);
     let mut csv = create(&args.out)?;
     let mut json = args.json.as_deref().map(create).transpose()?;
     let bar = ProgressBar::new(sweep.len() as u64);
@@ -718,6 +729,14 @@ fn sweep(args: &SweepArgs) -> Result<()> {
             SweepWriteError::Run(e) => e,
         })?;
     bar.finish_and_clear();
+    // Complete: the rows replace the user's earlier files only now.
+    let commit = |writer: std::io::BufWriter<OutputFile>, path: &Path| {
+        writer.into_inner().map_err(|e| io("cannot write", path, e.into_error()))?.commit()
+    };
+    commit(csv, &args.out)?;
+    if let (Some(json), Some(path)) = (json, args.json.as_deref()) {
+        commit(json, path)?;
+    }
     let wall = started.elapsed().as_secs_f64();
     if tally.failed > 0 {
         eprintln!(

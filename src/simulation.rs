@@ -1,7 +1,7 @@
 //! The pipeline: scenario -> validated model -> stepper -> step results -> recorder.
 //! Time is counted in integer nanoseconds, so communication points and log stamps are exact.
 
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
@@ -549,6 +549,57 @@ impl<S: Stepper> Simulation<S> {
         Ok(advance)
     }
 
+    /// Ends the run at the stop time `target_ns`. The converged method does not break its step
+    /// grid there: whole internal steps up to it are taken, and the stop point inside the next
+    /// step is interpolated on that step's polynomial and recorded as the run's last record, so
+    /// a peak (or any value) at a time does not depend on whether that time is the stop time.
+    /// The paper method keeps its step-end values and shortens its last step ([`Self::advance_to`]).
+    pub fn finish_at(
+        &mut self,
+        target_ns: u64,
+        recorder: &mut dyn Recorder,
+        stop_at_contact_change: bool,
+    ) -> Result<Advance> {
+        if !self.polynomial_peaks() {
+            return self.advance_to(target_ns, recorder, stop_at_contact_change);
+        }
+        let advance = self.advance_outputs_to(target_ns, recorder, stop_at_contact_change)?;
+        if advance == Advance::Reached && self.output.time_ns > self.state.result.time_ns {
+            let record = self.stop_record();
+            let displacement = self.displacement_at(self.output.time_ns)?;
+            recorder.step(&record, displacement.as_slice())?;
+        }
+        Ok(advance)
+    }
+
+    /// The outputs at a stop point inside the next internal step, as a log record: the step
+    /// being taken, observed at the stop point.
+    fn stop_record(&self) -> StepResult {
+        let mut record = self.output;
+        record.step = self.state.result.step + 1;
+        record.step_size = seconds(record.time_ns - self.state.result.time_ns);
+        record
+    }
+
+    /// The own coordinates at `at_ns` inside the next internal step (its cubic), the state left as
+    /// it was.
+    fn displacement_at(&mut self, at_ns: u64) -> Result<DVector<f64>> {
+        let saved = (self.state.clone(), self.backup.clone());
+        let stepped = self.step(u64::MAX, false);
+        let displacement = stepped.map(|_| {
+            let (k0, k1) = (&self.backup, &self.state.kinematics);
+            let dt = seconds(self.state.result.time_ns - saved.0.result.time_ns);
+            let tau = seconds(at_ns - saved.0.result.time_ns);
+            let jerk = (&k1.acceleration - &k0.acceleration) / dt;
+            &k0.displacement
+                + &k0.velocity * tau
+                + &k0.acceleration * (0.5 * tau * tau)
+                + jerk * (tau * tau * tau / 6.0)
+        });
+        (self.state, self.backup) = saved;
+        displacement
+    }
+
     /// Moves the outputs to the communication point `target_ns` without breaking the internal
     /// step grid: whole internal steps up to it are taken and recorded, and when the point falls
     /// inside the next step, the outputs there come from that step's own polynomial (the linear
@@ -714,7 +765,7 @@ impl<S: Stepper> Simulation<S> {
     /// Runs the scenario's whole duration into `recorder` (start, every step, finish).
     pub fn run(&mut self, recorder: &mut dyn Recorder) -> Result<Summary> {
         self.start_recording(recorder)?;
-        self.advance_to(self.model.scenario.duration_ns(), recorder, false)?;
+        self.finish_at(self.model.scenario.duration_ns(), recorder, false)?;
         recorder.finish()?;
         Ok(self.summary())
     }
@@ -841,14 +892,16 @@ impl<S: Stepper> Simulation<S> {
     /// The summary of the run so far.
     pub fn summary(&self) -> Summary {
         let s = &self.state;
+        // A stop point inside the next internal step (see `finish_at`) is the run's last record.
+        let last = if self.output.time_ns > s.result.time_ns { self.stop_record() } else { s.result };
         Summary {
-            steps: s.result.step,
-            time: s.result.time,
-            peaks: s.result.peaks,
+            steps: last.step,
+            time: last.time,
+            peaks: last.peaks,
             peak_times: s.peak_times,
             upper_strain_at_peak_deflection: s.upper_strain_at_peak,
             contact_windows: s.contact_windows.clone(),
-            final_energy_residual: s.result.energy.residual,
+            final_energy_residual: last.energy.residual,
             max_energy_residual: s.max_residual,
             energy_method: self.energy_method,
             modes: self.mode_table(5),

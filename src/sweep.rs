@@ -285,8 +285,16 @@ pub fn parse_axis(text: &str) -> Result<Axis> {
             ))));
         };
         let count: usize = count.trim().parse().ok().filter(|&n| n >= 1).ok_or_else(|| {
-            context(Error::Other(format!("the count of start:stop:count must be a whole number >= 1, got `{count}`")))
+            context(Error::Other(format!(
+                "the count of start:stop:count must be a whole number from 1 to {MAX_SCENARIOS}, got `{}`",
+                quoted(count)
+            )))
         })?;
+        if count > MAX_SCENARIOS {
+            return Err(context(Error::Other(format!(
+                "the count {count} is more than a sweep runs ({MAX_SCENARIOS} scenarios): split the sweep"
+            ))));
+        }
         linspace(parse_value(field, start).map_err(context)?, parse_value(field, stop).map_err(context)?, count)
     } else {
         spec.split(',').map(|v| parse_value(field, v).map_err(context)).collect::<Result<Vec<f64>>>()?
@@ -327,8 +335,17 @@ pub fn grid_len(axes: &[Axis]) -> Result<usize> {
         .ok_or_else(|| Error::Other(format!("the grid has more than {MAX_SCENARIOS} scenarios: split the sweep")))
 }
 
-/// Largest grid a sweep runs: a billion scenarios is months of CPU on the paper mesh.
-pub const MAX_SCENARIOS: usize = 1_000_000_000;
+/// Largest grid a sweep runs, checked before any value is built: a million converged scenarios
+/// is about ten days of CPU (0.86 s each, README).
+pub const MAX_SCENARIOS: usize = 1_000_000;
+
+/// At most 200 characters of user text for a one-line message (an ellipsis marks the cut).
+fn quoted(text: &str) -> String {
+    match text.char_indices().nth(200) {
+        Some((cut, _)) => format!("{}...", &text[..cut]),
+        None => text.to_string(),
+    }
+}
 
 /// The values of grid point `index` (0-based, grid order: the last axis fastest), one per axis.
 pub fn grid_point(axes: &[Axis], mut index: usize) -> Vec<f64> {

@@ -105,3 +105,37 @@ fn the_paper_mesh_is_flagged_against_the_converged_answer() {
     // One rule: the paper run's converged answer is the converged run of the same scenario.
     assert_eq!(a.converged_peaks, b.converged_peaks);
 }
+
+/// Issue 15 item 8: the converged method does not shorten its last internal step to the stop
+/// time. A run stopped at T inside a step gives the values and peaks that a longer run shows at
+/// the communication point T (the same cubic of the same step), its log ends with a record at T
+/// numbered after the last whole step. Tolerance: 1e-12 relative (the same arithmetic).
+#[test]
+fn the_stop_time_is_a_point_on_the_step_grid_not_a_shortened_step() {
+    use beam_impact::record::MemoryRecorder;
+    use beam_impact::Simulation;
+    let stop_ns = 312_345_678; // inside a step: the auto steps are whole ns, this is not on their grid
+    let mut stopped = Simulation::new(&short(stop_ns as f64 * 1e-9)).unwrap();
+    let mut log = MemoryRecorder::default();
+    let summary = stopped.run(&mut log).unwrap();
+    let mut longer = Simulation::new(&short(0.5)).unwrap();
+    longer.advance_outputs_to(stop_ns, &mut NullRecorder, false).unwrap();
+    let (at, last) = (longer.output(), log.steps.last().unwrap());
+    assert_eq!(last.time_ns, stop_ns);
+    let whole = &log.steps[log.steps.len() - 2];
+    assert_eq!(last.step, whole.step + 1, "the stop record is the step being taken");
+    assert!(last.time_ns - whole.time_ns < stopped.step_plan().free_ns.max(stopped.step_plan().contact_ns));
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1e-30);
+    for (a, b) in summary.peaks.as_array().into_iter().zip(at.peaks.as_array()) {
+        assert!(close(a, b), "peak {a} at the stop time vs {b} at the same communication point");
+    }
+    assert!(close(last.lower_tip_deflection, at.lower_tip_deflection));
+    assert!(close(last.upper_contact_bending_stress, at.upper_contact_bending_stress));
+    assert_eq!(summary.time, stop_ns as f64 * 1e-9);
+    // The paper method keeps its shortened last step: its last record is a whole step's end.
+    let mut paper = Simulation::new(&Scenario { duration: stop_ns as f64 * 1e-9, ..Scenario::paper() }).unwrap();
+    let mut paper_log = MemoryRecorder::default();
+    paper.run(&mut paper_log).unwrap();
+    assert_eq!(paper_log.steps.last().unwrap().time_ns, stop_ns);
+    assert_eq!(paper.result().time_ns, stop_ns);
+}

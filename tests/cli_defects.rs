@@ -106,6 +106,6 @@ fn a_scenario_file_is_never_overwritten_by_its_log() {
     let out = beam_impact().arg("run").arg(&other).arg("--mcap").arg(&other).output().unwrap();
     assert_eq!(out.status.code(), Some(2));
     let stderr = String::from_utf8(out.stderr).unwrap();
-    assert!(stderr.contains("would overwrite the scenario file"), "{stderr}");
+    assert!(stderr.contains("the scenario file and --mcap name the same file"), "{stderr}");
     assert_eq!(std::fs::read_to_string(&other).unwrap(), scenario);
 }

@@ -252,8 +252,8 @@ fn fmi3_returns_early_at_contact_changes() {
 }
 
 /// The stop time is the importer's business, not the scenario's: a state saved by an instance
-/// running to 3 s restores in one running to 5 s, and stop times beyond the CLI's 1e6 s limit
-/// on `duration` are accepted.
+/// running to 3 s restores in one running to 5 s, or to 1e6 s (the FMU's limit on times since
+/// issue 16: beyond it a step of microseconds is lost in the absolute time's rounding).
 #[test]
 fn a_state_restores_across_different_stop_times() {
     let lib = fmi_common::importer::load();
@@ -265,7 +265,7 @@ fn a_state_restores_across_different_stop_times() {
     let bytes = first.serialize(state);
     first.free_state(state);
 
-    for stop in [5.0, 2e6] {
+    for stop in [5.0, 1e6] {
         let second = Fmu2::new(&lib);
         assert_eq!(second.set_string("log.path", ""), OK);
         assert_eq!(second.setup(0.0, Some(stop)), OK, "{}", second.log.text());

@@ -438,3 +438,17 @@ fn input_bound_in_step_mode_and_non_utf8_paths_are_errors() {
     assert_eq!(status, ERROR);
     assert!(other.log.text().contains("not valid UTF-8"), "{}", other.log.text());
 }
+
+/// Issue 16 item 11: start and stop times beyond 1e6 s (where a step of microseconds is lost in
+/// the absolute time's rounding) are refused when the experiment is set up, naming the limit.
+#[test]
+fn absurd_experiment_times_are_refused() {
+    let lib = load();
+    for (start, stop) in [(1e300, None), (-2e6, None), (0.0, Some(1e7)), (f64::NAN, None)] {
+        let fmu = Fmu2::new(&lib);
+        assert_eq!(fmu.setup(start, stop), ERROR, "start {start}, stop {stop:?}");
+        assert!(fmu.log.text().contains("1e6 s"), "{}", fmu.log.text());
+    }
+    let fmu = Fmu2::new(&lib);
+    assert_eq!(fmu.setup(-1e6, Some(1e6)), OK, "the limits themselves are accepted");
+}

@@ -235,7 +235,7 @@ fn forged_states_are_refused_naming_the_field() {
     let (first, bytes) = saved_fmi2(0.0, 0.3, 0.567);
     let good = Snapshot::from_bytes(&bytes).unwrap();
     type Forge = fn(&mut Snapshot);
-    let forgeries: [(&str, Forge, &str); 12] = [
+    let forgeries: [(&str, Forge, &str); 13] = [
         ("a wrapped step counter", |s| s.run.result.step = u64::MAX, "result.step"),
         ("a NaN gap", |s| s.run.gap = f64::NAN, "gap = NaN is not finite"),
         ("an infinite velocity", |s| s.run.kinematics.velocity[3] = f64::INFINITY, "kinematics.velocity[3]"),
@@ -247,6 +247,8 @@ fn forged_states_are_refused_naming_the_field() {
         ("a huge tip force", |s| s.run.input_forces.upper = 1e30, "input_forces.upper"),
         ("too many elements", |s| _ = s.parameters.insert("lower.elements".into(), 1e6), "lower.elements"),
         ("a NaN start time", |s| s.start_time = f64::NAN, "start_time"),
+        // Issue 16 item 11: at 1e300 s doStep returned OK without advancing time.
+        ("a start time of 1e300 s", |s| s.start_time = 1e300, "start_time = 1e300 s is not within +-1e6 s"),
         (
             "one coordinate too many",
             |s| s.run.kinematics.displacement = s.run.kinematics.displacement.push(0.0),

@@ -166,3 +166,23 @@ fn rolled_back_steps_are_superseded_in_the_log() {
     assert_eq!(summary.peaks, reference.peaks);
     assert_eq!(summary.contact_windows, reference.contact_windows);
 }
+
+/// Issue 16 item 9: the size cap was checked on the log's path, so renaming the log mid-run
+/// disabled it (a 30 MB cap gave 96.5 MB). It counts what the open file holds: renamed after its
+/// first steps, the log still ends at its cap (checked at every flush: one flush beyond at most).
+#[test]
+fn a_log_renamed_mid_run_keeps_its_size_cap() {
+    let dir = tempfile::tempdir().unwrap();
+    let (path, moved) = (dir.path().join("run.mcap"), dir.path().join("moved.mcap"));
+    let options = RecorderOptions { max_bytes: 400_000, ..RecorderOptions::default() };
+    let mut recorder = McapRecorder::with_options(&path, options).unwrap();
+    let mut simulation = Simulation::new(&Scenario { duration: 3.0, ..Scenario::paper() }).unwrap();
+    simulation.start_recording(&mut recorder).unwrap();
+    simulation.advance_to(10_000_000, &mut recorder, false).unwrap();
+    std::fs::rename(&path, &moved).unwrap();
+    simulation.advance_to(3_000_000_000, &mut recorder, false).unwrap();
+    recorder.finish().unwrap();
+    assert!(recorder.capped().is_some(), "the cap was reached");
+    let size = std::fs::metadata(&moved).unwrap().len();
+    assert!((400_000..1_000_000).contains(&size), "{size} bytes for a cap of 400 000");
+}

@@ -45,7 +45,7 @@ fn reactions_at_rest_follow_the_lever_and_sum_to_the_total_weight() {
             Scenario { drop_height: 0.0, damping_ratio: 0.9, duration: 6.0, contact_position, ..Scenario::default() };
         let mut simulation = Simulation::new(&scenario).unwrap();
         simulation.run(&mut NullRecorder).unwrap();
-        let r = simulation.result();
+        let r = simulation.output(); // the outputs at the stop time (inside a step: issue 15)
         let (u, l) = (&scenario.upper, &scenario.lower);
         let total = (u.mass + l.mass + l.tip_mass) * G;
         let contact = u.mass * G * (u.length / 2.0) / contact_position;

@@ -288,9 +288,9 @@ fn report_csv_paths_are_checked() {
     std::fs::hard_link(d.join("tiny.mcap"), d.join("hard.csv")).unwrap();
     assert!(Command::new("mkfifo").arg(d.join("fifo.csv")).status().unwrap().success());
     for (csv, needle) in [
-        ("tiny.mcap", "--csv names the log itself"),
-        ("./tiny.mcap", "--csv names the log itself"),
-        ("hard.csv", "--csv names the log itself"),
+        ("tiny.mcap", "the log and --csv name the same file"),
+        ("./tiny.mcap", "the log and --csv name the same file"),
+        ("hard.csv", "the log and --csv name the same file"),
         ("link.csv", "symbolic link"),
         ("fifo.csv", "FIFO"),
     ] {

@@ -313,7 +313,7 @@ fn communication_points_leave_the_internal_steps_untouched() {
         simulation.advance_outputs_to(n * 1_000_000, &mut recorder, false).unwrap();
         assert_eq!(simulation.output().time_ns, n * 1_000_000);
     }
-    simulation.advance_to(800_000_000, &mut recorder, false).unwrap();
+    simulation.finish_at(800_000_000, &mut recorder, false).unwrap();
     assert_eq!(recorder.steps, single.steps);
     assert_eq!(simulation.summary().peaks, reference.peaks);
 }

@@ -11,11 +11,12 @@ Heavy imports (fmpy, dask, pandas) happen inside the functions, so `import beam_
 from .dask_sweep import sweep
 from .fmu import FmuFile, SimulationError, simulate
 from .grid import expand, linspace, parse_spec, parse_vary
-from .log import Log, load_log
+from .log import Log, LogError, load_log
 
 __all__ = [
     "FmuFile",
     "Log",
+    "LogError",
     "SimulationError",
     "expand",
     "linspace",

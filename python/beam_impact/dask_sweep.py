@@ -27,7 +27,7 @@ import uuid
 from contextlib import nullcontext
 from typing import Any, Iterable
 
-from .fmu import FmuFile, simulate
+from .fmu import CHECK_COLUMNS, FmuFile, simulate
 from .grid import PEAKS, display, expand
 
 #: Dask key prefix of the sweep's tasks (the progress bar's label).
@@ -38,12 +38,13 @@ def _one_line(text: str) -> str:
     return " ".join(str(text).split())
 
 
-def run_row(point: dict[str, float], fmu: "str | FmuFile", stop_time: float = 3.0) -> dict[str, Any]:
-    """One scenario's row: the varied values as the CLI shows them, the peaks and the energy
-    approach (CLI names), and `error` ("" when fine)."""
+def run_row(point: dict[str, float], fmu: "str | FmuFile", stop_time: float = 3.0,
+            check_sensitivity: bool = False) -> dict[str, Any]:
+    """One scenario's row: the varied values as the CLI shows them, the peaks, the energy
+    approach and the checks (CLI names), and `error` ("" when fine)."""
     row: dict[str, Any] = {k: display(k, v) for k, v in point.items()}
     try:
-        row.update(simulate(fmu, point, stop_time=stop_time))
+        row.update(simulate(fmu, {**point, "check_sensitivity": check_sensitivity}, stop_time=stop_time))
         row["error"] = ""
     except Exception as e:  # a refused scenario or a failed run is a row, not an aborted sweep
         row["error"] = _one_line(e) or type(e).__name__
@@ -69,7 +70,7 @@ def _columns(fields: Iterable[str], path: str) -> list[str]:
         if f != "duration" and f not in names:
             raise ValueError(f"unknown parameter `{f}`: the FMU has no variable of that name")
     method = [v.name for v in md.modelVariables if v.name.startswith("energy_method.")]
-    return [*fields, *PEAKS, *method, "error"]
+    return [*fields, *PEAKS, *method, *CHECK_COLUMNS, "error"]
 
 
 def sweep(
@@ -79,13 +80,17 @@ def sweep(
     stop_time: float = 3.0,
     progress: bool | None = None,
     num_workers: int | None = None,
+    check_sensitivity: bool = False,
 ):
     """Runs every scenario of `grid` ({field: values}, the product in dict order with the last
     field fastest, as `beam-impact sweep --vary`) through the FMU at `fmu` and returns a
     pandas.DataFrame, one row per scenario in grid order: the varied fields, the peaks
     `lower_tip_deflection` (m), `lower_clamp_bending_stress`, `lower_clamp_shear_stress`,
     `upper_contact_bending_stress` (Pa), `contact_force` (N), `energy_method.<field>` (SI units),
-    and `error` ("" when fine; the peaks are NaN then).
+    the checks `discretisation_error`, `sensitivity_spread` (NaN unless `check_sensitivity=True`,
+    which runs each scenario's twin as the CLI's sweep does, at twice the stepping cost),
+    `utilisation.<stress peak>`, `design_pass`, `trusted` (as the CLI's sweep), and `error` (""
+    when fine; the peaks are NaN then).
 
     `client`: None for the local threaded scheduler (`num_workers` threads, default one per core),
     a `dask.distributed.Client`, or a scheduler address ("tcp://host:8786").
@@ -97,7 +102,7 @@ def sweep(
     points = expand(grid)
     columns = _columns(list(grid), path)
     if client is None:
-        rows = _run_local(points, path, stop_time, progress, num_workers)
+        rows = _run_local(points, path, stop_time, progress, num_workers, check_sensitivity)
     else:
         own = isinstance(client, str)
         if own:
@@ -105,32 +110,33 @@ def sweep(
 
             client = Client(client)
         try:
-            rows = _run_distributed(client, points, path, stop_time, progress)
+            rows = _run_distributed(client, points, path, stop_time, progress, check_sensitivity)
         finally:
             if own:
                 client.close()
     return pd.DataFrame(rows, columns=columns)
 
 
-def _run_local(points, path, stop_time, progress, num_workers) -> list[dict]:
+def _run_local(points, path, stop_time, progress, num_workers, check_sensitivity) -> list[dict]:
     import dask
     from dask.diagnostics import ProgressBar
 
     if progress is None:
         progress = sys.stderr.isatty()
-    tasks = [dask.delayed(run_row, pure=False)(p, path, stop_time, dask_key_name=f"{TASK_PREFIX}-{i}")
+    tasks = [dask.delayed(run_row, pure=False)(p, path, stop_time, check_sensitivity, dask_key_name=f"{TASK_PREFIX}-{i}")
              for i, p in enumerate(points)]
     with ProgressBar(out=sys.stderr) if progress else nullcontext():
         return list(dask.compute(*tasks, scheduler="threads", num_workers=num_workers))
 
 
-def _run_distributed(client, points, path, stop_time, progress) -> list[dict]:
+def _run_distributed(client, points, path, stop_time, progress, check_sensitivity) -> list[dict]:
     if progress is None:
         progress = sys.stdout.isatty()
     fmu = client.scatter(FmuFile.read(path), broadcast=True)
     token = uuid.uuid4().hex[:12]  # fresh keys: never another sweep's cached results
     keys = [f"{TASK_PREFIX}-{token}-{i}" for i in range(len(points))]
-    futures = client.map(run_row, points, fmu=fmu, stop_time=stop_time, key=keys, pure=False)
+    futures = client.map(run_row, points, fmu=fmu, stop_time=stop_time, check_sensitivity=check_sensitivity, key=keys,
+                         pure=False)
     if progress:
         from distributed import progress as show
 

@@ -33,6 +33,23 @@ PEAK_OUTPUTS = {
 }
 assert tuple(PEAK_OUTPUTS.values()) == PEAKS
 
+#: FMU output -> CLI sweep column, for the checks and the design (Real; -1 is "not checked", NaN here).
+CHECK_OUTPUTS = {
+    "quality.discretisation_error": "discretisation_error",
+    "quality.sensitivity_spread": "sensitivity_spread",
+    "utilisation.lower.clamp_bending_stress": "utilisation.lower_clamp_bending_stress",
+    "utilisation.lower.clamp_shear_stress": "utilisation.lower_clamp_shear_stress",
+    "utilisation.upper.contact_bending_stress": "utilisation.upper_contact_bending_stress",
+}
+#: FMU Boolean output -> CLI sweep column.
+VERDICT_OUTPUTS = {"design.pass": "design_pass", "quality.trusted": "trusted"}
+#: The columns `simulate` adds after the peaks and the energy approach, in the CLI sweep's order.
+CHECK_COLUMNS = (*CHECK_OUTPUTS.values(), *VERDICT_OUTPUTS.values())
+#: FMU-only Boolean parameters `simulate` accepts.
+BOOLEAN_PARAMETERS = frozenset({"check_sensitivity"})
+#: Largest whole number an FMU Integer parameter holds.
+_INT_MAX = 2**31 - 1
+
 #: fmi2Error / fmi3Error and above.
 _ERROR = 3
 
@@ -108,6 +125,11 @@ def _start_values(parameters: dict[str, Any], names: set) -> tuple[dict[str, Any
     values: dict[str, Any] = {}
     duration = None
     for key, value in parameters.items():
+        if key in BOOLEAN_PARAMETERS:
+            if not isinstance(value, bool):
+                raise SimulationError(f"{key} takes True or False, got {value!r}")
+            values[key] = value
+            continue
         v = parse_value(key, value)
         if key == "duration":
             duration = v
@@ -115,8 +137,8 @@ def _start_values(parameters: dict[str, Any], names: set) -> tuple[dict[str, Any
         if key not in names:
             raise SimulationError(f"unknown parameter `{key}`: the FMU has no variable of that name")
         if key in INTEGER_FIELDS:
-            if not (v.is_integer() and v >= 0):
-                raise SimulationError(f"{key} must be a whole number >= 1, got {v:g}")
+            if not (v.is_integer() and 0 <= v <= _INT_MAX):
+                raise SimulationError(f"{key} must be a whole number >= 0 (0: auto where allowed), got {v:g}")
             v = int(v)
         values[key] = v
     return values, duration
@@ -144,6 +166,10 @@ class _Fmi2Messages:
             messages = self.runs.get(int(env or 0))
         if messages is not None:
             messages.append((int(status), message.decode(errors="replace") if message else ""))
+        else:  # another importer's instance in this process (e.g. a plain fmpy.simulate_fmu): print, as fmpy does
+            from fmpy.fmi1 import printLogMessage
+
+            printLogMessage(env, instance, status, category, message)
 
     def open(self) -> tuple[int, list]:
         with self.lock:
@@ -202,7 +228,7 @@ def _run(entry: _Extracted, start: dict[str, Any], stop_time: float, interval: f
         fmu = FMU2Slave(**common)
         setters = {"Real": fmu.setReal, "Integer": fmu.setInteger, "Boolean": fmu.setBoolean,
                    "String": fmu.setString}
-        get = fmu.getReal
+        get, get_boolean = fmu.getReal, fmu.getBoolean
     else:
         from fmpy.fmi3 import FMU3Slave
 
@@ -215,7 +241,7 @@ def _run(entry: _Extracted, start: dict[str, Any], stop_time: float, interval: f
         fmu = FMU3Slave(**common)
         setters = {"Float64": fmu.setFloat64, "Int32": fmu.setInt32, "Int64": fmu.setInt64,
                    "Boolean": fmu.setBoolean, "String": fmu.setString}
-        get = fmu.getFloat64
+        get, get_boolean = fmu.getFloat64, fmu.getBoolean
     instantiated = False
     try:
         if fmi2:
@@ -242,8 +268,9 @@ def _run(entry: _Extracted, start: dict[str, Any], stop_time: float, interval: f
                 rows.append([t1, *get(vrs)])
         if not histories:
             rows = [[stop_time, *get(vrs)]]
+        verdicts = get_boolean([variables[n].valueReference for n in VERDICT_OUTPUTS])
         fmu.terminate()
-        return rows
+        return rows, [bool(v) for v in verdicts]
     except Exception as e:
         errors = [m for status, m in messages if status >= _ERROR]
         raise SimulationError("; ".join(errors) if errors else str(e)) from e
@@ -267,7 +294,10 @@ def simulate(
     """Runs the FMU once: `parameters` by the scenario's dotted names, until `stop_time` s (or the
     `duration` parameter). Returns a dict of the peaks under the CLI's names (`lower_tip_deflection`,
     `lower_clamp_bending_stress`, `lower_clamp_shear_stress`, `upper_contact_bending_stress`,
-    `contact_force`; SI units) and the energy approach (`energy_method.<field>`). With
+    `contact_force`; SI units), the energy approach (`energy_method.<field>`), and the checks as the
+    CLI's sweep columns: `discretisation_error`, `sensitivity_spread` (fractions; NaN when not
+    checked: the twin runs only with `"check_sensitivity": True`, which doubles the cost),
+    `utilisation.<stress peak>` (converged peak / allowable), `design_pass` and `trusted`. With
     `histories=True`, returns (dict, DataFrame of every real output at each communication point,
     `output_interval` default 1e-3 s, time first); otherwise one communication step over the whole
     run. `log_path`: write the FMU's MCAP log there (default: no log). Raises SimulationError with
@@ -286,15 +316,19 @@ def simulate(
     if output_interval is None:
         output_interval = min(1e-3, stop_time) if histories else stop_time
     method = [v.name for v in md.modelVariables if v.name.startswith("energy_method.")]
-    outputs = list(PEAK_OUTPUTS) + method
+    outputs = list(PEAK_OUTPUTS) + method + list(CHECK_OUTPUTS)
     if histories:
         real = ("Real", "Float64")
         outputs += [v.name for v in md.modelVariables if v.causality == "output" and v.type in real
-                    and v.name not in PEAK_OUTPUTS]
-    rows = _run(entry, start, stop_time, output_interval, outputs, histories)
+                    and v.name not in PEAK_OUTPUTS and v.name not in CHECK_OUTPUTS]
+    rows, verdicts = _run(entry, start, stop_time, output_interval, outputs, histories)
     last = rows[-1][1:]
-    peaks: dict[str, float] = {cli: float(value) for cli, value in zip(PEAK_OUTPUTS.values(), last)}
+    peaks: dict[str, Any] = {cli: float(value) for cli, value in zip(PEAK_OUTPUTS.values(), last)}
     peaks.update({name: float(value) for name, value in zip(method, last[len(PEAK_OUTPUTS):])})
+    checks = last[len(PEAK_OUTPUTS) + len(method):][:len(CHECK_OUTPUTS)]
+    peaks.update({cli: (float("nan") if value < 0 else float(value))
+                  for cli, value in zip(CHECK_OUTPUTS.values(), checks)})
+    peaks.update(dict(zip(VERDICT_OUTPUTS.values(), verdicts)))
     if not histories:
         return peaks
     import pandas as pd

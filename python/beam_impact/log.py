@@ -103,8 +103,45 @@ class Log:
         return pd.DataFrame(self.steps)
 
 
+class LogError(ValueError):
+    """A file that is not a readable beam-impact log: one line naming the file and why."""
+
+
+def _one_line(text: object, limit: int = 200) -> str:
+    t = " ".join(str(text).split())
+    return t if len(t) <= limit else t[:limit] + "..."
+
+
 def load_log(path: str) -> Log:
-    """Reads the log at `path` (also the log of a killed run: every complete chunk)."""
+    """Reads the log at `path` (also the log of a killed run: every complete chunk). Every file
+    that is not a readable beam-impact log raises `LogError` (a ValueError) with one line: a
+    FIFO, a device or a folder is refused before it is opened (it would block or never end), an
+    unknown log format is refused as `report` refuses it, and any failure of the decoders is
+    reported as the file's problem rather than as their own exception types."""
+    import os
+    import stat
+
+    try:
+        mode = os.stat(path).st_mode
+    except OSError as e:
+        raise LogError(f"{path}: cannot read the log ({_one_line(e.strerror or e)})") from None
+    if not stat.S_ISREG(mode):
+        raise LogError(f"{path}: not a regular file (a FIFO, a device or a folder is not a log)")
+    try:
+        log = _load_log(path)
+    except LogError:
+        raise
+    except MemoryError:
+        raise LogError(f"{path}: the log does not fit in memory") from None
+    except Exception as e:  # the decoders' own types (protobuf, KeyError, ...): one type for callers
+        raise LogError(f"{path}: not a readable beam-impact log ({type(e).__name__}: {_one_line(e)})") from None
+    fmt = log.metadata.get("log_format", "1")
+    if fmt not in ("1", "2"):
+        raise LogError(f"{path}: log format {_one_line(fmt, 20)!r} is not one this reader knows (1 or 2)")
+    return log
+
+
+def _load_log(path: str) -> Log:
     from mcap.records import Channel, DataEnd, Footer, Message, Metadata, Schema
     from mcap.stream_reader import StreamReader
     from mcap_protobuf.decoder import DecoderFactory
@@ -152,7 +189,7 @@ def load_log(path: str) -> Log:
                 if decode is None:
                     decode = factory.decoder_for(channel.message_encoding, schemas.get(channel.schema_id))
                     if decode is None:
-                        raise ValueError(f"{path}: channel {channel.topic} is not protobuf")
+                        raise LogError(f"{path}: channel {_one_line(channel.topic)} is not protobuf")
                     decoders[record.channel_id] = decode
                 log_times.append(record.log_time)
                 counts[channel.topic] = counts.get(channel.topic, 0) + 1
@@ -207,7 +244,7 @@ def load_log(path: str) -> Log:
     if not complete and not problem:
         problem = "the file ends before its summary and footer (the writer never finished)"
     if model is None:
-        raise ValueError(f"{path}: no {MODEL_TOPIC} message" + (f" ({problem})" if problem else ""))
+        raise LogError(f"{path}: no {MODEL_TOPIC} message" + (f" ({_one_line(problem)})" if problem else ""))
     steps = {name: np.asarray(values, dtype=INTEGER.get(name, np.float64)) for name, values in columns.items()}
     shapes = np.asarray(model.nodal_shapes, dtype=np.float64).reshape(model.shape_rows, model.shape_cols)
     return Log(
@@ -235,8 +272,15 @@ def main(argv: list[str]) -> int:
     if len(argv) != 2:
         print(__doc__)
         return 2
-    log = load_log(argv[1])
+    try:
+        log = load_log(argv[1])
+    except LogError as e:
+        print(f"beam_impact: {e}", file=sys.stderr)
+        return 2
     s = log.steps
+    if len(s["step"]) == 0:
+        print(f"beam_impact: {argv[1]}: the log holds no step message", file=sys.stderr)
+        return 2
     print(f"{argv[1]}: {len(s['step'])} step messages to t = {s['time'][-1]:.6f} s; messages {log.counts}")
     if not log.complete:
         print(f"incomplete log (a killed run?): {log.problem}")

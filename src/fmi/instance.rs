@@ -92,6 +92,25 @@ pub struct StepOutcome {
 /// Internal result: the error message is logged by [`Instance::guard`].
 pub type Outcome<T> = std::result::Result<T, String>;
 
+/// Largest |start time| and stop time the FMU accepts, s: beyond it a time step of microseconds
+/// is lost in the absolute time's rounding (at 1e300 s `doStep` would return OK without
+/// advancing); 1e6 s is 11.6 days of simulated impact, far beyond any run of this model.
+pub const MAX_ABSOLUTE_TIME: f64 = 1e6;
+
+/// Whether `t` is a time the FMU accepts: |t| <= [`MAX_ABSOLUTE_TIME`] (NaN is not).
+fn within_time_limit(t: f64) -> bool {
+    t.abs() <= MAX_ABSOLUTE_TIME
+}
+
+/// A time for a message: plain, or in exponent form when huge (1e300 is not 301 digits).
+fn time_text(t: f64) -> String {
+    if t.abs() >= 1e7 {
+        format!("{t:e}")
+    } else {
+        format!("{t}")
+    }
+}
+
 /// An FMU instance (the opaque `fmi2Component` / `fmi3Instance`).
 pub struct Instance {
     name: String,
@@ -108,6 +127,8 @@ pub struct Instance {
     /// of the converged method, or the converged answer beside the paper method); `None` once a
     /// state has been restored (they hold no state of their own): not checked from there on.
     checks: Option<Vec<Simulation>>,
+    /// Whether `checks` ends with the reproducibility twin (the `check_sensitivity` parameter).
+    check_sensitivity: bool,
     recorder: Option<McapRecorder>,
     start_time: f64,
     stop_time: Option<f64>,
@@ -234,6 +255,7 @@ impl Instance {
             log_path: DEFAULT_LOG_PATH.to_string(),
             simulation: None,
             checks: None,
+            check_sensitivity: false,
             recorder: None,
             start_time: 0.0,
             stop_time: None,
@@ -360,12 +382,15 @@ impl Instance {
 
     /// `SetupExperiment` / the time arguments of FMI 3's `EnterInitializationMode`.
     pub fn setup_experiment(&mut self, start_time: f64, stop_time: Option<f64>) -> Outcome<Status> {
-        if !start_time.is_finite() {
-            return Err(format!("startTime must be finite, got {start_time}"));
+        if !within_time_limit(start_time) {
+            return Err(format!("startTime must be within +-{MAX_ABSOLUTE_TIME:e} s, got {}", time_text(start_time)));
         }
         if let Some(stop) = stop_time {
-            if !(stop.is_finite() && stop >= start_time) {
-                return Err(format!("stopTime must be finite and >= startTime = {start_time}, got {stop}"));
+            if !(within_time_limit(stop) && stop >= start_time) {
+                return Err(format!(
+                    "stopTime must be >= startTime = {start_time} and within +-{MAX_ABSOLUTE_TIME:e} s, got {}",
+                    time_text(stop)
+                ));
             }
         }
         self.start_time = start_time;
@@ -424,8 +449,8 @@ impl Instance {
                 return Err(format!("invalid parameter: {last}"));
             }
             let simulation = Simulation::new(&self.scenario).map_err(|e| format!("invalid parameters: {e}"))?;
-            let checks = crate::answer::check_scenarios(&self.scenario)
-                .and_then(|scenarios| scenarios.iter().map(Simulation::new).collect::<crate::Result<Vec<_>>>())
+            let checks = self
+                .check_runs(&self.scenario)
                 .map_err(|e| format!("invalid parameters (discretisation check): {e}"))?;
             self.simulation = Some(simulation);
             self.checks = Some(checks);
@@ -571,11 +596,11 @@ impl Instance {
         let early = self.version == Version::Fmi3 && self.early_return_allowed;
         let simulation = self.simulation.as_mut().ok_or("no simulation")?;
         let mut tap = Tap { inner: self.recorder.as_mut(), events: Vec::new() };
-        // The internal step grid is broken only at the stop time (and at input changes and located
-        // contact changes, inside the simulation): elsewhere the outputs are interpolated.
+        // The stop time ends the run as the CLI's does (`finish_at`: the converged method records
+        // the stop point inside its step grid); elsewhere the outputs are interpolated.
         let at_stop = self.stop_time.is_some_and(|stop| (end - stop).abs() <= time_tolerance(stop));
         let advance = if at_stop {
-            simulation.advance_to(target_ns, &mut tap, early)
+            simulation.finish_at(target_ns, &mut tap, early)
         } else {
             simulation.advance_outputs_to(target_ns, &mut tap, early)
         };
@@ -585,7 +610,7 @@ impl Instance {
             for check in self.checks.iter_mut().flatten() {
                 check.set_tip_forces(forces);
                 let moved = if at_stop {
-                    check.advance_to(reached, &mut crate::record::NullRecorder, false)
+                    check.finish_at(reached, &mut crate::record::NullRecorder, false)
                 } else {
                     check.advance_outputs_to(reached, &mut crate::record::NullRecorder, false)
                 };
@@ -632,6 +657,15 @@ impl Instance {
             reasons.push(format!(
                 "a running peak changes by {} against the discretisation check (> discretisation_tolerance = {})",
                 crate::answer::percent(figure),
+                crate::answer::percent(tolerance)
+            ));
+        }
+        let spread = self.sensitivity_spread();
+        if at_stop && spread > tolerance {
+            reasons.push(format!(
+                "a drop height changed by 1e-9 moves a running peak by {} (> discretisation_tolerance = {}): not \
+                 reproducible",
+                crate::answer::percent(spread),
                 crate::answer::percent(tolerance)
             ));
         }
@@ -754,10 +788,15 @@ impl Instance {
                 self.computed(&v.name)?;
                 self.discretisation_error()
             }
-            Source::SensitivitySpread => -1.0,
-            Source::LogPath | Source::ContactActive | Source::DesignPass | Source::Trusted => {
-                return Err(format!("`{}` is not Real", v.name))
+            Source::SensitivitySpread => {
+                self.computed(&v.name)?;
+                self.sensitivity_spread()
             }
+            Source::LogPath
+            | Source::ContactActive
+            | Source::DesignPass
+            | Source::Trusted
+            | Source::CheckSensitivity => return Err(format!("`{}` is not Real", v.name)),
         })
     }
 
@@ -784,8 +823,10 @@ impl Instance {
                 let figure = self.discretisation_error();
                 Ok(energy
                     && figure <= self.scenario.discretisation_tolerance
+                    && self.sensitivity_spread() <= self.scenario.discretisation_tolerance
                     && self.yield_check().is_none_or(|c| c.pass))
             }
+            Source::CheckSensitivity => Ok(self.check_sensitivity),
             _ => Err(format!("`{}` is not a Boolean", v.name)),
         }
     }
@@ -808,7 +849,7 @@ impl Instance {
     /// `ExitInitializationMode`, inputs until `Terminate`, nothing else ever.
     fn check_settable(&self, v: &Variable) -> Outcome<()> {
         let (allowed, rule) = match v.source {
-            Source::Parameter(_) | Source::LogPath => {
+            Source::Parameter(_) | Source::LogPath | Source::CheckSensitivity => {
                 (super::status::allowed::SET_PARAMETER, "parameters are fixed at ExitInitializationMode")
             }
             Source::Input(_) => (super::status::allowed::SET_INPUT, "inputs are set until Terminate"),
@@ -873,10 +914,18 @@ impl Instance {
     }
 
     /// Writes a Boolean variable (there is no settable one).
-    pub fn set_boolean(&mut self, vr: u32, _value: bool) -> Outcome<()> {
+    pub fn set_boolean(&mut self, vr: u32, value: bool) -> Outcome<()> {
         let v = self.variable(vr, Type::Boolean)?;
         self.check_settable(&v)?;
-        Err(format!("`{}` cannot be set", v.name))
+        match v.source {
+            Source::CheckSensitivity => {
+                self.check_sensitivity = value;
+                self.simulation = None;
+                self.checks = None;
+                Ok(())
+            }
+            _ => Err(format!("`{}` cannot be set", v.name)),
+        }
     }
 
     /// Writes a String variable.
@@ -930,10 +979,10 @@ impl Instance {
     ///   on in a new file, an explicit one stops (a warning).
     /// - In state Error it returns the instance to the state the failed call was made in.
     pub fn restore(&mut self, snapshot: &Snapshot) -> Outcome<Status> {
-        if !snapshot.start_time.is_finite() {
+        if !within_time_limit(snapshot.start_time) {
             return Err(Error::StateInvalid {
                 field: "start_time".into(),
-                detail: format!("= {} s is not finite", snapshot.start_time),
+                detail: format!("= {} s is not within +-{MAX_ABSOLUTE_TIME:e} s", time_text(snapshot.start_time)),
             }
             .to_string());
         }
@@ -957,9 +1006,7 @@ impl Instance {
         // them, or whose check runs do not fit, leaves the check off: not checked from there on).
         let mut checks = match (same_model, self.checks.take()) {
             (true, Some(checks)) => Some(checks),
-            _ => crate::answer::check_scenarios(&scenario)
-                .and_then(|s| s.iter().map(Simulation::new).collect::<crate::Result<Vec<_>>>())
-                .ok(),
+            _ => self.check_runs(&scenario).ok(),
         };
         if let Some(runs) = checks.as_mut() {
             let fits = runs.len() == snapshot.checks.len()
@@ -1026,14 +1073,47 @@ impl Instance {
         Ok(Status::Ok)
     }
 
-    /// The largest discretisation figure of the running peaks so far against the checks' runs
-    /// (see [`crate::answer`]); -1 when not checked (no simulation, or after a restored state).
+    /// The runs stepped in lockstep with the simulation: the discretisation check's, then the
+    /// reproducibility twin when `check_sensitivity` is on.
+    fn check_runs(&self, scenario: &Scenario) -> crate::Result<Vec<Simulation>> {
+        let mut scenarios = crate::answer::check_scenarios(scenario)?;
+        if self.check_sensitivity {
+            scenarios.push(crate::answer::twin_scenario(scenario));
+        }
+        scenarios.iter().map(Simulation::new).collect()
+    }
+
+    /// The discretisation check's runs and the twin (when run), apart.
+    fn split_checks(&self) -> Option<(&[Simulation], Option<&Simulation>)> {
+        let checks = self.checks.as_deref()?;
+        Some(match (self.check_sensitivity, checks.split_last()) {
+            (true, Some((twin, rungs))) => (rungs, Some(twin)),
+            _ => (checks, None),
+        })
+    }
+
+    /// The largest spread of the running peaks against the twin's (see [`crate::answer`]); -1
+    /// when not checked (`check_sensitivity` off, or after a state without the twin).
+    fn sensitivity_spread(&self) -> f64 {
+        let (Some(simulation), Some((_, Some(twin)))) = (&self.simulation, self.split_checks()) else { return -1.0 };
+        let (a, b) = (simulation.output().peaks.as_array(), twin.output().peaks.as_array());
+        (0..5).map(|k| crate::answer::relative(b[k], a[k])).fold(0.0, f64::max)
+    }
+
+    /// The largest discretisation figure of the running peaks so far (whole-run and first-contact)
+    /// against the checks' runs (see [`crate::answer`]); -1 when not checked (no simulation, or
+    /// after a state without the check runs).
     fn discretisation_error(&self) -> f64 {
-        let (Some(simulation), Some(checks)) = (&self.simulation, &self.checks) else { return -1.0 };
-        let printed = simulation.output().peaks.as_array();
-        let runs: Vec<[f64; 5]> = checks.iter().map(|c| c.output().peaks.as_array()).collect();
+        let (Some(simulation), Some((checks, _))) = (&self.simulation, self.split_checks()) else { return -1.0 };
+        // The whole-run peaks and the first-contact ones, as the CLI's check judges both.
+        let both = |s: &Simulation| {
+            let (whole, first) = (s.output().peaks.as_array(), s.state().first_contact.peaks.as_array());
+            std::array::from_fn::<f64, 10, _>(|k| if k < 5 { whole[k] } else { first[k - 5] })
+        };
+        let printed = both(simulation);
+        let runs: Vec<[f64; 10]> = checks.iter().map(both).collect();
         let paper = self.scenario.method == crate::model::Method::Paper;
-        (0..5)
+        (0..10)
             .map(|k| match (paper, runs.as_slice()) {
                 (true, [converged, ..]) => crate::answer::relative(printed[k], converged[k]),
                 (false, [check, coarse]) => crate::answer::discretisation_figure(printed[k], check[k], Some(coarse[k])),

@@ -2,7 +2,6 @@
 //! with its modelDescription.xml, the shared library under the platform directory its standard
 //! names, and `documentation/` (the repository's `fmu/documentation/`).
 
-use std::fs::File;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -54,7 +53,7 @@ fn write_fmu(fmu: &Path, xml: &str, platform: &str, library: &[u8], docs: &[(Str
     if let Some(parent) = fmu.parent() {
         std::fs::create_dir_all(parent).map_err(io("cannot create directory", parent))?;
     }
-    let file = File::create(fmu).map_err(io("cannot create FMU", fmu))?;
+    let file = crate::record::output::OutputFile::create(fmu, false, "cannot create FMU")?;
     let mut zip = ZipWriter::new(file);
     let options = SimpleFileOptions::default().compression_method(CompressionMethod::Deflated);
     zip.start_file("modelDescription.xml", options).map_err(zip_error(fmu))?;
@@ -67,8 +66,8 @@ fn write_fmu(fmu: &Path, xml: &str, platform: &str, library: &[u8], docs: &[(Str
         zip.start_file(format!("documentation/{name}"), options).map_err(zip_error(fmu))?;
         zip.write_all(&data).map_err(io("cannot write FMU", fmu))?;
     }
-    zip.finish().map_err(zip_error(fmu))?;
-    Ok(())
+    // Complete: the FMU replaces an earlier one only now.
+    zip.finish().map_err(zip_error(fmu))?.commit()
 }
 
 /// The entry points an importer looks up first, as they stand in the dynamic string table.

@@ -142,6 +142,8 @@ pub enum Source {
     DesignPass,
     /// Whether every check that runs in the FMU passes (energy, discretisation, yield).
     Trusted,
+    /// Whether the FMU runs the reproducibility twin (`check_sensitivity`, an FMU-only parameter).
+    CheckSensitivity,
     /// The largest discretisation figure of the running peaks so far (-1: not checked).
     DiscretisationError,
     /// The largest spread against the twin run (-1: not checked; the FMU runs no twin).
@@ -582,8 +584,9 @@ pub fn table() -> Vec<Variable> {
         Variability::Continuous,
         Some(false),
         Some("1"),
-        "Largest spread of the peaks against a twin run with the drop height changed by 1e-9: -1, not checked by \
-         the FMU (the CLI checks it)"
+        "Largest spread of the running peaks against a twin run with the drop height changed by 1e-9 (relative), \
+         stepped in lockstep when check_sensitivity is true; -1: not checked (check_sensitivity false, the \
+         default, or after SetFMUState of a state without the twin)"
             .into(),
         None,
         Source::SensitivitySpread,
@@ -602,6 +605,19 @@ pub fn table() -> Vec<Variable> {
             Source::Parameter(p),
         );
     }
+    push(
+        "check_sensitivity".into(),
+        Type::Boolean,
+        Causality::Parameter,
+        Variability::Fixed,
+        None,
+        None,
+        "Run the reproducibility twin (drop height changed by 1e-9, relative) in lockstep and report \
+         quality.sensitivity_spread; it doubles the cost of a converged run's stepping (the CLI always runs it)"
+            .into(),
+        Some("false".into()),
+        Source::CheckSensitivity,
+    );
     v
 }
 

@@ -637,20 +637,21 @@ pub(crate) trait Drawing {
 /// Writes `drawing` as `<stem>.svg` and `<stem>.png` into `dir`; returns the two files.
 pub(crate) fn write_svg_png(drawing: &impl Drawing, dir: &Path) -> Result<Vec<PathBuf>> {
     register_fonts();
+    // Through the output guard: no link or FIFO in the folder is written through.
     let svg = dir.join(format!("{}.svg", drawing.stem()));
-    drawing.draw(&SVGBackend::new(&svg, SIZE).into_drawing_area(), Output::Svg)?;
+    super::output::write_by_path(&svg, "cannot write figure", |partial| {
+        drawing.draw(&SVGBackend::new(partial, SIZE).into_drawing_area(), Output::Svg)
+    })?;
     let png = dir.join(format!("{}.png", drawing.stem()));
-    drawing.draw(&BitMapBackend::new(&png, SIZE).into_drawing_area(), Output::Png)?;
+    super::output::write_by_path(&png, "cannot write figure", |partial| {
+        drawing.draw(&BitMapBackend::new(partial, SIZE).into_drawing_area(), Output::Png)
+    })?;
     Ok(vec![svg, png])
 }
 
-/// Creates `dir` (and its parents) if missing.
+/// Creates `dir` (and its parents) if missing; a folder that is a symbolic link is refused.
 pub(crate) fn create_dir(dir: &Path) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(|source| Error::Io {
-        action: "cannot create figure directory",
-        path: dir.display().to_string(),
-        source,
-    })
+    super::output::create_output_dir(dir, "cannot create figure directory")
 }
 
 impl Drawing for Figure {

@@ -266,11 +266,14 @@ impl McapRecorder {
             // data section would hash every byte again for nothing they check in addition.
             .calculate_data_section_crc(false)
             .chunk_size(Some(options.chunk_size));
+        // The size cap counts what the open file holds (its descriptor, not its path: a log renamed
+        // mid-run keeps its cap).
+        let sized = file.try_clone().map_err(|source| io_error("cannot write MCAP log", source))?;
         let mut writer =
             write_options.create(std::io::BufWriter::with_capacity(128 * 1024, file)).map_err(mcap_error)?;
         let channels = add_channels(&mut writer).map_err(mcap_error)?;
         let capped = Arc::new(OnceLock::new());
-        let log_writer = LogWriter::new(path.to_path_buf(), options, writer, channels, Arc::clone(&capped));
+        let log_writer = LogWriter::new(path.to_path_buf(), options, writer, sized, channels, Arc::clone(&capped));
         let (queue, receiver) = sync_channel(QUEUE_BATCHES);
         let thread = std::thread::Builder::new()
             .name("beam-impact-mcap".into())

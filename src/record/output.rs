@@ -6,7 +6,7 @@
 
 use std::fs::File;
 use std::os::unix::fs::{FileTypeExt, OpenOptionsExt};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
 
@@ -36,6 +36,216 @@ pub fn open_input(path: &Path, what: &'static str) -> Result<File> {
     let file = std::fs::OpenOptions::new().read(true).custom_flags(libc::O_NONBLOCK).open(path).map_err(io)?;
     check_kind(&file, true).map_err(io)?;
     Ok(file)
+}
+
+/// A file a command writes, guarded: it is written to `NAME.partial` beside the target (created
+/// exclusively, never through a link) and renamed over NAME by [`OutputFile::commit`], so the
+/// user's earlier NAME stays as it was until the output is complete, and a failed run (the value
+/// dropped without a commit) removes its partial file and leaves NAME untouched. A target that
+/// is a symbolic link, a FIFO, a socket or a folder is refused before anything is written; a
+/// device is written in place where the caller allows it (the CLI's `/dev/null`).
+#[derive(Debug)]
+pub struct OutputFile {
+    target: PathBuf,
+    partial: Option<PathBuf>,
+    file: Option<File>,
+    what: &'static str,
+}
+
+impl OutputFile {
+    /// Opens the output for `path`; `what` names it in errors ("cannot create JSON").
+    pub fn create(path: &Path, allow_devices: bool, what: &'static str) -> Result<Self> {
+        let io = |source| Error::Io { action: what, path: path.display().to_string(), source };
+        match std::fs::symlink_metadata(path) {
+            Ok(m) if m.file_type().is_symlink() => {
+                return Err(io(std::io::Error::other("it is a symbolic link; give the link's target instead")))
+            }
+            Ok(m) if m.file_type().is_char_device() || m.file_type().is_block_device() => {
+                let file = open_output(path, allow_devices, what)?;
+                return Ok(OutputFile { target: path.to_path_buf(), partial: None, file: Some(file), what });
+            }
+            Ok(m) if !m.is_file() => {
+                let kind = if m.is_dir() { "a folder" } else { "a FIFO or a socket, not a regular file" };
+                return Err(io(std::io::Error::other(format!("it is {kind}"))));
+            }
+            _ => {}
+        }
+        let partial = partial_path(path);
+        let file = create_exclusive(&partial).map_err(io)?;
+        Ok(OutputFile { target: path.to_path_buf(), partial: Some(partial), file: Some(file), what })
+    }
+
+    /// The open file.
+    pub fn file(&mut self) -> &mut File {
+        self.file.as_mut().expect("an OutputFile holds its file until commit")
+    }
+
+    /// Completes the output: flushes it and renames the partial file over the target.
+    pub fn commit(mut self) -> Result<()> {
+        let io = |source| Error::Io { action: self.what, path: self.target.display().to_string(), source };
+        if let Some(file) = self.file.take() {
+            file.sync_data().or_else(|e| if self.partial.is_none() { Ok(()) } else { Err(e) }).map_err(io)?;
+        }
+        if let Some(partial) = self.partial.take() {
+            std::fs::rename(&partial, &self.target).map_err(|e| {
+                let _ = std::fs::remove_file(&partial);
+                io(e)
+            })?;
+        }
+        Ok(())
+    }
+}
+
+impl Drop for OutputFile {
+    fn drop(&mut self) {
+        if let Some(partial) = self.partial.take() {
+            let _ = std::fs::remove_file(partial);
+        }
+    }
+}
+
+impl std::io::Write for OutputFile {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.file().write(buf)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.file().flush()
+    }
+}
+
+impl std::io::Seek for OutputFile {
+    fn seek(&mut self, position: std::io::SeekFrom) -> std::io::Result<u64> {
+        self.file().seek(position)
+    }
+}
+
+/// `NAME.partial` beside `path`.
+pub fn partial_path(path: &Path) -> PathBuf {
+    let mut name = path.file_name().map(|n| n.to_os_string()).unwrap_or_default();
+    name.push(".partial");
+    path.with_file_name(name)
+}
+
+/// Creates `path` exclusively, never through a link: a leftover of a killed run (a regular file
+/// or a link, never followed) is removed first.
+fn create_exclusive(path: &Path) -> std::io::Result<File> {
+    if let Ok(m) = std::fs::symlink_metadata(path) {
+        if m.is_dir() {
+            return Err(std::io::Error::other(format!("{} is a folder", path.display())));
+        }
+        std::fs::remove_file(path)?;
+    }
+    std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK)
+        .open(path)
+}
+
+/// Writes a file that a library writes by path (the figures' SVG and PNG backends): `write`
+/// gets `NAME.partial.EXT` (any leftover there removed, so no link in the folder is followed), and
+/// the result is renamed over NAME, which replaces a link or a FIFO there instead of writing
+/// through it.
+pub fn write_by_path(target: &Path, what: &'static str, write: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
+    let io = |source| Error::Io { action: what, path: target.display().to_string(), source };
+    if std::fs::symlink_metadata(target).is_ok_and(|m| m.is_dir()) {
+        return Err(io(std::io::Error::other("it is a folder")));
+    }
+    // `NAME.partial.EXT`: the libraries choose the format from the extension.
+    let partial = match (target.file_stem(), target.extension()) {
+        (Some(stem), Some(ext)) => {
+            let mut name = stem.to_os_string();
+            name.push(".partial.");
+            name.push(ext);
+            target.with_file_name(name)
+        }
+        _ => partial_path(target),
+    };
+    drop(create_exclusive(&partial).map_err(io)?);
+    let written = write(&partial).and_then(|()| std::fs::rename(&partial, target).map_err(io));
+    if written.is_err() {
+        let _ = std::fs::remove_file(&partial);
+    }
+    written
+}
+
+/// Creates a folder for outputs (and its parents), refusing a folder that is a symbolic link:
+/// a stranger's `log-figures -> ~/` would otherwise take the figures.
+pub fn create_output_dir(dir: &Path, what: &'static str) -> Result<()> {
+    let io = |source| Error::Io { action: what, path: dir.display().to_string(), source };
+    if std::fs::symlink_metadata(dir).is_ok_and(|m| m.file_type().is_symlink()) {
+        return Err(io(std::io::Error::other("it is a symbolic link; give the link's target instead")));
+    }
+    std::fs::create_dir_all(dir).map_err(io)
+}
+
+/// What a path names, to tell whether two paths are one file: the device and inode of an
+/// existing file, or for a file still to be created the device and inode of its folder and its
+/// final name. `None` for a device (`/dev/null` takes any number of outputs) and `-`.
+fn identity(path: &Path) -> Option<(u64, u64, Option<std::ffi::OsString>)> {
+    use std::os::unix::fs::MetadataExt;
+    if path.as_os_str() == "-" {
+        return None;
+    }
+    match std::fs::metadata(path) {
+        Ok(m) if m.file_type().is_char_device() || m.file_type().is_block_device() => None,
+        Ok(m) => Some((m.dev(), m.ino(), None)),
+        Err(_) => {
+            let parent = match path.parent() {
+                Some(p) if !p.as_os_str().is_empty() => p,
+                _ => Path::new("."),
+            };
+            let m = std::fs::metadata(parent).ok()?;
+            Some((m.dev(), m.ino(), Some(path.file_name()?.to_os_string())))
+        }
+    }
+}
+
+/// Refuses two of `files` (role, path: the inputs a command reads and the outputs it writes)
+/// that name one file, by device and inode, before anything is opened for writing.
+pub fn check_distinct(files: &[(&str, &Path)]) -> Result<()> {
+    let ids: Vec<_> = files.iter().map(|(_, p)| identity(p)).collect();
+    for (j, b) in ids.iter().enumerate() {
+        for (i, a) in ids[..j].iter().enumerate() {
+            if a.is_some() && a == b {
+                return Err(Error::Other(format!(
+                    "{} and {} name the same file {}",
+                    files[i].0,
+                    files[j].0,
+                    files[j].1.display()
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Whether `path`'s folder is `dir` (by device and inode; false when either is missing).
+pub fn same_folder(path: &Path, dir: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    let parent = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    match (std::fs::metadata(parent), std::fs::metadata(dir)) {
+        (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+        _ => false,
+    }
+}
+
+/// Largest scenario file (or standard input) the CLI reads, bytes.
+pub const MAX_SCENARIO_BYTES: u64 = 4 << 20;
+
+/// Reads at most `limit` bytes of UTF-8 text from `reader`, checked while reading: a longer
+/// input (`/dev/zero`, an endless pipe) is an error naming the limit, not an exhausted machine.
+pub fn read_bounded(reader: impl std::io::Read, limit: u64, what: &str) -> std::io::Result<String> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    reader.take(limit + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > limit {
+        return Err(std::io::Error::other(format!("{what} is larger than {limit} bytes (the limit)")));
+    }
+    String::from_utf8(bytes).map_err(|e| std::io::Error::other(format!("{what} is not UTF-8 text ({e})")))
 }
 
 fn check_kind(file: &File, allow_devices: bool) -> std::io::Result<()> {

@@ -490,11 +490,7 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
     text.push('\n');
     text.push_str(&crate::compare::comparison(&summary, scenario.is_paper()));
     out.write_all(text.as_bytes()).map_err(io)?;
-    std::fs::create_dir_all(out_dir).map_err(|source| Error::Io {
-        action: "cannot create figure directory",
-        path: out_dir.display().to_string(),
-        source,
-    })?;
+    super::figures::create_dir(out_dir)?;
     // A value the figures cannot scale (a damaged or forged log: a run's results are finite) would
     // make the axes infinite: say so instead of drawing.
     if let Some(reason) = unplottable(&data.steps, &summary) {

@@ -128,6 +128,8 @@ pub(super) struct LogWriter {
     pub path: PathBuf,
     pub options: RecorderOptions,
     pub writer: Writer<BufWriter<File>>,
+    /// The same open file (a second descriptor): its size is what the cap counts.
+    sized: File,
     pub channels: Channels,
     /// Per-channel sequence numbers, indexed like [`LogWriter::sequence_slot`].
     sequences: [u32; 6],
@@ -149,6 +151,7 @@ impl LogWriter {
         path: PathBuf,
         options: RecorderOptions,
         writer: Writer<BufWriter<File>>,
+        sized: File,
         channels: Channels,
         capped: Arc<OnceLock<String>>,
     ) -> Self {
@@ -156,6 +159,7 @@ impl LogWriter {
             path,
             options,
             writer,
+            sized,
             channels,
             sequences: [0; 6],
             peaks: None,
@@ -359,7 +363,7 @@ impl LogWriter {
         result.map_err(|e| self.err(e))?;
         lap(started, &mut self.timing.write);
         self.steps_since_flush = 0;
-        let written = std::fs::metadata(&self.path).map_or(0, |m| m.len());
+        let written = self.sized.metadata().map_or(0, |m| m.len());
         if self.capped.get().is_none() && written >= self.options.max_bytes {
             let reason = format!(
                 "the MCAP log {} {SIZE_CAP_LINE} of {} bytes at {written} bytes: it ends here, the run goes on \

@@ -249,6 +249,16 @@ impl Fmu2 {
         unsafe { f(self.c, [vr(name)].as_ptr(), 1, pointers.as_ptr()) }
     }
 
+    pub fn set_boolean(&self, name: &str, value: bool) -> c_int {
+        let f = sym!(
+            self.lib,
+            "fmi2SetBoolean",
+            unsafe extern "C" fn(*mut c_void, *const u32, usize, *const c_int) -> c_int
+        );
+        // SAFETY: one value reference and one value.
+        unsafe { f(self.c, [vr(name)].as_ptr(), 1, &c_int::from(value)) }
+    }
+
     pub fn get_boolean(&self, name: &str) -> bool {
         let f =
             sym!(self.lib, "fmi2GetBoolean", unsafe extern "C" fn(*mut c_void, *const u32, usize, *mut c_int) -> c_int);

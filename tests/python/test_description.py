@@ -51,7 +51,7 @@ def test_units_come_from_type_definitions_and_starts_lie_within_min_max(version)
         assert v.unit is None, f"{v.name} declares its unit itself"
         if v.type in ("Real", "Float64"):
             assert v.declaredType is not None and v.declaredType.unit, v.name
-        if v.causality == "parameter" and v.type != "String":
+        if v.causality == "parameter" and v.type not in ("String", "Boolean"):
             start = float(v.start)
             assert v.min is not None, v.name
             assert float(v.min) <= start, v.name

@@ -63,11 +63,6 @@ PAPER_STEPS = {
     "upper.elements_beyond_contact": 7,
     "step_free": 5e-5,
     "step_contact": 2.5e-5,
-    # The paper mesh is 7-15 % off the converged answer, which the FMU reports with a warning at the
-    # stop time; fmpy's restore flow (`simulate_fmu(fmu_state=...)`) crashes inside its own
-    # logging.so when a warning is logged from fmi2DoStep (seen in CI, not yet understood), so these
-    # runs leave the discretisation check's verdict aside. The FMU's warning is tested in Rust.
-    "discretisation_tolerance": 1.0,
 }
 
 

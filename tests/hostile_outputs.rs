@@ -1,0 +1,206 @@
+//! Hostile inputs, round two (issue 16): every file the CLI writes goes through one guard
+//! (`src/record/output.rs`), every input is read within a bound, and sweep grids are checked
+//! from their counts. Each test is one of the issue's reproductions, which failed before.
+
+use std::path::Path;
+use std::process::{Command, Output, Stdio};
+
+fn beam_impact() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_beam-impact"))
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// Exit 2 with one line on standard error, naming `needle`.
+fn refused(out: &Output, needle: &str) {
+    let text = stderr(out);
+    assert_eq!(out.status.code(), Some(2), "{text}");
+    assert_eq!(text.lines().count(), 1, "one line: {text}");
+    assert!(text.contains(needle), "`{needle}` in: {text}");
+}
+
+const SHORT: [&str; 2] = ["--set", "duration=0.002"];
+
+/// Item 1: `run --json ./x.mcap --mcap x.mcap` wrote the JSON over the log; the two paths name
+/// one file (by folder and name while it does not exist yet): refused before anything is written.
+#[test]
+fn json_and_log_naming_one_new_file_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = beam_impact()
+        .current_dir(dir.path())
+        .args(["run", "--json", "./x.mcap", "--mcap", "x.mcap"])
+        .args(SHORT)
+        .output()
+        .unwrap();
+    refused(&out, "name the same file");
+    assert!(!dir.path().join("x.mcap").exists());
+    let out = beam_impact().current_dir(dir.path()).args(["run", "--json", "./paper.mcap"]).output().unwrap();
+    refused(&out, "name the same file");
+}
+
+/// Item 4: `run s.toml --json s.toml` overwrote the scenario; `sweep --out` and `verify --json`
+/// followed symbolic links and overwrote the scenario file itself.
+#[test]
+fn outputs_never_overwrite_the_scenario_or_write_through_a_link() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = dir.path().join("s.toml");
+    std::fs::write(&scenario, "duration = 0.002\n").unwrap();
+    let victim = dir.path().join("victim.txt");
+    std::fs::write(&victim, "keep me").unwrap();
+    let link = dir.path().join("link.csv");
+    std::os::unix::fs::symlink(&victim, &link).unwrap();
+
+    let out = beam_impact().arg("run").arg(&scenario).arg("--json").arg(&scenario).arg("--no-mcap").output().unwrap();
+    refused(&out, "name the same file");
+    let out = beam_impact()
+        .arg("sweep")
+        .arg(&scenario)
+        .arg("--out")
+        .arg(&scenario)
+        .args(["--vary", "drop_height=0.5"])
+        .output()
+        .unwrap();
+    refused(&out, "name the same file");
+    let out = beam_impact()
+        .arg("sweep")
+        .arg(&scenario)
+        .arg("--out")
+        .arg(&link)
+        .args(["--vary", "drop_height=0.5"])
+        .output()
+        .unwrap();
+    refused(&out, "symbolic link");
+    let out = beam_impact().arg("verify").arg(&scenario).arg("--json").arg(&link).output().unwrap();
+    refused(&out, "symbolic link");
+    assert_eq!(std::fs::read_to_string(&scenario).unwrap(), "duration = 0.002\n");
+    assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep me");
+}
+
+/// Item 2: a stranger's log folder with `fig6-deflection.svg -> victim` had the victim
+/// overwritten by `report`, and a FIFO there blocked it forever. Now the figure replaces the link
+/// and the FIFO (renamed into place), the victim is untouched and the report ends. A figure
+/// folder that is itself a link is refused. Item 4: `report --csv DIR/fig6-deflection.svg` was
+/// replaced by the figure: a CSV inside the figure folder is refused.
+#[test]
+fn figures_replace_links_and_fifos_instead_of_writing_through_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let log = dir.path().join("log.mcap");
+    let out = beam_impact().args(["run", "--set", "duration=0.05", "--mcap"]).arg(&log).output().unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let figures = dir.path().join("log-figures");
+    std::fs::create_dir(&figures).unwrap();
+    let victim = dir.path().join("bashrc");
+    std::fs::write(&victim, "keep me").unwrap();
+    std::os::unix::fs::symlink(&victim, figures.join("fig6-deflection.svg")).unwrap();
+    let fifo = figures.join("fig6-deflection.png");
+    let c = std::ffi::CString::new(fifo.to_str().unwrap()).unwrap();
+    // SAFETY: a valid NUL-terminated path.
+    assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
+    let mut child = beam_impact().arg("report").arg(&log).stdout(Stdio::null()).stderr(Stdio::piped()).spawn().unwrap();
+    let started = std::time::Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if started.elapsed().as_secs() > 120 {
+            child.kill().unwrap();
+            panic!("report hangs on a FIFO in the figure folder");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    };
+    assert!(status.success());
+    assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep me");
+    for name in ["fig6-deflection.svg", "fig6-deflection.png"] {
+        let m = std::fs::symlink_metadata(figures.join(name)).unwrap();
+        assert!(m.is_file() && m.len() > 0, "{name} is a fresh figure");
+    }
+    let out =
+        beam_impact().arg("report").arg(&log).arg("--csv").arg(figures.join("fig6-deflection.svg")).output().unwrap();
+    refused(&out, "inside the figure folder");
+
+    let elsewhere = dir.path().join("elsewhere");
+    std::fs::create_dir(&elsewhere).unwrap();
+    let linked = dir.path().join("linked-figures");
+    std::os::unix::fs::symlink(&elsewhere, &linked).unwrap();
+    let out = beam_impact().arg("report").arg(&log).arg("--out").arg(&linked).output().unwrap();
+    refused(&out, "symbolic link");
+    assert_eq!(std::fs::read_dir(&elsewhere).unwrap().count(), 0);
+}
+
+/// Item 5: `run /dev/zero` and `cat /dev/zero | beam-impact run -` grew until the machine ran out
+/// of memory; reads stop at 4 MiB with a one-line error naming the limit.
+#[test]
+fn endless_scenario_inputs_stop_at_the_limit() {
+    let out = beam_impact().args(["run", "/dev/zero"]).output().unwrap();
+    refused(&out, "larger than 4194304 bytes");
+    let zero = std::fs::File::open("/dev/zero").unwrap();
+    let out = beam_impact().args(["run", "-"]).stdin(zero).output().unwrap();
+    refused(&out, "larger than 4194304 bytes");
+    let out = beam_impact().args(["sweep", "/dev/zero", "--out", "/dev/null"]).output().unwrap();
+    refused(&out, "larger than 4194304 bytes");
+    let out = beam_impact().args(["verify", "/dev/zero"]).output().unwrap();
+    refused(&out, "larger than 4194304 bytes");
+}
+
+/// Item 6: a count of u64::MAX panicked (exit 101), 1e9 aborted on an 8 GB allocation, 1e8 built
+/// 788 MB of values: counts are checked before any value is built.
+#[test]
+fn sweep_counts_are_checked_before_any_value_is_built() {
+    for spec in [
+        "drop_height=0.1:0.5:18446744073709551615",
+        "drop_height=0.1:0.5:1000000000",
+        "drop_height=0.1:0.5:1e9",
+        "drop_height=0.1:0.5:inf",
+    ] {
+        let out = beam_impact().args(["sweep", "--vary", spec]).arg("--out").arg("/dev/null").output().unwrap();
+        refused(&out, "1000000");
+    }
+    let out = beam_impact()
+        .args([
+            "sweep",
+            "--vary",
+            "drop_height=0.1:0.5:1000",
+            "--vary",
+            "damping_ratio=0:0.05:1001",
+            "--out",
+            "/dev/null",
+        ])
+        .output()
+        .unwrap();
+    refused(&out, "more than 1000000 scenarios");
+}
+
+/// Item 7: an existing `--json` was emptied before a bad `--mcap` path was even tried. Now the
+/// JSON is written beside and renamed into place when the run ends: a failed run leaves it.
+#[test]
+fn a_failed_run_leaves_the_earlier_results_as_they_were() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = dir.path().join("results.json");
+    std::fs::write(&json, "{\"earlier\": true}\n").unwrap();
+    for mcap in [dir.path().join("missing/x.mcap"), Path::new("/dev/full").to_path_buf()] {
+        let out =
+            beam_impact().args(["run", "--json"]).arg(&json).arg("--mcap").arg(&mcap).args(SHORT).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+        assert_eq!(std::fs::read_to_string(&json).unwrap(), "{\"earlier\": true}\n", "--mcap {}", mcap.display());
+    }
+    let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert_eq!(names, vec![std::ffi::OsString::from("results.json")], "no partial file left");
+    let out = beam_impact().args(["run", "--no-mcap", "--json"]).arg(&json).args(SHORT).output().unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(std::fs::read_to_string(&json).unwrap().contains("\"summary\""));
+}
+
+/// Item 10: a 100 MB string in a scenario gave a 300 MB error line. Within the 4 MiB read limit a
+/// 3 MB string still makes a bounded line.
+#[test]
+fn error_lines_stay_short_whatever_the_input_holds() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("big.toml");
+    std::fs::write(&file, format!("drop_height = \"{}\"\n", "x".repeat(3_000_000))).unwrap();
+    let out = beam_impact().arg("run").arg(&file).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stderr.len() < 1000, "{} bytes of error", out.stderr.len());
+    assert!(stderr(&out).contains("characters cut"), "{}", stderr(&out));
+}
