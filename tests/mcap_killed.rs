@@ -38,9 +38,11 @@ fn killed_run_leaves_a_readable_log() {
         .spawn()
         .unwrap();
     // Wait for a few flushed chunks (a chunk is ~256 KiB before compression, ~150 KiB after).
+    // The log is written to `NAME.partial` and takes its name only when finished (issue 16).
+    let partial = beam_impact::record::output::partial_path(&path);
     let started = Instant::now();
     let grown = loop {
-        let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
+        let size = std::fs::metadata(&partial).map(|m| m.len()).unwrap_or(0);
         if size > 2_000_000 {
             break true;
         }
@@ -53,6 +55,8 @@ fn killed_run_leaves_a_readable_log() {
     child.wait().unwrap();
     assert!(grown, "the child never wrote 2 MB (it exited or stalled)");
 
+    assert!(!path.exists(), "a killed run never takes the log's name");
+    let path = partial;
     let log = read_log(&path).unwrap();
     assert!(!log.complete);
     assert!(log.problem.is_some());

@@ -179,9 +179,11 @@ fn a_log_renamed_mid_run_keeps_its_size_cap() {
     let mut simulation = Simulation::new(&Scenario { duration: 3.0, ..Scenario::paper() }).unwrap();
     simulation.start_recording(&mut recorder).unwrap();
     simulation.advance_to(10_000_000, &mut recorder, false).unwrap();
-    std::fs::rename(&path, &moved).unwrap();
+    std::fs::rename(recorder.file_being_written(), &moved).unwrap();
     simulation.advance_to(3_000_000_000, &mut recorder, false).unwrap();
-    recorder.finish().unwrap();
+    // The log was moved away under its writer: it cannot take its name, and says so.
+    let finished = recorder.finish().unwrap_err().to_string();
+    assert!(finished.contains("cannot rename the finished MCAP log"), "{finished}");
     assert!(recorder.capped().is_some(), "the cap was reached");
     let size = std::fs::metadata(&moved).unwrap().len();
     assert!((400_000..1_000_000).contains(&size), "{size} bytes for a cap of 400 000");

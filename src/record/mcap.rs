@@ -41,6 +41,7 @@
 //! the last step are recorded; the others are not.
 
 use std::collections::BTreeMap;
+use std::os::unix::fs::FileTypeExt;
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::{sync_channel, SyncSender};
 use std::sync::{Arc, OnceLock};
@@ -194,6 +195,9 @@ pub struct RecorderTiming {
 /// Writes the steps of a run to an MCAP file, on a writer thread of its own.
 pub struct McapRecorder {
     path: PathBuf,
+    /// The file being written, renamed to `path` when the log is complete (`None`: a device,
+    /// written in place).
+    partial: Option<PathBuf>,
     options: RecorderOptions,
     queue: Option<SyncSender<Batch>>,
     thread: Option<JoinHandle<Result<RecorderTiming>>>,
@@ -239,9 +243,35 @@ impl McapRecorder {
         let io_error = |action, source| Error::Io { action, path: path.display().to_string(), source };
         let mcap_error =
             |e: ::mcap::McapError| Error::Mcap { path: path.display().to_string(), message: error_chain(&e) };
+        // The log is written to `NAME.partial` and renamed to NAME when it is complete (a device
+        // such as /dev/null is written in place): a killed run leaves `NAME.partial`, which
+        // `report` reads as a log cut short, and never a half-written NAME over an earlier log.
+        // The target must not be a link, a FIFO or a folder (checked before anything is written).
+        let partial = match std::fs::symlink_metadata(path) {
+            Ok(m) if m.file_type().is_char_device() || m.file_type().is_block_device() => None,
+            Ok(m) if !m.is_file() => {
+                let kind = if m.file_type().is_symlink() {
+                    "a symbolic link; give the link's target instead"
+                } else if m.is_dir() {
+                    "a folder"
+                } else {
+                    "a FIFO or a socket, not a regular file"
+                };
+                return Err(io_error("cannot create MCAP log", std::io::Error::other(format!("it is {kind}"))));
+            }
+            _ => {
+                let partial = super::output::partial_path(path);
+                // A stranger's link left at NAME.partial is removed, never followed.
+                if std::fs::symlink_metadata(&partial).is_ok_and(|m| m.file_type().is_symlink()) {
+                    std::fs::remove_file(&partial).map_err(|e| io_error("cannot create MCAP log", e))?;
+                }
+                Some(partial)
+            }
+        };
+        let written = partial.as_deref().unwrap_or(path);
         // Open without truncating, take an exclusive lock, then truncate: two writers given the same
         // path (two FMU instances with the default log.path) get an error, not an interleaved file.
-        let file = super::output::open_output(path, options.allow_devices, "cannot create MCAP log")?;
+        let file = super::output::open_output(written, options.allow_devices, "cannot create MCAP log")?;
         file.try_lock().map_err(|e| {
             io_error(
                 "cannot write MCAP log",
@@ -281,6 +311,7 @@ impl McapRecorder {
             .map_err(|source| io_error("cannot start the MCAP writer thread for", source))?;
         Ok(McapRecorder {
             path: path.to_path_buf(),
+            partial,
             options,
             queue: Some(queue),
             thread: Some(thread),
@@ -380,6 +411,11 @@ impl McapRecorder {
     /// Why the log stopped before the run's end (it reached its size cap), if it did.
     pub fn capped(&self) -> Option<&str> {
         self.capped.get().map(String::as_str)
+    }
+
+    /// The file being written now: `NAME.partial` until the log is finished, then NAME.
+    pub fn file_being_written(&self) -> &Path {
+        self.partial.as_deref().unwrap_or(&self.path)
     }
 
     /// Adds an attachment (the FMU's modelDescription.xml, for example).
@@ -596,6 +632,15 @@ impl Recorder for McapRecorder {
         // Closing the queue ends the writer thread, which then writes the summary and footer.
         self.queue = None;
         let joined = self.join();
+        // The file is complete as far as it got (an error on the way ends it with what it holds,
+        // as a killed run's would): it takes its name either way.
+        if let Some(partial) = self.partial.take() {
+            std::fs::rename(&partial, &self.path).map_err(|source| Error::Io {
+                action: "cannot rename the finished MCAP log to",
+                path: self.path.display().to_string(),
+                source,
+            })?;
+        }
         sent?;
         let writer = joined?;
         self.timing = RecorderTiming { queue_wait: self.timing.queue_wait, ..writer };
