@@ -193,8 +193,15 @@ def _fmi2_router() -> _Fmi2Messages:
         return _fmi2_messages
 
 
+#: Most communication points one `simulate` call takes (histories of 1e7 rows are ~2 GB).
+MAX_POINTS = 10_000_000
+
+
 def _communication_points(stop_time: float, interval: float) -> list[float]:
     """0, interval, 2 interval, ..., stop_time (the last one exactly), from the index, not a sum."""
+    if not (interval > 0 and stop_time / interval <= MAX_POINTS):
+        raise SimulationError(f"output_interval = {interval} s over {stop_time} s gives more than {MAX_POINTS} "
+                              "communication points: raise output_interval")
     n = max(1, int(round(stop_time / interval)))
     return [k * interval for k in range(n)] + [stop_time]
 
@@ -273,7 +280,7 @@ def _run(entry: _Extracted, start: dict[str, Any], stop_time: float, interval: f
         return rows, [bool(v) for v in verdicts]
     except Exception as e:
         errors = [m for status, m in messages if status >= _ERROR]
-        raise SimulationError("; ".join(errors) if errors else str(e)) from e
+        raise SimulationError("; ".join(errors) if errors else (str(e) or type(e).__name__)) from e
     finally:
         if instantiated:
             fmu.freeInstance()  # also unloads this instance's handle on the shared library
@@ -310,8 +317,8 @@ def simulate(
     start, duration = _start_values(dict(parameters or {}), entry.names)
     if duration is not None:
         stop_time = duration
-    if not stop_time > 0:
-        raise SimulationError(f"stop time must be > 0 s, got {stop_time}")
+    if not 0 < stop_time <= 1e6:
+        raise SimulationError(f"stop time must be > 0 s and at most 1e6 s (the FMU's limit), got {stop_time}")
     start["log.path"] = "" if log_path is None else os.fspath(log_path)
     if output_interval is None:
         output_interval = min(1e-3, stop_time) if histories else stop_time

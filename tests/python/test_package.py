@@ -169,6 +169,16 @@ def test_hostile_grids_are_refused_before_any_value_is_built(spec, message):
         beam_impact.expand(parse_vary([spec]))
 
 
+def test_simulate_refuses_runs_it_cannot_finish():
+    """Issue 16 item 8: `simulate(fmu, {"duration": 1e6})` ran for hours and `histories=True` on a
+    long run ended in a SimulationError with an empty message. Now the stop time is bounded by the
+    FMU's limit and the communication points by 1e7, each refused at once with a message."""
+    with pytest.raises(beam_impact.SimulationError, match="at most 1e6 s"):
+        beam_impact.simulate(fmu_path(), {"duration": 1e7})
+    with pytest.raises(beam_impact.SimulationError, match="communication points"):
+        beam_impact.simulate(fmu_path(), {"duration": 1000.0}, histories=True, output_interval=1e-5)
+
+
 def test_a_grid_over_the_limit_is_refused_before_its_product():
     grid = {"drop_height": [0.1] * 1000, "damping_ratio": list(range(1001))}
     with pytest.raises(ValueError, match="more than 1000000 scenarios"):
