@@ -147,15 +147,6 @@ pub fn richardson(coarse: f64, medium: f64, fine: f64) -> Option<Richardson> {
     Some(Richardson { order, estimate: fine + (fine - medium) / (ratio - 1.0) })
 }
 
-/// |value - reference| / |reference| (0 when both are equal, infinite for a zero reference).
-fn relative_change(value: f64, reference: f64) -> f64 {
-    if value == reference {
-        0.0
-    } else {
-        (value - reference).abs() / reference.abs()
-    }
-}
-
 /// The verdict on one peak.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct PeakVerdict {
@@ -428,23 +419,23 @@ fn judge(summaries: &Runs<Summary>, wall_time_s: Runs<f64>, j: Judged) -> Verifi
     });
     let verdict = |k: usize| {
         let v = run_peaks.map(|p| p[k]);
-        let step_change = relative_change(v.half_step, v.base);
+        let step_change = crate::answer::relative(v.half_step, v.base);
         let mesh_change = if j.mesh_change_between[0] == "base" {
-            relative_change(v.base, v.mesh_2x)
+            crate::answer::relative(v.base, v.mesh_2x)
         } else {
-            relative_change(v.mesh_2x, v.mesh_4x)
+            crate::answer::relative(v.mesh_2x, v.mesh_4x)
         };
         let extrapolated = if j.uniform { richardson(v.base, v.mesh_2x, v.mesh_4x) } else { None };
         PeakVerdict {
             value: v.base,
             step_change,
             mesh_change,
-            base_mesh_change: relative_change(v.base, v.mesh_4x),
+            base_mesh_change: crate::answer::relative(v.base, v.mesh_4x),
             estimate: extrapolated.map(|r| r.estimate),
             order: extrapolated.map(|r| r.order),
             // The verdict is about the value printed (the base run's): its change against the
             // finest mesh, not whether the two finer meshes agree with each other.
-            converged: step_change <= j.tolerance && relative_change(v.base, v.mesh_4x) <= j.tolerance,
+            converged: step_change <= j.tolerance && crate::answer::relative(v.base, v.mesh_4x) <= j.tolerance,
         }
     };
     let peaks = PeakVerdicts {
