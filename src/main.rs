@@ -216,7 +216,19 @@ fn main() -> ExitCode {
 /// a scenario) must not become a megabyte of standard error. Lines longer than 600 characters
 /// keep their first 400 and last 150, with the count cut between.
 fn bounded_line(message: &str) -> String {
-    let line = message.replace('\n', " ");
+    // Control characters (a terminal's escape sequences from a hostile file) are shown, not sent.
+    let line: String = message
+        .chars()
+        .map(|c| {
+            if c == '\n' || c == '\r' || c == '\t' {
+                ' '
+            } else if c.is_control() {
+                '\u{FFFD}'
+            } else {
+                c
+            }
+        })
+        .collect();
     let chars: Vec<char> = line.chars().collect();
     if chars.len() <= 600 {
         return line;
@@ -477,8 +489,12 @@ fn modes(file: Option<&Path>, set: &[String], out: &Path) -> Result<()> {
         None => Scenario::paper(),
     };
     beam_impact::sweep::apply_settings(&mut scenario, &beam_impact::sweep::parse_settings(set)?)?;
-    // The model and its modes only: no time step is involved.
-    let model = beam_impact::model::Model::new(&scenario)?;
+    // The model and its modes only: no time step is involved ("auto" element counts resolved as a
+    // run resolves them).
+    if let Some(path) = file {
+        beam_impact::record::output::check_not_in_figure_folder("the scenario file", path, out)?;
+    }
+    let model = beam_impact::model::Model::new(&beam_impact::discretise::printed(&scenario)?)?;
     let modal = beam_impact::solver::ModalSystem::new(&model)?;
     let mut text = String::from("natural frequencies, rad/s (the first 5 of each column of Table 2):\n");
     for (name, modes) in [("arrestor", &modal.lower), ("bridge", &modal.upper), ("coupled", &modal.coupled)] {
@@ -598,6 +614,7 @@ fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>) -> Result<()> {
     let stdout = std::io::stdout();
     let mut lock = stdout.lock();
     let csv_to_stdout = csv.is_some_and(|path| path.as_os_str() == "-");
+    beam_impact::record::output::check_not_in_figure_folder("the log", file, &out)?;
     if let Some(path) = csv {
         check_distinct(&[("the log", file), ("--csv", path)])?;
         if !csv_to_stdout && beam_impact::record::output::same_folder(path, &out) {

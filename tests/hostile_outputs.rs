@@ -130,17 +130,24 @@ fn figures_replace_links_and_fifos_instead_of_writing_through_them() {
 }
 
 /// Item 5: `run /dev/zero` and `cat /dev/zero | beam-impact run -` grew until the machine ran out
-/// of memory; reads stop at 4 MiB with a one-line error naming the limit.
+/// of memory; a device is refused as a scenario file, and reads stop at 4 MiB with a one-line
+/// error naming the limit.
 #[test]
 fn endless_scenario_inputs_stop_at_the_limit() {
+    // A device as the scenario file is refused before reading; a 5 MiB file stops at the limit.
     let out = beam_impact().args(["run", "/dev/zero"]).output().unwrap();
+    refused(&out, "device other than /dev/null");
+    let dir = tempfile::tempdir().unwrap();
+    let big = dir.path().join("big.toml");
+    std::fs::write(&big, vec![b'#'; 5 << 20]).unwrap();
+    let out = beam_impact().arg("run").arg(&big).output().unwrap();
     refused(&out, "larger than 4194304 bytes");
     let zero = std::fs::File::open("/dev/zero").unwrap();
     let out = beam_impact().args(["run", "-"]).stdin(zero).output().unwrap();
     refused(&out, "larger than 4194304 bytes");
     let out = beam_impact().args(["sweep", "/dev/zero", "--out", "/dev/null"]).output().unwrap();
-    refused(&out, "larger than 4194304 bytes");
-    let out = beam_impact().args(["verify", "/dev/zero"]).output().unwrap();
+    refused(&out, "device other than /dev/null");
+    let out = beam_impact().arg("verify").arg(&big).output().unwrap();
     refused(&out, "larger than 4194304 bytes");
 }
 
@@ -203,4 +210,77 @@ fn error_lines_stay_short_whatever_the_input_holds() {
     assert_eq!(out.status.code(), Some(2));
     assert!(out.stderr.len() < 1000, "{} bytes of error", out.stderr.len());
     assert!(stderr(&out).contains("characters cut"), "{}", stderr(&out));
+}
+
+/// An attack pass on the guard (this session): devices other than /dev/null, a figure folder
+/// named `link/`, a hard link left at the log's `NAME.partial`, an output named like another's
+/// partial file, an input inside the figure folder under a figure's name, `report /dev/zero`, a
+/// million-value integer axis, and terminal escapes in an error line.
+#[test]
+fn second_attack_pass_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let run = |args: &[&str]| beam_impact().current_dir(d).args(args).args(SHORT).output().unwrap();
+    refused(&run(&["run", "--no-mcap", "--json", "/dev/zero"]), "device other than /dev/null");
+    refused(&run(&["run", "--mcap", "/dev/zero"]), "device other than /dev/null");
+    refused(&run(&["run", "--json", "out.json", "--mcap", "out.json.partial"]), "is written through");
+    std::fs::write(d.join("x.partial"), "duration = 0.002\n").unwrap();
+    refused(&run(&["run", "x.partial", "--mcap", "x"]), "is written through");
+    assert_eq!(std::fs::read_to_string(d.join("x.partial")).unwrap(), "duration = 0.002\n");
+
+    // A hard link at the log's partial file is removed, not written through.
+    std::fs::write(d.join("victim.txt"), "keep me").unwrap();
+    std::fs::hard_link(d.join("victim.txt"), d.join("h.mcap.partial")).unwrap();
+    let out = run(&["run", "--mcap", "h.mcap"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(std::fs::read_to_string(d.join("victim.txt")).unwrap(), "keep me");
+    assert!(d.join("h.mcap").is_file() && !d.join("h.mcap.partial").exists());
+
+    // `link/` names the link's target: still refused.
+    std::fs::create_dir(d.join("elsewhere")).unwrap();
+    std::os::unix::fs::symlink(d.join("elsewhere"), d.join("linkdir")).unwrap();
+    for out_dir in ["linkdir/", "linkdir/."] {
+        let out = beam_impact().current_dir(d).args(["report", "h.mcap", "--out", out_dir]).output().unwrap();
+        refused(&out, "symbolic link");
+    }
+    assert_eq!(std::fs::read_dir(d.join("elsewhere")).unwrap().count(), 0);
+
+    // An input inside the figure folder under a figure's name would be replaced by a figure.
+    std::fs::create_dir(d.join("out")).unwrap();
+    std::fs::copy(d.join("h.mcap"), d.join("out/fig6-deflection.svg")).unwrap();
+    let out =
+        beam_impact().current_dir(d).args(["report", "out/fig6-deflection.svg", "--out", "out"]).output().unwrap();
+    refused(&out, "lies in the figure folder");
+
+    let out = beam_impact().args(["report", "/dev/zero"]).output().unwrap();
+    refused(&out, "not a regular file");
+    let out = beam_impact()
+        .args([
+            "sweep",
+            "--out",
+            "/dev/null",
+            "--vary",
+            "lower.elements=1:1000000:1000000",
+            "--vary",
+            "drop_height=1,2",
+        ])
+        .output()
+        .unwrap();
+    refused(&out, "more than 1000000 scenarios");
+    let out = beam_impact().args(["run", "--no-mcap", "--set", "method=a\u{1b}[2Kb"]).output().unwrap();
+    refused(&out, "method");
+    assert!(!out.stderr.contains(&0x1b), "no escape byte reaches the terminal");
+}
+
+/// `modes` reads a scenario as `run` does: "auto" element counts (the file `beam-impact
+/// scenario` prints) are resolved, not refused.
+#[test]
+fn modes_takes_the_printed_scenario_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let printed = beam_impact().arg("scenario").output().unwrap();
+    assert!(printed.status.success());
+    let file = dir.path().join("s.toml");
+    std::fs::write(&file, &printed.stdout).unwrap();
+    let out = beam_impact().arg("modes").arg(&file).arg("--out").arg(dir.path().join("modes")).output().unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
 }

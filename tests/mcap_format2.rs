@@ -121,17 +121,35 @@ fn without_modal_coordinates_the_modes_topic_is_empty_and_the_scene_stays() {
 }
 
 /// A writer error (the disk full) is returned by a later call of the recorder, naming the file,
-/// instead of being lost on the writer thread.
+/// instead of being lost on the writer thread; the failed log stays `NAME.partial` and an earlier
+/// log under NAME is left as it was. The full disk is a file-size limit (`ulimit -f`, SIGXFSZ
+/// ignored: writes beyond it fail with EFBIG) on a child `beam-impact run`; /dev/full is no
+/// longer accepted as a log (a device other than /dev/null).
 #[test]
 fn a_full_disk_is_reported_by_the_recorder() {
-    let options = RecorderOptions { allow_devices: true, ..Default::default() };
-    let scenario = Scenario { duration: 0.5, ..Scenario::paper() };
-    // The header may already fail, or a later chunk: either way an error, never silence.
-    let result = McapRecorder::with_options(Path::new("/dev/full"), options)
-        .and_then(|mut recorder| Simulation::new(&scenario)?.run(&mut recorder).map(|_| ()));
-    let message = result.unwrap_err().to_string();
-    assert!(message.contains("/dev/full"), "{message}");
-    assert!(message.to_lowercase().contains("no space"), "{message}");
+    let refused = McapRecorder::with_options(
+        Path::new("/dev/full"),
+        RecorderOptions { allow_devices: true, ..Default::default() },
+    );
+    assert!(refused.unwrap_err().to_string().contains("device other than /dev/null"));
+    let dir = tempfile::tempdir().unwrap();
+    let log = dir.path().join("full.mcap");
+    std::fs::write(&log, "an earlier log").unwrap();
+    let out = std::process::Command::new("sh")
+        .arg("-c")
+        .arg(format!(
+            "trap '' XFSZ; ulimit -f 200; exec '{}' run --set duration=0.5 --mcap '{}'",
+            env!("CARGO_BIN_EXE_beam-impact"),
+            log.display()
+        ))
+        .output()
+        .unwrap();
+    let message = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{message}");
+    assert!(message.contains("full.mcap"), "{message}");
+    assert!(message.to_lowercase().contains("too large"), "{message}");
+    assert_eq!(std::fs::read_to_string(&log).unwrap(), "an earlier log");
+    assert!(beam_impact::record::output::partial_path(&log).is_file());
 }
 
 /// A recorder dropped without `finish` (an FMU freed without Terminate) ends its writer thread

@@ -131,8 +131,10 @@ def normalize(field: str, values: Iterable[Any]) -> list[float]:
     if bad is not None:
         raise ValueError(f"{field} takes a whole number, got {bad}")
     out: list[float] = []
+    seen: set[float] = set()
     for v in map(round_half_away, parsed):
-        if v not in out:
+        if v + 0.0 not in seen:  # -0.0 and 0.0 are one value
+            seen.add(v + 0.0)
             out.append(v)
     return out
 

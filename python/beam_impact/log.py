@@ -124,20 +124,21 @@ def load_log(path: str) -> Log:
     try:
         mode = os.stat(path).st_mode
     except OSError as e:
-        raise LogError(f"{path}: cannot read the log ({_one_line(e.strerror or e)})") from None
+        raise LogError(f"{_one_line(path)}: cannot read the log ({_one_line(e.strerror or e)})") from None
     if not stat.S_ISREG(mode):
-        raise LogError(f"{path}: not a regular file (a FIFO, a device or a folder is not a log)")
+        raise LogError(f"{_one_line(path)}: not a regular file (a FIFO, a device or a folder is not a log)")
     try:
         log = _load_log(path)
     except LogError:
         raise
     except MemoryError:
-        raise LogError(f"{path}: the log does not fit in memory") from None
+        raise LogError(f"{_one_line(path)}: the log does not fit in memory") from None
     except Exception as e:  # the decoders' own types (protobuf, KeyError, ...): one type for callers
-        raise LogError(f"{path}: not a readable beam-impact log ({type(e).__name__}: {_one_line(e)})") from None
+        raise LogError(f"{_one_line(path)}: not a readable beam-impact log ({type(e).__name__}: {_one_line(e)})") \
+            from None
     fmt = log.metadata.get("log_format", "1")
     if fmt not in ("1", "2"):
-        raise LogError(f"{path}: log format {_one_line(fmt, 20)!r} is not one this reader knows (1 or 2)")
+        raise LogError(f"{_one_line(path)}: log format {_one_line(fmt, 20)!r} is not one this reader knows (1 or 2)")
     return log
 
 

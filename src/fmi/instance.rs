@@ -185,14 +185,20 @@ pub fn timestamp(time: SystemTime) -> String {
     format!("{year:04}{month:02}{day:02}T{hour:02}{minute:02}{second:02}Z")
 }
 
-/// Creates a new, empty log file `BeamImpact-<instance>-<timestamp>-<n>.mcap` in `dir`, `n` = 1, 2,
-/// ... the first name that does not exist yet: the file is created with `create_new`, so two
-/// instances or processes never get the same one and no file is ever overwritten.
+/// Reserves a new log name `BeamImpact-<instance>-<timestamp>-<n>.mcap` in `dir`, `n` = 1, 2, ...
+/// the first name that does not exist yet, by creating its empty `NAME.partial` with
+/// `create_new`: two instances or processes never get the same one and no file is overwritten.
 pub fn unique_log(dir: &Path, instance_name: &str, now: SystemTime) -> std::io::Result<PathBuf> {
     let stem = format!("BeamImpact-{}-{}", file_name_part(instance_name), timestamp(now));
     for n in 1..=MAX_LOG_COUNTER {
         let path = dir.join(format!("{stem}-{n}.mcap"));
-        match std::fs::OpenOptions::new().write(true).create_new(true).open(&path) {
+        if path.exists() {
+            continue;
+        }
+        // The reservation is the log's partial file (renamed to the name when the log is
+        // finished), so a killed instance leaves no empty NAME behind.
+        match std::fs::OpenOptions::new().write(true).create_new(true).open(crate::record::output::partial_path(&path))
+        {
             Ok(_) => return Ok(path),
             Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
             Err(e) => return Err(e),
@@ -514,8 +520,8 @@ impl Instance {
                 Ok((Some(recorder), None))
             }
             Err(e) => {
-                // The file is ours (created empty by unique_log): do not leave it behind.
-                let _ = std::fs::remove_file(&path);
+                // The reservation is ours (created empty by unique_log): do not leave it behind.
+                let _ = std::fs::remove_file(crate::record::output::partial_path(&path));
                 Ok((None, Some(no_log(e.to_string()))))
             }
         }

@@ -261,9 +261,14 @@ impl McapRecorder {
             }
             _ => {
                 let partial = super::output::partial_path(path);
-                // A stranger's link left at NAME.partial is removed, never followed.
-                if std::fs::symlink_metadata(&partial).is_ok_and(|m| m.file_type().is_symlink()) {
-                    std::fs::remove_file(&partial).map_err(|e| io_error("cannot create MCAP log", e))?;
+                // A leftover at NAME.partial: a link (symbolic, or a hard link to another file) is
+                // removed, never written through; a plain file (a killed run's, or the FMU's
+                // reservation of a unique name) is taken over below once its lock is free.
+                if let Ok(m) = std::fs::symlink_metadata(&partial) {
+                    use std::os::unix::fs::MetadataExt;
+                    if m.file_type().is_symlink() || (m.is_file() && m.nlink() > 1) {
+                        std::fs::remove_file(&partial).map_err(|e| io_error("cannot create MCAP log", e))?;
+                    }
                 }
                 Some(partial)
             }
@@ -632,9 +637,9 @@ impl Recorder for McapRecorder {
         // Closing the queue ends the writer thread, which then writes the summary and footer.
         self.queue = None;
         let joined = self.join();
-        // The file is complete as far as it got (an error on the way ends it with what it holds,
-        // as a killed run's would): it takes its name either way.
-        if let Some(partial) = self.partial.take() {
+        // A finished log takes its name; one that failed on the way (a full disk) stays
+        // NAME.partial, as a killed run's does, and an earlier NAME is left as it was.
+        if let Some(partial) = self.partial.take().filter(|_| sent.is_ok() && joined.is_ok()) {
             std::fs::rename(&partial, &self.path).map_err(|source| Error::Io {
                 action: "cannot rename the finished MCAP log to",
                 path: self.path.display().to_string(),

@@ -173,6 +173,9 @@ pub fn write_by_path(target: &Path, what: &'static str, write: impl FnOnce(&Path
 /// a stranger's `log-figures -> ~/` would otherwise take the figures.
 pub fn create_output_dir(dir: &Path, what: &'static str) -> Result<()> {
     let io = |source| Error::Io { action: what, path: dir.display().to_string(), source };
+    // `link/` and `link/.` name the link's target: look at the link itself.
+    let dir: PathBuf = dir.components().collect();
+    let dir = dir.as_path();
     if std::fs::symlink_metadata(dir).is_ok_and(|m| m.file_type().is_symlink()) {
         return Err(io(std::io::Error::other("it is a symbolic link; give the link's target instead")));
     }
@@ -217,6 +220,21 @@ pub fn check_distinct(files: &[(&str, &Path)]) -> Result<()> {
             }
         }
     }
+    // An output is written to NAME.partial first: no other file may be that.
+    for (j, (role, path)) in files.iter().enumerate() {
+        if path.as_os_str() == "-" {
+            continue;
+        }
+        let partial = identity(&partial_path(path));
+        if let Some(i) = ids.iter().enumerate().position(|(i, a)| i != j && a.is_some() && *a == partial) {
+            return Err(Error::Other(format!(
+                "{} {} is the file {role} is written through ({}.partial); give another name",
+                files[i].0,
+                files[i].1.display(),
+                path.display()
+            )));
+        }
+    }
     Ok(())
 }
 
@@ -248,13 +266,52 @@ pub fn read_bounded(reader: impl std::io::Read, limit: u64, what: &str) -> std::
     String::from_utf8(bytes).map_err(|e| std::io::Error::other(format!("{what} is not UTF-8 text ({e})")))
 }
 
+/// Whether `m` is the null device (the one device outputs may name).
+fn is_null_device(m: &std::fs::Metadata) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    m.file_type().is_char_device() && std::fs::metadata("/dev/null").is_ok_and(|null| null.rdev() == m.rdev())
+}
+
+/// Refuses an input that lies in `dir` (a figure folder) under a figure's extension: drawing the
+/// figures would replace it (`report out/fig6-deflection.svg --out out`).
+pub fn check_not_in_figure_folder(role: &str, input: &Path, dir: &Path) -> Result<()> {
+    let figure_like = matches!(input.extension().and_then(|e| e.to_str()), Some("svg" | "png"));
+    if figure_like && same_folder(input, dir) {
+        return Err(Error::Other(format!(
+            "{role} {} lies in the figure folder {} under a figure's extension, where the figures are written; \
+             give another folder",
+            input.display(),
+            dir.display()
+        )));
+    }
+    Ok(())
+}
+
+/// Opens a log for reading: a regular file only (a device such as /dev/zero never ends).
+pub fn open_regular_input(path: &Path, what: &'static str) -> Result<File> {
+    let file = open_input(path, what)?;
+    if !file.metadata().is_ok_and(|m| m.is_file()) {
+        return Err(Error::Io {
+            action: what,
+            path: path.display().to_string(),
+            source: std::io::Error::other("it is not a regular file"),
+        });
+    }
+    Ok(file)
+}
+
 fn check_kind(file: &File, allow_devices: bool) -> std::io::Result<()> {
     let kind = file.metadata()?.file_type();
     if kind.is_fifo() || kind.is_socket() {
         return Err(std::io::Error::other("it is a FIFO or a socket, not a regular file (use - for standard input)"));
     }
-    if (kind.is_char_device() || kind.is_block_device()) && !allow_devices {
-        return Err(std::io::Error::other("it is a device, not a regular file"));
+    if kind.is_char_device() || kind.is_block_device() {
+        if !allow_devices {
+            return Err(std::io::Error::other("it is a device, not a regular file"));
+        }
+        if !is_null_device(&file.metadata()?) {
+            return Err(std::io::Error::other("it is a device other than /dev/null, not a regular file"));
+        }
     }
     if kind.is_dir() {
         return Err(std::io::Error::other("it is a directory"));

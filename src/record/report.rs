@@ -104,7 +104,7 @@ pub const RETAINED_SLACK: u64 = 16 << 20;
 /// [`LogData::complete`] and [`LogData::problem`]), an unreadable or foreign file is.
 pub fn read_log(path: &Path) -> Result<LogData> {
     // A FIFO or socket is refused rather than waited on.
-    let mut file = super::output::open_input(path, "cannot read MCAP log")?;
+    let mut file = super::output::open_regular_input(path, "cannot read MCAP log")?;
     let mut bytes = Vec::new();
     std::io::Read::read_to_end(&mut file, &mut bytes).map_err(|source| Error::Io {
         action: "cannot read MCAP log",

@@ -179,6 +179,22 @@ def test_simulate_refuses_runs_it_cannot_finish():
         beam_impact.simulate(fmu_path(), {"duration": 1000.0}, histories=True, output_interval=1e-5)
 
 
+def test_python_sweep_outputs_go_through_the_guard(tmp_path):
+    """`python -m beam_impact sweep --out` wrote through a symbolic link and hung on a FIFO (an
+    attack pass): both are refused before any run, the link's target untouched."""
+    victim = tmp_path / "victim.txt"
+    victim.write_text("keep me")
+    link = tmp_path / "link.csv"
+    link.symlink_to(victim)
+    fifo = tmp_path / "fifo.csv"
+    os.mkfifo(fifo)
+    for out in [link, fifo]:
+        done = subprocess.run([sys.executable, "-m", "beam_impact", "sweep", "--fmu", fmu_path(), "--vary",
+                               "drop_height=0.5", "--out", str(out)], capture_output=True, text=True, timeout=120)
+        assert done.returncode == 2 and "not a regular file" in done.stderr, done.stderr
+    assert victim.read_text() == "keep me"
+
+
 def test_a_grid_over_the_limit_is_refused_before_its_product():
     grid = {"drop_height": [0.1] * 1000, "damping_ratio": list(range(1001))}
     with pytest.raises(ValueError, match="more than 1000000 scenarios"):
