@@ -51,7 +51,8 @@ fn documentation_files(dir: &Path) -> Result<Vec<(String, PathBuf)>> {
 
 fn write_fmu(fmu: &Path, xml: &str, platform: &str, library: &[u8], docs: &[(String, PathBuf)]) -> Result<()> {
     if let Some(parent) = fmu.parent() {
-        std::fs::create_dir_all(parent).map_err(io("cannot create directory", parent))?;
+        // Never into a folder that is a symbolic link (the output guard's rule for folders).
+        crate::record::output::create_output_dir(parent, "cannot create directory")?;
     }
     let file = crate::record::output::OutputFile::create(fmu, false, "cannot create FMU")?;
     let mut zip = ZipWriter::new(file);
@@ -100,7 +101,15 @@ pub fn check_library(binary: &[u8]) -> std::result::Result<(), String> {
 /// Packs `library` (the crate's `libbeam_impact.so`, checked by [`check_library`]) into both FMUs
 /// under `out_root`; returns their paths.
 pub fn pack(library: &Path, out_root: &Path) -> Result<Vec<PathBuf>> {
-    let binary = std::fs::read(library).map_err(io("cannot read the shared library to pack", library))?;
+    crate::record::output::create_output_dir(out_root, "cannot create directory")?;
+    let binary = {
+        use std::io::Read;
+        // A regular file only (a FIFO would block, a device never end), at most 1 GiB.
+        let file = crate::record::output::open_regular_input(library, "cannot read the shared library to pack")?;
+        let mut bytes = Vec::new();
+        file.take(1 << 30).read_to_end(&mut bytes).map_err(io("cannot read the shared library to pack", library))?;
+        bytes
+    };
     check_library(&binary).map_err(|why| Error::Other(format!("{} cannot be packed: {why}", library.display())))?;
     let docs = documentation_files(&documentation_dir())?;
     if !docs.iter().any(|(name, _)| name == "index.html") {
