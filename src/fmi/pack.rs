@@ -101,7 +101,6 @@ pub fn check_library(binary: &[u8]) -> std::result::Result<(), String> {
 /// Packs `library` (the crate's `libbeam_impact.so`, checked by [`check_library`]) into both FMUs
 /// under `out_root`; returns their paths.
 pub fn pack(library: &Path, out_root: &Path) -> Result<Vec<PathBuf>> {
-    crate::record::output::create_output_dir(out_root, "cannot create directory")?;
     let binary = {
         use std::io::Read;
         // A regular file only (a FIFO would block, a device never end), at most 1 GiB.
@@ -118,6 +117,8 @@ pub fn pack(library: &Path, out_root: &Path) -> Result<Vec<PathBuf>> {
             documentation_dir().display()
         )));
     }
+    // Created only once everything is checked (a refused library leaves no folder).
+    crate::record::output::create_output_dir(out_root, "cannot create directory")?;
     let fmi2 = out_root.join("fmi2").join(format!("{MODEL_IDENTIFIER}.fmu"));
     let fmi3 = out_root.join("fmi3").join(format!("{MODEL_IDENTIFIER}.fmu"));
     write_fmu(&fmi2, &description::fmi2(), "linux64", &binary, &docs)?;
