@@ -188,7 +188,17 @@ fn main() -> ExitCode {
     std::panic::set_hook(Box::new(|info| {
         eprintln!("beam-impact: internal error: {info}");
     }));
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        // Help and version print as clap prints them; a usage error is one bounded line like
+        // every other error (it echoed a 120 KB argument three times over seven lines).
+        Err(e) if !e.use_stderr() => e.exit(),
+        Err(e) => {
+            let text = e.to_string();
+            eprintln!("beam-impact: {}", bounded_line(text.trim().trim_start_matches("error: ")));
+            return ExitCode::from(2);
+        }
+    };
     let outcome = match cli.command.unwrap_or(Command::Run(cli.run)) {
         Command::Run(args) => match run(&args) {
             Ok(false) if args.strict => return ExitCode::from(UNTRUSTED),
