@@ -19,6 +19,18 @@ fn cli(h: f64, gamma: f64) -> answer::Answer {
     answer::run(&s, &mut NullRecorder, Default::default()).unwrap()
 }
 
+/// An FMI 2 instance set up to STOP without a log, with drop height `h` and damping `gamma`,
+/// before initialization.
+fn fmu2_set_up(h: f64, gamma: f64) -> Fmu2 {
+    let lib = fmi_common::importer::load();
+    let fmu = Fmu2::new(&lib);
+    assert_eq!(fmu.setup(0.0, Some(STOP)), OK);
+    assert_eq!(fmu.set_string("log.path", ""), OK);
+    assert_eq!(fmu.set("drop_height", h), OK);
+    assert_eq!(fmu.set("damping_ratio", gamma), OK);
+    fmu
+}
+
 fn largest(p: &beam_impact::results::Peaks) -> f64 {
     p.as_array().into_iter().fold(0.0, f64::max)
 }
@@ -34,12 +46,7 @@ fn fmu_design_and_quality_outputs_equal_the_cli_answer() {
         let figure = largest(&expected.discretisation_error).max(largest(&expected.first_contact_discretisation_error));
         let trusted = expected.quality.checks.energy.unwrap().pass && figure <= 0.01;
 
-        let lib = fmi_common::importer::load();
-        let fmu = Fmu2::new(&lib);
-        assert_eq!(fmu.setup(0.0, Some(STOP)), OK);
-        assert_eq!(fmu.set_string("log.path", ""), OK);
-        assert_eq!(fmu.set("drop_height", h), OK);
-        assert_eq!(fmu.set("damping_ratio", gamma), OK);
+        let fmu = fmu2_set_up(h, gamma);
         assert_eq!(fmu.call0("fmi2EnterInitializationMode"), OK);
         assert_eq!(fmu.call0("fmi2ExitInitializationMode"), OK, "{}", fmu.log.text());
         let mut t: f64 = 0.0;
@@ -134,12 +141,7 @@ fn check_sensitivity_runs_the_twin_and_reports_the_clis_spread() {
     let (h, gamma) = (0.9, 0.03);
     let expected = cli(h, gamma);
     let spread = largest(&expected.sensitivity_spread.unwrap());
-    let lib = fmi_common::importer::load();
-    let fmu = Fmu2::new(&lib);
-    assert_eq!(fmu.setup(0.0, Some(STOP)), OK);
-    assert_eq!(fmu.set_string("log.path", ""), OK);
-    assert_eq!(fmu.set("drop_height", h), OK);
-    assert_eq!(fmu.set("damping_ratio", gamma), OK);
+    let fmu = fmu2_set_up(h, gamma);
     assert_eq!(fmu.set_boolean("check_sensitivity", true), OK);
     assert_eq!(fmu.call0("fmi2EnterInitializationMode"), OK);
     assert!(fmu.get_boolean("check_sensitivity"));
@@ -149,6 +151,7 @@ fn check_sensitivity_runs_the_twin_and_reports_the_clis_spread() {
     let got = fmu.get("quality.sensitivity_spread");
     assert!(got >= 0.0 && (got - spread).abs() <= 1e-12, "FMU {got}, CLI {spread}");
 
+    let lib = fmi_common::importer::load();
     let plain = Fmu2::new(&lib);
     assert_eq!(plain.setup(0.0, Some(STOP)), OK);
     assert_eq!(plain.set_string("log.path", ""), OK);

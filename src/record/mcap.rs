@@ -41,7 +41,6 @@
 //! the last step are recorded; the others are not.
 
 use std::collections::BTreeMap;
-use std::os::unix::fs::FileTypeExt;
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::{sync_channel, SyncSender};
 use std::sync::{Arc, OnceLock};
@@ -247,32 +246,18 @@ impl McapRecorder {
         // such as /dev/null is written in place): a killed run leaves `NAME.partial`, which
         // `report` reads as a log cut short, and never a half-written NAME over an earlier log.
         // The target must not be a link, a FIFO or a folder (checked before anything is written).
-        let partial = match std::fs::symlink_metadata(path) {
-            Ok(m) if m.file_type().is_char_device() || m.file_type().is_block_device() => None,
-            Ok(m) if !m.is_file() => {
-                let kind = if m.file_type().is_symlink() {
-                    "a symbolic link; give the link's target instead"
-                } else if m.is_dir() {
-                    "a folder"
-                } else {
-                    "a FIFO or a socket, not a regular file"
-                };
-                return Err(io_error("cannot create MCAP log", std::io::Error::other(format!("it is {kind}"))));
-            }
-            _ => {
-                let partial = super::output::partial_path(path);
-                // A leftover at NAME.partial: a link (symbolic, or a hard link to another file) is
-                // removed, never written through; a plain file (a killed run's, or the FMU's
-                // reservation of a unique name) is taken over below once its lock is free.
-                if let Ok(m) = std::fs::symlink_metadata(&partial) {
-                    use std::os::unix::fs::MetadataExt;
-                    if m.file_type().is_symlink() || (m.is_file() && m.nlink() > 1) {
-                        std::fs::remove_file(&partial).map_err(|e| io_error("cannot create MCAP log", e))?;
-                    }
+        let partial = super::output::partial_for(path).map_err(|e| io_error("cannot create MCAP log", e))?;
+        if let Some(partial) = &partial {
+            // A leftover at NAME.partial: a link (symbolic, or a hard link to another file) is
+            // removed, never written through; a plain file (a killed run's, or the FMU's
+            // reservation of a unique name) is taken over below once its lock is free.
+            if let Ok(m) = std::fs::symlink_metadata(partial) {
+                use std::os::unix::fs::MetadataExt;
+                if m.file_type().is_symlink() || (m.is_file() && m.nlink() > 1) {
+                    std::fs::remove_file(partial).map_err(|e| io_error("cannot create MCAP log", e))?;
                 }
-                Some(partial)
             }
-        };
+        }
         let written = partial.as_deref().unwrap_or(path);
         // Open without truncating, take an exclusive lock, then truncate: two writers given the same
         // path (two FMU instances with the default log.path) get an error, not an interleaved file.

@@ -56,21 +56,10 @@ impl OutputFile {
     /// Opens the output for `path`; `what` names it in errors ("cannot create JSON").
     pub fn create(path: &Path, allow_devices: bool, what: &'static str) -> Result<Self> {
         let io = |source| Error::Io { action: what, path: path.display().to_string(), source };
-        match std::fs::symlink_metadata(path) {
-            Ok(m) if m.file_type().is_symlink() => {
-                return Err(io(std::io::Error::other("it is a symbolic link; give the link's target instead")))
-            }
-            Ok(m) if m.file_type().is_char_device() || m.file_type().is_block_device() => {
-                let file = open_output(path, allow_devices, what)?;
-                return Ok(OutputFile { target: path.to_path_buf(), partial: None, file: Some(file), what });
-            }
-            Ok(m) if !m.is_file() => {
-                let kind = if m.is_dir() { "a folder" } else { "a FIFO or a socket, not a regular file" };
-                return Err(io(std::io::Error::other(format!("it is {kind}"))));
-            }
-            _ => {}
-        }
-        let partial = partial_path(path);
+        let Some(partial) = partial_for(path).map_err(io)? else {
+            let file = open_output(path, allow_devices, what)?;
+            return Ok(OutputFile { target: path.to_path_buf(), partial: None, file: Some(file), what });
+        };
         let file = create_exclusive(&partial).map_err(io)?;
         Ok(OutputFile { target: path.to_path_buf(), partial: Some(partial), file: Some(file), what })
     }
@@ -116,6 +105,26 @@ impl std::io::Write for OutputFile {
 impl std::io::Seek for OutputFile {
     fn seek(&mut self, position: std::io::SeekFrom) -> std::io::Result<u64> {
         self.file().seek(position)
+    }
+}
+
+/// Where an output to `path` is written: `Some(NAME.partial)` for a regular file or a new one,
+/// `None` for a device (written in place, if the caller allows it). A target that is a symbolic
+/// link, a folder, a FIFO or a socket is an error, before anything is written.
+pub fn partial_for(path: &Path) -> std::io::Result<Option<PathBuf>> {
+    match std::fs::symlink_metadata(path) {
+        Ok(m) if m.file_type().is_char_device() || m.file_type().is_block_device() => Ok(None),
+        Ok(m) if !m.is_file() => {
+            let kind = if m.file_type().is_symlink() {
+                "a symbolic link; give the link's target instead"
+            } else if m.is_dir() {
+                "a folder"
+            } else {
+                "a FIFO or a socket, not a regular file"
+            };
+            Err(std::io::Error::other(format!("it is {kind}")))
+        }
+        _ => Ok(Some(partial_path(path))),
     }
 }
 
