@@ -37,10 +37,7 @@ pub const PEAK_NAMES: [&str; 5] = [
     "contact_force",
 ];
 
-/// Below this damping ratio the late-impact peaks of a truncated basis are not vouched for: from
-/// 0.02 on the high modes are damped between impacts (the paper's Appendix A: the stresses level
-/// off from 0.02; measured: every whole-run peak at 0.03 within 0.2 % of the full basis).
-pub const LIGHT_DAMPING: f64 = 0.02;
+pub use crate::model::discretisation::LIGHT_DAMPING;
 
 /// Relative change of the drop height in the twin run.
 pub const TWIN_PERTURBATION: f64 = 1e-9;

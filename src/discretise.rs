@@ -70,11 +70,11 @@ pub fn coarse(scenario: &Scenario) -> Result<Scenario> {
 }
 
 /// The automatic cut-offs' multiplier: [`LIGHT_DAMPING_CUTOFF`] below a damping ratio of
-/// [`crate::answer::LIGHT_DAMPING`], else 1. With little damping the modes above the paper mesh's
+/// [`crate::model::discretisation::LIGHT_DAMPING`], else 1. With little damping the modes above the paper mesh's
 /// highest frequency still ring through the first sustained contact (measured at drop 0.3 m,
 /// contact 13 m, damping 0.01: first-contact tau_a 1.3 % below the full basis at 1x, 0.2 % at 2x).
 pub fn light_damping_factor(scenario: &Scenario) -> f64 {
-    if scenario.damping_ratio < crate::answer::LIGHT_DAMPING {
+    if scenario.damping_ratio < crate::model::discretisation::LIGHT_DAMPING {
         LIGHT_DAMPING_CUTOFF
     } else {
         1.0

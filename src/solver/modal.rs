@@ -133,8 +133,9 @@ impl ModalSystem {
         }
     }
 
-    /// Rejects `step` if dt * omega_max > sqrt(12) in the given stage.
-    pub fn check_stability(&self, name: &'static str, step: f64, contact: bool) -> Result<()> {
+    /// Rejects `step` if dt * omega_max > sqrt(12) in the given stage; the error names the
+    /// automatic step at omega_max dt = `auto_product`.
+    pub fn check_stability(&self, name: &'static str, step: f64, contact: bool, auto_product: f64) -> Result<()> {
         let omega_max = self.omega_max(contact);
         let product = step * omega_max;
         if product > STABILITY_LIMIT {
@@ -145,9 +146,10 @@ impl ModalSystem {
                 product,
                 limit: STABILITY_LIMIT / omega_max,
                 stage: if contact { "in contact" } else { "out of contact" },
-                auto: super::step_plan::energy_safe_step(
+                auto: super::step_plan::automatic_step(
                     omega_max,
                     if contact { PAPER_STEP_CONTACT } else { PAPER_STEP_FREE },
+                    auto_product,
                 ),
             });
         }

@@ -16,6 +16,7 @@
 
 use super::modal::ModalSystem;
 use crate::error::Result;
+use crate::model::discretisation::auto_step_factor;
 use crate::model::scenario::{PAPER_STEP_CONTACT, PAPER_STEP_FREE};
 use crate::model::{Scenario, TimeStep};
 use crate::results::seconds;
@@ -35,19 +36,32 @@ pub struct StepPlan {
 /// The largest energy-safe step of a stage, s: omega_max dt <= [`ENERGY_SAFE_LIMIT`], in whole
 /// nanoseconds rounded down, never above `cap`, never below 1 ns.
 pub fn energy_safe_step(omega_max: f64, cap: f64) -> f64 {
-    let safe = if omega_max > 0.0 { ENERGY_SAFE_LIMIT / omega_max } else { cap };
+    automatic_step(omega_max, cap, ENERGY_SAFE_LIMIT)
+}
+
+/// The automatic step of a stage, s: omega_max dt <= `product`, in whole nanoseconds rounded
+/// down, never above `cap`, never below 1 ns.
+pub fn automatic_step(omega_max: f64, cap: f64, product: f64) -> f64 {
+    let safe = if omega_max > 0.0 { product / omega_max } else { cap };
     seconds(((safe.min(cap) * 1e9).floor() as u64).max(1))
 }
 
+/// omega_max dt of the scenario's automatic steps: [`ENERGY_SAFE_LIMIT`], halved for a lightly
+/// damped converged run ([`crate::model::discretisation::auto_step_factor`]).
+pub fn automatic_product(scenario: &Scenario) -> f64 {
+    ENERGY_SAFE_LIMIT * auto_step_factor(scenario.method, scenario.damping_ratio)
+}
+
 impl StepPlan {
-    /// Resolves automatic steps and checks fixed ones against the stability limit
-    /// dt omega_max <= sqrt(12) of their stage (an error that suggests `"auto"`).
+    /// Resolves automatic steps ([`automatic_product`]) and checks fixed ones against the
+    /// stability limit dt omega_max <= sqrt(12) of their stage (an error that suggests `"auto"`).
     pub fn new(scenario: &Scenario, modal: &ModalSystem) -> Result<StepPlan> {
+        let product = automatic_product(scenario);
         let resolve = |name: &'static str, step: TimeStep, contact: bool, cap: f64| -> Result<u64> {
             let dt = match step {
-                TimeStep::Auto => energy_safe_step(modal.omega_max(contact), cap),
+                TimeStep::Auto => automatic_step(modal.omega_max(contact), cap, product),
                 TimeStep::Fixed(dt) => {
-                    modal.check_stability(name, dt, contact)?;
+                    modal.check_stability(name, dt, contact, product)?;
                     dt
                 }
             };
@@ -86,7 +100,7 @@ impl StepPlan {
                      {ENERGY_SAFE_LIMIT} (omega_max = {omega_max:.0} rad/s {}); with little damping each change \
                      of step can pump energy into the highest modes; \"auto\" gives {:e} s",
                     if contact { "in contact" } else { "out of contact" },
-                    energy_safe_step(omega_max, cap)
+                    automatic_step(omega_max, cap, automatic_product(scenario))
                 ));
             }
         }
