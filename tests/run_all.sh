@@ -2,20 +2,21 @@
 # Runs every test of beam-impact on a fresh machine (Rust toolchain, gcc, Python 3.11):
 # formatting and lints, the Rust tests (physics, paper tables, CLI, FMI importer, MCAP),
 # then, in a venv it creates itself (.venv, with the pinned ziglang and cargo-zigbuild on PATH),
-# packs the FMUs with the library built for glibc 2.17 and runs the Python tests (fmpy, mcap).
+# installs the Python package (its native module, the Rust log reader, built by maturin), packs the
+# FMUs with the library built for glibc 2.17 and runs the Python tests (fmpy, mcap).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 echo "== cargo fmt --check"
 cargo fmt --all -- --check
-echo "== cargo clippy"
-cargo clippy --release --all-targets -- -D warnings
+echo "== cargo clippy (beam-impact and the Python package's native module, python/native)"
+cargo clippy --release --workspace --all-targets -- -D warnings
 echo "== cargo doc"
-RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --quiet
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --quiet
 echo "== cargo test --release"
 cargo test --release
 
-echo "== Python venv (.venv) with fmpy, mcap, ziglang and cargo-zigbuild"
+echo "== Python venv (.venv) with fmpy, mcap, ziglang, cargo-zigbuild and beam_impact (maturin builds its native module)"
 if [ ! -x .venv/bin/python ]; then
   python3 -m venv .venv
 fi

@@ -12,14 +12,19 @@
     log.events              list of dicts (start, time, time_ns, step, relative_velocity)
     log.scenario_toml, log.metadata, log.log_times (every message's log_time, file order)
     log.complete            False for the log of a killed run (no summary and footer)
+    log.problem, log.damaged   where the reading stopped, and whether at damaged bytes
     log.stopped_early       why the log ended before the run (its size cap), "" if it did not
     log.rollbacks           FMU states restored: the steps they superseded are left out, as `report` does
 
-The file is read front to back with the `mcap` package's StreamReader (CRCs checked), not through
-the summary at its end: the log of a killed writer has every complete chunk and no summary, and
-loads up to its last complete chunk, with `complete` False and `problem` saying where it ends.
-Every channel carries its protobuf schema (a FileDescriptorSet), so `mcap-protobuf-support`
-decodes it without generated code. Step 0 is the initial state.
+The file is read by the Rust reader of `beam-impact report` (the native module
+`beam_impact._native`, built by `pip install ./python`), not by a second reader in Python: every
+length in the file is checked before anything is allocated or decompressed, chunk CRCs are
+checked, decompression is bounded by 64x the file and what is kept by 16x the file (+16 MiB), and
+time is linear in the file, also for a log of many rollbacks. The log of a killed writer has every
+complete chunk and no summary: it loads up to its last complete chunk, with `complete` False and
+`problem` saying where it ends. Any file that is not a readable beam-impact log (a FIFO, a device,
+a folder, an unknown log format, damaged records before any step) raises `LogError`, one line.
+Step 0 is the initial state.
 
 Both log formats load. Format 2 (metadata `log_format` = 2) keeps the modal coordinates on
 `/beam/modes` (every 1 ms, at contact changes, at the arrestor's peak deflection and at the last
@@ -29,7 +34,7 @@ leaves out `time` (= time_ns / 1e9, computed here). Format 1 had float32 coordin
 
 from __future__ import annotations
 
-import bisect
+import os
 import sys
 from dataclasses import dataclass, field
 
@@ -88,8 +93,12 @@ class Log:
     counts: dict[str, int] = field(default_factory=dict)
     #: False when the file ends before its summary and footer (a killed run).
     complete: bool = True
-    #: Why the reading stopped early ("" for a complete file).
+    #: Why the reading stopped early ("" for a complete file): the record and its byte offset.
     problem: str = ""
+    #: True when the reading stopped at bytes that are not a valid log (a bad CRC, a length
+    #: beyond its record, a chunk that does not decompress, a message that does not decode),
+    #: False for a complete file or one cut short (a killed writer).
+    damaged: bool = False
     #: Why the recorder stopped before the run's end (the log's size cap), "" if it did not; the
     #: file is complete, the run went on unrecorded.
     stopped_early: str = ""
@@ -113,158 +122,55 @@ def _one_line(text: object, limit: int = 200) -> str:
 
 
 def load_log(path: str) -> Log:
-    """Reads the log at `path` (also the log of a killed run: every complete chunk). Every file
-    that is not a readable beam-impact log raises `LogError` (a ValueError) with one line: a
-    FIFO, a device or a folder is refused before it is opened (it would block or never end), an
-    unknown log format is refused as `report` refuses it, and any failure of the decoders is
-    reported as the file's problem rather than as their own exception types."""
-    import os
-    import stat
+    """Reads the log at `path` (also the log of a killed run: every complete chunk) with the Rust
+    reader. Every file that is not a readable beam-impact log raises `LogError` (a ValueError)
+    with one line: a FIFO, a device or a folder is refused before it is read (it would block or
+    never end), an unknown log format as `report` refuses it, a damaged file where nothing
+    before the damage is a log."""
+    from . import _native
 
     try:
-        mode = os.stat(path).st_mode
-    except OSError as e:
-        raise LogError(f"{_one_line(path)}: cannot read the log ({_one_line(e.strerror or e)})") from None
-    if not stat.S_ISREG(mode):
-        raise LogError(f"{_one_line(path)}: not a regular file (a FIFO, a device or a folder is not a log)")
-    try:
-        log = _load_log(path)
-    except LogError:
-        raise
+        raw = _native.load_log(os.fspath(path))
+    except ValueError as e:
+        raise LogError(_one_line(e, 600)) from None
     except MemoryError:
         raise LogError(f"{_one_line(path)}: the log does not fit in memory") from None
-    except Exception as e:  # the decoders' own types (protobuf, KeyError, ...): one type for callers
-        raise LogError(f"{_one_line(path)}: not a readable beam-impact log ({type(e).__name__}: {_one_line(e)})") \
-            from None
-    fmt = log.metadata.get("log_format", "1")
-    if fmt not in ("1", "2"):
-        raise LogError(f"{_one_line(path)}: log format {_one_line(fmt, 20)!r} is not one this reader knows (1 or 2)")
-    return log
+    except (TypeError, OSError) as e:
+        raise LogError(f"{_one_line(path)}: cannot read the log ({_one_line(e)})") from None
+    return _from_native(raw)
 
 
-def _load_log(path: str) -> Log:
-    from mcap.records import Channel, DataEnd, Footer, Message, Metadata, Schema
-    from mcap.stream_reader import StreamReader
-    from mcap_protobuf.decoder import DecoderFactory
-
-    columns: dict[str, list] = {name: [] for name in SCALARS}
-    columns.update({f"energy.{n}": [] for n in ENERGY})
-    columns.update({f"peaks.{n}": [] for n in PEAKS})
-    coordinates: list = []
-    modal_steps: list[int] = []
-    modal_times: list[float] = []
-    rollbacks = 0
-    stopped_early = ""
-    events: list[dict] = []
-    log_times: list[int] = []
-    counts: dict[str, int] = {}
-    metadata: dict[str, str] = {}
-    schemas: dict[int, Schema] = {}
-    channels: dict[int, Channel] = {}
-    decoders: dict[int, object] = {}
-    factory = DecoderFactory()
-    model = None
-    complete, problem = False, ""
-    with open(path, "rb") as f:
-        records = iter(StreamReader(f, validate_crcs=True).records)
-        while True:
-            try:
-                record = next(records)
-            except StopIteration:
-                break
-            except Exception as e:  # the end of a killed run's file: keep every complete chunk
-                complete, problem = False, f"{type(e).__name__}: {e}".strip()
-                break
-            if isinstance(record, Schema):
-                schemas[record.id] = record
-            elif isinstance(record, Channel):
-                channels[record.id] = record
-            elif isinstance(record, Metadata):
-                if record.name == "scenario":
-                    metadata = dict(record.metadata)
-            elif isinstance(record, (DataEnd, Footer)):
-                complete = True
-            elif isinstance(record, Message):
-                channel = channels[record.channel_id]
-                decode = decoders.get(record.channel_id)
-                if decode is None:
-                    decode = factory.decoder_for(channel.message_encoding, schemas.get(channel.schema_id))
-                    if decode is None:
-                        raise LogError(f"{path}: channel {_one_line(channel.topic)} is not protobuf")
-                    decoders[record.channel_id] = decode
-                log_times.append(record.log_time)
-                counts[channel.topic] = counts.get(channel.topic, 0) + 1
-                proto = decode(record.data)
-                if channel.topic == STEP_TOPIC:
-                    if columns["step"] and proto.step <= columns["step"][-1]:
-                        # A rollback (an FMU state restored): the steps from this one on are
-                        # superseded, and so are the events and modal coordinates after it.
-                        keep = bisect.bisect_left(columns["step"], proto.step)
-                        for column in columns.values():
-                            del column[keep:]
-                        events[:] = [e for e in events if e["step"] <= proto.step]
-                        # (Not sorted by step: a peak's coordinates follow later steps.)
-                        rows = [k for k, step in enumerate(modal_steps) if step < proto.step]
-                        coordinates[:] = [coordinates[k] for k in rows]
-                        modal_times[:] = [modal_times[k] for k in rows]
-                        modal_steps[:] = [modal_steps[k] for k in rows]
-                        rollbacks += 1
-                    for name in SCALARS:
-                        columns[name].append(getattr(proto, name))
-                    # Format 2 leaves out the time in seconds: it is time_ns / 1e9.
-                    columns["time"][-1] = proto.time_ns / 1e9
-                    for name in ENERGY:
-                        columns[f"energy.{name}"].append(getattr(proto.energy, name))
-                    # Format 2 leaves out peaks equal to the previous step's.
-                    carried = not proto.HasField("peaks") and len(columns["peaks.contact_force"]) > 0
-                    for name in PEAKS:
-                        column = columns[f"peaks.{name}"]
-                        column.append(column[-1] if carried else getattr(proto.peaks, name))
-                    if len(proto.modal_coordinates) > 0:  # format 1
-                        coordinates.append(np.asarray(proto.modal_coordinates, dtype=np.float64))
-                        modal_steps.append(proto.step)
-                        modal_times.append(proto.time_ns / 1e9)
-                elif channel.topic == MODES_TOPIC:
-                    coordinates.append(np.asarray(proto.coordinates, dtype=np.float64))
-                    modal_steps.append(proto.step)
-                    modal_times.append(proto.time_ns / 1e9)
-                elif channel.topic == CONTACT_TOPIC:
-                    events.append(
-                        {
-                            "start": proto.start,
-                            "time": proto.time,
-                            "time_ns": proto.time_ns,
-                            "step": proto.step,
-                            "relative_velocity": proto.relative_velocity,
-                        }
-                    )
-                elif channel.topic == MODEL_TOPIC:
-                    model = proto
-                elif channel.topic == LOG_TOPIC and "reached its size cap" in proto.message:
-                    stopped_early = proto.message
-    if not complete and not problem:
-        problem = "the file ends before its summary and footer (the writer never finished)"
-    if model is None:
-        raise LogError(f"{path}: no {MODEL_TOPIC} message" + (f" ({_one_line(problem)})" if problem else ""))
-    steps = {name: np.asarray(values, dtype=INTEGER.get(name, np.float64)) for name, values in columns.items()}
-    shapes = np.asarray(model.nodal_shapes, dtype=np.float64).reshape(model.shape_rows, model.shape_cols)
+def _from_native(raw: dict) -> Log:
+    """The Log of the native reader's buffers (native-endian, as numpy reads them)."""
+    steps = {}
+    for name, data in raw["steps"].items():
+        dtype = INTEGER.get(name, np.float64)
+        steps[name] = np.frombuffer(data, dtype=np.uint8 if dtype is np.bool_ else dtype).astype(dtype)
+    order = [*SCALARS, *(f"energy.{n}" for n in ENERGY), *(f"peaks.{n}" for n in PEAKS)]
+    steps = {name: steps[name] for name in order}
+    cols = raw["shape_cols"]
+    modal_steps = np.frombuffer(raw["modal_steps"], dtype=np.uint64).copy()
     return Log(
         steps=steps,
-        modal_coordinates=np.asarray(coordinates, dtype=np.float64).reshape(len(coordinates), model.shape_cols),
-        modal_steps=np.asarray(modal_steps, dtype=np.uint64),
-        modal_times=np.asarray(modal_times, dtype=np.float64),
-        nodal_shapes=shapes,
-        lower_nodes=np.asarray(model.lower_nodes),
-        upper_nodes=np.asarray(model.upper_nodes),
-        events=events,
-        scenario_toml=model.scenario_toml,
-        metadata=metadata,
-        log_times=np.asarray(log_times, dtype=np.uint64),
-        counts=counts,
-        complete=complete,
-        problem=problem,
-        stopped_early=stopped_early,
-        rollbacks=rollbacks,
+        modal_coordinates=np.frombuffer(raw["modal_coordinates"], dtype=np.float64).reshape(len(modal_steps), cols),
+        modal_steps=modal_steps,
+        modal_times=np.frombuffer(raw["modal_times_ns"], dtype=np.uint64) / 1e9,
+        nodal_shapes=np.frombuffer(raw["nodal_shapes"], dtype=np.float64).reshape(raw["shape_rows"], cols),
+        lower_nodes=np.frombuffer(raw["lower_nodes"], dtype=np.float64),
+        upper_nodes=np.frombuffer(raw["upper_nodes"], dtype=np.float64),
+        events=[
+            {"start": start, "time": time_ns / 1e9, "time_ns": time_ns, "step": step, "relative_velocity": velocity}
+            for start, time_ns, step, velocity in raw["events"]
+        ],
+        scenario_toml=raw["scenario_toml"],
+        metadata=dict(raw["metadata"]),
+        log_times=np.frombuffer(raw["log_times"], dtype=np.uint64),
+        counts=dict(raw["counts"]),
+        complete=raw["complete"],
+        problem=raw["problem"],
+        damaged=raw["damaged"],
+        stopped_early=raw["stopped_early"],
+        rollbacks=raw["rollbacks"],
     )
 
 

@@ -76,6 +76,90 @@ pub struct LogData {
     /// The log's format: 1 (modal coordinates in every step message; no `log_format` metadata) or
     /// 2 (modal coordinates on `/beam/modes`).
     pub log_format: u32,
+    /// Every row of modal coordinates and every message's log time, when read with
+    /// [`ReadOptions::history`] (empty otherwise).
+    pub history: History,
+}
+
+/// What [`read_log_with`] keeps beyond what `report` needs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ReadOptions {
+    /// Keep every row of modal coordinates and every message's log time ([`LogData::history`]).
+    pub history: bool,
+}
+
+/// Every row of modal coordinates (format 2's `/beam/modes` messages, format 1's step
+/// messages), without the rows a rollback superseded, and every message's log time.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct History {
+    /// The step of each row.
+    pub modal_steps: Vec<u64>,
+    /// The time of each row, ns.
+    pub modal_times_ns: Vec<u64>,
+    /// The rows, one after the other (row k is `coordinates[k * width..(k + 1) * width]`).
+    pub coordinates: Vec<f64>,
+    /// Coordinates per row (every row has as many as the first).
+    pub width: usize,
+    /// Every message's log time, in file order.
+    pub log_times: Vec<u64>,
+    /// (rows appended before it, step) of each rollback, to drop the rows it superseded.
+    rollbacks: Vec<(usize, u64)>,
+}
+
+impl History {
+    /// Appends one row of coordinates; a row of another width stops reading.
+    fn push(
+        &mut self,
+        step: u64,
+        time_ns: u64,
+        row: impl ExactSizeIterator<Item = f64>,
+    ) -> std::result::Result<(), String> {
+        if self.modal_steps.is_empty() {
+            self.width = row.len();
+        } else if row.len() != self.width {
+            return Err(format!("{} modal coordinates where the first row had {}", row.len(), self.width));
+        }
+        self.modal_steps.push(step);
+        self.modal_times_ns.push(time_ns);
+        self.coordinates.extend(row);
+        Ok(())
+    }
+
+    /// Drops the rows superseded by a rollback: a row is superseded by any later rollback to its
+    /// step or an earlier one. One pass from the last row back, keeping the smallest step rolled
+    /// back to after the row: linear in the log, however many rollbacks it holds.
+    fn settle(&mut self) {
+        if self.rollbacks.is_empty() {
+            return;
+        }
+        let rows = self.modal_steps.len();
+        let mut keep = vec![true; rows];
+        let mut later = self.rollbacks.iter().rev().peekable();
+        let mut smallest = u64::MAX;
+        for k in (0..rows).rev() {
+            while let Some(&&(appended, step)) = later.peek() {
+                if appended > k {
+                    smallest = smallest.min(step);
+                    later.next();
+                } else {
+                    break;
+                }
+            }
+            keep[k] = self.modal_steps[k] < smallest;
+        }
+        let width = self.width;
+        let mut next = 0;
+        for (k, _) in keep.iter().enumerate().filter(|(_, kept)| **kept) {
+            self.modal_steps[next] = self.modal_steps[k];
+            self.modal_times_ns[next] = self.modal_times_ns[k];
+            self.coordinates.copy_within(k * width..(k + 1) * width, next * width);
+            next += 1;
+        }
+        self.modal_steps.truncate(next);
+        self.modal_times_ns.truncate(next);
+        self.coordinates.truncate(next * width);
+        self.rollbacks.clear();
+    }
 }
 
 impl LogData {
@@ -103,6 +187,11 @@ pub const RETAINED_SLACK: u64 = 16 << 20;
 /// Reads every complete chunk of the log at `path`; a log cut short is not an error (see
 /// [`LogData::complete`] and [`LogData::problem`]), an unreadable or foreign file is.
 pub fn read_log(path: &Path) -> Result<LogData> {
+    read_log_with(path, ReadOptions::default())
+}
+
+/// [`read_log`], keeping what `options` asks for besides.
+pub fn read_log_with(path: &Path, options: ReadOptions) -> Result<LogData> {
     // A FIFO or socket is refused rather than waited on.
     let mut file = super::output::open_regular_input(path, "cannot read MCAP log")?;
     let mut bytes = Vec::new();
@@ -111,7 +200,7 @@ pub fn read_log(path: &Path) -> Result<LogData> {
         path: path.display().to_string(),
         source,
     })?;
-    read_log_bytes(&bytes, path)
+    read_log_bytes_with(&bytes, path, options)
 }
 
 /// What [`read_log`] does with the bytes of the file: every length is checked against what the
@@ -123,9 +212,15 @@ pub fn read_log(path: &Path) -> Result<LogData> {
 /// and [`LogData::problem`] says what stopped it, with the record's kind and byte offset. A file
 /// in which nothing could be read is an error.
 pub fn read_log_bytes(bytes: &[u8], path: &Path) -> Result<LogData> {
+    read_log_bytes_with(bytes, path, ReadOptions::default())
+}
+
+/// [`read_log_bytes`], keeping what `options` asks for besides (within the same bound).
+pub fn read_log_bytes_with(bytes: &[u8], path: &Path, options: ReadOptions) -> Result<LogData> {
     let mut data = LogData { monotonic: true, file_size: bytes.len() as u64, ..LogData::default() };
     let mut state = ReadState {
         retained_limit: RETAINED_RATIO.saturating_mul(bytes.len() as u64).saturating_add(RETAINED_SLACK),
+        history: options.history,
         ..ReadState::default()
     };
     let ending = read_records(bytes, Limits::default(), &mut |at, record| state.visit(&mut data, at, record));
@@ -151,10 +246,12 @@ pub fn read_log_bytes(bytes: &[u8], path: &Path) -> Result<LogData> {
                 return Err(mcap_err(
                     path,
                     format!(
-                        "log format \"{}\" is not one this reader knows (1 to {LOG_FORMAT}): written by a newer \
+                        "log format {} is not one this reader knows (1 to {LOG_FORMAT}): written by a newer \
                          beam-impact? (its version: {})",
-                        text.escape_debug(),
-                        data.metadata.get("beam_impact_version").map_or("not recorded", |v| v.as_str())
+                        super::safe_read::quoted(text),
+                        data.metadata
+                            .get("beam_impact_version")
+                            .map_or("not recorded".to_string(), |v| super::safe_read::quoted(v))
                     ),
                 ))
             }
@@ -163,6 +260,7 @@ pub fn read_log_bytes(bytes: &[u8], path: &Path) -> Result<LogData> {
     if data.scenario_toml.is_none() {
         data.scenario_toml = state.model_toml;
     }
+    data.history.settle();
     Ok(data)
 }
 
@@ -175,6 +273,7 @@ struct ReadState {
     model_toml: Option<String>,
     retained: u64,
     retained_limit: u64,
+    history: bool,
 }
 
 impl ReadState {
@@ -200,6 +299,10 @@ impl ReadState {
                 self.topics.insert(id, topic.to_string());
             }
             Record::Message { channel_id, log_time, publish_time, data: bytes, .. } => {
+                if self.history {
+                    self.keep(8, at, "message")?;
+                    data.history.log_times.push(log_time);
+                }
                 let topic = self.topics.get(&channel_id).map(String::as_str).unwrap_or("?");
                 match data.messages.get_mut(topic) {
                     Some(n) => *n += 1,
@@ -224,6 +327,9 @@ impl ReadState {
                         result.time = seconds(result.time_ns);
                         let rollback = data.steps.last().is_some_and(|last| result.step <= last.step);
                         data.monotonic &= !decreasing || rollback;
+                        if rollback && self.history {
+                            data.history.rollbacks.push((data.history.modal_steps.len(), result.step));
+                        }
                         if rollback {
                             // A rollback: this step continues from step result.step - 1. Steps are
                             // kept in increasing step order, so the superseded ones are a tail
@@ -250,11 +356,24 @@ impl ReadState {
                                 .extend(self.step.modal_coordinates.iter().map(|&q| f64::from(q)));
                             data.peak_deflection_step = result.step;
                         }
+                        if self.history && !self.step.modal_coordinates.is_empty() {
+                            self.keep(8 * self.step.modal_coordinates.len() + 16, at, "step message")?;
+                            let (step, time_ns) = (result.step, result.time_ns);
+                            let row = self.step.modal_coordinates.iter().map(|&q| f64::from(q));
+                            data.history.push(step, time_ns, row).map_err(|e| format!("step message at {at}: {e}"))?;
+                        }
                         data.steps.push(result);
                     }
                     MODES_TOPIC => {
                         data.monotonic &= !decreasing;
                         let m = ModalCoordinatesMessage::decode(bytes).map_err(|e| bad("modes", e))?;
+                        if self.history {
+                            self.keep(8 * m.coordinates.len() + 16, at, "modes message")?;
+                            let row = m.coordinates.iter().copied();
+                            data.history
+                                .push(m.step, m.time_ns, row)
+                                .map_err(|e| format!("modes message at {at}: {e}"))?;
+                        }
                         // Kept only at the arrestor's peak deflection (the summary's E_def,b).
                         let at_peak =
                             data.peak_deflection_coordinates.is_empty() && m.step == data.peak_deflection_step;

@@ -318,7 +318,7 @@ pub enum ReadError {
 }
 
 /// A file-supplied string for a one-line message: escaped, at most 40 characters.
-fn quoted(text: &str) -> String {
+pub(crate) fn quoted(text: &str) -> String {
     let short: String = text.chars().take(40).collect();
     let more = if short.len() < text.len() { "..." } else { "" };
     format!("{short:?}{more}")
