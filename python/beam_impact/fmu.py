@@ -290,6 +290,21 @@ def _run(entry: _Extracted, start: dict[str, Any], stop_time: float, interval: f
             router.close(key)
 
 
+def _check_steps(start: dict[str, Any], stop_time: float, max_steps: int | None) -> None:
+    """The CLI's step limit, checked by the crate itself (beam_impact._native.check_run)."""
+    from . import _native
+
+    limit = _native.MAX_STEPS if max_steps is None else max_steps
+    if not (isinstance(limit, int) and 0 < limit < 2**64):
+        raise SimulationError(f"max_steps must be a whole number > 0, got {max_steps!r}")
+    values = {k: float(v) for k, v in start.items() if k not in BOOLEAN_PARAMETERS and isinstance(v, (int, float))}
+    try:
+        _native.check_run(values, float(stop_time), limit)
+    except ValueError as e:
+        message = " ".join(str(e).split()).replace("with --max-steps", "with simulate(..., max_steps=N)")
+        raise SimulationError(message[:600] + ("..." if len(message) > 600 else "")) from None
+
+
 def simulate(
     fmu: "str | os.PathLike | FmuFile",
     parameters: dict[str, Any] | None = None,
@@ -297,6 +312,7 @@ def simulate(
     output_interval: float | None = None,
     log_path: str | None = None,
     histories: bool = False,
+    max_steps: int | None = None,
 ):
     """Runs the FMU once: `parameters` by the scenario's dotted names, until `stop_time` s (or the
     `duration` parameter). Returns a dict of the peaks under the CLI's names (`lower_tip_deflection`,
@@ -308,7 +324,10 @@ def simulate(
     `histories=True`, returns (dict, DataFrame of every real output at each communication point,
     `output_interval` default 1e-3 s, time first); otherwise one communication step over the whole
     run. `log_path`: write the FMU's MCAP log there (default: no log). Raises SimulationError with
-    the FMU's message when it refuses the parameters or the run fails.
+    the FMU's message when it refuses the parameters or the run fails, and, before the FMU is
+    loaded, with the CLI's message when the run needs more than `max_steps` internal steps
+    (default the CLI's 1e8, its `--max-steps`; the check builds the model's modes, stepping
+    nothing).
 
     The instance is driven here through fmpy's FMU2Slave / FMU3Slave (not `simulate_fmu`), so that
     runs on several threads of one process keep their logger messages apart (see _Fmi2Messages)."""
@@ -319,6 +338,7 @@ def simulate(
         stop_time = duration
     if not 0 < stop_time <= 1e6:
         raise SimulationError(f"stop time must be > 0 s and at most 1e6 s (the FMU's limit), got {stop_time}")
+    _check_steps(start, stop_time, max_steps)
     start["log.path"] = "" if log_path is None else os.fspath(log_path)
     if output_interval is None:
         output_interval = min(1e-3, stop_time) if histories else stop_time

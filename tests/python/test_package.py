@@ -19,6 +19,7 @@ import math
 import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -177,6 +178,16 @@ def test_simulate_refuses_runs_it_cannot_finish():
         beam_impact.simulate(fmu_path(), {"duration": 1e7})
     with pytest.raises(beam_impact.SimulationError, match="communication points"):
         beam_impact.simulate(fmu_path(), {"duration": 1000.0}, histories=True, output_interval=1e-5)
+    # The reproduction itself: within the FMU's time limit, but 4.2e10 internal steps (the CLI
+    # refuses it: at most 1e8): refused by the crate's own check before the FMU is loaded.
+    started = time.perf_counter()
+    with pytest.raises(beam_impact.SimulationError, match=r"at most 100000000 steps .* max_steps=N"):
+        beam_impact.simulate(fmu_path(), {"duration": 1e6})
+    assert time.perf_counter() - started < 60, "refused at once, not after stepping"
+    # The limit is the CLI's --max-steps: a 0.01 s run needs 424 steps of 2.36e-5 s.
+    with pytest.raises(beam_impact.SimulationError, match="this run needs 424 steps"):
+        beam_impact.simulate(fmu_path(), {"duration": 0.01}, max_steps=100)
+    assert beam_impact.simulate(fmu_path(), {"duration": 0.01}, max_steps=424)["trusted"] in (True, False)
 
 
 def test_python_sweep_outputs_go_through_the_guard(tmp_path):

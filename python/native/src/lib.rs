@@ -2,11 +2,15 @@
 //! that `beam_impact.load_log` inherits every bound of `record::safe_read` (time linear in the
 //! file, memory the file plus one chunk plus at most 16x the file kept) and no log is read by two
 //! codes. The Python side (`beam_impact/log.py`) turns the flat buffers into numpy arrays.
+//! `check_run` holds `beam_impact.simulate` to the CLI's limits before the FMU steps.
 
+use std::collections::HashMap;
 use std::path::PathBuf;
 
+use beam_impact::model::parameters;
 use beam_impact::record::report::{read_log_with, LogData, ReadOptions};
 use beam_impact::results::StepResult;
+use beam_impact::{Scenario, Simulation};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList};
@@ -128,10 +132,37 @@ fn load_log<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyDict>>
     to_python(py, &data)
 }
 
+/// Checks a run as the CLI checks it before stepping: `values` (the scenario's parameters by
+/// their FMU names; names that are not scenario parameters, such as `check_sensitivity` or
+/// `log.path`, are left to the FMU) on the default scenario, validated, and the internal steps
+/// to `stop_time` s at most `max_steps`. Returns the steps it needs; ValueError with the CLI's
+/// one-line message otherwise. Builds the model and its modes (tens of ms), steps nothing.
+#[pyfunction]
+fn check_run(py: Python<'_>, values: HashMap<String, f64>, stop_time: f64, max_steps: u64) -> PyResult<u64> {
+    let error = |e: beam_impact::Error| PyValueError::new_err(e.to_string());
+    let mut scenario = Scenario::default();
+    for (name, value) in &values {
+        if let Ok(parameter) = parameters::find(name) {
+            parameters::set(&mut scenario, parameter, *value).map_err(error)?;
+        }
+    }
+    scenario.duration = stop_time;
+    scenario.validate().map_err(error)?;
+    py.detach(|| {
+        let simulation = Simulation::new(&scenario)?;
+        simulation.check_step_count(scenario.duration_ns(), max_steps)?;
+        let plan = simulation.step_plan();
+        Ok(scenario.duration_ns().div_ceil(plan.free_ns.min(plan.contact_ns).max(1)))
+    })
+    .map_err(error)
+}
+
 /// The module `beam_impact._native`.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(load_log, m)?)?;
+    m.add_function(wrap_pyfunction!(check_run, m)?)?;
+    m.add("MAX_STEPS", beam_impact::model::scenario::MAX_STEPS)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }
