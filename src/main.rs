@@ -279,6 +279,13 @@ fn run(args: &RunArgs) -> Result<bool> {
         files.push(("--json", json));
     }
     if !args.no_mcap {
+        if mcap.as_os_str() == "-" {
+            return Err(beam_impact::Error::Other(
+                "--mcap -: an MCAP log cannot go to standard output (the writer goes back to finish its summary); \
+                 give a file name, or --no-mcap"
+                    .into(),
+            ));
+        }
         files.push(("--mcap", &mcap));
     }
     check_distinct(&files)?;

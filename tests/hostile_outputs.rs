@@ -300,3 +300,35 @@ fn argument_errors_are_one_bounded_line() {
     let help = beam_impact().args(["run", "--help"]).output().unwrap();
     assert!(help.status.success() && String::from_utf8_lossy(&help.stdout).lines().count() > 5);
 }
+
+/// `run --mcap -` wrote a log to a file named `-` in the working folder (an attack pass): the
+/// log cannot go to standard output, and nothing is written.
+#[test]
+fn a_log_to_standard_output_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = beam_impact().current_dir(dir.path()).args(["run", "--mcap", "-"]).args(SHORT).output().unwrap();
+    refused(&out, "cannot go to standard output");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "nothing written");
+}
+
+/// Two runs given the same `--json` (an attack pass): the second removed the first's
+/// `NAME.partial` as a killed run's leftover and the first then renamed the second's file. A
+/// partial file is locked while its run writes it: the second run is refused, the first's
+/// results land; a killed run's leftover (no lock) is still taken over.
+#[test]
+fn a_partial_output_another_run_writes_is_not_taken_over() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = dir.path().join("r.json");
+    let partial = dir.path().join("r.json.partial");
+    // Another run holds the partial file (its lock, as OutputFile takes it).
+    let held = std::fs::File::create(&partial).unwrap();
+    held.lock().unwrap();
+    let out = beam_impact().arg("run").arg("--no-mcap").arg("--json").arg(&json).args(SHORT).output().unwrap();
+    refused(&out, "being written by another run");
+    assert!(partial.exists() && !json.exists(), "the other run's file is left alone");
+    // Its run killed: the lock is free, the leftover is taken over and the results land.
+    drop(held);
+    let out = beam_impact().arg("run").arg("--no-mcap").arg("--json").arg(&json).args(SHORT).output().unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(json.exists() && !partial.exists());
+}

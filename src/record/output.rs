@@ -135,20 +135,34 @@ pub fn partial_path(path: &Path) -> PathBuf {
     path.with_file_name(name)
 }
 
-/// Creates `path` exclusively, never through a link: a leftover of a killed run (a regular file
-/// or a link, never followed) is removed first.
+/// Creates `path` exclusively, never through a link, and locks it (an exclusive advisory lock,
+/// held while the file is open): a leftover of a killed run (a regular file whose lock is free,
+/// or a link, never followed) is removed first; a partial file another run still writes (its
+/// lock taken: two runs given the same output) is an error, not removed from under it.
 fn create_exclusive(path: &Path) -> std::io::Result<File> {
     if let Ok(m) = std::fs::symlink_metadata(path) {
         if m.is_dir() {
             return Err(std::io::Error::other(format!("{} is a folder", path.display())));
         }
+        if m.is_file() {
+            let leftover =
+                std::fs::OpenOptions::new().read(true).custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK).open(path)?;
+            if leftover.try_lock().is_err() {
+                return Err(std::io::Error::other(format!(
+                    "{} is being written by another run (its lock is taken)",
+                    path.display()
+                )));
+            }
+        }
         std::fs::remove_file(path)?;
     }
-    std::fs::OpenOptions::new()
+    let file = std::fs::OpenOptions::new()
         .write(true)
         .create_new(true)
         .custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK)
-        .open(path)
+        .open(path)?;
+    file.try_lock().map_err(|e| std::io::Error::other(format!("{} cannot be locked ({e})", path.display())))?;
+    Ok(file)
 }
 
 /// Writes a file that a library writes by path (the figures' SVG and PNG backends): `write`
