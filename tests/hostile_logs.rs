@@ -272,3 +272,38 @@ fn what_the_reader_keeps_is_bounded_by_the_file() {
     assert!(kept <= RETAINED_RATIO * bytes.len() as u64 + RETAINED_SLACK);
     assert!(log.events.len() > 100_000);
 }
+
+/// A byte changed in the top-level metadata record (which has no CRC of its own) went unnoticed
+/// (an attack pass: a scenario value silently different). Logs now carry the data section's
+/// CRC: such a change is reported as damage, and a changed log format names the damage too.
+#[test]
+fn a_changed_metadata_byte_fails_the_data_section_crc() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("run.mcap");
+    let out = Command::new(env!("CARGO_BIN_EXE_beam-impact"))
+        .args(["run", "--set", "duration=0.01", "--mcap"])
+        .arg(&path)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let good = std::fs::read(&path).unwrap();
+    let log = beam_impact::record::report::read_log(&path).unwrap();
+    assert!(log.complete && !log.damaged, "{:?}", log.problem);
+    let find = |needle: &[u8]| good.windows(needle.len()).rposition(|w| w == needle).unwrap();
+    // contact.area = "0.04" in the metadata's string map (key, then the value's u32 length).
+    let entry = find(b"contact.area\x04\x00\x00\x000.04");
+    let mut bad = good.clone();
+    bad[entry + b"contact.area".len() + 4 + 3] = b'5';
+    std::fs::write(&path, &bad).unwrap();
+    let log = beam_impact::record::report::read_log(&path).unwrap();
+    let problem = log.problem.clone().unwrap_or_default();
+    assert!(log.damaged && problem.contains("the data section fails its CRC check"), "{problem}");
+    // The log format itself changed: refused, naming the damage.
+    let mut bad = good.clone();
+    let at = find(b"log_format") + b"log_format".len() + 4;
+    assert_eq!(bad[at], b'2');
+    bad[at] = b'3';
+    std::fs::write(&path, &bad).unwrap();
+    let error = beam_impact::record::report::read_log(&path).unwrap_err().to_string();
+    assert!(error.contains("log format \"3\"") && error.contains("the file is damaged"), "{error}");
+}

@@ -243,17 +243,21 @@ pub fn read_log_bytes_with(bytes: &[u8], path: &Path, options: ReadOptions) -> R
         Some(text) => match text.parse::<u32>() {
             Ok(format) if (1..=LOG_FORMAT).contains(&format) => format,
             _ => {
-                return Err(mcap_err(
-                    path,
-                    format!(
-                        "log format {} is not one this reader knows (1 to {LOG_FORMAT}): written by a newer \
-                         beam-impact? (its version: {})",
-                        super::safe_read::quoted(text),
+                let known = format!(
+                    "log format {} is not one this reader knows (1 to {LOG_FORMAT})",
+                    super::safe_read::quoted(text)
+                );
+                let why = match (&data.problem, data.damaged) {
+                    // The metadata itself may be what changed.
+                    (Some(problem), true) => format!("the file is damaged: {problem}"),
+                    _ => format!(
+                        "written by a newer beam-impact? (its version: {})",
                         data.metadata
                             .get("beam_impact_version")
                             .map_or("not recorded".to_string(), |v| super::safe_read::quoted(v))
                     ),
-                ))
+                };
+                return Err(mcap_err(path, format!("{known}: {why}")));
             }
         },
     };

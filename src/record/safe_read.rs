@@ -315,6 +315,17 @@ pub enum ReadError {
         /// Bytes after the footer.
         trailing: u64,
     },
+    /// The data end record's CRC of the data section (non-zero: written) does not match it: a
+    /// byte changed outside the chunks (whose own CRCs hold), for example in a top-level
+    /// metadata record, which has no CRC of its own.
+    DataSectionCrc {
+        /// Where the data end record starts.
+        at: u64,
+        /// The stored CRC.
+        saved: u32,
+        /// The CRC of the bytes before the data end record.
+        calculated: u32,
+    },
 }
 
 /// A file-supplied string for a one-line message: escaped, at most 40 characters.
@@ -390,6 +401,11 @@ impl fmt::Display for ReadError {
             ReadError::EndMagic { at, trailing } => {
                 write!(f, "the footer at byte {at} is followed by {trailing} bytes that are not the closing MCAP magic")
             }
+            ReadError::DataSectionCrc { at, saved, calculated } => write!(
+                f,
+                "data end record (opcode 0x0f) at byte {at}: the data section fails its CRC check (stored \
+                 0x{saved:08x}, computed 0x{calculated:08x}): a byte before it changed outside the chunks"
+            ),
         }
     }
 }
@@ -655,7 +671,18 @@ impl Reader<'_> {
                 op::METADATA => {
                     Some(Record::Metadata { name: f.string("metadata name")?, entries: f.string_map("metadata")? })
                 }
-                op::DATA_END => Some(Record::DataEnd { data_section_crc: f.u32("data section CRC")? }),
+                op::DATA_END => {
+                    let saved = f.u32("data section CRC")?;
+                    // 0: not written (format 1 and earlier format 2 logs). The data section is
+                    // every byte before the data end record, the leading magic included.
+                    if saved != 0 {
+                        let calculated = crc32(&bytes[..pos]);
+                        if calculated != saved {
+                            return Err(ReadError::DataSectionCrc { at: pos as u64, saved, calculated }.into());
+                        }
+                    }
+                    Some(Record::DataEnd { data_section_crc: saved })
+                }
                 other => parse_common(other, frame.body, at)?,
             };
             if let Some(record) = record {
