@@ -149,11 +149,10 @@ pub fn tables23(summary: &Summary, paper: bool) -> String {
     let mut s = String::new();
     let m = &summary.modes;
     let columns = [("arrestor", &m.lower), ("bridge", &m.upper), ("coupled", &m.coupled)];
-    for (title, periods) in [
-        ("Table 2. Natural frequencies [rad/s]", false),
-        ("Table 3. Natural periods [s] (ratio to the interval the paper's 3 decimals stand for)", true),
-    ] {
-        let _ = writeln!(s, "{title}");
+    for (title, periods) in [("Table 2. Natural frequencies [rad/s]", false), ("Table 3. Natural periods [s]", true)] {
+        // The ratios are only shown beside the paper's values.
+        let note = if paper && periods { " (ratio to the interval the paper's 3 decimals stand for)" } else { "" };
+        let _ = writeln!(s, "{title}{note}");
         let _ = write!(s, " n");
         for (name, _) in &columns {
             if paper {

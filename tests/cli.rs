@@ -18,6 +18,21 @@ fn default_run_prints_the_paper_comparison() {
     }
 }
 
+/// Issue 19 (quiet by default): the bare paper run printed two advisories about the paper's own
+/// steps, which its user cannot act on; it prints only its verdict now.
+#[test]
+fn the_paper_run_prints_no_advisory_about_its_own_steps() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = beam_impact().arg("--no-mcap").current_dir(dir.path()).output().unwrap();
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(!stderr.contains("note:") && !stderr.contains("energy-safe"), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "the verdict alone: {stderr}");
+    assert!(
+        stderr.contains("results not trusted: the paper mesh's peaks differ from the converged answer"),
+        "{stderr}"
+    );
+}
+
 /// A bad scenario: exit code 2, one line on stderr naming the field, no panic trace.
 #[test]
 fn bad_scenario_exits_2_with_one_line() {

@@ -83,9 +83,14 @@ impl StepPlan {
     }
 
     /// One line for each fixed step above the energy-safe limit: stable, but a run with little
-    /// damping may gain energy at every change of step (see the module documentation).
+    /// damping may gain energy at every change of step (see the module documentation). None for
+    /// the paper scenario itself: its steps are the paper's, not the user's to change (a user
+    /// who sets any field gets the advisory where it applies).
     pub fn advisories(&self, scenario: &Scenario, modal: &ModalSystem) -> Vec<String> {
         let mut lines = Vec::new();
+        if scenario.is_paper() {
+            return lines;
+        }
         for (name, step, contact) in
             [("step_free", scenario.step_free, false), ("step_contact", scenario.step_contact, true)]
         {
