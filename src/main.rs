@@ -204,7 +204,7 @@ fn main() -> ExitCode {
             Ok(false) if args.strict => return ExitCode::from(UNTRUSTED),
             outcome => outcome.map(|_| ()),
         },
-        Command::Scenario => emit(&Scenario::default().to_toml()),
+        Command::Scenario => emit(&beam_impact::model::parameters::annotate_toml(&Scenario::default().to_toml())),
         Command::Damping { file, figures } => damping(file.as_deref(), figures.as_deref()),
         Command::Modes { file, set, out } => modes(file.as_deref(), &set, &out),
         Command::Pack { out, library, no_zigbuild } => pack(&out, library, no_zigbuild),

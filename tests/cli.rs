@@ -49,14 +49,21 @@ fn bad_scenario_exits_2_with_one_line() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("/nonexistent/x.toml"));
 }
 
-/// `scenario` prints a file that `run` accepts, and `--json` writes the summary.
+/// `scenario` prints a file, with units, that `run` accepts, and `--json` writes the summary.
 #[test]
 fn scenario_output_runs_and_json_is_written() {
     let dir = tempfile::tempdir().unwrap();
     let out = beam_impact().arg("scenario").output().unwrap();
     assert!(out.status.success());
     let file = dir.path().join("s.toml");
-    let text = String::from_utf8(out.stdout).unwrap().replace("duration = 3.0", "duration = 0.1");
+    let text = String::from_utf8(out.stdout).unwrap();
+    // Issue 19: each field's unit and meaning as a comment on its line (read back unchanged).
+    for needle in
+        ["drop_height = 0.567  # [m] Drop height", "elastic_modulus = 210000000000.0  # [Pa]", "tip_force = 0.0  # [N]"]
+    {
+        assert!(text.contains(needle), "{needle} in\n{text}");
+    }
+    let text = text.replace("duration = 3.0", "duration = 0.1");
     std::fs::write(&file, text).unwrap();
     let json = dir.path().join("r.json");
     let out = beam_impact().args(["run", "--no-mcap", "--json"]).arg(&json).arg(&file).output().unwrap();

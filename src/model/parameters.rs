@@ -208,3 +208,35 @@ pub fn set(scenario: &mut Scenario, parameter: &Parameter, value: f64) -> Result
     }
     (parameter.put)(scenario, value)
 }
+
+/// `toml` (a scenario as [`Scenario::to_toml`] writes it) with each field's unit and description
+/// as a comment on its line, from this table (what `beam-impact scenario` prints; a TOML reader
+/// skips the comments). In TOML an automatic value is `"auto"`, where the FMU takes 0.
+pub fn annotate_toml(toml: &str) -> String {
+    let mut section = String::new();
+    let mut out = String::new();
+    for line in toml.lines() {
+        let trimmed = line.trim();
+        if let Some(name) = trimmed.strip_prefix('[').and_then(|t| t.strip_suffix(']')) {
+            section = format!("{name}.");
+        }
+        let key = trimmed.split_once(" = ").map(|(k, _)| format!("{section}{}", k.trim()));
+        match key.as_deref().and_then(|k| find(k).ok()) {
+            Some(p) => {
+                let unit = if p.unit.is_empty() { "-" } else { p.unit };
+                let description = p.description.replace("0: automatic", "\"auto\": automatic");
+                out.push_str(&format!("{line}  # [{unit}] {description}\n"));
+            }
+            None if key.as_deref().is_some_and(|k| k.ends_with(".tip_force")) => {
+                out.push_str(&format!(
+                    "{line}  # [N] Constant vertical force at the free end, up positive (an FMU input)\n"
+                ));
+            }
+            None => {
+                out.push_str(line);
+                out.push('\n');
+            }
+        }
+    }
+    out
+}
