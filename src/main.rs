@@ -37,8 +37,12 @@ enum Command {
     Scenario,
     /// The damping study of Appendix A: peaks for damping ratios 0 to 0.04.
     Damping {
-        /// Scenario file (default: the paper scenario).
+        /// Scenario file (default: the paper scenario; with --set and no file, the default
+        /// scenario, as `run --set`).
         file: Option<PathBuf>,
+        /// Change a scenario field, KEY=VALUE, as `run --set` (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
         /// Also write the study's figures (SVG and PNG) into DIR: per damping ratio the
         /// deflections (Figures A2-A7) and bending stresses (A8-A13), and the peaks against the
         /// damping ratio; of this FE model, not of the paper's simplified Figure A1 model.
@@ -99,8 +103,12 @@ enum Command {
     /// Convergence of the four Table 1 peaks: the scenario at half its steps and at 2x and 4x its
     /// elements; each peak's changes, a Richardson estimate and a verdict.
     Verify {
-        /// Scenario file (default: the paper scenario).
+        /// Scenario file (default: the paper scenario; with --set and no file, the default
+        /// scenario, as `run --set`).
         file: Option<PathBuf>,
+        /// Change a scenario field, KEY=VALUE, as `run --set` (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
         /// Write the verdicts as JSON to this file.
         #[arg(long)]
         json: Option<PathBuf>,
@@ -205,12 +213,12 @@ fn main() -> ExitCode {
             outcome => outcome.map(|_| ()),
         },
         Command::Scenario => emit(&beam_impact::model::parameters::annotate_toml(&Scenario::default().to_toml())),
-        Command::Damping { file, figures } => damping(file.as_deref(), figures.as_deref()),
+        Command::Damping { file, set, figures } => damping(file.as_deref(), &set, figures.as_deref()),
         Command::Modes { file, set, out } => modes(file.as_deref(), &set, &out),
         Command::Pack { out, library, no_zigbuild } => pack(&out, library, no_zigbuild),
         Command::Report { file, out, csv } => report(&file, out, csv.as_deref()),
         Command::Bench { runs } => bench(runs),
-        Command::Verify { file, json, tolerance } => verify(file.as_deref(), json.as_deref(), tolerance),
+        Command::Verify { file, set, json, tolerance } => verify(file.as_deref(), &set, json.as_deref(), tolerance),
         Command::Sweep(args) => sweep(&args),
     };
     match outcome {
@@ -479,12 +487,22 @@ impl Recorder for Progress<'_> {
     }
 }
 
-fn damping(file: Option<&Path>, figures: Option<&Path>) -> Result<()> {
-    use beam_impact::damping_study::{run_with_histories, table, RATIOS};
-    let scenario = match file {
+/// The scenario of a subcommand: the file's, else the paper's, else (with `--set` and no file)
+/// the default, with the `--set` changes, as `run` reads it.
+fn scenario_with_settings(file: Option<&Path>, set: &[String]) -> Result<Scenario> {
+    let settings = beam_impact::sweep::parse_settings(set)?;
+    let mut scenario = match file {
         Some(path) => read_scenario(path)?,
-        None => Scenario::paper(),
+        None if settings.is_empty() => Scenario::paper(),
+        None => Scenario::default(),
     };
+    beam_impact::sweep::apply_settings(&mut scenario, &settings)?;
+    Ok(scenario)
+}
+
+fn damping(file: Option<&Path>, set: &[String], figures: Option<&Path>) -> Result<()> {
+    use beam_impact::damping_study::{run_with_histories, table, RATIOS};
+    let scenario = scenario_with_settings(file, set)?;
     let Some(dir) = figures else {
         let rows = beam_impact::damping_study::run(&scenario, &RATIOS)?;
         return emit(&table(&rows));
@@ -691,12 +709,9 @@ fn bench(runs: usize) -> Result<()> {
     emit(&format!("\n{}", beam_impact::record::bench::recording_benchmark(runs)?))
 }
 
-fn verify(file: Option<&Path>, json: Option<&Path>, tolerance: f64) -> Result<()> {
+fn verify(file: Option<&Path>, set: &[String], json: Option<&Path>, tolerance: f64) -> Result<()> {
     use beam_impact::verify::{default_threads, table, Plan, RUN_LABELS};
-    let scenario = match file {
-        Some(path) => read_scenario(path)?,
-        None => Scenario::paper(),
-    };
+    let scenario = scenario_with_settings(file, set)?;
     let plan = Plan::new(&scenario, tolerance)?;
     let mut files: Vec<(&str, &Path)> = file.map(|f| ("the scenario file", f)).into_iter().collect();
     files.extend(json.map(|j| ("--json", j)));

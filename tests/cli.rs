@@ -261,3 +261,29 @@ fn a_scenario_file_logs_beside_itself() {
     }
     assert!(!dir.path().join("paper.mcap").exists());
 }
+
+/// Issue 19: `damping` and `verify` take `--set` as `run` does (the same names, one line for a
+/// bad one), and the change reaches the runs.
+#[test]
+fn damping_and_verify_take_set() {
+    let text = |args: &[&str]| {
+        let out = beam_impact().args(args).output().unwrap();
+        assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+        // The peaks, not the wall time.
+        String::from_utf8(out.stdout)
+            .unwrap()
+            .lines()
+            .filter(|l| !l.contains("wall time"))
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    for command in ["damping", "verify"] {
+        let low = text(&[command, "--set", "duration=0.02", "--set", "drop_height=0.3"]);
+        let high = text(&[command, "--set", "duration=0.02", "--set", "drop_height=1.5"]);
+        assert_ne!(low, high, "{command}: --set drop_height changes the peaks");
+        let out = beam_impact().args([command, "--set", "drop_hieght=1"]).output().unwrap();
+        assert_eq!(out.status.code(), Some(2));
+        let stderr = String::from_utf8(out.stderr).unwrap();
+        assert!(stderr.lines().count() == 1 && stderr.contains("drop_hieght"), "{stderr}");
+    }
+}
