@@ -318,3 +318,19 @@ def test_python_m_beam_impact_sweep(tmp_path):
     bad = subprocess.run([sys.executable, "-m", "beam_impact", "sweep", "--fmu", fmu_path(), "--vary", "nonsense=1",
                           "--out", str(out)], capture_output=True, text=True)
     assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "nonsense" in bad.stderr, bad.stderr
+
+
+def test_the_readmes_local_cluster_script_runs_as_written(tmp_path):
+    """Issue 19: a LocalCluster script without the `__main__` guard fails ("Nanny failed to
+    start"); the README shows the guard. Its snippet runs here as a script, as a user saves it."""
+    readme = (ROOT / "README.md").read_text()
+    start = readme.index('  if __name__ == "__main__":') - len("  from dask.distributed import Client, LocalCluster\n\n")
+    block_start = readme.rindex("```python\n", 0, start) + len("```python\n")
+    block = readme[block_start:readme.index("```", block_start)]
+    script = "\n".join(line[2:] for line in block.splitlines())  # the README indents it by two
+    assert "LocalCluster" in script and '__name__ == "__main__"' in script
+    (tmp_path / "study.py").write_text(script.replace("target/fmu/fmi2/BeamImpact.fmu", fmu_path()))
+    run = subprocess.run([sys.executable, "study.py"], cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr[-2000:]
+    table = pd.read_csv(tmp_path / "sweep.csv")
+    assert list(table["drop_height"]) == [0.3, 0.6, 0.9] and table["lower_clamp_bending_stress"].gt(0).all()
