@@ -4,8 +4,9 @@
 
 use std::path::Path;
 
+use beam_impact::record::bench;
 use beam_impact::record::mcap::McapRecorder;
-use beam_impact::record::{bench, report};
+use beam_impact::replay::report;
 use beam_impact::{Scenario, Simulation};
 
 fn main() -> beam_impact::Result<()> {

@@ -4,7 +4,7 @@
 //! - **Discretisation.** A converged run is judged against two coarser rungs (the ladder's previous
 //!   ones, or halves of explicit element counts): each peak's figure is its change against the next
 //!   coarser rung, relative to the printed value, or, where the three rungs converge at a sane
-//!   observed order ([`crate::verify::richardson`]), the Richardson estimate of the printed value's
+//!   observed order ([`crate::studies::verify::richardson`]), the Richardson estimate of the printed value's
 //!   own error, |v - v_inf| / |v_inf|. A paper-method run is judged against the converged answer:
 //!   its figure is the paper mesh's error.
 //! - **Sensitivity.** A twin run with the drop height changed by 1e-9 (relative; 1e-9 m from 0):
@@ -25,7 +25,7 @@ use crate::error::Result;
 use crate::model::{Method, Scenario};
 use crate::record::{NullRecorder, Recorder};
 use crate::results::{Peaks, Summary};
-use crate::verify::richardson;
+use crate::studies::verify::richardson;
 use crate::Simulation;
 
 /// The five peaks by name, in the order of [`Peaks::as_array`].

@@ -9,20 +9,18 @@
 #![warn(missing_docs)]
 
 pub mod answer;
-pub mod bench;
 pub mod compare;
-pub mod damping_study;
 pub mod discretise;
 pub mod error;
 pub mod fmi;
 pub mod model;
 pub mod paper;
 pub mod record;
+pub mod replay;
 pub mod results;
 pub mod simulation;
 pub mod solver;
-pub mod sweep;
-pub mod verify;
+pub mod studies;
 
 pub use error::{Error, Result};
 pub use model::Scenario;

@@ -113,7 +113,7 @@ enum Command {
         #[arg(long)]
         json: Option<PathBuf>,
         /// Largest relative change of a converged peak, a fraction (0.01 is 1 %).
-        #[arg(long, default_value_t = beam_impact::verify::DEFAULT_TOLERANCE)]
+        #[arg(long, default_value_t = beam_impact::studies::verify::DEFAULT_TOLERANCE)]
         tolerance: f64,
     },
     /// A design sweep: every combination of the `--vary` values (the last varying fastest), run in
@@ -258,18 +258,18 @@ fn bounded_line(message: &str) -> String {
 
 /// Runs a scenario; returns whether its numbers are trusted.
 fn run(args: &RunArgs) -> Result<bool> {
-    let settings = beam_impact::sweep::parse_settings(&args.set)?;
+    let settings = beam_impact::studies::sweep::parse_settings(&args.set)?;
     // Only a bare `beam-impact` runs the paper's method; a file or `--set` starts from the defaults.
     let mut scenario = match &args.file {
         Some(path) => read_scenario(path)?,
         None if settings.is_empty() => Scenario::paper(),
         None => Scenario::default(),
     };
-    beam_impact::sweep::apply_settings(&mut scenario, &settings)?;
+    beam_impact::studies::sweep::apply_settings(&mut scenario, &settings)?;
     let mcap = args
         .mcap
         .clone()
-        .unwrap_or_else(|| beam_impact::sweep::default_log(args.file.as_deref(), &settings, &scenario));
+        .unwrap_or_else(|| beam_impact::studies::sweep::default_log(args.file.as_deref(), &settings, &scenario));
     let paper = scenario.is_paper();
     let started = Instant::now();
     let simulation = Simulation::new(&scenario)?;
@@ -490,28 +490,28 @@ impl Recorder for Progress<'_> {
 /// The scenario of a subcommand: the file's, else the paper's, else (with `--set` and no file)
 /// the default, with the `--set` changes, as `run` reads it.
 fn scenario_with_settings(file: Option<&Path>, set: &[String]) -> Result<Scenario> {
-    let settings = beam_impact::sweep::parse_settings(set)?;
+    let settings = beam_impact::studies::sweep::parse_settings(set)?;
     let mut scenario = match file {
         Some(path) => read_scenario(path)?,
         None if settings.is_empty() => Scenario::paper(),
         None => Scenario::default(),
     };
-    beam_impact::sweep::apply_settings(&mut scenario, &settings)?;
+    beam_impact::studies::sweep::apply_settings(&mut scenario, &settings)?;
     Ok(scenario)
 }
 
 fn damping(file: Option<&Path>, set: &[String], figures: Option<&Path>) -> Result<()> {
-    use beam_impact::damping_study::{run_with_histories, table, RATIOS};
+    use beam_impact::studies::damping::{run_with_histories, table, RATIOS};
     let scenario = scenario_with_settings(file, set)?;
     let Some(dir) = figures else {
-        let rows = beam_impact::damping_study::run(&scenario, &RATIOS)?;
+        let rows = beam_impact::studies::damping::run(&scenario, &RATIOS)?;
         return emit(&table(&rows));
     };
     let runs = run_with_histories(&scenario, &RATIOS)?;
     let rows: Vec<_> = runs.iter().map(|r| (r.scenario.damping_ratio, r.summary.clone())).collect();
     let mut text = table(&rows);
     text += "\nfigures (of this FE model, not of the paper's simplified Figure A1 model):\n";
-    for file in beam_impact::record::damping_figures::write_damping_figures(&scenario, &runs, dir)? {
+    for file in beam_impact::replay::damping_figures::write_damping_figures(&scenario, &runs, dir)? {
         text += &format!("  {}\n", file.display());
     }
     emit(&text)
@@ -523,7 +523,7 @@ fn modes(file: Option<&Path>, set: &[String], out: &Path) -> Result<()> {
         Some(path) => read_scenario(path)?,
         None => Scenario::paper(),
     };
-    beam_impact::sweep::apply_settings(&mut scenario, &beam_impact::sweep::parse_settings(set)?)?;
+    beam_impact::studies::sweep::apply_settings(&mut scenario, &beam_impact::studies::sweep::parse_settings(set)?)?;
     // The model and its modes only: no time step is involved ("auto" element counts resolved as a
     // run resolves them).
     if let Some(path) = file {
@@ -537,7 +537,7 @@ fn modes(file: Option<&Path>, set: &[String], out: &Path) -> Result<()> {
         text += &format!("  {name:9} {}\n", values.join(", "));
     }
     text += "figures:\n";
-    for file in beam_impact::record::mode_figures::write_mode_figures(&model, &modal, out)? {
+    for file in beam_impact::replay::mode_figures::write_mode_figures(&model, &modal, out)? {
         text += &format!("  {}\n", file.display());
     }
     emit(&text)
@@ -645,7 +645,7 @@ fn host_library() -> Result<PathBuf> {
 }
 
 fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>) -> Result<()> {
-    let out = out.unwrap_or_else(|| beam_impact::record::report::default_out_dir(file));
+    let out = out.unwrap_or_else(|| beam_impact::replay::report::default_out_dir(file));
     let stdout = std::io::stdout();
     let mut lock = stdout.lock();
     let csv_to_stdout = csv.is_some_and(|path| path.as_os_str() == "-");
@@ -661,7 +661,7 @@ fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>) -> Result<()> {
         }
         // Opened before the log is read, so that a bad path fails at once.
         let target = if csv_to_stdout { None } else { Some(OutputFile::create(path, true, "cannot create CSV")?) };
-        let data = beam_impact::record::report::read_log(file)?;
+        let data = beam_impact::replay::report::read_log(file)?;
         if csv_to_stdout && (!data.complete || data.stopped_early.is_some()) {
             // The summary, which would say so, is not printed.
             eprintln!(
@@ -674,13 +674,13 @@ fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>) -> Result<()> {
         let written = match target {
             Some(mut target) => {
                 let mut buffered = std::io::BufWriter::new(&mut target);
-                beam_impact::record::csv::write_steps(&data.steps, &mut buffered)
+                beam_impact::replay::csv::write_steps(&data.steps, &mut buffered)
                     .and_then(|()| buffered.flush())
                     .map_err(|source| io("cannot write CSV", path, source))?;
                 drop(buffered);
                 target.commit()
             }
-            None => match beam_impact::record::csv::write_steps(&data.steps, &mut std::io::BufWriter::new(&mut lock)) {
+            None => match beam_impact::replay::csv::write_steps(&data.steps, &mut std::io::BufWriter::new(&mut lock)) {
                 // `report log.mcap --csv - | head`: the reader went away, quietly.
                 Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => return Ok(()),
                 outcome => outcome.map_err(|source| io("cannot write", Path::new("standard output"), source)),
@@ -693,7 +693,7 @@ fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>) -> Result<()> {
     let mut sink = std::io::sink();
     let summary: &mut dyn Write = if csv_to_stdout { &mut sink } else { &mut lock };
     // A reader that went away (`report log.mcap | head`) ends the output quietly, as `run` does.
-    match beam_impact::record::report::report(file, &out, summary) {
+    match beam_impact::replay::report::report(file, &out, summary) {
         Err(Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::BrokenPipe => return Ok(()),
         outcome => outcome?,
     }
@@ -704,13 +704,13 @@ fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>) -> Result<()> {
 fn bench(runs: usize) -> Result<()> {
     let runs = runs.max(1);
     eprintln!("beam-impact bench: 1/2 production stepper vs dense oracle, per-step cost ({runs} runs each)...");
-    emit(&beam_impact::bench::stepper_benchmark(runs)?)?;
+    emit(&beam_impact::studies::bench::stepper_benchmark(runs)?)?;
     eprintln!("beam-impact bench: 2/2 recorded vs unrecorded paper run ({runs} runs each)...");
     emit(&format!("\n{}", beam_impact::record::bench::recording_benchmark(runs)?))
 }
 
 fn verify(file: Option<&Path>, set: &[String], json: Option<&Path>, tolerance: f64) -> Result<()> {
-    use beam_impact::verify::{default_threads, table, Plan, RUN_LABELS};
+    use beam_impact::studies::verify::{default_threads, table, Plan, RUN_LABELS};
     let scenario = scenario_with_settings(file, set)?;
     let plan = Plan::new(&scenario, tolerance)?;
     let mut files: Vec<(&str, &Path)> = file.map(|f| ("the scenario file", f)).into_iter().collect();
@@ -747,7 +747,9 @@ fn verify(file: Option<&Path>, set: &[String], json: Option<&Path>, tolerance: f
 }
 
 fn sweep(args: &SweepArgs) -> Result<()> {
-    use beam_impact::sweep::{apply_settings, default_jobs, parse_axes, parse_settings, Sweep, SweepWriteError};
+    use beam_impact::studies::sweep::{
+        apply_settings, default_jobs, parse_axes, parse_settings, Sweep, SweepWriteError,
+    };
     let mut base = match &args.file {
         Some(path) => read_scenario(path)?,
         None => Scenario::default(),

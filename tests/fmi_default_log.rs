@@ -59,7 +59,7 @@ fn assert_complete(paths: &[PathBuf]) {
     for path in paths {
         let name = path.file_name().unwrap().to_str().unwrap();
         assert!(name.starts_with("BeamImpact-") && name.ends_with(".mcap"), "{name}");
-        let log = beam_impact::record::report::read_log(path).unwrap();
+        let log = beam_impact::replay::report::read_log(path).unwrap();
         assert!(log.complete, "{name}: {:?}", log.problem);
         assert!(log.steps.last().unwrap().time >= 0.049, "{name}: {:?}", log.steps.last());
     }
@@ -158,7 +158,7 @@ fn child() {
             let path = announced(&second.log.text());
             second.run(0.03, 0.05, 1e-2);
             assert_eq!(second.call0("fmi2Terminate"), OK);
-            let log = beam_impact::record::report::read_log(&path).unwrap();
+            let log = beam_impact::replay::report::read_log(&path).unwrap();
             assert!(log.complete, "{:?}", log.problem);
             let step = log.steps.first().unwrap();
             assert!(step.step > 0 && step.time <= 0.03 && step.time > 0.029, "{step:?}");

@@ -302,6 +302,6 @@ fn rollback_with_an_mcap_log() {
     assert_eq!(fmu.get("time"), 0.1);
     fmu.run(0.1, 0.2, 1e-2);
     assert_eq!(fmu.call0("fmi2Terminate"), OK, "{}", fmu.log.text());
-    let log = beam_impact::record::report::read_log(&path).unwrap();
+    let log = beam_impact::replay::report::read_log(&path).unwrap();
     assert!(log.complete, "{:?}", log.problem);
 }

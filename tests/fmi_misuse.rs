@@ -188,7 +188,7 @@ fn two_instances_on_one_log_path() {
     assert!(b.log.text().contains(path) && b.log.text().contains("another run or instance"), "{}", b.log.text());
     assert_eq!(a.do_step(0.0, 1e-2), OK);
     assert_eq!(a.call0("fmi2Terminate"), OK, "{}", a.log.text());
-    let log = beam_impact::record::report::read_log(std::path::Path::new(path)).unwrap();
+    let log = beam_impact::replay::report::read_log(std::path::Path::new(path)).unwrap();
     assert!(log.complete, "{:?}", log.problem);
 }
 

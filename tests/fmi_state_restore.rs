@@ -180,7 +180,7 @@ fn the_restored_run_logs_from_the_restored_step() {
     assert!(second.log.text().contains(&format!("MCAP log of every internal step: {}", path.display())));
     second.run(0.2, 0.3, 1e-2);
     assert_eq!(second.call0("fmi2Terminate"), OK, "{}", second.log.text());
-    let log = beam_impact::record::report::read_log(&path).unwrap();
+    let log = beam_impact::replay::report::read_log(&path).unwrap();
     assert!(log.complete, "{:?}", log.problem);
     let first_step = log.steps.first().unwrap();
     assert!(first_step.step > 0 && first_step.time <= 0.2 && first_step.time > 0.19, "{first_step:?}");
@@ -305,7 +305,7 @@ fn another_scenario_completes_an_explicit_log_with_a_warning() {
     assert_eq!(fmu.get("drop_height"), 0.8);
     fmu.run(0.2, 0.3, 1e-2);
     assert_eq!(fmu.call0("fmi2Terminate"), OK, "{}", fmu.log.text());
-    let log = beam_impact::record::report::read_log(&path).unwrap();
+    let log = beam_impact::replay::report::read_log(&path).unwrap();
     assert!(log.complete, "{:?}", log.problem);
     assert!(log.steps.last().unwrap().time < 0.11, "the log ends where its scenario did");
 }

@@ -12,7 +12,7 @@ mod fuzz_support;
 use std::path::Path;
 use std::sync::OnceLock;
 
-use beam_impact::record::report::{read_log_bytes, summary_from_log, LogData, RETAINED_RATIO, RETAINED_SLACK};
+use beam_impact::replay::report::{read_log_bytes, summary_from_log, LogData, RETAINED_RATIO, RETAINED_SLACK};
 use beam_impact::results::StepResult;
 use beam_impact::{Scenario, Simulation};
 use fuzz_support::{corpus_files, crafted_logs, edit_chunks, iterations, mutate_log, real_log_bytes, Rng};
@@ -152,7 +152,7 @@ fn the_fuzz_corpora_replay() {
 #[test]
 #[ignore]
 fn bench_readers() {
-    use beam_impact::record::safe_read::{read_records, Limits};
+    use beam_impact::replay::safe_read::{read_records, Limits};
     use std::time::{Duration, Instant};
     let path = std::env::var("BEAM_IMPACT_BENCH_LOG").expect("BEAM_IMPACT_BENCH_LOG");
     let bytes = std::fs::read(&path).unwrap();

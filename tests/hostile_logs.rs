@@ -121,11 +121,11 @@ fn mutations_of_a_real_log_exit_0_or_2() {
 fn truncated_real_logs_report_every_complete_chunk() {
     let real = real_log_bytes();
     let dir = tempfile::tempdir().unwrap();
-    let full = beam_impact::record::report::read_log_bytes(&real, Path::new("real")).unwrap();
+    let full = beam_impact::replay::report::read_log_bytes(&real, Path::new("real")).unwrap();
     assert!(full.complete);
     let mut previous = 0;
     for cut in [real.len() / 4, real.len() / 2, real.len() * 3 / 4, real.len() - 9, real.len() - 1] {
-        let log = beam_impact::record::report::read_log_bytes(&real[..cut], Path::new("cut")).unwrap();
+        let log = beam_impact::replay::report::read_log_bytes(&real[..cut], Path::new("cut")).unwrap();
         assert!(!log.complete && !log.damaged, "{cut}: {:?}", log.problem);
         assert!(log.steps.len() >= previous && log.steps.len() <= full.steps.len());
         assert!(log.steps.iter().enumerate().all(|(k, r)| r.step == k as u64));
@@ -137,7 +137,7 @@ fn truncated_real_logs_report_every_complete_chunk() {
     // A bit flipped inside a chunk: the chunk's CRC refuses it; the chunks before it are reported.
     let mut flipped = real.clone();
     flipped[real.len() / 2] ^= 0x10;
-    let log = beam_impact::record::report::read_log_bytes(&flipped, Path::new("flipped")).unwrap();
+    let log = beam_impact::replay::report::read_log_bytes(&flipped, Path::new("flipped")).unwrap();
     assert!(log.damaged, "{:?}", log.problem);
     let (code, stdout, _) = report(dir.path(), "flipped.mcap", &flipped);
     assert_eq!(code, 0);
@@ -160,7 +160,7 @@ fn a_rollback_heavy_log_reads_every_rollback() {
     let path = dir.path().join("rollbacks.mcap");
     let options = beam_impact::record::mcap::RecorderOptions { scene_interval_ns: 0, ..Default::default() };
     synthetic_log(&path, &beam_impact::Scenario::default(), 160_000, true, options);
-    let log = beam_impact::record::report::read_log(&path).unwrap();
+    let log = beam_impact::replay::report::read_log(&path).unwrap();
     assert!(log.complete, "{:?}", log.problem);
     assert_eq!(log.rollbacks, 159_999);
     assert_eq!(log.steps.len(), 160_000);
@@ -263,7 +263,7 @@ fn write_measurement_logs() {
 /// to 2 million contact events; the reader stops at what it may keep and says so.
 #[test]
 fn what_the_reader_keeps_is_bounded_by_the_file() {
-    use beam_impact::record::report::{read_log_bytes, RETAINED_RATIO, RETAINED_SLACK};
+    use beam_impact::replay::report::{read_log_bytes, RETAINED_RATIO, RETAINED_SLACK};
     let bytes = fuzz_support::compressible_events_log();
     let log = read_log_bytes(&bytes, Path::new("events")).unwrap();
     assert!(log.damaged, "{:?}", log.problem);
@@ -287,7 +287,7 @@ fn a_changed_metadata_byte_fails_the_data_section_crc() {
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let good = std::fs::read(&path).unwrap();
-    let log = beam_impact::record::report::read_log(&path).unwrap();
+    let log = beam_impact::replay::report::read_log(&path).unwrap();
     assert!(log.complete && !log.damaged, "{:?}", log.problem);
     let find = |needle: &[u8]| good.windows(needle.len()).rposition(|w| w == needle).unwrap();
     // contact.area = "0.04" in the metadata's string map (key, then the value's u32 length).
@@ -295,7 +295,7 @@ fn a_changed_metadata_byte_fails_the_data_section_crc() {
     let mut bad = good.clone();
     bad[entry + b"contact.area".len() + 4 + 3] = b'5';
     std::fs::write(&path, &bad).unwrap();
-    let log = beam_impact::record::report::read_log(&path).unwrap();
+    let log = beam_impact::replay::report::read_log(&path).unwrap();
     let problem = log.problem.clone().unwrap_or_default();
     assert!(log.damaged && problem.contains("the data section fails its CRC check"), "{problem}");
     // The log format itself changed: refused, naming the damage.
@@ -304,6 +304,6 @@ fn a_changed_metadata_byte_fails_the_data_section_crc() {
     assert_eq!(bad[at], b'2');
     bad[at] = b'3';
     std::fs::write(&path, &bad).unwrap();
-    let error = beam_impact::record::report::read_log(&path).unwrap_err().to_string();
+    let error = beam_impact::replay::report::read_log(&path).unwrap_err().to_string();
     assert!(error.contains("log format \"3\"") && error.contains("the file is damaged"), "{error}");
 }

@@ -7,8 +7,8 @@
 use std::path::Path;
 
 use beam_impact::record::mcap::{LogCompression, McapRecorder, RecorderOptions, LOG_FORMAT, MODES_TOPIC};
-use beam_impact::record::report::{read_log, summary_from_log};
 use beam_impact::record::MemoryRecorder;
+use beam_impact::replay::report::{read_log, summary_from_log};
 use beam_impact::results::StepResult;
 use beam_impact::{Scenario, Simulation};
 
@@ -114,7 +114,7 @@ fn without_modal_coordinates_the_modes_topic_is_empty_and_the_scene_stays() {
     assert!(log.peak_deflection_coordinates.is_empty());
     // The report says why the bridge's strain energy at the peak is missing (it printed NaN).
     let mut out = Vec::new();
-    beam_impact::record::report::report(&path, &dir.path().join("fig"), &mut out).unwrap();
+    beam_impact::replay::report::report(&path, &dir.path().join("fig"), &mut out).unwrap();
     let text = String::from_utf8(out).unwrap();
     assert!(text.contains("at the largest arrestor deflection: n/a (the log holds no modal"), "{text}");
     assert!(!text.contains("NaN"), "{text}");

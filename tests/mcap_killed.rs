@@ -12,7 +12,7 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use beam_impact::record::mcap::McapRecorder;
-use beam_impact::record::report::{read_log, report};
+use beam_impact::replay::report::{read_log, report};
 use beam_impact::{Scenario, Simulation};
 
 const CHILD_ENV: &str = "BEAM_IMPACT_KILL_TEST_LOG";

@@ -10,8 +10,8 @@
 //! far above that round-off; it held f32 coordinates in log format 1).
 
 use beam_impact::record::mcap::{McapRecorder, RecorderOptions};
-use beam_impact::record::report::{read_log, report, summary_from_log};
 use beam_impact::record::{MemoryRecorder, Recorder};
+use beam_impact::replay::report::{read_log, report, summary_from_log};
 use beam_impact::results::StepResult;
 use beam_impact::{Scenario, Simulation};
 

@@ -111,7 +111,7 @@ fn table1_fem_column_steps_and_figure6_separation() {
 /// gamma 0/0.03; sigma_b 299, 292, 271 MPa at gamma 0.02, 0.03, 0.04.
 #[test]
 fn appendix_a_damping_study_shapes() {
-    let rows = beam_impact::damping_study::run(&Scenario::paper(), &beam_impact::damping_study::RATIOS).unwrap();
+    let rows = beam_impact::studies::damping::run(&Scenario::paper(), &beam_impact::studies::damping::RATIOS).unwrap();
     let peaks = |gamma: f64| rows.iter().find(|(g, _)| *g == gamma).unwrap().1.peaks;
     let reference = peaks(0.03);
     for (gamma, summary) in &rows {

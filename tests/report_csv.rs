@@ -5,9 +5,9 @@ use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
 use beam_impact::record::mcap::{McapRecorder, RecorderOptions};
-use beam_impact::record::report::read_log;
 use beam_impact::record::schema::beam_impact_descriptor;
 use beam_impact::record::{Recorder, RunInfo};
+use beam_impact::replay::report::read_log;
 use beam_impact::results::StepResult;
 use beam_impact::Scenario;
 use prost::Message;

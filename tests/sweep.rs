@@ -283,6 +283,6 @@ fn run_with_set_never_logs_over_the_paper_log() {
     assert!(!dir.path().join("paper.mcap").exists());
     // Every name `beam-impact scenario` prints is accepted by --set (its parameters are).
     for p in parameters::PARAMETERS {
-        assert!(beam_impact::sweep::field(p.name).is_ok(), "{}", p.name);
+        assert!(beam_impact::studies::sweep::field(p.name).is_ok(), "{}", p.name);
     }
 }

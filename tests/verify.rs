@@ -17,7 +17,7 @@ use std::process::Command;
 use beam_impact::model::TimeStep;
 use beam_impact::record::NullRecorder;
 use beam_impact::results::{seconds, Peaks};
-use beam_impact::verify::{self, Verification, DEFAULT_TOLERANCE, PEAK_NAMES, RUN_NAMES};
+use beam_impact::studies::verify::{self, Verification, DEFAULT_TOLERANCE, PEAK_NAMES, RUN_NAMES};
 use beam_impact::{Scenario, Simulation};
 
 fn table1(peaks: &Peaks) -> [f64; 4] {

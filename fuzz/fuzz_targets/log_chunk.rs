@@ -6,8 +6,8 @@
 use std::path::Path;
 use std::sync::OnceLock;
 
-use beam_impact::record::report::{read_log_bytes, summary_from_log};
-use beam_impact::record::safe_read::{crc32, op, MAGIC};
+use beam_impact::replay::report::{read_log_bytes, summary_from_log};
+use beam_impact::replay::safe_read::{crc32, op, MAGIC};
 use beam_impact::{Scenario, Simulation};
 use libfuzzer_sys::fuzz_target;
 

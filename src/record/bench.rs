@@ -105,8 +105,8 @@ pub fn recording_benchmark(runs: usize) -> Result<String> {
     for &kind in &kinds {
         clocked.push(recorded_run(&scenario, &scratch.0.join(format!("clocked-{kind}.mcap")), kind, true)?);
     }
-    let unrecorded = crate::bench::median(plain);
-    let unrecorded_cpu = crate::bench::median(plain_cpu);
+    let unrecorded = crate::studies::bench::median(plain);
+    let unrecorded_cpu = crate::studies::bench::median(plain_cpu);
     let mut out = String::new();
     let build =
         if cfg!(debug_assertions) { "debug build: use --release for meaningful times" } else { "release build" };
@@ -123,7 +123,7 @@ pub fn recording_benchmark(runs: usize) -> Result<String> {
         ms(unrecorded_cpu)
     );
     for ((kind, samples), clocked) in kinds.iter().zip(&samples).zip(&clocked) {
-        let median = |f: &dyn Fn(&Sample) -> Duration| crate::bench::median(samples.iter().map(f).collect());
+        let median = |f: &dyn Fn(&Sample) -> Duration| crate::studies::bench::median(samples.iter().map(f).collect());
         let total = median(&|s| s.total);
         let wait = median(&|s| s.queue_wait);
         let solver_cpu = median(&|s| s.solver_cpu);

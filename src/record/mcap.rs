@@ -1,5 +1,5 @@
 //! The MCAP recorder: every internal step of a run as one protobuf message, readable by
-//! Foxglove, by Python's `mcap` package and by [`super::report`].
+//! Foxglove, by Python's `mcap` package and by [`crate::replay::report`].
 //!
 //! Channels (all with log_time = publish_time = simulated time in ns since the impact, one time
 //! base; for the FMU that is the time since its startTime; after a rollback of an FMU state the
@@ -26,7 +26,7 @@
 //! each interval at which the arrestor's deflection reached a new peak (so the shape at the peak
 //! deflection is in the log; that message is written, and stamped, when its interval ends: its
 //! `step` and `time` fields say which step it belongs to). Every step's results stay in
-//! `/beam/step`; [`super::report`] reads both formats.
+//! `/beam/step`; [`crate::replay::report`] reads both formats.
 //!
 //! **Threads.** The solver's thread only copies each step's results into a batch; a writer thread
 //! owned by the recorder ([`super::writer`]) encodes, compresses and writes them. The queue holds

@@ -1,5 +1,8 @@
-//! Where results go: the [`Recorder`] the simulation writes into. The physics never sees a
-//! file format; the MCAP recorder lives in [`mcap`], an in-memory one in [`MemoryRecorder`].
+//! Writing results: the [`Recorder`] the simulation writes into, the MCAP log ([`mcap`], its
+//! writer thread [`writer`], the messages [`schema`] and their encoding [`step_encoding`], the
+//! Foxglove scene [`scene`]), the guard every output file goes through ([`output`]) and the
+//! recording benchmark ([`mod@bench`]). The physics never sees a file format; reading a log back
+//! and drawing it is [`crate::replay`]'s.
 
 use nalgebra::DMatrix;
 
@@ -113,12 +116,6 @@ pub mod mcap;
 pub mod output;
 
 pub mod bench;
-pub mod csv;
-pub mod damping_figures;
-pub mod figures;
-pub mod mode_figures;
-pub mod report;
-pub mod safe_read;
 pub mod scene;
 pub mod schema;
 pub mod step_encoding;

@@ -6,8 +6,7 @@ use nalgebra::{DMatrix, DVector};
 use super::eigen::{natural_modes, Modes};
 use super::secular::coupled_modes;
 use super::truncation::{block_columns, StaticCorrection};
-use crate::error::{Error, Result};
-use crate::model::scenario::{PAPER_STEP_CONTACT, PAPER_STEP_FREE};
+use crate::error::Result;
 use crate::model::{damping, Model, REACTIONS};
 
 /// Largest stable step of the linear acceleration method: dt * omega_max <= sqrt(12).
@@ -131,29 +130,6 @@ impl ModalSystem {
         } else {
             self.lower.omega_max().max(self.upper.omega_max())
         }
-    }
-
-    /// Rejects `step` if dt * omega_max > sqrt(12) in the given stage; the error names the
-    /// automatic step at omega_max dt = `auto_product`.
-    pub fn check_stability(&self, name: &'static str, step: f64, contact: bool, auto_product: f64) -> Result<()> {
-        let omega_max = self.omega_max(contact);
-        let product = step * omega_max;
-        if product > STABILITY_LIMIT {
-            return Err(Error::UnstableStep {
-                name,
-                step,
-                omega_max,
-                product,
-                limit: STABILITY_LIMIT / omega_max,
-                stage: if contact { "in contact" } else { "out of contact" },
-                auto: super::step_plan::automatic_step(
-                    omega_max,
-                    if contact { PAPER_STEP_CONTACT } else { PAPER_STEP_FREE },
-                    auto_product,
-                ),
-            });
-        }
-        Ok(())
     }
 
     /// Global block-diagonal matrix of mode shapes (physical = shapes * modal): one row per

@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 
 use beam_impact::model::TimeStep;
 use beam_impact::record::mcap::{McapRecorder, RecorderOptions};
-use beam_impact::record::safe_read::{crc32, op, MAGIC};
 use beam_impact::record::{Recorder, RunInfo};
+use beam_impact::replay::safe_read::{crc32, op, MAGIC};
 use beam_impact::results::{ContactEvent, StepResult};
 use beam_impact::{Scenario, Simulation};
 

@@ -1,5 +1,5 @@
 //! `beam_impact._native`: the Rust log reader of `beam-impact report` for the Python package, so
-//! that `beam_impact.load_log` inherits every bound of `record::safe_read` (time linear in the
+//! that `beam_impact.load_log` inherits every bound of `replay::safe_read` (time linear in the
 //! file, memory the file plus one chunk plus at most 16x the file kept) and no log is read by two
 //! codes. The Python side (`beam_impact/log.py`) turns the flat buffers into numpy arrays.
 //! `check_run` holds `beam_impact.simulate` to the CLI's limits before the FMU steps.
@@ -8,7 +8,7 @@ use std::collections::HashMap;
 use std::path::PathBuf;
 
 use beam_impact::model::parameters;
-use beam_impact::record::report::{read_log_with, LogData, ReadOptions};
+use beam_impact::replay::report::{read_log_with, LogData, ReadOptions};
 use beam_impact::results::StepResult;
 use beam_impact::{Scenario, Simulation};
 use pyo3::exceptions::PyValueError;

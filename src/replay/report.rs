@@ -1,4 +1,4 @@
-//! `beam-impact report`: reads a log written by [`super::mcap::McapRecorder`], rebuilds the run's
+//! `beam-impact report`: reads a log written by [`crate::record::mcap::McapRecorder`], rebuilds the run's
 //! [`Summary`] from it and writes Figures 6-9 and the mode shapes of Figures 10-12.
 //!
 //! The log is read linearly, chunk by chunk, with chunk CRCs checked, so a file cut short by a
@@ -18,14 +18,14 @@ use std::path::Path;
 
 use prost::Message;
 
-use super::mcap::{
+use super::safe_read::{read_records, Ending, Limits, Place, Record};
+use crate::error::{Error, Result};
+use crate::model::Scenario;
+use crate::record::mcap::{
     CONTACT_TOPIC, LOG_FORMAT, LOG_FORMAT_KEY, LOG_TOPIC, MODEL_TOPIC, MODES_TOPIC, SCENARIO_ATTACHMENT,
     SCENARIO_METADATA, STEP_TOPIC,
 };
-use super::safe_read::{read_records, Ending, Limits, Place, Record};
-use super::schema::{ContactEventMessage, LogMessage, ModalCoordinatesMessage, ModelMessage, StepMessage};
-use crate::error::{Error, Result};
-use crate::model::Scenario;
+use crate::record::schema::{ContactEventMessage, LogMessage, ModalCoordinatesMessage, ModelMessage, StepMessage};
 use crate::results::{
     seconds, ContactEvent, ContactWindow, FirstContact, Peaks, Quality, StepResult, Summary, TimeSteps,
 };
@@ -193,7 +193,7 @@ pub fn read_log(path: &Path) -> Result<LogData> {
 /// [`read_log`], keeping what `options` asks for besides.
 pub fn read_log_with(path: &Path, options: ReadOptions) -> Result<LogData> {
     // A FIFO or socket is refused rather than waited on.
-    let mut file = super::output::open_regular_input(path, "cannot read MCAP log")?;
+    let mut file = crate::record::output::open_regular_input(path, "cannot read MCAP log")?;
     let mut bytes = Vec::new();
     std::io::Read::read_to_end(&mut file, &mut bytes).map_err(|source| Error::Io {
         action: "cannot read MCAP log",
@@ -395,8 +395,8 @@ impl ReadState {
                     LOG_TOPIC => {
                         let m = LogMessage::decode(bytes).map_err(|e| bad("log", e))?;
                         self.keep(m.message.len() + std::mem::size_of::<String>(), at, "log message")?;
-                        data.monotonic &= !decreasing || m.message.starts_with(super::mcap::ROLLBACK_LINE);
-                        if m.message.contains(super::mcap::SIZE_CAP_LINE) {
+                        data.monotonic &= !decreasing || m.message.starts_with(crate::record::mcap::ROLLBACK_LINE);
+                        if m.message.contains(crate::record::mcap::SIZE_CAP_LINE) {
                             data.stopped_early = Some(m.message.clone());
                         }
                         data.log_lines.push(m.message);
@@ -630,10 +630,7 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
     Ok(())
 }
 
-/// Largest magnitude of a time or a plotted value the figures accept: the axes pad the range
-/// of the values by 6 %, which must stay finite (a range reaching 1e308 overflows to infinity
-/// and the axis ticks never end).
-pub const PLOTTABLE: f64 = 1e300;
+pub use super::figures::PLOTTABLE;
 
 /// The first time or plotted value (Figures 6-9) that is not finite or not within
 /// [`PLOTTABLE`], with its step, or the end of a contact window that is not.

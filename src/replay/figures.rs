@@ -205,11 +205,16 @@ pub fn min_max_decimate(points: &[(f64, f64)], buckets: usize) -> Vec<(f64, f64)
     out
 }
 
-/// A point the axes can take: both coordinates finite, values beyond [`super::report::PLOTTABLE`]
+/// Largest magnitude of a time or a plotted value the figures accept: the axes pad the range
+/// of the values by 6 %, which must stay finite (a range reaching 1e308 overflows to infinity
+/// and the axis ticks never end).
+pub const PLOTTABLE: f64 = 1e300;
+
+/// A point the axes can take: both coordinates finite, values beyond [`PLOTTABLE`]
 /// clamped to it (the axes pad the range by 6 %, which must stay finite). NaN and infinities
 /// are skipped: a run's results are finite, so they only come from a damaged or forged log.
 pub fn plottable(point: (f64, f64)) -> Option<(f64, f64)> {
-    let limit = super::report::PLOTTABLE;
+    let limit = PLOTTABLE;
     let (x, y) = point;
     (x.is_finite() && y.is_finite()).then(|| (x.clamp(-limit, limit), y.clamp(-limit, limit)))
 }
@@ -639,11 +644,11 @@ pub(crate) fn write_svg_png(drawing: &impl Drawing, dir: &Path) -> Result<Vec<Pa
     register_fonts();
     // Through the output guard: no link or FIFO in the folder is written through.
     let svg = dir.join(format!("{}.svg", drawing.stem()));
-    super::output::write_by_path(&svg, "cannot write figure", |partial| {
+    crate::record::output::write_by_path(&svg, "cannot write figure", |partial| {
         drawing.draw(&SVGBackend::new(partial, SIZE).into_drawing_area(), Output::Svg)
     })?;
     let png = dir.join(format!("{}.png", drawing.stem()));
-    super::output::write_by_path(&png, "cannot write figure", |partial| {
+    crate::record::output::write_by_path(&png, "cannot write figure", |partial| {
         drawing.draw(&BitMapBackend::new(partial, SIZE).into_drawing_area(), Output::Png)
     })?;
     Ok(vec![svg, png])
@@ -651,7 +656,7 @@ pub(crate) fn write_svg_png(drawing: &impl Drawing, dir: &Path) -> Result<Vec<Pa
 
 /// Creates `dir` (and its parents) if missing; a folder that is a symbolic link is refused.
 pub(crate) fn create_dir(dir: &Path) -> Result<()> {
-    super::output::create_output_dir(dir, "cannot create figure directory")
+    crate::record::output::create_output_dir(dir, "cannot create figure directory")
 }
 
 impl Drawing for Figure {
@@ -793,7 +798,7 @@ mod tests {
     fn non_finite_points_are_skipped_and_huge_ones_clamped() {
         assert_eq!(plottable((f64::NAN, 1.0)), None);
         assert_eq!(plottable((1.0, f64::INFINITY)), None);
-        assert_eq!(plottable((1.0, -f64::MAX)), Some((1.0, -super::super::report::PLOTTABLE)));
+        assert_eq!(plottable((1.0, -f64::MAX)), Some((1.0, -PLOTTABLE)));
         register_fonts();
         let (w, h) = SIZE;
         let mut pixels = vec![0u8; (w * h * 3) as usize];

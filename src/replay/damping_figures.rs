@@ -15,8 +15,8 @@ use super::figures::{
     create_dir, draw_header, draw_panel, scenario_subtitle, shaded_windows, write_figure, write_svg_png, Drawing,
     Figure, LegendEntry, NodeNumbers, Output, Panel, Pen, Series, ARRESTOR, BRIDGE,
 };
-use crate::damping_study::{StudyRun, RATIOS};
 use crate::error::Result;
+use crate::studies::damping::{StudyRun, RATIOS};
 use crate::Scenario;
 
 /// Says whose model the figures show.
@@ -44,7 +44,7 @@ pub fn run_figures(run: &StudyRun) -> [Figure; 2] {
     let subtitle = vec![MODEL_NOTE.to_string(), scenario_subtitle(&run.scenario, Some(run.summary.time_steps))];
     let shaded = shaded_windows(&run.summary);
     let h = &run.history;
-    let curve = |f: &dyn Fn(&crate::damping_study::HistoryPoint) -> f64| h.iter().map(|p| (p.time, f(p))).collect();
+    let curve = |f: &dyn Fn(&crate::studies::damping::HistoryPoint) -> f64| h.iter().map(|p| (p.time, f(p))).collect();
     let deflection = Figure {
         stem: stem(numbers.map(|n| n.0), "deflection"),
         caption: title(
