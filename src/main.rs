@@ -318,6 +318,7 @@ fn run(args: &RunArgs) -> Result<bool> {
     let mut progress = Progress::new(recorder.as_mut(), scenario.duration_ns());
     let options = beam_impact::answer::Options { max_steps: args.max_steps, ..Default::default() };
     let answer = beam_impact::answer::run(&scenario, &mut progress, options)?;
+    progress.complete(&answer)?;
     progress.bar.finish_and_clear();
     if let Some(reason) = progress.stopped_early() {
         eprintln!("beam-impact: warning: {reason}");
@@ -450,6 +451,8 @@ fn emit(text: &str) -> Result<()> {
 struct Progress<'a> {
     inner: &'a mut (dyn Recorder + Send),
     bar: ProgressBar,
+    /// The run asked to finish the record: deferred until its answer is attached.
+    finish_requested: bool,
 }
 
 impl<'a> Progress<'a> {
@@ -459,7 +462,31 @@ impl<'a> Progress<'a> {
             ProgressStyle::with_template("{bar:40} {pos}/{len} ms simulated, {elapsed} ({eta} left)")
                 .unwrap_or_else(|_| ProgressStyle::default_bar()),
         );
-        Progress { inner, bar }
+        Progress { inner, bar, finish_requested: false }
+    }
+}
+
+impl Progress<'_> {
+    /// Stores the answer with its checks in the record (`answer.json`) and finishes it.
+    fn complete(&mut self, answer: &beam_impact::answer::Answer) -> Result<()> {
+        if self.finish_requested {
+            let doc = serde_json::json!({
+                "quality": answer.quality,
+                "design": answer.design,
+                "converged_peaks": answer.converged_peaks,
+                "converged_first_contact_peaks": answer.converged_first_contact_peaks,
+                "discretisation": {
+                    "peaks": answer.discretisation_error,
+                    "first_contact_peaks": answer.first_contact_discretisation_error,
+                    "sensitivity_spread": answer.sensitivity_spread,
+                    "unvouched_late_peaks": answer.unvouched_late_peaks,
+                    "runs": answer.runs,
+                },
+            });
+            let bytes = serde_json::to_vec_pretty(&doc).map_err(|e| Error::Other(format!("JSON: {e}")))?;
+            self.inner.attach(beam_impact::record::mcap::ANSWER_ATTACHMENT, "application/json", &bytes)?;
+        }
+        self.inner.finish()
     }
 }
 
@@ -476,11 +503,16 @@ impl Recorder for Progress<'_> {
     fn contact_event(&mut self, event: &ContactEvent) -> Result<()> {
         self.inner.contact_event(event)
     }
+    /// Deferred: the answer with its checks is attached first ([`Progress::complete`]).
     fn finish(&mut self) -> Result<()> {
-        self.inner.finish()
+        self.finish_requested = true;
+        Ok(())
     }
     fn wants_details(&self) -> bool {
         self.inner.wants_details()
+    }
+    fn attach(&mut self, name: &str, media_type: &str, data: &[u8]) -> Result<()> {
+        self.inner.attach(name, media_type, data)
     }
     fn stopped_early(&self) -> Option<&str> {
         self.inner.stopped_early()

@@ -287,3 +287,38 @@ fn damping_and_verify_take_set() {
         assert!(stderr.lines().count() == 1 && stderr.contains("drop_hieght"), "{stderr}");
     }
 }
+
+/// Issue 19 (report prints the trust verdict stored with the run) and issue 15 (the rungs used go
+/// to the log): `run` stores its answer with the checks in the log (`answer.json`), the same
+/// quality, design and rungs as `--json`, and `report` prints its verdict.
+#[test]
+fn the_log_stores_the_runs_answer_and_report_prints_its_verdict() {
+    let dir = tempfile::tempdir().unwrap();
+    for (settings, trusted) in [(vec!["--set", "duration=0.02"], true), (vec![], false)] {
+        let log = dir.path().join("run.mcap");
+        let json = dir.path().join("run.json");
+        let out = beam_impact()
+            .args(["run", "--mcap"])
+            .arg(&log)
+            .arg("--json")
+            .arg(&json)
+            .args(&settings)
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let doc: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        let data = beam_impact::replay::report::read_log(&log).unwrap();
+        let stored: serde_json::Value = serde_json::from_str(data.answer_json.as_deref().unwrap()).unwrap();
+        assert_eq!(stored["quality"], doc["quality"]);
+        assert_eq!(stored["design"], doc["design"]);
+        assert_eq!(stored["discretisation"]["runs"], doc["discretisation"]["runs"]);
+        assert_eq!(doc["quality"]["trusted"], trusted, "{settings:?}");
+        let out = beam_impact().arg("report").arg(&log).arg("--out").arg(dir.path().join("figs")).output().unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let text = String::from_utf8(out.stdout).unwrap();
+        let expected =
+            if trusted { "verdict stored with the run: trusted" } else { "verdict stored with the run: NOT TRUSTED" };
+        assert!(text.contains(expected), "{text}");
+    }
+}

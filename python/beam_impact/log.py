@@ -15,6 +15,7 @@
     log.problem, log.damaged   where the reading stopped, and whether at damaged bytes
     log.stopped_early       why the log ended before the run (its size cap), "" if it did not
     log.rollbacks           FMU states restored: the steps they superseded are left out, as `report` does
+    log.answer              the run's verdict and checks as `beam-impact run` stored them (dict), or None
 
 The file is read by the Rust reader of `beam-impact report` (the native module
 `beam_impact._native`, built by `pip install ./python`), not by a second reader in Python: every
@@ -104,6 +105,10 @@ class Log:
     stopped_early: str = ""
     #: FMU states restored during the run: the steps each superseded are left out.
     rollbacks: int = 0
+    #: The run's answer with its checks as `beam-impact run` stored it (`quality`, `design`,
+    #: `discretisation`, as in `run --json`); None when the log holds none (an FMU's log, or
+    #: one written before it was stored) or it does not parse.
+    answer: dict | None = None
 
     def dataframe(self):
         """The step channel as a pandas.DataFrame, one row per internal step (step 0 first)."""
@@ -171,7 +176,21 @@ def _from_native(raw: dict) -> Log:
         damaged=raw["damaged"],
         stopped_early=raw["stopped_early"],
         rollbacks=raw["rollbacks"],
+        answer=_answer(raw["answer_json"]),
     )
+
+
+def _answer(text: str | None) -> dict | None:
+    """The stored answer.json, parsed; None when absent or not a JSON object (a log is not trusted)."""
+    import json
+
+    if text is None:
+        return None
+    try:
+        doc = json.loads(text)
+    except ValueError:
+        return None
+    return doc if isinstance(doc, dict) else None
 
 
 def main(argv: list[str]) -> int:

@@ -70,6 +70,9 @@ pub const MODEL_TOPIC: &str = "/beam/model";
 pub const SCENE_TOPIC: &str = "/beam/scene";
 /// Topic of the log lines.
 pub const LOG_TOPIC: &str = "/beam/log";
+/// The attachment holding the CLI's answer with its checks (`quality`, `design`,
+/// `discretisation` as `run --json` writes them), added after the run's last step.
+pub const ANSWER_ATTACHMENT: &str = "answer.json";
 /// Name of the scenario's Metadata record.
 pub const SCENARIO_METADATA: &str = "scenario";
 /// Name of the scenario's TOML attachment.
@@ -574,6 +577,9 @@ impl Recorder for McapRecorder {
         Ok(())
     }
 
+    fn attach(&mut self, name: &str, media_type: &str, data: &[u8]) -> Result<()> {
+        McapRecorder::attach(self, name, media_type, data)
+    }
     fn stopped_early(&self) -> Option<&str> {
         self.capped()
     }

@@ -38,6 +38,13 @@ pub trait Recorder {
         let _ = result;
         Ok(())
     }
+    /// Adds a document to the record, between the last step and [`Recorder::finish`] (the CLI
+    /// stores its answer with the checks, `answer.json`, so that `report` can say what the run's
+    /// verdict was); a recorder that keeps nothing ignores it.
+    fn attach(&mut self, name: &str, media_type: &str, data: &[u8]) -> Result<()> {
+        let _ = (name, media_type, data);
+        Ok(())
+    }
     /// Completes the record (for a file: summary and footer). Must be called and checked.
     fn finish(&mut self) -> Result<()>;
     /// Whether every step needs its support reactions and tip velocities (a recorder that keeps

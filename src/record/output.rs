@@ -32,9 +32,16 @@ pub fn open_output(path: &Path, allow_devices: bool, what: &'static str) -> Resu
 /// Opens `path` for reading (symbolic links are followed: reading through one harms nothing),
 /// refusing a FIFO or a socket, which would block the read.
 pub fn open_input(path: &Path, what: &'static str) -> Result<File> {
+    open_for_reading(path, what, " (use - for standard input)")
+}
+
+/// [`open_input`] with `hint` after the refusal of a FIFO or a socket.
+fn open_for_reading(path: &Path, what: &'static str, hint: &str) -> Result<File> {
     let io = |source| Error::Io { action: what, path: path.display().to_string(), source };
     let file = std::fs::OpenOptions::new().read(true).custom_flags(libc::O_NONBLOCK).open(path).map_err(io)?;
-    check_kind(&file, true).map_err(io)?;
+    check_kind(&file, true)
+        .map_err(|e| if e.to_string().contains("FIFO") { std::io::Error::other(format!("{e}{hint}")) } else { e })
+        .map_err(io)?;
     Ok(file)
 }
 
@@ -312,7 +319,7 @@ pub fn check_not_in_figure_folder(role: &str, input: &Path, dir: &Path) -> Resul
 
 /// Opens a log for reading: a regular file only (a device such as /dev/zero never ends).
 pub fn open_regular_input(path: &Path, what: &'static str) -> Result<File> {
-    let file = open_input(path, what)?;
+    let file = open_for_reading(path, what, "")?;
     if !file.metadata().is_ok_and(|m| m.is_file()) {
         return Err(Error::Io {
             action: what,
@@ -326,7 +333,7 @@ pub fn open_regular_input(path: &Path, what: &'static str) -> Result<File> {
 fn check_kind(file: &File, allow_devices: bool) -> std::io::Result<()> {
     let kind = file.metadata()?.file_type();
     if kind.is_fifo() || kind.is_socket() {
-        return Err(std::io::Error::other("it is a FIFO or a socket, not a regular file (use - for standard input)"));
+        return Err(std::io::Error::other("it is a FIFO or a socket, not a regular file"));
     }
     if kind.is_char_device() || kind.is_block_device() {
         if !allow_devices {

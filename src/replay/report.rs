@@ -22,8 +22,8 @@ use super::safe_read::{read_records, Ending, Limits, Place, Record};
 use crate::error::{Error, Result};
 use crate::model::Scenario;
 use crate::record::mcap::{
-    CONTACT_TOPIC, LOG_FORMAT, LOG_FORMAT_KEY, LOG_TOPIC, MODEL_TOPIC, MODES_TOPIC, SCENARIO_ATTACHMENT,
-    SCENARIO_METADATA, STEP_TOPIC,
+    ANSWER_ATTACHMENT, CONTACT_TOPIC, LOG_FORMAT, LOG_FORMAT_KEY, LOG_TOPIC, MODEL_TOPIC, MODES_TOPIC,
+    SCENARIO_ATTACHMENT, SCENARIO_METADATA, STEP_TOPIC,
 };
 use crate::record::schema::{ContactEventMessage, LogMessage, ModalCoordinatesMessage, ModelMessage, StepMessage};
 use crate::results::{
@@ -55,6 +55,9 @@ pub struct LogData {
     pub log_lines: Vec<String>,
     /// Attachments: (name, media type, size in bytes).
     pub attachments: Vec<(String, String, usize)>,
+    /// The run's answer with its checks as the CLI stored it (`answer.json`: `quality`,
+    /// `design`, `discretisation`), if the log holds it (CLI runs from this version on).
+    pub answer_json: Option<String>,
     /// Messages per topic.
     pub messages: BTreeMap<String, u64>,
     /// Whether log times never decreased, across all channels in file order.
@@ -415,10 +418,14 @@ impl ReadState {
             }
             Record::Attachment { name, media_type, data: bytes, .. } => {
                 let scenario = name == SCENARIO_ATTACHMENT;
-                let size = name.len() + media_type.len() + 64 + if scenario { bytes.len() } else { 0 };
+                let answer = name == ANSWER_ATTACHMENT;
+                let size = name.len() + media_type.len() + 64 + if scenario || answer { bytes.len() } else { 0 };
                 self.keep(size, at, "attachment record")?;
                 if scenario {
                     data.scenario_toml = Some(String::from_utf8_lossy(bytes).into_owned());
+                }
+                if answer {
+                    data.answer_json = Some(String::from_utf8_lossy(bytes).into_owned());
                 }
                 data.attachments.push((name.to_string(), media_type.to_string(), bytes.len()));
             }
@@ -558,6 +565,39 @@ fn summary_text(data: &LogData, scenario: &Scenario, summary: &Summary, out: &mu
     );
 }
 
+/// The run's verdict as the log stores it (the CLI's `answer.json`): trusted or not with the
+/// reasons, and the design check; one line. Nothing in a log is trusted: a document that does not
+/// parse is said to, and quoted text is cut.
+pub fn stored_verdict(answer_json: Option<&str>) -> String {
+    let Some(text) = answer_json else {
+        return "verdict: not stored in this log (written by the FMU or an earlier version; `beam-impact run` \
+                stores its checks)"
+            .to_string();
+    };
+    let Ok(doc) = serde_json::from_str::<serde_json::Value>(text) else {
+        return "verdict: the stored answer.json does not parse".to_string();
+    };
+    let quality = &doc["quality"];
+    let trust = match quality["trusted"].as_bool() {
+        Some(true) => "trusted (every check that ran passed)".to_string(),
+        Some(false) => {
+            let reasons: Vec<&str> =
+                quality["reasons"].as_array().map_or(Vec::new(), |r| r.iter().filter_map(|v| v.as_str()).collect());
+            let joined = reasons.join("; ");
+            let cut: String = joined.chars().take(400).collect();
+            let more = if cut.len() < joined.len() { "..." } else { "" };
+            format!("NOT TRUSTED: {cut}{more}")
+        }
+        None => "unknown (no quality.trusted)".to_string(),
+    };
+    let design = match doc["design"]["pass"].as_bool() {
+        Some(true) => "PASS",
+        Some(false) => "FAIL",
+        None => "unknown",
+    };
+    format!("verdict stored with the run: {trust}; design: {design}")
+}
+
 /// Reads the log at `mcap`, prints the summary to `out` and writes Figures 6-12 (SVG and PNG)
 /// into `out_dir` (created if missing).
 pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
@@ -585,6 +625,7 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
                 data.steps.len()
             );
         }
+        let _ = writeln!(text, "{}", stored_verdict(data.answer_json.as_deref()));
         let counts: Vec<String> = data.messages.iter().map(|(t, n)| format!("{t} {n}")).collect();
         let _ = writeln!(text, "messages: {}", counts.join(", "));
         if !data.monotonic {

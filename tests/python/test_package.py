@@ -232,6 +232,7 @@ def test_simulate_peaks_histories_and_log(version, tmp_path, monkeypatch):
     assert histories["peak.lower.tip_deflection"].iloc[-1] == peaks["lower_tip_deflection"]
     log = beam_impact.load_log(str(log_path))
     assert log.complete and log.problem == ""
+    assert log.answer is None, "the FMU's log stores no answer.json"
     frame = log.dataframe()
     assert frame["time_ns"].iloc[-1] == 500_000_000
     assert frame["peaks.lower_tip_deflection"].iloc[-1] == peaks["lower_tip_deflection"]
@@ -246,6 +247,9 @@ def test_load_log_reads_a_killed_run(tmp_path):
     subprocess.run([binary(), "run", "--set", "duration=0.3", "--mcap", str(path)], check=True, capture_output=True)
     full = beam_impact.load_log(str(path))
     assert full.complete
+    # The run's answer with its checks is stored with it (`run --json`'s quality and design).
+    assert full.answer["quality"]["trusted"] is True and full.answer["design"]["pass"] is True
+    assert [run["role"] for run in full.answer["discretisation"]["runs"]][:3] == ["printed", "check", "coarse"]
     data = path.read_bytes()
     cut = tmp_path / "killed.mcap"
     cut.write_bytes(data[: len(data) * 6 // 10])
