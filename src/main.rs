@@ -374,13 +374,7 @@ fn run(args: &RunArgs) -> Result<bool> {
             "summary": summary_json,
             "quality": answer.quality,
             "design": answer.design,
-            "discretisation": {
-                "peaks": answer.discretisation_error,
-                "first_contact_peaks": answer.first_contact_discretisation_error,
-                "sensitivity_spread": answer.sensitivity_spread,
-                "unvouched_late_peaks": answer.unvouched_late_peaks,
-                "runs": answer.runs,
-            },
+            "discretisation": discretisation_json(&answer),
             "merged_contact_windows": compare::merged_windows(&summary.contact_windows, beam_impact::results::BOUNCE_GAP),
             "units": json_units(),
             "wall_time_s": wall.as_secs_f64(),
@@ -412,6 +406,18 @@ fn read_scenario(path: &Path) -> Result<Scenario> {
     let text = read_bounded(file, MAX_SCENARIO_BYTES, "the scenario")
         .map_err(|source| io("cannot read scenario", path, source))?;
     Scenario::from_toml(&text, &path.display().to_string())
+}
+
+/// The `discretisation` block of `--json` and of the log's `answer.json`: each peak's figure, the
+/// twin's spread, the late peaks not vouched for, and the runs (rungs) behind the answer.
+fn discretisation_json(answer: &beam_impact::answer::Answer) -> serde_json::Value {
+    serde_json::json!({
+        "peaks": answer.discretisation_error,
+        "first_contact_peaks": answer.first_contact_discretisation_error,
+        "sensitivity_spread": answer.sensitivity_spread,
+        "unvouched_late_peaks": answer.unvouched_late_peaks,
+        "runs": answer.runs,
+    })
 }
 
 /// The SI units of the `--json` fields (by name; nested names with dots).
@@ -475,13 +481,7 @@ impl Progress<'_> {
                 "design": answer.design,
                 "converged_peaks": answer.converged_peaks,
                 "converged_first_contact_peaks": answer.converged_first_contact_peaks,
-                "discretisation": {
-                    "peaks": answer.discretisation_error,
-                    "first_contact_peaks": answer.first_contact_discretisation_error,
-                    "sensitivity_spread": answer.sensitivity_spread,
-                    "unvouched_late_peaks": answer.unvouched_late_peaks,
-                    "runs": answer.runs,
-                },
+                "discretisation": discretisation_json(answer),
             });
             let bytes = serde_json::to_vec_pretty(&doc).map_err(|e| Error::Other(format!("JSON: {e}")))?;
             self.inner.attach(beam_impact::record::mcap::ANSWER_ATTACHMENT, "application/json", &bytes)?;
