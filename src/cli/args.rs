@@ -1,0 +1,180 @@
+//! The command line: subcommands and their options (clap). What each does is in its own file.
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand};
+
+use beam_impact::record::mcap::LogCompression;
+
+/// Elastic impact of two beams (Catipovic, Vladimir, Reljic 2008): FEM + linear acceleration method.
+#[derive(Parser)]
+#[command(name = "beam-impact", version, about)]
+#[command(args_conflicts_with_subcommands = true)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    /// With no subcommand: `run` with these options.
+    #[command(flatten)]
+    pub run: RunArgs,
+}
+
+#[derive(Subcommand)]
+pub enum Command {
+    /// Run a scenario (default: the paper's) and print Tables 1-3 beside the paper.
+    Run(RunArgs),
+    /// Print the default scenario as TOML (the paper's, with automatic energy-safe time steps),
+    /// to start a scenario file from.
+    Scenario,
+    /// The damping study of Appendix A: peaks for damping ratios 0 to 0.04.
+    Damping {
+        /// Scenario file (default: the paper scenario; with --set and no file, the default
+        /// scenario, as `run --set`).
+        file: Option<PathBuf>,
+        /// Change a scenario field, KEY=VALUE, as `run --set` (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Also write the study's figures (SVG and PNG) into DIR: per damping ratio the
+        /// deflections (Figures A2-A7) and bending stresses (A8-A13), and the peaks against the
+        /// damping ratio; of this FE model, not of the paper's simplified Figure A1 model.
+        #[arg(long, value_name = "DIR")]
+        figures: Option<PathBuf>,
+    },
+    /// Figures 10-12 of a scenario (default: the paper's): the first natural modes of the
+    /// arrestor alone, the bridge alone and the two coupled, with their frequencies (SVG and PNG;
+    /// `report` writes them too, beside Figures 6-9).
+    Modes {
+        /// Scenario file (default: the paper scenario).
+        file: Option<PathBuf>,
+        /// Change a scenario field, KEY=VALUE, as `run --set` (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Directory for the figures.
+        #[arg(long, value_name = "DIR", default_value = "modes-figures")]
+        out: PathBuf,
+    },
+    /// Write the FMI 2.0 and FMI 3.0 co-simulation FMUs. With cargo-zigbuild on PATH the library
+    /// is first built for glibc 2.17 (manylinux2014) and that build is packed; without it, the
+    /// host build (with a warning: it needs this machine's glibc).
+    Pack {
+        /// Output directory; the FMUs go to DIR/fmi2/BeamImpact.fmu and DIR/fmi3/BeamImpact.fmu.
+        #[arg(long, default_value = "target/fmu")]
+        out: PathBuf,
+        /// The shared library to pack, as it is (default: the glibc 2.17 build, or the host build
+        /// libbeam_impact.so next to this executable).
+        #[arg(long)]
+        library: Option<PathBuf>,
+        /// Pack the host build next to this executable even when cargo-zigbuild is on PATH.
+        #[arg(long)]
+        no_zigbuild: bool,
+    },
+    /// Read an MCAP log: print its summary and write Figures 6-9 (SVG and PNG), and Figures 10-12
+    /// (natural modes) of its scenario.
+    Report {
+        /// The log.
+        file: PathBuf,
+        /// Directory for the figures (default: <log stem>-figures next to the log).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Also write the step channel as CSV to this file (`-`: standard output, instead of the
+        /// summary): a header row of the `beam_impact.Step` field paths (`energy.kinetic`,
+        /// `peaks.contact_force`, ...), one row per step kept (after rollbacks), numbers that
+        /// round-trip. SI units: time s, time_ns ns, deflections m, stresses Pa, forces N,
+        /// moment N m, velocities m/s, energies J; contact true/false.
+        #[arg(long, value_name = "FILE.csv")]
+        csv: Option<PathBuf>,
+    },
+    /// Time the production stepper against the dense oracle, the per-step cost at finer
+    /// meshes, and the recorded run.
+    Bench {
+        /// Runs per measurement (the median is reported).
+        #[arg(long, default_value_t = 5)]
+        runs: usize,
+    },
+    /// Convergence of the four Table 1 peaks: the scenario at half its steps and at 2x and 4x its
+    /// elements; each peak's changes, a Richardson estimate and a verdict.
+    Verify {
+        /// Scenario file (default: the paper scenario; with --set and no file, the default
+        /// scenario, as `run --set`).
+        file: Option<PathBuf>,
+        /// Change a scenario field, KEY=VALUE, as `run --set` (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Write the verdicts as JSON to this file.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Largest relative change of a converged peak, a fraction (0.01 is 1 %).
+        #[arg(long, default_value_t = beam_impact::studies::verify::DEFAULT_TOLERANCE)]
+        tolerance: f64,
+    },
+    /// A design sweep: every combination of the `--vary` values (the last varying fastest), run in
+    /// parallel without logs; one CSV row per scenario (peaks, peak times, energy approach,
+    /// largest energy residual, trust verdict, error).
+    Sweep(SweepArgs),
+}
+
+#[derive(Args)]
+pub struct RunArgs {
+    /// Scenario file (TOML); missing fields take the paper's values. Default: the paper scenario.
+    pub file: Option<PathBuf>,
+    /// Write the summary as JSON to this file.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    /// Record every step to this MCAP file [default: paper.mcap; with --set: <stem>-set-<hash>.mcap].
+    #[arg(long, conflicts_with = "no_mcap")]
+    pub mcap: Option<PathBuf>,
+    /// Do not record.
+    #[arg(long)]
+    pub no_mcap: bool,
+    /// Exit with code 3 when the run is not trusted (its energy residual is above the scenario's
+    /// `energy_tolerance`).
+    #[arg(long)]
+    pub strict: bool,
+    /// Stop the MCAP log at this size, bytes (the run goes on unrecorded, with a warning).
+    #[arg(long, default_value_t = beam_impact::record::mcap::MAX_LOG_BYTES)]
+    pub max_log_bytes: u64,
+    /// Refuse runs that need more internal steps than this (duration over the smaller step).
+    #[arg(long, default_value_t = beam_impact::model::scenario::MAX_STEPS)]
+    pub max_steps: u64,
+    /// Record every Nth internal step to the MCAP log (for long runs). Step 0, the last step,
+    /// the steps on both sides of a contact change and every step where a running peak changes
+    /// are recorded whatever N.
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
+    pub record_every: u64,
+    /// Leave the modal coordinates (topic /beam/modes) out of the MCAP log; the 3D scene is still
+    /// drawn, `report` then cannot give the bridge's strain energy at the peak deflection.
+    #[arg(long)]
+    pub no_modal_coordinates: bool,
+    /// Chunk compression of the MCAP log: none (the default: recording keeps pace with the
+    /// solver), lz4 (~20 % smaller, about 2x the writer's work) or zstd (~35 % smaller, slower).
+    #[arg(long, value_name = "none|lz4|zstd", default_value = "none")]
+    pub log_compression: LogCompression,
+    /// Change a scenario field, KEY=VALUE with the dotted names of `beam-impact scenario`
+    /// (repeatable): `--set upper.mass=14000 --set step_free=auto --set stress_recovery=left`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+}
+
+#[derive(Args)]
+pub struct SweepArgs {
+    /// Scenario file (TOML) the grid starts from. Default: the default scenario (`beam-impact scenario`: method converged, automatic mesh and steps), as `run --set`.
+    pub file: Option<PathBuf>,
+    /// A varied field, KEY=SPEC with SPEC `start:stop:count` (inclusive, linear) or a comma list
+    /// (repeatable; the first is the outermost loop): `--vary drop_height=0.1:2:100`.
+    #[arg(long, value_name = "KEY=SPEC")]
+    pub vary: Vec<String>,
+    /// Change a field of every scenario, KEY=VALUE (repeatable), as `run --set`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// The rows, one per scenario in grid order, as CSV.
+    #[arg(long, value_name = "FILE.csv")]
+    pub out: PathBuf,
+    /// Also write the rows as a JSON array of objects.
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+    /// Scenarios run at once [default: every core].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    pub jobs: Option<u64>,
+    /// Refuse runs that need more internal steps than this (a row with the error).
+    #[arg(long, default_value_t = beam_impact::model::scenario::MAX_STEPS)]
+    pub max_steps: u64,
+}

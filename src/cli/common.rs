@@ -1,0 +1,76 @@
+//! What every subcommand shares: reading a scenario (file, paper or default, with `--set`),
+//! writing to standard output, I/O errors with the path, and one bounded line per error.
+
+use std::io::Write;
+use std::path::Path;
+
+use beam_impact::record::output::{open_input, read_bounded, MAX_SCENARIO_BYTES};
+use beam_impact::{Error, Result, Scenario};
+
+/// An error as one line of bounded length: a value quoted from a hostile input (a 4 MiB string in
+/// a scenario) must not become a megabyte of standard error. Lines longer than 600 characters
+/// keep their first 400 and last 150, with the count cut between.
+pub fn bounded_line(message: &str) -> String {
+    // Control characters (a terminal's escape sequences from a hostile file) are shown, not sent.
+    let line: String = message
+        .chars()
+        .map(|c| {
+            if c == '\n' || c == '\r' || c == '\t' {
+                ' '
+            } else if c.is_control() {
+                '\u{FFFD}'
+            } else {
+                c
+            }
+        })
+        .collect();
+    let chars: Vec<char> = line.chars().collect();
+    if chars.len() <= 600 {
+        return line;
+    }
+    let head: String = chars[..400].iter().collect();
+    let tail: String = chars[chars.len() - 150..].iter().collect();
+    format!("{head} [... {} characters cut ...] {tail}", chars.len() - 550)
+}
+
+/// Reads and validates a scenario file (missing fields take their defaults); `-` is the standard
+/// input. A FIFO or socket is refused rather than waited on.
+pub fn read_scenario(path: &Path) -> Result<Scenario> {
+    if path.as_os_str() == "-" {
+        let text = read_bounded(std::io::stdin().lock(), MAX_SCENARIO_BYTES, "the scenario")
+            .map_err(|source| io("cannot read scenario", Path::new("standard input"), source))?;
+        return Scenario::from_toml(&text, "standard input");
+    }
+    let file = open_input(path, "cannot read scenario")?;
+    let text = read_bounded(file, MAX_SCENARIO_BYTES, "the scenario")
+        .map_err(|source| io("cannot read scenario", path, source))?;
+    Scenario::from_toml(&text, &path.display().to_string())
+}
+
+pub fn io(action: &'static str, path: &Path, source: std::io::Error) -> Error {
+    Error::Io { action, path: path.display().to_string(), source }
+}
+
+/// Writes to standard output; a reader that went away (`| head`) ends the output quietly.
+pub fn emit(text: &str) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+            Err(io("cannot write", Path::new("standard output"), e))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// The scenario of a subcommand: the file's, else the paper's, else (with `--set` and no file)
+/// the default, with the `--set` changes, as `run` reads it.
+pub fn scenario_with_settings(file: Option<&Path>, set: &[String]) -> Result<Scenario> {
+    let settings = beam_impact::studies::sweep::parse_settings(set)?;
+    let mut scenario = match file {
+        Some(path) => read_scenario(path)?,
+        None if settings.is_empty() => Scenario::paper(),
+        None => Scenario::default(),
+    };
+    beam_impact::studies::sweep::apply_settings(&mut scenario, &settings)?;
+    Ok(scenario)
+}

@@ -1,0 +1,48 @@
+//! The `beam-impact` command's side of the house: [`args`] declares the subcommands and options,
+//! one file per subcommand turns them into calls of the library, [`common`] holds what they
+//! share. Nothing here computes physics or encodes a log.
+
+pub mod args;
+mod bench;
+pub mod common;
+mod damping;
+mod modes;
+mod pack;
+mod report;
+mod run;
+mod sweep;
+mod verify;
+
+use args::Command;
+use beam_impact::{Result, Scenario};
+
+/// What a subcommand ended with, for the exit code.
+pub enum Outcome {
+    /// Done (a run's numbers trusted, or no run).
+    Done,
+    /// A run completed but its numbers are not trusted, and `--strict` asked to say so.
+    Untrusted,
+}
+
+/// Runs one subcommand.
+pub fn execute(command: Command) -> Result<Outcome> {
+    let done = |r: Result<()>| r.map(|()| Outcome::Done);
+    match command {
+        Command::Run(args) => match run::run(&args)? {
+            false if args.strict => Ok(Outcome::Untrusted),
+            _ => Ok(Outcome::Done),
+        },
+        Command::Scenario => {
+            done(common::emit(&beam_impact::model::parameters::annotate_toml(&Scenario::default().to_toml())))
+        }
+        Command::Damping { file, set, figures } => done(damping::damping(file.as_deref(), &set, figures.as_deref())),
+        Command::Modes { file, set, out } => done(modes::modes(file.as_deref(), &set, &out)),
+        Command::Pack { out, library, no_zigbuild } => done(pack::pack(&out, library, no_zigbuild)),
+        Command::Report { file, out, csv } => done(report::report(&file, out, csv.as_deref())),
+        Command::Bench { runs } => done(bench::bench(runs)),
+        Command::Verify { file, set, json, tolerance } => {
+            done(verify::verify(file.as_deref(), &set, json.as_deref(), tolerance))
+        }
+        Command::Sweep(args) => done(sweep::sweep(&args)),
+    }
+}

@@ -1,0 +1,85 @@
+//! `beam-impact sweep`: a design grid run in parallel, rows to CSV (and JSON).
+
+use std::io::Write;
+use std::path::Path;
+use std::time::Instant;
+
+use indicatif::{ProgressBar, ProgressStyle};
+
+use beam_impact::record::output::{check_distinct, OutputFile};
+use beam_impact::{Result, Scenario};
+
+use super::args::SweepArgs;
+use super::common::{emit, io, read_scenario};
+
+pub fn sweep(args: &SweepArgs) -> Result<()> {
+    use beam_impact::studies::sweep::{
+        apply_settings, default_jobs, parse_axes, parse_settings, Sweep, SweepWriteError,
+    };
+    let mut base = match &args.file {
+        Some(path) => read_scenario(path)?,
+        None => Scenario::default(),
+    };
+    apply_settings(&mut base, &parse_settings(&args.set)?)?;
+    let sweep = Sweep::new(base, parse_axes(&args.vary)?, args.max_steps)?;
+    let jobs = args.jobs.map_or_else(default_jobs, |j| usize::try_from(j).unwrap_or(usize::MAX));
+    let mut files: Vec<(&str, &Path)> = args.file.as_deref().map(|f| ("the scenario file", f)).into_iter().collect();
+    files.push(("--out", &args.out));
+    files.extend(args.json.as_deref().map(|j| ("--json", j)));
+    check_distinct(&files)?;
+    let create = |path: &Path| OutputFile::create(path, true, "cannot create").map(std::io::BufWriter::new);
+    let mut csv = create(&args.out)?;
+    let mut json = args.json.as_deref().map(create).transpose()?;
+    let bar = ProgressBar::new(sweep.len() as u64);
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} scenarios, {elapsed} ({eta} left)")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let started = Instant::now();
+    let tally = sweep
+        .write(jobs, &mut csv, json.as_mut().map(|j| j as &mut dyn Write), &mut |n| bar.set_position(n as u64))
+        .map_err(|e| match e {
+            SweepWriteError::Csv(source) => io("cannot write", &args.out, source),
+            SweepWriteError::Json(source) => {
+                io("cannot write", args.json.as_deref().unwrap_or(Path::new("JSON")), source)
+            }
+            SweepWriteError::Run(e) => e,
+        })?;
+    bar.finish_and_clear();
+    // Complete: the rows replace the user's earlier files only now.
+    let commit = |writer: std::io::BufWriter<OutputFile>, path: &Path| {
+        writer.into_inner().map_err(|e| io("cannot write", path, e.into_error()))?.commit()
+    };
+    commit(csv, &args.out)?;
+    if let (Some(json), Some(path)) = (json, args.json.as_deref()) {
+        commit(json, path)?;
+    }
+    let wall = started.elapsed().as_secs_f64();
+    if tally.failed > 0 {
+        eprintln!(
+            "beam-impact: warning: {} of {} scenarios failed (their rows hold the error)",
+            tally.failed, tally.scenarios
+        );
+    }
+    if tally.untrusted > 0 {
+        eprintln!(
+            "beam-impact: warning: {} of {} scenarios not trusted (column trusted)",
+            tally.untrusted, tally.scenarios
+        );
+    }
+    let mut text = format!(
+        "sweep: {} scenarios on {} threads in {wall:.2} s ({:.1} ms of a thread each): {} ran, {} failed, {} not \
+         trusted\nrows written to {}",
+        tally.scenarios,
+        jobs.min(tally.scenarios.max(1)),
+        wall * 1e3 * jobs.min(tally.scenarios.max(1)) as f64 / tally.scenarios.max(1) as f64,
+        tally.scenarios - tally.failed,
+        tally.failed,
+        tally.untrusted,
+        args.out.display()
+    );
+    if let Some(path) = &args.json {
+        text += &format!(" and {}", path.display());
+    }
+    emit(&(text + "\n"))
+}
