@@ -21,6 +21,7 @@ pub mod results;
 pub mod simulation;
 pub mod solver;
 pub mod studies;
+pub mod vocabulary;
 
 pub use error::{Error, Result};
 pub use model::Scenario;

@@ -21,12 +21,39 @@ fn ok(out: &Output) {
     assert!(out.status.success(), "{:?}: {}", out.status, String::from_utf8_lossy(&out.stderr));
 }
 
-/// The columns every CSV has, in order (the Python reader's `dataframe()` order).
-const HEADER: [&str; 29] = [
+/// The columns every CSV has, in order (the Python reader's `dataframe()` order): the quantities
+/// by their FMU names, then the renamed ones by their former names, the `beam_impact.Step` field
+/// paths (duplicates until 0.2.0).
+const HEADER: [&str; 48] = [
     "step",
     "time_ns",
     "time",
     "step_size",
+    "contact.active",
+    "lower.tip_deflection",
+    "upper.contact_deflection",
+    "upper.tip_deflection",
+    "lower.clamp_bending_stress",
+    "lower.clamp_shear_stress",
+    "upper.contact_bending_stress",
+    "contact.force",
+    "contact.stress",
+    "lower.clamp_reaction_force",
+    "lower.clamp_reaction_moment",
+    "upper.hinge_reaction_force",
+    "lower.tip_velocity",
+    "upper.tip_velocity",
+    "energy.kinetic",
+    "energy.strain",
+    "energy.gravity_potential",
+    "energy.external_work",
+    "energy.damping_dissipation",
+    "energy.residual",
+    "peak.lower.tip_deflection",
+    "peak.lower.clamp_bending_stress",
+    "peak.lower.clamp_shear_stress",
+    "peak.upper.contact_bending_stress",
+    "peak.contact.force",
     "contact",
     "lower_tip_deflection",
     "upper_contact_deflection",
@@ -41,12 +68,6 @@ const HEADER: [&str; 29] = [
     "upper_hinge_reaction_force",
     "lower_tip_velocity",
     "upper_tip_velocity",
-    "energy.kinetic",
-    "energy.strain",
-    "energy.gravity_potential",
-    "energy.external_work",
-    "energy.damping_dissipation",
-    "energy.residual",
     "peaks.lower_tip_deflection",
     "peaks.lower_clamp_bending_stress",
     "peaks.lower_clamp_shear_stress",
@@ -123,12 +144,18 @@ fn cell(name: &str, text: &str) -> String {
     }
 }
 
+/// The step message's field path of a column: the former name of a renamed quantity, else itself.
+fn field_path(name: &str) -> &str {
+    beam_impact::vocabulary::STEP_RENAMES.iter().find(|(_, n)| *n == name).map_or(name, |(p, _)| p)
+}
+
 /// Every row equals the reader's step of the same index, to the bit.
 fn assert_rows_are(csv: &Csv, steps: &[StepResult]) {
     assert_eq!(csv.rows.len(), steps.len(), "one row per step kept");
     for (row, r) in csv.rows.iter().zip(steps) {
         for (name, text) in csv.header.iter().zip(row) {
-            assert_eq!(cell(name, text), expected(r, name), "step {} column {name}: {text}", r.step);
+            let path = field_path(name);
+            assert_eq!(cell(path, text), expected(r, path), "step {} column {name}: {text}", r.step);
         }
     }
 }
@@ -178,9 +205,23 @@ fn report_csv_is_the_step_channel() {
 
     assert_eq!(csv.header, HEADER);
     let set = FileDescriptorSet::decode(beam_impact_descriptor().as_slice()).unwrap();
+    // Every column is a field of the step message: by its path, or by the FMU name of a renamed
+    // path, and then the two columns are equal cell for cell.
     for name in &csv.header {
-        assert!(resolves_in_step(&set, name), "{name} is not a field path of beam_impact.Step");
+        let path =
+            beam_impact::vocabulary::STEP_RENAMES.iter().find(|(_, n)| n == name).map_or(name.as_str(), |(p, _)| p);
+        assert!(resolves_in_step(&set, path), "{name} ({path}) is not a field path of beam_impact.Step");
+        let (i, j) =
+            (csv.header.iter().position(|h| h == name).unwrap(), csv.header.iter().position(|h| h == path).unwrap());
+        assert!(csv.rows.iter().all(|r| r[i] == r[j]), "{name} and {path} differ");
     }
+    let units: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("steps.units.json")).unwrap()).unwrap();
+    let unit_names: Vec<&str> =
+        units["columns"].as_array().unwrap().iter().map(|c| c["name"].as_str().unwrap()).collect();
+    assert_eq!(unit_names, HEADER, "the units sidecar lists every column in order");
+    assert_eq!(units["columns"][8]["unit"], "Pa");
+    assert_eq!(units["columns"][33]["same_as"], "lower.clamp_bending_stress");
 
     let log = read_log(&d.join("short.mcap")).unwrap();
     assert!(log.complete && log.rollbacks == 0);

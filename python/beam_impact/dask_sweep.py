@@ -27,8 +27,8 @@ import uuid
 from contextlib import nullcontext
 from typing import Any, Iterable
 
-from .fmu import CHECK_COLUMNS, FmuFile, simulate
-from .grid import PEAKS, display, expand
+from .fmu import CHECK_COLUMNS, FORMER_NAMES, PEAK_OUTPUTS, FmuFile, simulate
+from .grid import display, expand
 
 #: Dask key prefix of the sweep's tasks (the progress bar's label).
 TASK_PREFIX = "beam_impact-scenario"
@@ -41,7 +41,7 @@ def _one_line(text: str) -> str:
 def run_row(point: dict[str, float], fmu: "str | FmuFile", stop_time: float = 3.0,
             check_sensitivity: bool = False) -> dict[str, Any]:
     """One scenario's row: the varied values as the CLI shows them, the peaks, the energy
-    approach and the checks (CLI names), and `error` ("" when fine)."""
+    approach and the checks (FMU names, then the former ones), and `error` ("" when fine)."""
     row: dict[str, Any] = {k: display(k, v) for k, v in point.items()}
     try:
         row.update(simulate(fmu, {**point, "check_sensitivity": check_sensitivity}, stop_time=stop_time))
@@ -70,7 +70,7 @@ def _columns(fields: Iterable[str], path: str) -> list[str]:
         if f != "duration" and f not in names:
             raise ValueError(f"unknown parameter `{f}`: the FMU has no variable of that name")
     method = [v.name for v in md.modelVariables if v.name.startswith("energy_method.")]
-    return [*fields, *PEAKS, *method, *CHECK_COLUMNS, "error"]
+    return [*fields, *PEAK_OUTPUTS, *method, *CHECK_COLUMNS, "error", *FORMER_NAMES]
 
 
 def sweep(
@@ -84,13 +84,15 @@ def sweep(
 ):
     """Runs every scenario of `grid` ({field: values}, the product in dict order with the last
     field fastest, as `beam-impact sweep --vary`) through the FMU at `fmu` and returns a
-    pandas.DataFrame, one row per scenario in grid order: the varied fields, the peaks
-    `lower_tip_deflection` (m), `lower_clamp_bending_stress`, `lower_clamp_shear_stress`,
-    `upper_contact_bending_stress` (Pa), `contact_force` (N), `energy_method.<field>` (SI units),
-    the checks `discretisation_error`, `sensitivity_spread` (NaN unless `check_sensitivity=True`,
-    which runs each scenario's twin as the CLI's sweep does, at twice the stepping cost),
-    `utilisation.<stress peak>`, `design_pass`, `trusted` (as the CLI's sweep), and `error` (""
-    when fine; the peaks are NaN then).
+    pandas.DataFrame, one row per scenario in grid order, columns named as the FMU and the CLI's
+    sweep name them: the varied fields, the peaks `peak.lower.tip_deflection` (m),
+    `peak.lower.clamp_bending_stress`, `peak.lower.clamp_shear_stress`,
+    `peak.upper.contact_bending_stress` (Pa), `peak.contact.force` (N), `energy_method.<field>` (SI
+    units), the checks `quality.discretisation_error`, `quality.sensitivity_spread` (NaN unless
+    `check_sensitivity=True`, which runs each scenario's twin as the CLI's sweep does, at twice the
+    stepping cost), `utilisation.<stress peak>`, `design.pass`, `quality.trusted`, and `error` (""
+    when fine; the peaks are NaN then); then the former names of the peaks and checks
+    (`lower_clamp_bending_stress`, `trusted`, ...), duplicates until 0.2.0.
 
     `client`: None for the local threaded scheduler (`num_workers` threads, default one per core),
     a `dask.distributed.Client`, or a scheduler address ("tcp://host:8786").

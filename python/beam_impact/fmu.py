@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import atexit
 import hashlib
+import math
 import os
 import shutil
 import tempfile
@@ -23,7 +24,8 @@ from typing import Any
 
 from .grid import INTEGER_FIELDS, PEAKS, parse_value
 
-#: FMU output -> CLI name, for the five peaks.
+#: FMU output -> its former name (the CLI's before one name per quantity; a duplicate key until
+#: 0.2.0), for the five peaks.
 PEAK_OUTPUTS = {
     "peak.lower.tip_deflection": "lower_tip_deflection",
     "peak.lower.clamp_bending_stress": "lower_clamp_bending_stress",
@@ -33,7 +35,7 @@ PEAK_OUTPUTS = {
 }
 assert tuple(PEAK_OUTPUTS.values()) == PEAKS
 
-#: FMU output -> CLI sweep column, for the checks and the design (Real; -1 is "not checked", NaN here).
+#: FMU output -> its former name, for the checks and the design (Real; -1 is "not checked", NaN here).
 CHECK_OUTPUTS = {
     "quality.discretisation_error": "discretisation_error",
     "quality.sensitivity_spread": "sensitivity_spread",
@@ -41,10 +43,12 @@ CHECK_OUTPUTS = {
     "utilisation.lower.clamp_shear_stress": "utilisation.lower_clamp_shear_stress",
     "utilisation.upper.contact_bending_stress": "utilisation.upper_contact_bending_stress",
 }
-#: FMU Boolean output -> CLI sweep column.
+#: FMU Boolean output -> its former name.
 VERDICT_OUTPUTS = {"design.pass": "design_pass", "quality.trusted": "trusted"}
 #: The columns `simulate` adds after the peaks and the energy approach, in the CLI sweep's order.
-CHECK_COLUMNS = (*CHECK_OUTPUTS.values(), *VERDICT_OUTPUTS.values())
+CHECK_COLUMNS = (*CHECK_OUTPUTS, *VERDICT_OUTPUTS)
+#: Every former name -> its name, in the order `simulate` repeats them after the named keys.
+FORMER_NAMES = {former: name for name, former in {**PEAK_OUTPUTS, **CHECK_OUTPUTS, **VERDICT_OUTPUTS}.items()}
 #: FMU-only Boolean parameters `simulate` accepts.
 BOOLEAN_PARAMETERS = frozenset({"check_sensitivity"})
 #: Largest whole number an FMU Integer parameter holds.
@@ -315,12 +319,15 @@ def simulate(
     max_steps: int | None = None,
 ):
     """Runs the FMU once: `parameters` by the scenario's dotted names, until `stop_time` s (or the
-    `duration` parameter). Returns a dict of the peaks under the CLI's names (`lower_tip_deflection`,
-    `lower_clamp_bending_stress`, `lower_clamp_shear_stress`, `upper_contact_bending_stress`,
-    `contact_force`; SI units), the energy approach (`energy_method.<field>`), and the checks as the
-    CLI's sweep columns: `discretisation_error`, `sensitivity_spread` (fractions; NaN when not
-    checked: the twin runs only with `"check_sensitivity": True`, which doubles the cost),
-    `utilisation.<stress peak>` (converged peak / allowable), `design_pass` and `trusted`. With
+    `duration` parameter). Returns a dict keyed by the FMU's output names (one name per quantity, as
+    the CLI's sweep columns): the peaks (`peak.lower.tip_deflection`, `peak.lower.clamp_bending_stress`,
+    `peak.lower.clamp_shear_stress`, `peak.upper.contact_bending_stress`, `peak.contact.force`; SI
+    units), the energy approach (`energy_method.<field>`), and the checks:
+    `quality.discretisation_error`, `quality.sensitivity_spread` (fractions; NaN when not checked:
+    the twin runs only with `"check_sensitivity": True`, which doubles the cost),
+    `utilisation.<stress peak>` (converged peak / allowable), `design.pass` and `quality.trusted`;
+    then the same values under their former names (`lower_clamp_bending_stress`, `trusted`, ...;
+    `FORMER_NAMES`), kept until 0.2.0. With
     `histories=True`, returns (dict, DataFrame of every real output at each communication point,
     `output_interval` default 1e-3 s, time first); otherwise one communication step over the whole
     run. `log_path`: write the FMU's MCAP log there (default: no log). Raises SimulationError with
@@ -350,12 +357,13 @@ def simulate(
                     and v.name not in PEAK_OUTPUTS and v.name not in CHECK_OUTPUTS]
     rows, verdicts = _run(entry, start, stop_time, output_interval, outputs, histories)
     last = rows[-1][1:]
-    peaks: dict[str, Any] = {cli: float(value) for cli, value in zip(PEAK_OUTPUTS.values(), last)}
+    peaks: dict[str, Any] = {name: float(value) for name, value in zip(PEAK_OUTPUTS, last)}
     peaks.update({name: float(value) for name, value in zip(method, last[len(PEAK_OUTPUTS):])})
     checks = last[len(PEAK_OUTPUTS) + len(method):][:len(CHECK_OUTPUTS)]
-    peaks.update({cli: (float("nan") if value < 0 else float(value))
-                  for cli, value in zip(CHECK_OUTPUTS.values(), checks)})
-    peaks.update(dict(zip(VERDICT_OUTPUTS.values(), verdicts)))
+    peaks.update({name: (math.nan if value < 0 else float(value))
+                  for name, value in zip(CHECK_OUTPUTS, checks)})
+    peaks.update(dict(zip(VERDICT_OUTPUTS, verdicts)))
+    peaks.update({former: peaks[name] for former, name in FORMER_NAMES.items()})
     if not histories:
         return peaks
     import pandas as pd

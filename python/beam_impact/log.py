@@ -147,12 +147,17 @@ def load_log(path: str) -> Log:
 
 def _from_native(raw: dict) -> Log:
     """The Log of the native reader's buffers (native-endian, as numpy reads them)."""
+    from . import _native
+
     steps = {}
     for name, data in raw["steps"].items():
         dtype = INTEGER.get(name, np.float64)
         steps[name] = np.frombuffer(data, dtype=np.uint8 if dtype is np.bool_ else dtype).astype(dtype)
-    order = [*SCALARS, *(f"energy.{n}" for n in ENERGY), *(f"peaks.{n}" for n in PEAKS)]
-    steps = {name: steps[name] for name in order}
+    # One name per quantity, as `report --csv`: the FMU's names first (`lower.clamp_bending_stress`,
+    # `peak.contact.force`), then the former field-path names as duplicates (until 0.2.0).
+    renamed = dict(_native.STEP_RENAMES)
+    fields = [*SCALARS, *(f"energy.{n}" for n in ENERGY), *(f"peaks.{n}" for n in PEAKS)]
+    steps = {**{renamed.get(name, name): steps[name] for name in fields}, **{f: steps[f] for f in renamed}}
     cols = raw["shape_cols"]
     modal_steps = np.frombuffer(raw["modal_steps"], dtype=np.uint64).copy()
     return Log(

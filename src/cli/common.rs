@@ -2,7 +2,7 @@
 //! writing to standard output, I/O errors with the path, and one bounded line per error.
 
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use beam_impact::record::output::{open_input, read_bounded, MAX_SCENARIO_BYTES};
 use beam_impact::{Error, Result, Scenario};
@@ -73,4 +73,42 @@ pub fn scenario_with_settings(file: Option<&Path>, set: &[String]) -> Result<Sce
     };
     beam_impact::studies::sweep::apply_settings(&mut scenario, &settings)?;
     Ok(scenario)
+}
+
+/// The units sidecars (`FILE.units.json`, [`beam_impact::vocabulary::units_path`]) of data files
+/// written to regular files: one per distinct sidecar path, each naming the files it describes.
+/// A data file going to a device or standard output has none.
+pub fn units_sidecars(data_files: &[&Path]) -> Vec<(PathBuf, Vec<String>)> {
+    let mut sidecars: Vec<(PathBuf, Vec<String>)> = Vec::new();
+    for file in data_files {
+        let is_special = file.as_os_str() == "-" || std::fs::metadata(file).is_ok_and(|m| !m.is_file());
+        if is_special {
+            continue;
+        }
+        let sidecar = beam_impact::vocabulary::units_path(file);
+        let name = file.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+        match sidecars.iter_mut().find(|(path, _)| *path == sidecar) {
+            Some((_, describes)) => describes.push(name),
+            None => sidecars.push((sidecar, vec![name])),
+        }
+    }
+    sidecars
+}
+
+/// Writes the units sidecars of [`units_sidecars`] (each through the output guard, replaced only
+/// when complete); returns their paths.
+pub fn write_units_sidecars(
+    sidecars: &[(PathBuf, Vec<String>)],
+    columns: &[(String, &str)],
+    former: &[(String, String)],
+) -> Result<Vec<PathBuf>> {
+    let mut written = Vec::new();
+    for (path, describes) in sidecars {
+        let mut file = beam_impact::record::output::OutputFile::create(path, false, "cannot create units sidecar")?;
+        file.write_all(beam_impact::vocabulary::units_document(describes, columns, former).as_bytes())
+            .map_err(|source| io("cannot write units sidecar", path, source))?;
+        file.commit()?;
+        written.push(path.clone());
+    }
+    Ok(written)
 }

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use beam_impact::record::output::{check_distinct, OutputFile};
 use beam_impact::{Error, Result};
 
-use super::common::io;
+use super::common::{io, units_sidecars, write_units_sidecars};
 
 pub fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>) -> Result<()> {
     let out = out.unwrap_or_else(|| beam_impact::replay::report::default_out_dir(file));
@@ -15,7 +15,10 @@ pub fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>) -> Result<(
     let csv_to_stdout = csv.is_some_and(|path| path.as_os_str() == "-");
     beam_impact::record::output::check_not_in_figure_folder("the log", file, &out)?;
     if let Some(path) = csv {
-        check_distinct(&[("the log", file), ("--csv", path)])?;
+        let sidecars = units_sidecars(&[path]);
+        let mut files = vec![("the log", file), ("--csv", path)];
+        files.extend(sidecars.iter().map(|(p, _)| ("the units sidecar", p.as_path())));
+        check_distinct(&files)?;
         if !csv_to_stdout && beam_impact::record::output::same_folder(path, &out) {
             return Err(Error::Other(format!(
                 "--csv {} is inside the figure folder {}, which the figures are written to; give another folder",
@@ -51,6 +54,11 @@ pub fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>) -> Result<(
             },
         };
         written?;
+        write_units_sidecars(
+            &sidecars,
+            &beam_impact::replay::csv::column_units(),
+            &beam_impact::replay::csv::former_names(),
+        )?;
     }
     // With `--csv -` the standard output is the CSV: the summary goes nowhere, the figures are
     // still written.

@@ -10,11 +10,13 @@ use beam_impact::record::output::{check_distinct, OutputFile};
 use beam_impact::{Result, Scenario};
 
 use super::args::SweepArgs;
-use super::common::{emit, io, read_scenario};
+use beam_impact::vocabulary::sweep_former_names;
+
+use super::common::{emit, io, read_scenario, units_sidecars, write_units_sidecars};
 
 pub fn sweep(args: &SweepArgs) -> Result<()> {
     use beam_impact::studies::sweep::{
-        apply_settings, default_jobs, parse_axes, parse_settings, Sweep, SweepWriteError,
+        apply_settings, column_units, default_jobs, parse_axes, parse_settings, Sweep, SweepWriteError,
     };
     let mut base = match &args.file {
         Some(path) => read_scenario(path)?,
@@ -26,6 +28,9 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
     let mut files: Vec<(&str, &Path)> = args.file.as_deref().map(|f| ("the scenario file", f)).into_iter().collect();
     files.push(("--out", &args.out));
     files.extend(args.json.as_deref().map(|j| ("--json", j)));
+    let data: Vec<&Path> = std::iter::once(args.out.as_path()).chain(args.json.as_deref()).collect();
+    let sidecars = units_sidecars(&data);
+    files.extend(sidecars.iter().map(|(path, _)| ("the units sidecar", path.as_path())));
     check_distinct(&files)?;
     let create = |path: &Path| OutputFile::create(path, true, "cannot create").map(std::io::BufWriter::new);
     let mut csv = create(&args.out)?;
@@ -54,6 +59,7 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
     if let (Some(json), Some(path)) = (json, args.json.as_deref()) {
         commit(json, path)?;
     }
+    let sidecars = write_units_sidecars(&sidecars, &column_units(&sweep.axes), &sweep_former_names())?;
     let wall = started.elapsed().as_secs_f64();
     if tally.failed > 0 {
         eprintln!(
@@ -80,6 +86,9 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
     );
     if let Some(path) = &args.json {
         text += &format!(" and {}", path.display());
+    }
+    for path in sidecars {
+        text += &format!(", units in {}", path.display());
     }
     emit(&(text + "\n"))
 }

@@ -1,10 +1,13 @@
 //! `beam-impact report --csv`: the step channel of a log as CSV, one row per step message kept by
 //! the reader ([`super::report::LogData::steps`]: after rollbacks, in step order).
 //!
-//! The header row holds the field paths of `beam_impact.Step` (nested fields dotted:
-//! `energy.kinetic`, `peaks.lower_tip_deflection`), in the column order of the Python reader's
-//! `load_log(...).dataframe()`, so `pandas.read_csv` gives the same columns. No comment lines: the
-//! units are in [`COLUMNS`], the CLI's help and the README. The modal coordinates (field 16,
+//! The header row names each quantity as the FMU does ([`crate::vocabulary`]:
+//! `lower.clamp_bending_stress`, `peak.contact.force`, `energy.kinetic`), then repeats the renamed
+//! ones under their former names, the field paths of `beam_impact.Step`
+//! (`lower_clamp_bending_stress`, `peaks.contact_force`), in the column order of the Python
+//! reader's `load_log(...).dataframe()`, so `pandas.read_csv` gives the same columns. No comment
+//! lines: the units are in [`COLUMNS`] and in the sidecar `FILE.units.json` that `report --csv
+//! FILE` writes. The modal coordinates (field 16,
 //! repeated; from log format 2 on a topic of their own) are not a column.
 //!
 //! Numbers round-trip: every f64 is written with the fewest digits that read back to the same
@@ -14,6 +17,7 @@
 use std::io::Write;
 
 use crate::results::StepResult;
+use crate::vocabulary::STEP_RENAMES;
 
 /// One column: its field path in `beam_impact.Step`, its SI unit, and how to read it off a step.
 pub type Column = (&'static str, &'static str, Getter);
@@ -86,16 +90,56 @@ fn write_f64(f: &mut dyn std::fmt::Write, x: f64) -> std::fmt::Result {
     }
 }
 
+/// The column names, in order: the quantities' names (the FMU's, [`crate::vocabulary`]: a
+/// [`COLUMNS`] field path renamed by [`STEP_RENAMES`] or kept), then the former field-path names
+/// of the renamed ones, as duplicates, until [`crate::vocabulary::FORMER_NAMES_REMOVED_IN`].
+pub fn names() -> Vec<&'static str> {
+    let renamed = |path: &'static str| STEP_RENAMES.iter().find(|(f, _)| *f == path).map_or(path, |(_, n)| *n);
+    let mut names: Vec<&'static str> = COLUMNS.iter().map(|(path, _, _)| renamed(path)).collect();
+    names.extend(STEP_RENAMES.iter().map(|(former, _)| *former));
+    names
+}
+
+/// Each column of [`names`] with its unit.
+pub fn column_units() -> Vec<(String, &'static str)> {
+    let unit = |path: &str| COLUMNS.iter().find(|(p, _, _)| *p == path).map_or("", |(_, u, _)| *u);
+    let mut columns: Vec<(String, &'static str)> = COLUMNS.iter().map(|(p, u, _)| (p.to_string(), *u)).collect();
+    for (path, name) in STEP_RENAMES {
+        if let Some(c) = columns.iter_mut().find(|(p, _)| p == path) {
+            c.0 = name.to_string();
+        }
+    }
+    columns.extend(STEP_RENAMES.iter().map(|(former, _)| (former.to_string(), unit(former))));
+    columns
+}
+
+/// The former names with the names they duplicate (for the units sidecar).
+pub fn former_names() -> Vec<(String, String)> {
+    STEP_RENAMES.iter().map(|(f, n)| (f.to_string(), n.to_string())).collect()
+}
+
 /// The header row, without the line end.
 pub fn header() -> String {
-    COLUMNS.iter().map(|(name, _, _)| *name).collect::<Vec<_>>().join(",")
+    names().join(",")
+}
+
+/// The getters in the order of [`names`].
+fn getters() -> Vec<Getter> {
+    let mut getters: Vec<Getter> = COLUMNS.iter().map(|(_, _, get)| *get).collect();
+    for (former, _) in STEP_RENAMES {
+        if let Some((_, _, get)) = COLUMNS.iter().find(|(p, _, _)| *p == former) {
+            getters.push(*get);
+        }
+    }
+    getters
 }
 
 /// Writes the header row and one row per step to `out` (buffer it: one `write` per cell).
 pub fn write_steps(steps: &[StepResult], out: &mut dyn Write) -> std::io::Result<()> {
     writeln!(out, "{}", header())?;
+    let getters = getters();
     for r in steps {
-        for (k, (_, _, get)) in COLUMNS.iter().enumerate() {
+        for (k, get) in getters.iter().enumerate() {
             if k > 0 {
                 out.write_all(b",")?;
             }

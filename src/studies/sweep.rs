@@ -368,6 +368,7 @@ pub fn expand(axes: &[Axis]) -> Vec<Vec<f64>> {
 
 /// The names of the five peaks, as in `summary.peaks` and in [`Peaks::as_array`]'s order.
 pub use crate::answer::PEAK_NAMES;
+use crate::vocabulary::{sweep_former_names, PEAK_QUANTITIES, PEAK_UNITS};
 
 type MethodField = (&'static str, fn(&EnergyMethod) -> f64);
 
@@ -430,16 +431,20 @@ impl From<&crate::answer::Answer> for RowResults {
     }
 }
 
-/// The columns of the checks and the design, between `max_energy_residual` and `trusted`.
-pub const CHECK_COLUMNS: [&str; 7] = [
-    "discretisation_error",
-    "sensitivity_spread",
-    "yield_utilisation",
-    "utilisation.lower_clamp_bending_stress",
-    "utilisation.lower_clamp_shear_stress",
-    "utilisation.upper_contact_bending_stress",
-    "design_pass",
+/// The columns of the checks and the design, between `max_energy_residual` and `quality.trusted`,
+/// with their units.
+pub const CHECK_COLUMNS: [(&str, &str); 7] = [
+    ("quality.discretisation_error", "1"),
+    ("quality.sensitivity_spread", "1"),
+    ("yield_utilisation", "1"),
+    ("utilisation.lower.clamp_bending_stress", "1"),
+    ("utilisation.lower.clamp_shear_stress", "1"),
+    ("utilisation.upper.contact_bending_stress", "1"),
+    ("design.pass", "true/false"),
 ];
+
+/// The SI units of [`ENERGY_METHOD_FIELDS`], in their order.
+const ENERGY_METHOD_UNITS: [&str; 11] = ["N/m", "m", "N", "Pa", "Pa", "J", "rad/s^2", "N m", "Pa", "J", "1"];
 
 /// One scenario of the grid: its values (one per axis) and its results or error message.
 #[derive(Clone, Debug, PartialEq)]
@@ -450,20 +455,33 @@ pub struct Row {
     pub outcome: std::result::Result<RowResults, String>,
 }
 
-/// The column names: the varied fields, the peaks, `<peak>_time`, `energy_method.<field>`,
-/// `max_energy_residual`, `trusted`, `error`.
-pub fn columns(axes: &[Axis]) -> Vec<String> {
-    let mut c: Vec<String> = axes.iter().map(|a| a.field.name.to_string()).collect();
-    c.extend(PEAK_NAMES.iter().map(|n| n.to_string()));
-    c.extend(PEAK_NAMES.iter().map(|n| format!("{n}_time")));
-    c.extend(ENERGY_METHOD_FIELDS.iter().map(|(n, _)| format!("energy_method.{n}")));
-    c.push("max_energy_residual".into());
-    c.extend(CHECK_COLUMNS.iter().map(|n| n.to_string()));
-    c.extend(["trusted", "error"].map(String::from));
+/// The named columns with their units: the varied fields, `peak.<quantity>`,
+/// `peak_time.<quantity>`, `energy_method.<field>`, `max_energy_residual`, the checks and the
+/// design, `quality.trusted`, `error`; then the former names, duplicates of named columns, until
+/// [`crate::vocabulary::FORMER_NAMES_REMOVED_IN`].
+pub fn column_units(axes: &[Axis]) -> Vec<(String, &'static str)> {
+    let mut c: Vec<(String, &'static str)> = axes.iter().map(|a| (a.field.name.to_string(), a.field.unit)).collect();
+    c.extend(PEAK_QUANTITIES.iter().zip(PEAK_UNITS).map(|(n, u)| (format!("peak.{n}"), u)));
+    c.extend(PEAK_QUANTITIES.iter().map(|n| (format!("peak_time.{n}"), "s")));
+    c.extend(ENERGY_METHOD_FIELDS.iter().zip(ENERGY_METHOD_UNITS).map(|((n, _), u)| (format!("energy_method.{n}"), u)));
+    c.push(("max_energy_residual".into(), "J"));
+    c.extend(CHECK_COLUMNS.iter().map(|(n, u)| (n.to_string(), *u)));
+    c.extend([("quality.trusted".into(), "true/false"), ("error".into(), "text")]);
+    let named = c.len();
+    for (former, name) in sweep_former_names() {
+        let unit = c[..named].iter().find(|(n, _)| *n == name).map_or("", |(_, u)| *u);
+        c.push((former, unit));
+    }
     c
 }
 
+/// The column names of [`column_units`].
+pub fn columns(axes: &[Axis]) -> Vec<String> {
+    column_units(axes).into_iter().map(|(name, _)| name).collect()
+}
+
 /// A cell before formatting.
+#[derive(Clone)]
 enum Cell {
     Value(&'static Parameter, f64),
     Number(f64),
@@ -491,6 +509,12 @@ fn cells(axes: &[Axis], row: &Row) -> Vec<Cell> {
             );
             c.push(Cell::Text(one_line(message)));
         }
+    }
+    // The former names repeat their named columns' cells.
+    let names = columns(axes);
+    for (_, name) in sweep_former_names() {
+        let i = names.iter().position(|n| *n == name).unwrap_or(0);
+        c.push(c.get(i).cloned().unwrap_or(Cell::Empty));
     }
     c
 }
@@ -864,6 +888,47 @@ mod tests {
         assert!(e.to_string().contains("lower.elements"), "{e}");
     }
 
+    /// One name per quantity: every former column duplicates a named column (same cells in CSV
+    /// and JSON), every column has a unit, and the named ones come first.
+    #[test]
+    fn former_columns_duplicate_named_ones_and_every_column_has_a_unit() {
+        let axes = vec![axis("drop_height=0.5")];
+        let units = column_units(&axes);
+        let names = columns(&axes);
+        let former = sweep_former_names();
+        assert_eq!(names.len(), units.len());
+        let first_former = names.len() - former.len();
+        assert_eq!(names[first_former - 1], "error");
+        for (name, unit) in &units {
+            assert!(!unit.is_empty() || name == "drop_height", "{name} has no unit");
+        }
+        assert_eq!(units[0].1, "m");
+        let row = Row {
+            values: vec![0.5],
+            outcome: Ok(RowResults::from(
+                &crate::answer::run(
+                    &Scenario { duration: 0.05, ..Scenario::default() },
+                    &mut crate::record::NullRecorder,
+                    crate::answer::Options::default(),
+                )
+                .unwrap(),
+            )),
+        };
+        let line = csv_line(&axes, &row);
+        let cells: Vec<&str> = line.trim_end().split(',').collect();
+        assert_eq!(cells.len(), names.len());
+        let json: serde_json::Value = serde_json::from_str(&json_object(&axes, &row)).unwrap();
+        for (f, n) in &former {
+            let (i, j) = (names.iter().position(|c| c == f).unwrap(), names.iter().position(|c| c == n).unwrap());
+            assert!(j < first_former && i >= first_former, "{f} -> {n}");
+            assert_eq!(cells[i], cells[j], "{f} vs {n}");
+            assert_eq!(json[f], json[n], "{f} vs {n}");
+            assert_eq!(units[i].1, units[j].1);
+        }
+        assert_eq!(json["quality.trusted"], json["trusted"]);
+        assert!(json["peak.lower.clamp_bending_stress"].as_f64().unwrap() > 1e6);
+    }
+
     /// The column list names every peak of `summary.peaks` and every field of EnergyMethod, by
     /// their serde names (so a new field cannot be left out silently).
     #[test]
@@ -943,10 +1008,13 @@ mod tests {
         let failed = Row { values: vec![0.5, 0.0], outcome: Err("a, \"b\"\nc".into()) };
         let line = csv_line(&axes, &failed);
         assert!(line.starts_with("0.5,auto,,"), "{line}");
-        assert!(line.ends_with(",\"a, \"\"b\"\" c\"\n"), "{line}");
+        // `error` is the last named column; the former names (all empty here) follow it.
+        let former = ",".repeat(sweep_former_names().len());
+        assert!(line.ends_with(&format!(",\"a, \"\"b\"\" c\"{former}\n")), "{line}");
         assert_eq!(csv_header(&axes).split(',').count(), columns(&axes).len());
         let doc: serde_json::Value = serde_json::from_str(&json_object(&axes, &failed)).unwrap();
         assert_eq!(doc["step_free"], "auto");
+        assert!(doc["peak.lower.tip_deflection"].is_null());
         assert!(doc["lower_tip_deflection"].is_null());
         assert_eq!(doc["error"], "a, \"b\" c");
     }

@@ -316,3 +316,9 @@ def test_a_rolled_back_fmu_log_loads_like_report_reads_it(tmp_path):
     assert np.array_equal(frame["step"].to_numpy(), steps)
     assert np.array_equal(frame["lower_tip_deflection"].to_numpy(), log.steps["lower_tip_deflection"])
     assert log.steps["peaks.lower_tip_deflection"][-1] == peak
+    # One name per quantity: the CSV's columns are the reader's, FMU names first, former after.
+    assert list(frame.columns) == list(log.dataframe().columns)
+    assert log.steps["peak.lower.tip_deflection"][-1] == peak
+    assert np.array_equal(frame["lower.tip_deflection"].to_numpy(), frame["lower_tip_deflection"].to_numpy())
+    units = {c["name"]: c["unit"] for c in json.loads((tmp_path / "rollback.units.json").read_text())["columns"]}
+    assert list(units) == list(frame.columns) and units["lower.clamp_bending_stress"] == "Pa"

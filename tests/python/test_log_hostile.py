@@ -388,14 +388,14 @@ def test_zstd_bombs_are_refused_in_bounded_time_and_memory(tmp_path):
         "for path in sys.argv[1:]:\n"
         "    with open('/proc/self/statm') as statm:\n"
         "        base = int(statm.read().split()[1]) * os.sysconf('SC_PAGE_SIZE') / 1024\n"
-        "    t = time.perf_counter()\n"
+        "    t = time.process_time()\n"
         "    try:\n"
         "        log = beam_impact.load_log(path)\n"
         "        outcome = f'loaded, complete {log.complete}: {log.problem}'\n"
         "    except beam_impact.LogError as e:\n"
         "        outcome = f'LogError: {e}'\n"
         "    grown = (resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - base) / 1024\n"
-        "    print(f'{time.perf_counter() - t:.3f}\\t{grown:.1f}\\t{outcome}')\n"
+        "    print(f'{time.process_time() - t:.3f}\\t{grown:.1f}\\t{outcome}')\n"
     )
     run = subprocess.run([sys.executable, "-c", script, *map(str, paths)], capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr
@@ -403,8 +403,11 @@ def test_zstd_bombs_are_refused_in_bounded_time_and_memory(tmp_path):
     assert len(lines) == len(paths), run.stdout
     for path, line in zip(paths, lines):
         seconds, grown, outcome = line.split("\t")
-        print(f"{path.name} ({path.stat().st_size} bytes): {seconds} s, peak memory +{grown} MB: {outcome[:160]}")
-        assert float(seconds) < 5 and float(grown) < 200, (path.name, line)
+        print(f"{path.name} ({path.stat().st_size} bytes): {seconds} s of CPU, peak memory +{grown} MB: {outcome[:160]}")
+        # A bound against a reader that decodes the bomb (256 MiB of zstd takes seconds of CPU, and
+        # memory): CPU time of this process, not wall time, so a loaded machine does not fail it;
+        # measured 0.000-0.082 s per file (2-core machine, 2026-11-26), so 10 s is a hang, not noise.
+        assert float(seconds) < 10 and float(grown) < 200, (path.name, line)
         if not path.name.startswith("64x"):
             assert outcome.startswith("LogError") or "complete False" in outcome, (path.name, outcome)
     assert "more than the" in lines[1] and "does not decompress" in lines[2] and "does not decompress" in lines[3]

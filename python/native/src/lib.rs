@@ -164,6 +164,9 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(load_log, m)?)?;
     m.add_function(wrap_pyfunction!(check_run, m)?)?;
     m.add("MAX_STEPS", beam_impact::model::scenario::MAX_STEPS)?;
+    // One name per quantity: the step channel's columns as `report --csv` names them.
+    m.add("STEP_COLUMNS", beam_impact::replay::csv::names())?;
+    m.add("STEP_RENAMES", beam_impact::vocabulary::STEP_RENAMES.to_vec())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }
