@@ -204,11 +204,18 @@ mod tests {
         let lines: Vec<&str> = text.lines().collect();
         assert_eq!(lines.len(), 4);
         assert_eq!(lines[0], header());
-        assert!(lines.iter().all(|l| l.split(',').count() == COLUMNS.len()));
+        // Every field once by its name, the renamed ones again by their former names.
+        assert!(lines.iter().all(|l| l.split(',').count() == COLUMNS.len() + STEP_RENAMES.len()));
         let row: Vec<&str> = lines[2].split(',').collect();
-        let at = |name: &str| COLUMNS.iter().position(|c| c.0 == name).unwrap();
+        let names = names();
+        let at = |name: &str| names.iter().position(|c| *c == name).unwrap();
+        assert_eq!(row[at("contact.active")], "true");
         assert_eq!(row[at("contact")], "true");
         assert_eq!(row[at("energy.residual")], "-1.25e-9");
+        assert_eq!(lines[3].split(',').nth(at("peak.contact.force")).unwrap(), "123456.5");
         assert_eq!(lines[3].split(',').nth(at("peaks.contact_force")).unwrap(), "123456.5");
+        let units = column_units();
+        assert_eq!(units.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>(), names);
+        assert_eq!(units[at("peaks.contact_force")].1, "N");
     }
 }
