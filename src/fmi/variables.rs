@@ -3,7 +3,6 @@
 //! [`PARAMETERS`]; the value reference of a variable is its index in [`table`].
 
 use crate::model::parameters::{Kind, Parameter, PARAMETERS};
-use crate::model::scenario::MAX_ELEMENTS;
 use crate::results::StepResult;
 use crate::solver::EnergyMethod;
 use crate::Scenario;
@@ -198,60 +197,12 @@ pub fn display_unit(unit: &str) -> Option<&'static str> {
     (unit == "Pa").then_some("MPa")
 }
 
-/// The smallest positive double, 5e-324: the declared `min` of a parameter that must be > 0
-/// with no other lower bound (FMI's `min` is inclusive, so `min="0"` would admit 0).
-pub const SMALLEST_POSITIVE: f64 = f64::from_bits(1);
+pub use crate::model::parameters::SMALLEST_POSITIVE;
 
-/// Declared `min` and `max` of the FMU's parameters: exactly the ranges
-/// [`Scenario::validate`] accepts (checked at and beyond each bound by
-/// `tests/fmi_description.rs`), so an importer that honours them never meets an
-/// initialization error for a value out of range. Where the rule depends on another parameter
-/// the declared bound is the widest one and the rest is checked at initialization:
-/// `drop_height` is at most half of `upper.length` (500 m at its largest),
-/// `contact_position` is below `upper.length` (a bound FMI cannot express: no `max`). The step
-/// sizes' range 0..1 s holds a gap: 0 is "automatic", otherwise at least 1e-9 s.
-const RANGES: &[(&str, Option<f64>, Option<f64>)] = &[
-    ("drop_height", Some(0.0), Some(500.0)),
-    ("contact_position", Some(SMALLEST_POSITIVE), None),
-    ("damping_ratio", Some(0.0), Some(0.999)),
-    ("rayleigh_alpha", Some(0.0), Some(1e4)),
-    ("rayleigh_beta", Some(0.0), Some(1.0)),
-    ("step_free", Some(0.0), Some(1.0)),
-    ("step_contact", Some(0.0), Some(1.0)),
-    ("gravity", Some(SMALLEST_POSITIVE), Some(100.0)),
-    ("upper.length", Some(0.01), Some(1e3)),
-    ("upper.mass", Some(1e-3), Some(1e9)),
-    ("upper.elastic_modulus", Some(1e6), Some(1e13)),
-    ("upper.second_moment", Some(1e-12), Some(1e3)),
-    ("upper.section_modulus", Some(1e-12), Some(1e3)),
-    ("upper.elements_to_contact", Some(0.0), Some(MAX_ELEMENTS as f64)),
-    ("upper.elements_beyond_contact", Some(0.0), Some(MAX_ELEMENTS as f64)),
-    ("lower.length", Some(0.01), Some(1e3)),
-    ("lower.mass", Some(1e-3), Some(1e9)),
-    ("lower.tip_mass", Some(0.0), Some(1e9)),
-    ("lower.elastic_modulus", Some(1e6), Some(1e13)),
-    ("lower.second_moment", Some(1e-12), Some(1e3)),
-    ("lower.section_modulus", Some(1e-12), Some(1e3)),
-    ("lower.shear_area", Some(1e-12), Some(1e3)),
-    ("lower.elements", Some(0.0), Some(MAX_ELEMENTS as f64)),
-    ("contact.area", Some(1e-12), Some(1e3)),
-    ("contact.length", Some(1e-6), Some(1e3)),
-    ("contact.elastic_modulus", Some(1e6), Some(1e13)),
-    ("energy_tolerance", Some(SMALLEST_POSITIVE), Some(1.0)),
-    ("stress_recovery", Some(0.0), Some(2.0)),
-    ("method", Some(0.0), Some(1.0)),
-    ("modal_cutoff", Some(0.0), Some(1e12)),
-    ("discretisation_tolerance", Some(SMALLEST_POSITIVE), Some(1.0)),
-    ("lower.allowable_bending_stress", Some(1e-3), Some(1e12)),
-    ("lower.allowable_shear_stress", Some(1e-3), Some(1e12)),
-    ("upper.allowable_bending_stress", Some(1e-3), Some(1e12)),
-    ("lower.yield_stress", Some(0.0), Some(1e12)),
-    ("upper.yield_stress", Some(0.0), Some(1e12)),
-];
-
-/// The declared (`min`, `max`) of a parameter (`None`: not declared).
+/// The declared (`min`, `max`) of a parameter (`None`: not declared): the scenario's ranges,
+/// [`crate::model::parameters::RANGES`].
 pub fn declared_range(p: &Parameter) -> (Option<f64>, Option<f64>) {
-    RANGES.iter().find(|(name, _, _)| *name == p.name).map_or((None, None), |&(_, min, max)| (min, max))
+    crate::model::parameters::range(p.name)
 }
 
 /// Formats a real start value so that it parses back to the same number.
@@ -688,7 +639,7 @@ mod tests {
 
     #[test]
     fn every_range_names_an_fmu_parameter_and_holds_its_start_value() {
-        for &(name, min, max) in RANGES {
+        for &(name, min, max) in crate::model::parameters::RANGES {
             let v = table().into_iter().find(|v| v.name == name).unwrap_or_else(|| panic!("{name}: no such variable"));
             let start: f64 = v.start.as_deref().unwrap_or_default().parse().unwrap();
             assert!(min.is_none_or(|m| m <= start) && max.is_none_or(|m| start <= m), "{name}: start {start}");

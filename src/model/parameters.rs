@@ -2,7 +2,7 @@
 //! variables and the CLI's messages take names, units and descriptions from.
 
 use super::discretisation::Method;
-use super::scenario::Scenario;
+use super::scenario::{Scenario, MAX_ELEMENTS};
 use super::stress_recovery::StressRecovery;
 use super::time_step::TimeStep;
 use crate::error::{Error, Result};
@@ -209,6 +209,94 @@ pub fn set(scenario: &mut Scenario, parameter: &Parameter, value: f64) -> Result
     (parameter.put)(scenario, value)
 }
 
+/// Each field's accepted range (`min`, `max`), declared as the FMU parameters' `min` and `max`
+/// and printed by `beam-impact scenario`: exactly the ranges
+/// [`Scenario::validate`] accepts (checked at and beyond each bound by
+/// `tests/fmi_description.rs`), so an importer that honours them never meets an
+/// initialization error for a value out of range. Where the rule depends on another parameter
+/// the declared bound is the widest one and the rest is checked at initialization:
+/// `drop_height` is at most half of `upper.length` (500 m at its largest),
+/// `contact_position` is below `upper.length` (a bound FMI cannot express: no `max`). The step
+/// sizes' range 0..1 s holds a gap: 0 is "automatic", otherwise at least 1e-9 s.
+pub const RANGES: &[(&str, Option<f64>, Option<f64>)] = &[
+    ("drop_height", Some(0.0), Some(500.0)),
+    ("contact_position", Some(SMALLEST_POSITIVE), None),
+    ("damping_ratio", Some(0.0), Some(0.999)),
+    ("rayleigh_alpha", Some(0.0), Some(1e4)),
+    ("rayleigh_beta", Some(0.0), Some(1.0)),
+    ("step_free", Some(0.0), Some(1.0)),
+    ("step_contact", Some(0.0), Some(1.0)),
+    ("gravity", Some(SMALLEST_POSITIVE), Some(100.0)),
+    ("upper.length", Some(0.01), Some(1e3)),
+    ("upper.mass", Some(1e-3), Some(1e9)),
+    ("upper.elastic_modulus", Some(1e6), Some(1e13)),
+    ("upper.second_moment", Some(1e-12), Some(1e3)),
+    ("upper.section_modulus", Some(1e-12), Some(1e3)),
+    ("upper.elements_to_contact", Some(0.0), Some(MAX_ELEMENTS as f64)),
+    ("upper.elements_beyond_contact", Some(0.0), Some(MAX_ELEMENTS as f64)),
+    ("lower.length", Some(0.01), Some(1e3)),
+    ("lower.mass", Some(1e-3), Some(1e9)),
+    ("lower.tip_mass", Some(0.0), Some(1e9)),
+    ("lower.elastic_modulus", Some(1e6), Some(1e13)),
+    ("lower.second_moment", Some(1e-12), Some(1e3)),
+    ("lower.section_modulus", Some(1e-12), Some(1e3)),
+    ("lower.shear_area", Some(1e-12), Some(1e3)),
+    ("lower.elements", Some(0.0), Some(MAX_ELEMENTS as f64)),
+    ("contact.area", Some(1e-12), Some(1e3)),
+    ("contact.length", Some(1e-6), Some(1e3)),
+    ("contact.elastic_modulus", Some(1e6), Some(1e13)),
+    ("energy_tolerance", Some(SMALLEST_POSITIVE), Some(1.0)),
+    ("stress_recovery", Some(0.0), Some(2.0)),
+    ("method", Some(0.0), Some(1.0)),
+    ("modal_cutoff", Some(0.0), Some(1e12)),
+    ("discretisation_tolerance", Some(SMALLEST_POSITIVE), Some(1.0)),
+    ("lower.allowable_bending_stress", Some(1e-3), Some(1e12)),
+    ("lower.allowable_shear_stress", Some(1e-3), Some(1e12)),
+    ("upper.allowable_bending_stress", Some(1e-3), Some(1e12)),
+    ("lower.yield_stress", Some(0.0), Some(1e12)),
+    ("upper.yield_stress", Some(0.0), Some(1e12)),
+];
+
+/// The smallest positive f64: a lower bound "> 0" in the FMU's `min` (FMI has no exclusive bound).
+pub const SMALLEST_POSITIVE: f64 = f64::from_bits(1);
+
+/// The accepted range of a field, (`min`, `max`), `None` where unbounded or not listed.
+pub fn range(name: &str) -> (Option<f64>, Option<f64>) {
+    RANGES.iter().find(|(n, _, _)| *n == name).map_or((None, None), |&(_, min, max)| (min, max))
+}
+
+/// A range as a comment reads it: "0 to 500", "> 0"; the rules that involve another field or
+/// the "auto" value spelled out; none for the named choices (`method`, `stress_recovery`), whose
+/// description lists them.
+fn range_text(name: &str) -> Option<String> {
+    let bound = |x: f64| {
+        if x == SMALLEST_POSITIVE {
+            "0".to_string()
+        } else if x.abs() >= 1e6 {
+            format!("{x:e}")
+        } else {
+            format!("{x}")
+        }
+    };
+    match name {
+        "method" | "stress_recovery" => return None,
+        "drop_height" => return Some("0 to upper.length / 2 (500 at most)".into()),
+        "contact_position" => return Some("> 0, below upper.length".into()),
+        "step_free" | "step_contact" => return Some("\"auto\", or 1e-9 to 1".into()),
+        "modal_cutoff" => return Some("\"auto\", or > 0 up to 1e12".into()),
+        _ if name.contains("elements") => return Some(format!("\"auto\", or 1 to {MAX_ELEMENTS}")),
+        _ => {}
+    }
+    match range(name) {
+        (Some(min), Some(max)) if min == SMALLEST_POSITIVE => Some(format!("> 0, at most {}", bound(max))),
+        (Some(min), Some(max)) => Some(format!("{} to {}", bound(min), bound(max))),
+        (Some(min), None) if min == SMALLEST_POSITIVE => Some("> 0".into()),
+        (Some(min), None) => Some(format!(">= {}", bound(min))),
+        (None, Some(max)) => Some(format!("<= {}", bound(max))),
+        (None, None) => None,
+    }
+}
+
 /// `toml` (a scenario as [`Scenario::to_toml`] writes it) with each field's unit and description
 /// as a comment on its line, from this table (what `beam-impact scenario` prints; a TOML reader
 /// skips the comments). In TOML an automatic value is `"auto"`, where the FMU takes 0.
@@ -225,7 +313,8 @@ pub fn annotate_toml(toml: &str) -> String {
             Some(p) => {
                 let unit = if p.unit.is_empty() { "-" } else { p.unit };
                 let description = p.description.replace("0: automatic", "\"auto\": automatic");
-                out.push_str(&format!("{line}  # [{unit}] {description}\n"));
+                let range = range_text(p.name).map_or_else(String::new, |r| format!("; range {r}"));
+                out.push_str(&format!("{line}  # [{unit}] {description}{range}\n"));
             }
             None if key.as_deref().is_some_and(|k| k.ends_with(".tip_force")) => {
                 out.push_str(&format!(
@@ -239,4 +328,26 @@ pub fn annotate_toml(toml: &str) -> String {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `beam-impact scenario`: every field's line carries its unit and, where the scenario limits
+    /// it, its range, and the annotated text still reads back to the same scenario.
+    #[test]
+    fn annotated_scenario_states_units_and_ranges_and_reads_back() {
+        let text = annotate_toml(&Scenario::default().to_toml());
+        for (name, _, _) in RANGES {
+            let key = name.rsplit('.').next().unwrap_or(name);
+            let line = text.lines().find(|l| l.starts_with(&format!("{key} = "))).unwrap_or_else(|| panic!("{name}"));
+            assert!(line.contains("  # ["), "{name}: no unit: {line}");
+            let named_choice = matches!(*name, "method" | "stress_recovery");
+            assert_eq!(line.contains("; range "), !named_choice, "{name}: {line}");
+        }
+        assert!(text.contains("drop_height = 0.567  # [m] ") && text.contains("range 0 to upper.length / 2"));
+        assert!(text.contains("range 0.01 to 1000\n"), "upper.length's range");
+        assert_eq!(Scenario::from_toml(&text, "annotated").unwrap(), Scenario::default());
+    }
 }
