@@ -235,7 +235,8 @@ pub fn contact_windows(summary: &Summary, paper: bool) -> String {
         }
         let long: Vec<String> =
             separations(&summary.contact_windows, 0.05).iter().map(|(a, b)| format!("{a:.3}..{b:.3} s")).collect();
-        let _ = writeln!(s, "separations longer than 50 ms: {}", long.join(", "));
+        let long = if long.is_empty() { "none".to_string() } else { long.join(", ") };
+        let _ = writeln!(s, "separations longer than 50 ms: {long}");
     }
     s
 }

@@ -6,7 +6,7 @@
 //! utilisations are equal to the bit and the discretisation figure to round-off of the same
 //! numbers (tolerance 1e-12).
 
-mod fmi_common;
+use crate::fmi_common;
 
 use beam_impact::record::NullRecorder;
 use beam_impact::{answer, Scenario};

@@ -9,7 +9,7 @@
 //! The child drives the FMU through the C API (libloading) and asserts; the parent checks the
 //! folder.
 
-mod fmi_common;
+use crate::fmi_common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -8,7 +8,7 @@
 //! tolerance only leaves room for nothing. Scenarios span drop heights 0.1-2 m, damping
 //! 0.01-0.05 and contact positions 11-15 m (each with automatic steps, the FMU's default).
 
-mod fmi_common;
+use crate::fmi_common;
 
 use beam_impact::record::NullRecorder;
 use beam_impact::solver::TipForces;

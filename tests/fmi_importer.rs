@@ -7,7 +7,7 @@
 //! bit for bit. Rollback, deserialization and threads repeat the same calls, so those compare
 //! bit for bit.
 
-mod fmi_common;
+use crate::fmi_common;
 
 use std::sync::Arc;
 

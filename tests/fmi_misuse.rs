@@ -1,7 +1,7 @@
 //! Misuse of the C API: every case returns an error status (or null) with the reason logged,
 //! and the host process survives. One test per case of issue 3.
 
-mod fmi_common;
+use crate::fmi_common;
 
 use std::ffi::{c_char, c_int, c_void};
 

@@ -5,7 +5,7 @@
 //! PATH (a stand-in here), the host build with `--no-zigbuild`, and the host build with one
 //! warning line without cargo-zigbuild.
 
-mod fmi_common;
+use crate::fmi_common;
 
 use std::io::Read;
 

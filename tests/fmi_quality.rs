@@ -3,7 +3,7 @@
 //! when the energy residual first crosses `energy_tolerance`; `stress_recovery` is an Integer
 //! parameter (0 mean, 1 left, 2 right).
 
-mod fmi_common;
+use crate::fmi_common;
 
 use beam_impact::model::{StressRecovery, TimeStep};
 use beam_impact::record::NullRecorder;

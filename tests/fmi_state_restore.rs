@@ -10,7 +10,7 @@
 //! - A state of another scenario restores that scenario; damaged bytes (every single-bit flip)
 //!   and forged contents (a valid checksum over impossible values) are refused with the reason.
 
-mod fmi_common;
+use crate::fmi_common;
 
 use beam_impact::fmi::state::Snapshot;
 use fmi_common::importer::{load, Fmu2, Fmu3, ERROR, OK};

@@ -7,7 +7,7 @@
 //! properties. `BEAM_IMPACT_FUZZ_ITERATIONS=200000` runs a longer campaign; `fuzz/` holds the
 //! coverage-guided targets.
 
-mod fuzz_support;
+use crate::fuzz_support;
 
 use std::path::Path;
 use std::sync::OnceLock;

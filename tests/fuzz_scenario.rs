@@ -7,7 +7,7 @@
 //! lines deleted, duplicated and swapped, unknown keys and tables, deep nesting, and byte-level
 //! mutations. `BEAM_IMPACT_FUZZ_ITERATIONS` sets the number of mutations.
 
-mod fuzz_support;
+use crate::fuzz_support;
 
 use beam_impact::record::NullRecorder;
 use beam_impact::{Scenario, Simulation};

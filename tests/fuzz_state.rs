@@ -7,7 +7,7 @@
 //! (models up to 32 elements a segment, to keep the loop fast) and stepped for 1 ms.
 //! `BEAM_IMPACT_FUZZ_ITERATIONS` sets the number of mutations.
 
-mod fuzz_support;
+use crate::fuzz_support;
 
 use beam_impact::fmi::state::{parameters_of, scenario_with, Snapshot, HEADER};
 use beam_impact::record::NullRecorder;

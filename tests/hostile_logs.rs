@@ -8,7 +8,7 @@
 //! Sketch: each file is written to a temporary directory and `report` runs on it as a child
 //! process. Times and memory are not asserted here; `tests/corpus/measure-report.sh` measures them.
 
-mod fuzz_support;
+use crate::fuzz_support;
 
 use std::path::Path;
 use std::process::Command;

@@ -12,7 +12,7 @@ use beam_impact::replay::report::{read_log, summary_from_log};
 use beam_impact::results::StepResult;
 use beam_impact::{Scenario, Simulation};
 
-mod recording_support;
+use crate::recording_support;
 use recording_support::Tee;
 
 /// Runs `scenario` into a log with `options` and into memory.

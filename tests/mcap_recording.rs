@@ -15,7 +15,7 @@ use beam_impact::replay::report::{read_log, report, summary_from_log};
 use beam_impact::results::StepResult;
 use beam_impact::{Scenario, Simulation};
 
-mod recording_support;
+use crate::recording_support;
 use recording_support::Tee;
 
 #[test]

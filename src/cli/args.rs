@@ -22,8 +22,9 @@ pub struct Cli {
 pub enum Command {
     /// Run a scenario (default: the paper's) and print Tables 1-3 beside the paper.
     Run(RunArgs),
-    /// Print the default scenario as TOML (the paper's, with automatic energy-safe time steps),
-    /// to start a scenario file from.
+    /// Print the default scenario as TOML, every field with its unit and range, to start a
+    /// scenario file from: the paper's beams with the converged method and automatic energy-safe
+    /// steps. A field `x` under `[upper]` is `upper.x` for `--set`, `--vary` and the FMU.
     Scenario,
     /// The damping study of Appendix A: peaks for damping ratios 0 to 0.04.
     Damping {

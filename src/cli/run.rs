@@ -89,11 +89,13 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     let resolved = &answer.resolved;
 
     let mut text = format!(
-        "beam-impact: {} scenario, method {}, {} + {} elements, {:.3} s simulated\n\n",
+        "beam-impact: {} scenario, method {}, {} + {}/{} elements (arrestor + bridge to/beyond the contact), {:.3} s \
+         simulated\n\n",
         if paper { "paper" } else { "user" },
         if resolved.method == beam_impact::model::Method::Paper { "paper" } else { "converged" },
         resolved.lower.elements,
-        resolved.upper.elements_to_contact + resolved.upper.elements_beyond_contact,
+        resolved.upper.elements_to_contact,
+        resolved.upper.elements_beyond_contact,
         scenario.duration
     );
     text += &compare::comparison(summary, paper);

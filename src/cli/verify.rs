@@ -13,6 +13,8 @@ use super::common::{emit, io, scenario_with_settings};
 
 pub fn verify(file: Option<&Path>, set: &[String], json: Option<&Path>, tolerance: f64) -> Result<()> {
     use beam_impact::studies::verify::{default_threads, table, Plan, RUN_LABELS};
+    // The wall time covers the whole study: the plan builds each run's model and modes.
+    let started = Instant::now();
     let scenario = scenario_with_settings(file, set)?;
     let plan = Plan::new(&scenario, tolerance)?;
     let mut files: Vec<(&str, &Path)> = file.map(|f| ("the scenario file", f)).into_iter().collect();
@@ -22,7 +24,6 @@ pub fn verify(file: Option<&Path>, set: &[String], json: Option<&Path>, toleranc
         Some(path) => Some((path, OutputFile::create(path, true, "cannot create JSON")?)),
         None => None,
     };
-    let started = Instant::now();
     let multi = indicatif::MultiProgress::new();
     let style = ProgressStyle::with_template("{prefix:>12} {bar:40} {pos}/{len} ms simulated, {elapsed}")
         .unwrap_or_else(|_| ProgressStyle::default_bar());

@@ -1,0 +1,48 @@
+//! Every integration test of beam-impact, in one test binary: one link instead of one per file
+//! (the release build linked 38 binaries, each holding the whole library), and one pool of test
+//! threads across the files. Each file below is a module named after what it holds;
+//! `cargo test --release --test integration fmi_drift::` runs one file's tests.
+
+// Helpers shared by several files.
+mod fmi_common;
+mod fuzz_support;
+mod recording_support;
+
+mod answer;
+mod cli;
+mod cli_defects;
+mod closed_form;
+mod converged_references;
+mod energy_method;
+mod energy_safety;
+mod examples;
+mod figures;
+mod fmi_answer;
+mod fmi_default_log;
+mod fmi_description;
+mod fmi_drift;
+mod fmi_grid;
+mod fmi_importer;
+mod fmi_misuse;
+mod fmi_pack;
+mod fmi_quality;
+mod fmi_state_restore;
+mod fuzz_log_reader;
+mod fuzz_output_paths;
+mod fuzz_scenario;
+mod fuzz_state;
+mod hostile_logs;
+mod hostile_outputs;
+mod mcap_format2;
+mod mcap_killed;
+mod mcap_layout;
+mod mcap_recording;
+mod modes_fine_mesh;
+mod paper;
+mod reactions;
+mod report_csv;
+mod scenario;
+mod stepping;
+mod sweep;
+mod truncation;
+mod verify;
