@@ -9,7 +9,9 @@ use std::ffi::{c_char, c_int, c_uint, c_void};
 
 use super::boundary::{out, slice, slice_mut, string, utf8_string};
 use super::description;
-use super::instance::{log_with, Instance, Logger, Version};
+use super::instance::{Instance, Version};
+pub use super::logger::Fmi2CallbackLogger;
+use super::logger::{log_with, Logger};
 use super::resource;
 use super::slots;
 use super::state::Snapshot;
@@ -24,18 +26,6 @@ pub type Fmi2FmuState = *mut Snapshot;
 pub type Fmi2ValueReference = c_uint;
 /// `fmi2Boolean`: a 4-byte C int.
 pub type Fmi2Boolean = c_int;
-
-/// `fmi2CallbackLogger`: printf-style; this FMU always passes the format `"%s"` and one string.
-pub type Fmi2CallbackLogger = Option<
-    unsafe extern "C" fn(
-        component_environment: *mut c_void,
-        instance_name: *const c_char,
-        status: Status,
-        category: *const c_char,
-        message: *const c_char,
-        ...
-    ),
->;
 
 /// `fmi2CallbackFunctions`, as passed to [`fmi2Instantiate`].
 #[repr(C)]

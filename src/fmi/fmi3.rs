@@ -9,7 +9,9 @@ use std::ffi::{c_char, c_int, c_void};
 
 use super::boundary::{out, slice, slice_mut, string, utf8_string};
 use super::description;
-use super::instance::{log_with, Instance, Logger, Version};
+use super::instance::{Instance, Version};
+pub use super::logger::Fmi3LogMessageCallback;
+use super::logger::{log_with, Logger};
 use super::resource;
 use super::slots;
 use super::state::Snapshot;
@@ -22,16 +24,6 @@ pub type Fmi3Instance = *mut Instance;
 pub type Fmi3FmuState = *mut Snapshot;
 /// `fmi3ValueReference`.
 pub type Fmi3ValueReference = u32;
-
-/// `fmi3LogMessageCallback`.
-pub type Fmi3LogMessageCallback = Option<
-    unsafe extern "C" fn(
-        instance_environment: *mut c_void,
-        status: Status,
-        category: *const c_char,
-        message: *const c_char,
-    ),
->;
 
 /// `fmi3IntermediateUpdateCallback` (accepted, not called: providesIntermediateUpdate is false).
 pub type Fmi3IntermediateUpdateCallback = Option<

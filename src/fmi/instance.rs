@@ -3,15 +3,14 @@
 //! through [`Instance::guard`], which checks the allowed states, catches panics and logs errors
 //! before the error status is returned.
 
-use std::ffi::{c_char, c_void, CString};
+use std::ffi::{c_char, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 use std::time::{SystemTime, UNIX_EPOCH};
 
 use super::boundary::panic_message;
 use super::description;
-use super::fmi2::Fmi2CallbackLogger;
-use super::fmi3::Fmi3LogMessageCallback;
+use super::logger::{c_string, log_with, Logger};
 use super::state::{parameters_of, scenario_with, Snapshot};
 use super::status::{Mask, State, Status};
 use super::variables::{table, Column, Source, Tip, Type, Variable};
@@ -32,49 +31,6 @@ pub enum Version {
     Fmi2,
     /// FMI 3.0 (`fmi3InstantiateCoSimulation`).
     Fmi3,
-}
-
-/// The importer's logging callback, handed back its environment pointer untouched.
-#[derive(Clone, Copy, Debug)]
-pub enum Logger {
-    /// FMI 2: printf-style, always called with the format `"%s"`.
-    Fmi2 {
-        /// The callback.
-        callback: Fmi2CallbackLogger,
-        /// `componentEnvironment`.
-        environment: *mut c_void,
-    },
-    /// FMI 3: `logMessage(env, status, category, message)`.
-    Fmi3 {
-        /// The callback.
-        callback: Fmi3LogMessageCallback,
-        /// `instanceEnvironment`.
-        environment: *mut c_void,
-    },
-}
-
-/// Turns text into a C string, replacing interior NULs.
-pub fn c_string(text: &str) -> CString {
-    CString::new(text.replace('\0', "\u{fffd}")).unwrap_or_default()
-}
-
-/// Logs a message through a logger without an instance (failed instantiation).
-pub fn log_with(logger: Logger, instance_name: &str, status: Status, category: &str, message: &str) {
-    let (name, category, message) = (c_string(instance_name), c_string(category), c_string(message));
-    match logger {
-        Logger::Fmi2 { callback: Some(f), environment } => {
-            // SAFETY: the importer's callback with NUL-terminated strings that outlive the call;
-            // the format is always "%s" with exactly one string argument.
-            unsafe {
-                f(environment, name.as_ptr(), status, category.as_ptr(), c"%s".as_ptr(), message.as_ptr());
-            }
-        }
-        Logger::Fmi3 { callback: Some(f), environment } => {
-            // SAFETY: the importer's callback with NUL-terminated strings that outlive the call.
-            unsafe { f(environment, status, category.as_ptr(), message.as_ptr()) }
-        }
-        _ => {}
-    }
 }
 
 /// The result of one `DoStep`.

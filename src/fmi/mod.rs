@@ -4,6 +4,7 @@
 //! - [`status`]: status codes, the state enum and the allowed-states table per function.
 //! - [`variables`]: the variable table (value references, names, units, start values).
 //! - [`instance`]: one instance: parameters, simulation, MCAP log, state machine.
+//! - [`logger`]: the importer's logging callbacks (their C types) and the call into them.
 //! - [`fmi2`], [`fmi3`]: the exported C functions; they check arguments and delegate.
 //! - [`state`]: FMU state snapshots and their portable byte format; [`slots`]: the importer's handles to them.
 //! - [`resource`]: resource-location parsing.
@@ -15,6 +16,7 @@ pub mod description;
 pub mod fmi2;
 pub mod fmi3;
 pub mod instance;
+pub mod logger;
 pub mod pack;
 pub mod resource;
 pub mod slots;

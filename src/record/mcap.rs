@@ -45,11 +45,15 @@ use std::path::{Path, PathBuf};
 use std::sync::mpsc::{sync_channel, SyncSender};
 use std::sync::{Arc, OnceLock};
 use std::thread::JoinHandle;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use ::mcap::{Compression, WriteOptions};
-use prost::Message;
 
+pub use super::log_format::{
+    ANSWER_ATTACHMENT, CONTACT_TOPIC, LOG_FORMAT, LOG_FORMAT_KEY, LOG_TOPIC, MODEL_TOPIC, MODES_TOPIC, ROLLBACK_LINE,
+    SCENARIO_ATTACHMENT, SCENARIO_METADATA, SCENE_TOPIC, SIZE_CAP_LINE, STEP_TOPIC,
+};
+pub use super::options::{LogCompression, RecorderOptions, RecorderTiming, MAX_LOG_BYTES};
 use super::scene::SceneBuilder;
 use super::schema::{self, ModelMessage};
 use super::writer::{error_chain, Batch, Channels, Item, LogWriter, StartRecord};
@@ -58,141 +62,9 @@ use super::{Recorder, RunInfo};
 use crate::error::{Error, Result};
 use crate::results::{ContactEvent, StepResult};
 
-/// Topic of the step messages.
-pub const STEP_TOPIC: &str = "/beam/step";
-/// Topic of the modal coordinates (log format 2).
-pub const MODES_TOPIC: &str = "/beam/modes";
-/// Topic of the contact events.
-pub const CONTACT_TOPIC: &str = "/beam/contact";
-/// Topic of the one-off model message.
-pub const MODEL_TOPIC: &str = "/beam/model";
-/// Topic of the 3D scene.
-pub const SCENE_TOPIC: &str = "/beam/scene";
-/// Topic of the log lines.
-pub const LOG_TOPIC: &str = "/beam/log";
-/// The attachment holding the CLI's answer with its checks (`quality`, `design`,
-/// `discretisation` as `run --json` writes them), added after the run's last step.
-pub const ANSWER_ATTACHMENT: &str = "answer.json";
-/// Name of the scenario's Metadata record.
-pub const SCENARIO_METADATA: &str = "scenario";
-/// Name of the scenario's TOML attachment.
-pub const SCENARIO_ATTACHMENT: &str = "scenario.toml";
-/// Key of the log format in the scenario's Metadata record (absent in format 1 logs).
-pub const LOG_FORMAT_KEY: &str = "log_format";
-/// The format this recorder writes: 2 = modal coordinates on `/beam/modes`.
-pub const LOG_FORMAT: u32 = 2;
-
-/// How the log's chunks are compressed.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum LogCompression {
-    /// None, the default: the solver's results are doubles that compress poorly (LZ4 saves
-    /// about 20 %, zstd 35 %) while compressing takes the writer thread longer than the solver's
-    /// step takes (see `beam-impact bench`); without it recording keeps pace with the solver.
-    #[default]
-    None,
-    /// LZ4 frames: a 20 % smaller file, at about twice the writer thread's work.
-    Lz4,
-    /// zstd at [`RecorderOptions::compression_level`]: the smallest file, the slowest writer.
-    Zstd,
-}
-
-impl std::str::FromStr for LogCompression {
-    type Err = String;
-    fn from_str(s: &str) -> std::result::Result<Self, String> {
-        match s {
-            "lz4" => Ok(LogCompression::Lz4),
-            "zstd" => Ok(LogCompression::Zstd),
-            "none" => Ok(LogCompression::None),
-            other => Err(format!("log compression must be lz4, zstd or none, got \"{other}\"")),
-        }
-    }
-}
-
-impl std::fmt::Display for LogCompression {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            LogCompression::Lz4 => "lz4",
-            LogCompression::Zstd => "zstd",
-            LogCompression::None => "none",
-        })
-    }
-}
-
-/// How the log is written. The defaults: no compression, chunks up to 256 KiB, a flush every 1000 steps and
-/// at contact events, a scene and modal coordinates every 1 ms of simulated time, every step.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct RecorderOptions {
-    /// Target uncompressed chunk size, bytes (64-256 KiB: a killed run loses at most one).
-    pub chunk_size: u64,
-    /// Chunk compression.
-    pub compression: LogCompression,
-    /// zstd level (1 is the fastest; 0 means zstd's default, 3); LZ4 ignores it.
-    pub compression_level: u32,
-    /// Steps between flushes (each flush closes the chunk and hands it to the OS).
-    pub flush_every: u64,
-    /// Simulated time between two scene updates, ns (0: no scene).
-    pub scene_interval_ns: u64,
-    /// Simulated time between two regular `/beam/modes` messages, ns (0: only at step 0, peaks,
-    /// contact changes and the last step).
-    pub modes_interval_ns: u64,
-    /// Write `/beam/modes` at all (the scene is drawn either way).
-    pub modal_coordinates: bool,
-    /// Record every Nth step (1: every step); see the module's decimation rule.
-    pub record_every: u64,
-    /// Clock every message's encoding and writing (for the benchmark's breakdown: the clock
-    /// reads, four a message, slow the writer noticeably). The writer thread's CPU time and the
-    /// solver's wait for the queue are measured either way.
-    pub timing: bool,
-    /// Accept a device as the log (the CLI's `/dev/null`); the FMU wants a regular file.
-    pub allow_devices: bool,
-    /// Size at which the log stops (checked at every flush), bytes: the run goes on unrecorded
-    /// and [`McapRecorder::capped`] says so. [`MAX_LOG_BYTES`] by default.
-    pub max_bytes: u64,
-}
-
-/// Default size cap of a log: 2 GiB, about 7.7 million steps of the paper's model (278 B each).
-pub const MAX_LOG_BYTES: u64 = 2 << 30;
-
 /// Steps a killed process may lose with the default options: the writer's open chunk (a flush
 /// every 1000 steps), the queue and the batch the writer is on, and the batch being gathered.
 pub const UNFLUSHED_STEPS_BOUND: u64 = 1000 + ((QUEUE_BATCHES + 2) * BATCH_STEPS) as u64;
-
-impl Default for RecorderOptions {
-    fn default() -> Self {
-        RecorderOptions {
-            // A chunk closes once it passes this size, so it ends at most one message (< 1 KiB)
-            // above it: 255 KiB keeps every chunk within 256 KiB.
-            chunk_size: 255 * 1024,
-            compression: LogCompression::default(),
-            compression_level: 1,
-            flush_every: 1000,
-            scene_interval_ns: 1_000_000,
-            modes_interval_ns: 1_000_000,
-            modal_coordinates: true,
-            record_every: 1,
-            timing: false,
-            allow_devices: false,
-            max_bytes: MAX_LOG_BYTES,
-        }
-    }
-}
-
-/// Time spent in the recorder: `encode` and `write` when [`RecorderOptions::timing`] is on, the
-/// rest always.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct RecorderTiming {
-    /// Building and protobuf-encoding messages (writer thread).
-    pub encode: Duration,
-    /// Handing messages to the MCAP writer: chunking, compression, CRCs, file writes, flushes,
-    /// finish (writer thread).
-    pub write: Duration,
-    /// Time the solver's thread waited for room in the queue (the writer was behind).
-    pub queue_wait: Duration,
-    /// CPU time of the writer thread, start to finish (what it costs a second core).
-    pub writer_cpu: Duration,
-    /// Messages written.
-    pub messages: u64,
-}
 
 /// Writes the steps of a run to an MCAP file, on a writer thread of its own.
 pub struct McapRecorder {
@@ -456,18 +328,6 @@ fn add_channels<W: std::io::Write + std::io::Seek>(w: &mut ::mcap::Writer<W>) ->
         scene: w.add_channel(scene_schema, SCENE_TOPIC, "protobuf", &none)?,
         modes: w.add_channel(modes_schema, MODES_TOPIC, "protobuf", &none)?,
     })
-}
-
-/// How the log line of a rollback starts (the reader recognises it).
-pub const ROLLBACK_LINE: &str = "rolled back to";
-
-/// What the warning line of a log stopped at its size cap says (the reader recognises it).
-pub const SIZE_CAP_LINE: &str = "reached its size cap";
-
-/// Encodes `message` into the cleared `buffer`. Encoding into a Vec cannot fail: it grows.
-pub(super) fn encode_into(buffer: &mut Vec<u8>, message: &impl Message) {
-    buffer.clear();
-    message.encode(buffer).expect("encoding into a Vec cannot run out of space");
 }
 
 /// The scenario's TOML flattened to dotted keys (`upper.length` -> `29.0`).

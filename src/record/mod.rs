@@ -1,6 +1,6 @@
 //! Writing results: the [`Recorder`] the simulation writes into, the MCAP log ([`mcap`], its
-//! writer thread [`writer`], the messages [`schema`] and their encoding [`step_encoding`], the
-//! Foxglove scene [`scene`]), the guard every output file goes through ([`output`]) and the
+//! writer thread [`writer`], its names [`log_format`] and [`options`], the messages [`schema`] and
+//! their encoding [`step_encoding`], the Foxglove scene [`scene`]), the guard every output file goes through ([`output`]) and the
 //! recording benchmark ([`mod@bench`]). The physics never sees a file format; reading a log back
 //! and drawing it is [`crate::replay`]'s.
 
@@ -123,6 +123,8 @@ pub mod mcap;
 pub mod output;
 
 pub mod bench;
+pub mod log_format;
+pub mod options;
 pub mod scene;
 pub mod schema;
 pub mod step_encoding;

@@ -19,9 +19,8 @@ use ::mcap::records::{MessageHeader, Metadata};
 use ::mcap::{Attachment, Writer};
 use prost::Message;
 
-use super::mcap::{
-    RecorderOptions, RecorderTiming, ROLLBACK_LINE, SCENARIO_ATTACHMENT, SCENARIO_METADATA, SIZE_CAP_LINE,
-};
+use super::log_format::{ROLLBACK_LINE, SCENARIO_ATTACHMENT, SCENARIO_METADATA, SIZE_CAP_LINE};
+use super::options::{RecorderOptions, RecorderTiming};
 use super::scene::SceneBuilder;
 use super::schema::{self, ContactEventMessage, LogMessage, ModalCoordinatesMessage, ModelMessage, TimeMessage};
 use crate::error::{Error, Result};
@@ -52,6 +51,12 @@ fn lap(started: Option<Instant>, total: &mut std::time::Duration) {
     if let Some(t) = started {
         *total += t.elapsed();
     }
+}
+
+/// Encodes `message` into the cleared `buffer`. Encoding into a Vec cannot fail: it grows.
+fn encode_into(buffer: &mut Vec<u8>, message: &impl Message) {
+    buffer.clear();
+    message.encode(buffer).expect("encoding into a Vec cannot run out of space");
 }
 
 /// What the recorder writes once, at the start of a run.
@@ -242,7 +247,7 @@ impl LogWriter {
 
     fn encode(&mut self, message: &impl Message) {
         let started = self.options.timing.then(Instant::now);
-        super::mcap::encode_into(&mut self.buffer, message);
+        encode_into(&mut self.buffer, message);
         lap(started, &mut self.timing.encode);
     }
 
@@ -302,14 +307,14 @@ impl LogWriter {
             self.modes.coordinates.clear();
             self.modes.coordinates.extend_from_slice(q);
             let started = self.options.timing.then(Instant::now);
-            super::mcap::encode_into(&mut self.buffer, &self.modes);
+            encode_into(&mut self.buffer, &self.modes);
             lap(started, &mut self.timing.encode);
             self.write_buffer(self.channels.modes, log_time_ns)?;
         }
         if scene {
             if let Some(builder) = self.scene.as_mut() {
                 let started = self.options.timing.then(Instant::now);
-                super::mcap::encode_into(&mut self.buffer, builder.update(time_ns, q));
+                encode_into(&mut self.buffer, builder.update(time_ns, q));
                 lap(started, &mut self.timing.encode);
                 self.write_buffer(self.channels.scene, time_ns)?;
             }

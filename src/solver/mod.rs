@@ -1,5 +1,6 @@
 //! Solution methods: natural modes, the linear acceleration stepper (production and dense
-//! oracle), the contact stage, initial conditions and the energy approach. No I/O, no unsafe.
+//! oracle), the truncated basis and its static correction, the contact stage, initial conditions
+//! and the energy approach. No I/O, no unsafe.
 
 pub mod contact;
 pub mod dense;
@@ -9,6 +10,7 @@ pub mod initial;
 pub mod kinematics;
 pub mod modal;
 pub mod secular;
+pub mod static_correction;
 pub mod step_extrema;
 pub mod step_plan;
 pub mod stepper;

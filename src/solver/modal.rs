@@ -5,7 +5,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::eigen::{natural_modes, Modes};
 use super::secular::coupled_modes;
-use super::truncation::{block_columns, StaticCorrection};
+use super::static_correction::StaticCorrection;
 use crate::error::Result;
 use crate::model::{damping, Model, REACTIONS};
 
@@ -142,4 +142,14 @@ impl ModalSystem {
     pub fn is_truncated(&self) -> bool {
         self.dofs() < self.full_dofs
     }
+}
+
+/// [lower 0; 0 upper] for blocks of any shape.
+pub(crate) fn block_columns(lower: &DMatrix<f64>, upper: &DMatrix<f64>) -> DMatrix<f64> {
+    let (rl, cl) = lower.shape();
+    let (ru, cu) = upper.shape();
+    let mut a = DMatrix::zeros(rl + ru, cl + cu);
+    a.view_mut((0, 0), (rl, cl)).copy_from(lower);
+    a.view_mut((rl, cl), (ru, cu)).copy_from(upper);
+    a
 }

@@ -283,7 +283,7 @@ impl Stepper for ModalStepper {
             // The static correction's contact load -F_c = -k_eff (b . q + s) moves at -k_eff b . v.
             let load_rate = -s.bar_stiffness * rates[Probe::Gap as usize];
             for (rate, row) in rates.iter_mut().zip(&s.correction.probes) {
-                *rate += row[crate::solver::truncation::CONTACT] * load_rate;
+                *rate += row[super::static_correction::CONTACT] * load_rate;
             }
         }
         rates
