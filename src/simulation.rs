@@ -14,7 +14,9 @@ use crate::results::{
 };
 use crate::solver::contact::{self, Stage};
 use crate::solver::initial::initial_state;
-use crate::solver::{DenseStepper, EnergyMethod, Kinematics, ModalStepper, ModalSystem, StepPlan, Stepper, TipForces};
+use crate::solver::{
+    DenseStepper, Energies, EnergyMethod, Kinematics, ModalStepper, ModalSystem, StepPlan, Stepper, TipForces,
+};
 
 /// Everything that changes during a run: enough to restore it exactly (FMU state, rollback).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -439,26 +441,9 @@ impl<S: Stepper> Simulation<S> {
         result.time = seconds(result.time_ns);
         result.step_size = dt;
         result.peaks = previous.peaks;
-        let last = self.state.last_forces;
-        let work = 0.5 * (last.upper + forces.upper) * (result.upper_tip_deflection - previous.upper_tip_deflection)
-            + 0.5 * (last.lower + forces.lower) * (result.lower_tip_deflection - previous.lower_tip_deflection);
-        let bar = if stage.is_contact() {
-            contact::bar_energy(self.model.bar_stiffness, probes[Probe::Gap as usize])
-        } else {
-            0.0
-        };
-        let mut energy = EnergyAccount {
-            kinetic: energies.kinetic,
-            strain: energies.beam_strain + bar,
-            gravity_potential: energies.gravity_potential,
-            external_work: previous.energy.external_work + work,
-            damping_dissipation: previous.energy.damping_dissipation
-                + 0.5 * dt * (self.state.dissipation_rate + energies.dissipation_rate),
-            residual: 0.0,
-        };
-        energy.residual = energy.kinetic + energy.strain + energy.gravity_potential + energy.damping_dissipation
-            - energy.external_work
-            - self.state.initial_energy;
+        // `self.state` still describes the step's start (its result, forces and dissipation rate
+        // are updated below).
+        let energy = self.energy_account(&self.state, &result, stage, probes[Probe::Gap as usize], &energies, dt);
         result.energy = energy;
         self.state.max_residual = self.state.max_residual.max(energy.residual.abs());
         self.state.max_strain_energy = self.state.max_strain_energy.max(energy.strain);
@@ -712,29 +697,8 @@ impl<S: Stepper> Simulation<S> {
         let (probes, energies) = self.stepper.measure(&kinematics, stage, before.forces);
         let mut result = self.outputs(&probes, stage);
         self.set_support_and_tips(&mut result, &kinematics);
-        // The work and the dissipation up to the point, booked as the step books them: the tip
-        // forces' trapezoid over the deflection change, the dissipation rate's over the time.
-        let (last, forces) = (before.last_forces, before.forces);
-        let work = 0.5 * (last.upper + forces.upper) * (result.upper_tip_deflection - start.upper_tip_deflection)
-            + 0.5 * (last.lower + forces.lower) * (result.lower_tip_deflection - start.lower_tip_deflection);
-        let dissipated = 0.5 * tau * (before.dissipation_rate + energies.dissipation_rate);
-        let bar = if stage.is_contact() {
-            contact::bar_energy(self.model.bar_stiffness, probes[Probe::Gap as usize])
-        } else {
-            0.0
-        };
-        let mut energy = EnergyAccount {
-            kinetic: energies.kinetic,
-            strain: energies.beam_strain + bar,
-            gravity_potential: energies.gravity_potential,
-            external_work: start.energy.external_work + work,
-            damping_dissipation: start.energy.damping_dissipation + dissipated,
-            residual: 0.0,
-        };
-        energy.residual = energy.kinetic + energy.strain + energy.gravity_potential + energy.damping_dissipation
-            - energy.external_work
-            - self.state.initial_energy;
-        result.energy = energy;
+        // The work and the dissipation up to the point, booked as the step books them.
+        result.energy = self.energy_account(before, &result, stage, probes[Probe::Gap as usize], &energies, tau);
         result.step = start.step;
         result.time_ns = at_ns;
         result.time = seconds(at_ns);
@@ -748,6 +712,40 @@ impl<S: Stepper> Simulation<S> {
             result.peaks.raise(&extremes.map(|(v, _)| v));
         }
         result
+    }
+
+    /// The energy account at `reached`, `interval` s after `before`'s latest step (a whole step's
+    /// end, or a point inside the step): the tip forces' work as a trapezoid over the deflection
+    /// change, the dissipation rate's trapezoid over the time, the bar's energy in contact, and
+    /// the residual against the initial total. One function so that [`Self::step`] and the
+    /// interpolated outputs book them the same way.
+    fn energy_account(
+        &self,
+        before: &RunState,
+        reached: &StepResult,
+        stage: Stage,
+        gap: f64,
+        energies: &Energies,
+        interval: f64,
+    ) -> EnergyAccount {
+        let start = &before.result;
+        let (last, forces) = (before.last_forces, before.forces);
+        let work = 0.5 * (last.upper + forces.upper) * (reached.upper_tip_deflection - start.upper_tip_deflection)
+            + 0.5 * (last.lower + forces.lower) * (reached.lower_tip_deflection - start.lower_tip_deflection);
+        let dissipated = 0.5 * interval * (before.dissipation_rate + energies.dissipation_rate);
+        let bar = if stage.is_contact() { contact::bar_energy(self.model.bar_stiffness, gap) } else { 0.0 };
+        let mut energy = EnergyAccount {
+            kinetic: energies.kinetic,
+            strain: energies.beam_strain + bar,
+            gravity_potential: energies.gravity_potential,
+            external_work: start.energy.external_work + work,
+            damping_dissipation: start.energy.damping_dissipation + dissipated,
+            residual: 0.0,
+        };
+        energy.residual = energy.kinetic + energy.strain + energy.gravity_potential + energy.damping_dissipation
+            - energy.external_work
+            - self.state.initial_energy;
+        energy
     }
 
     /// Sends the run's description and the initial state (step 0) to `recorder`.

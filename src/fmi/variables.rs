@@ -213,7 +213,7 @@ pub fn format_real(value: f64) -> String {
 type Out = fn(&StepResult) -> f64;
 
 /// The real outputs: name, unit, description, accessor.
-const OUTPUTS: &[(&str, &str, &str, Out)] = &[
+const OUTPUTS: &[OutputRow] = &[
     ("lower.tip_deflection", "m", "Deflection of the arrestor's free end (y up: negative downward)", |r| {
         r.lower_tip_deflection
     }),
@@ -265,7 +265,7 @@ const OUTPUTS: &[(&str, &str, &str, Out)] = &[
 /// Real outputs added after the first release (issue 8: what a system engineer couples the
 /// platforms and tip springs to), appended at the end of [`table`] so that older value
 /// references stay as they were.
-const APPENDED_OUTPUTS: &[(&str, &str, &str, Out)] = &[
+const APPENDED_OUTPUTS: &[OutputRow] = &[
     (
         "lower.clamp_reaction_force",
         "N",
@@ -323,19 +323,19 @@ pub fn is_appended_parameter(p: &Parameter) -> bool {
     matches!((index(p.name), index("energy_tolerance")), (Some(i), Some(first)) if i >= first)
 }
 
+/// A variable as [`table`] lists it, before its value reference and declared range: name,
+/// type, causality, variability, initial (see [`Variable::exact`]), unit, description, start
+/// value, source.
+type Row = (String, Type, Causality, Variability, Option<bool>, Option<&'static str>, String, Option<String>, Source);
+
+/// An entry of [`OUTPUTS`] and [`APPENDED_OUTPUTS`]: name, unit, description, accessor.
+type OutputRow = (&'static str, &'static str, &'static str, Out);
+
 /// Every variable of the FMU, in value-reference order.
 pub fn table() -> Vec<Variable> {
     let defaults = Scenario::default();
     let mut v: Vec<Variable> = Vec::new();
-    let mut push = |name: String,
-                    ty: Type,
-                    causality: Causality,
-                    variability: Variability,
-                    exact: Option<bool>,
-                    unit: Option<&'static str>,
-                    description: String,
-                    start: Option<String>,
-                    source: Source| {
+    let mut push = |(name, ty, causality, variability, exact, unit, description, start, source): Row| {
         let vr = v.len() as u32;
         let (min, max) = match source {
             Source::Parameter(p) => declared_range(p),
@@ -343,7 +343,7 @@ pub fn table() -> Vec<Variable> {
         };
         v.push(Variable { name, vr, ty, causality, variability, exact, unit, min, max, description, start, source });
     };
-    push(
+    push((
         "time".into(),
         Type::Real,
         Causality::Independent,
@@ -353,31 +353,45 @@ pub fn table() -> Vec<Variable> {
         "Simulated time since the impact starts".into(),
         None,
         Source::Time,
-    );
-    let parameter = |p: &'static Parameter| {
+    ));
+    // The two parameter blocks (first release, appended) and the two output blocks (first
+    // release, appended) differ only in which entries they take.
+    let parameter = |p: &'static Parameter| -> Row {
         let value = (p.get)(&defaults);
         let (ty, start) = match p.kind {
             Kind::Real => (Type::Real, format_real(value)),
             Kind::Integer => (Type::Integer, format!("{}", value as i64)),
         };
         let unit = (!p.unit.is_empty()).then_some(p.unit);
-        (p.name.to_string(), ty, unit, p.description.to_string(), start)
-    };
-    for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && !is_appended_parameter(p)) {
-        let (name, ty, unit, description, start) = parameter(p);
-        push(
-            name,
+        (
+            p.name.to_string(),
             ty,
             Causality::Parameter,
             Variability::Fixed,
             Some(true),
             unit,
-            description,
+            p.description.to_string(),
             Some(start),
             Source::Parameter(p),
-        );
+        )
+    };
+    let output = |&(name, unit, description, get): &OutputRow| -> Row {
+        (
+            name.into(),
+            Type::Real,
+            Causality::Output,
+            Variability::Continuous,
+            Some(false),
+            Some(unit),
+            description.into(),
+            None,
+            Source::Output(get),
+        )
+    };
+    for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && !is_appended_parameter(p)) {
+        push(parameter(p));
     }
-    push(
+    push((
         "log.path".into(),
         Type::String,
         Causality::Parameter,
@@ -390,11 +404,11 @@ pub fn table() -> Vec<Variable> {
             .into(),
         Some("BeamImpact.mcap".into()),
         Source::LogPath,
-    );
+    ));
     for (name, tip, what) in
         [("upper.tip_force", Tip::Upper, "bridge's free end"), ("lower.tip_force", Tip::Lower, "arrestor's free end")]
     {
-        push(
+        push((
             name.into(),
             Type::Real,
             Causality::Input,
@@ -404,22 +418,12 @@ pub fn table() -> Vec<Variable> {
             format!("Vertical external force at the {what}, up positive, held over each step"),
             Some("0.0".into()),
             Source::Input(tip),
-        );
+        ));
     }
-    for &(name, unit, description, get) in OUTPUTS {
-        push(
-            name.into(),
-            Type::Real,
-            Causality::Output,
-            Variability::Continuous,
-            Some(false),
-            Some(unit),
-            description.into(),
-            None,
-            Source::Output(get),
-        );
+    for row in OUTPUTS {
+        push(output(row));
     }
-    push(
+    push((
         "contact.active".into(),
         Type::Boolean,
         Causality::Output,
@@ -429,14 +433,14 @@ pub fn table() -> Vec<Variable> {
         "Whether the latest internal step was taken in contact (Eq. 6)".into(),
         None,
         Source::ContactActive,
-    );
+    ));
     for (column, key, what) in [
         (Column::Lower, "lower", "the arrestor alone"),
         (Column::Upper, "upper", "the bridge alone"),
         (Column::Coupled, "coupled", "the coupled system (bar always active)"),
     ] {
         for k in 0..MODES {
-            push(
+            push((
                 format!("modes.{key}.omega[{}]", k + 1),
                 Type::Real,
                 Causality::CalculatedParameter,
@@ -446,11 +450,11 @@ pub fn table() -> Vec<Variable> {
                 format!("Natural frequency {} of {what} (Table 2)", k + 1),
                 None,
                 Source::Mode(column, k),
-            );
+            ));
         }
     }
     for &(name, unit, description, get) in ENERGY_METHOD {
-        push(
+        push((
             format!("energy_method.{name}"),
             Type::Real,
             Causality::CalculatedParameter,
@@ -460,26 +464,16 @@ pub fn table() -> Vec<Variable> {
             description.into(),
             None,
             Source::EnergyMethod(get),
-        );
+        ));
     }
-    for &(name, unit, description, get) in APPENDED_OUTPUTS {
-        push(
-            name.into(),
-            Type::Real,
-            Causality::Output,
-            Variability::Continuous,
-            Some(false),
-            Some(unit),
-            description.into(),
-            None,
-            Source::Output(get),
-        );
+    for row in APPENDED_OUTPUTS {
+        push(output(row));
     }
     for (k, name) in ["lower.clamp_bending_stress", "lower.clamp_shear_stress", "upper.contact_bending_stress"]
         .into_iter()
         .enumerate()
     {
-        push(
+        push((
             format!("utilisation.{name}"),
             Type::Real,
             Causality::Output,
@@ -489,9 +483,9 @@ pub fn table() -> Vec<Variable> {
             format!("Design check: running peak of {name} over its allowable stress (fails above 1)"),
             None,
             Source::Utilisation(k),
-        );
+        ));
     }
-    push(
+    push((
         "design.pass".into(),
         Type::Boolean,
         Causality::Output,
@@ -501,8 +495,8 @@ pub fn table() -> Vec<Variable> {
         "Design check: every utilisation.* <= 1".into(),
         None,
         Source::DesignPass,
-    );
-    push(
+    ));
+    push((
         "quality.trusted".into(),
         Type::Boolean,
         Causality::Output,
@@ -514,8 +508,8 @@ pub fn table() -> Vec<Variable> {
             .into(),
         None,
         Source::Trusted,
-    );
-    push(
+    ));
+    push((
         "quality.discretisation_error".into(),
         Type::Real,
         Causality::Output,
@@ -527,8 +521,8 @@ pub fn table() -> Vec<Variable> {
             .into(),
         None,
         Source::DiscretisationError,
-    );
-    push(
+    ));
+    push((
         "quality.sensitivity_spread".into(),
         Type::Real,
         Causality::Output,
@@ -541,22 +535,11 @@ pub fn table() -> Vec<Variable> {
             .into(),
         None,
         Source::SensitivitySpread,
-    );
+    ));
     for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && is_appended_parameter(p)) {
-        let (name, ty, unit, description, start) = parameter(p);
-        push(
-            name,
-            ty,
-            Causality::Parameter,
-            Variability::Fixed,
-            Some(true),
-            unit,
-            description,
-            Some(start),
-            Source::Parameter(p),
-        );
+        push(parameter(p));
     }
-    push(
+    push((
         "check_sensitivity".into(),
         Type::Boolean,
         Causality::Parameter,
@@ -568,7 +551,7 @@ pub fn table() -> Vec<Variable> {
             .into(),
         Some("false".into()),
         Source::CheckSensitivity,
-    );
+    ));
     v
 }
 

@@ -359,9 +359,20 @@ impl Stepper for ModalStepper {
     }
 }
 
-/// sum a_i b_i in four lanes (the compiler vectorises it; a plain loop's single accumulator
-/// cannot be reordered).
+/// sum a_i b_i in four lanes.
 fn dot(a: &[f64], b: &[f64]) -> f64 {
+    four_lanes(a, b, |x, y| x * y)
+}
+
+/// sum w_i x_i^2 in four lanes.
+fn weighted_squares(w: &[f64], x: &[f64]) -> f64 {
+    four_lanes(w, x, |u, y| u * y * y)
+}
+
+/// sum term(a_i, b_i) over the common length, in four lanes (the compiler vectorises it; a plain
+/// loop's single accumulator cannot be reordered), the lanes added pairwise and then the tail.
+#[inline(always)]
+fn four_lanes(a: &[f64], b: &[f64], term: impl Fn(f64, f64) -> f64) -> f64 {
     let n = a.len().min(b.len());
     let (a, b) = (&a[..n], &b[..n]);
     let mut lanes = [0.0f64; 4];
@@ -369,25 +380,9 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     let (ra, rb) = (ca.remainder(), cb.remainder());
     for (x, y) in ca.zip(cb) {
         for l in 0..4 {
-            lanes[l] += x[l] * y[l];
+            lanes[l] += term(x[l], y[l]);
         }
     }
-    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
-    (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) + tail
-}
-
-/// sum w_i x_i^2 in four lanes.
-fn weighted_squares(w: &[f64], x: &[f64]) -> f64 {
-    let n = w.len().min(x.len());
-    let (w, x) = (&w[..n], &x[..n]);
-    let mut lanes = [0.0f64; 4];
-    let (cw, cx) = (w.chunks_exact(4), x.chunks_exact(4));
-    let (rw, rx) = (cw.remainder(), cx.remainder());
-    for (u, y) in cw.zip(cx) {
-        for l in 0..4 {
-            lanes[l] += u[l] * y[l] * y[l];
-        }
-    }
-    let tail: f64 = rw.iter().zip(rx).map(|(u, y)| u * y * y).sum();
+    let tail: f64 = ra.iter().zip(rb).map(|(&x, &y)| term(x, y)).sum();
     (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) + tail
 }

@@ -105,11 +105,95 @@ pub fn load() -> Arc<Library> {
 }
 
 macro_rules! sym {
-    ($lib:expr, $name:literal, $t:ty) => {{
+    ($lib:expr, $name:expr, $t:ty) => {{
         // SAFETY: the symbol has this signature (include/beam_impact.h).
-        let f: libloading::Symbol<$t> = unsafe { $lib.get(concat!($name, "\0").as_bytes()) }.unwrap();
+        let f: libloading::Symbol<$t> = unsafe { $lib.get(format!("{}\0", $name).as_bytes()) }.unwrap();
         *f
     }};
+}
+
+/// The FMU-state functions of one FMI version: the calls are the same, the names differ
+/// (FMI 2 writes `FMUstate` and `DeSerialize`, FMI 3 `FMUState` and `Deserialize`).
+struct StateNames {
+    get: &'static str,
+    set: &'static str,
+    free: &'static str,
+    size: &'static str,
+    serialize: &'static str,
+    deserialize: &'static str,
+}
+
+const FMI2_STATES: StateNames = StateNames {
+    get: "fmi2GetFMUstate",
+    set: "fmi2SetFMUstate",
+    free: "fmi2FreeFMUstate",
+    size: "fmi2SerializedFMUstateSize",
+    serialize: "fmi2SerializeFMUstate",
+    deserialize: "fmi2DeSerializeFMUstate",
+};
+
+const FMI3_STATES: StateNames = StateNames {
+    get: "fmi3GetFMUState",
+    set: "fmi3SetFMUState",
+    free: "fmi3FreeFMUState",
+    size: "fmi3SerializedFMUStateSize",
+    serialize: "fmi3SerializeFMUState",
+    deserialize: "fmi3DeserializeFMUState",
+};
+
+/// The FMU-state methods of [`Fmu2`] and [`Fmu3`] (fields `lib`, `c`, `log`), written once for
+/// the names of one version.
+macro_rules! state_calls {
+    ($names:expr) => {
+        pub fn get_state(&self) -> *mut c_void {
+            let f = sym!(self.lib, $names.get, unsafe extern "C" fn(*mut c_void, *mut *mut c_void) -> c_int);
+            let mut state = std::ptr::null_mut();
+            // SAFETY: an out-pointer.
+            assert_eq!(unsafe { f(self.c, &mut state) }, OK, "{}", self.log.text());
+            state
+        }
+
+        pub fn set_state(&self, state: *mut c_void) -> c_int {
+            let f = sym!(self.lib, $names.set, unsafe extern "C" fn(*mut c_void, *mut c_void) -> c_int);
+            // SAFETY: a state from this FMU.
+            unsafe { f(self.c, state) }
+        }
+
+        pub fn free_state(&self, mut state: *mut c_void) {
+            let f = sym!(self.lib, $names.free, unsafe extern "C" fn(*mut c_void, *mut *mut c_void) -> c_int);
+            // SAFETY: a state from this FMU.
+            assert_eq!(unsafe { f(self.c, &mut state) }, OK);
+            assert!(state.is_null());
+        }
+
+        pub fn serialize(&self, state: *mut c_void) -> Vec<u8> {
+            let size_of =
+                sym!(self.lib, $names.size, unsafe extern "C" fn(*mut c_void, *mut c_void, *mut usize) -> c_int);
+            let serialize = sym!(
+                self.lib,
+                $names.serialize,
+                unsafe extern "C" fn(*mut c_void, *mut c_void, *mut u8, usize) -> c_int
+            );
+            let mut size = 0usize;
+            // SAFETY: out-pointer, then a buffer of that size.
+            assert_eq!(unsafe { size_of(self.c, state, &mut size) }, OK);
+            let mut bytes = vec![0u8; size];
+            assert_eq!(unsafe { serialize(self.c, state, bytes.as_mut_ptr(), size) }, OK);
+            bytes
+        }
+
+        pub fn deserialize(&self, bytes: &[u8]) -> (c_int, *mut c_void) {
+            let f = sym!(
+                self.lib,
+                $names.deserialize,
+                unsafe extern "C" fn(*mut c_void, *const u8, usize, *mut *mut c_void) -> c_int
+            );
+            let mut state = std::ptr::null_mut();
+            // SAFETY: a byte buffer and an out-pointer.
+            let status = unsafe { f(self.c, bytes.as_ptr(), bytes.len(), &mut state) };
+            (status, state)
+        }
+    };
 }
 
 /// An FMI 2.0 co-simulation instance.
@@ -296,57 +380,7 @@ impl Fmu2 {
         }
     }
 
-    pub fn get_state(&self) -> *mut c_void {
-        let f = sym!(self.lib, "fmi2GetFMUstate", unsafe extern "C" fn(*mut c_void, *mut *mut c_void) -> c_int);
-        let mut state = std::ptr::null_mut();
-        // SAFETY: an out-pointer.
-        assert_eq!(unsafe { f(self.c, &mut state) }, OK, "{}", self.log.text());
-        state
-    }
-
-    pub fn set_state(&self, state: *mut c_void) -> c_int {
-        let f = sym!(self.lib, "fmi2SetFMUstate", unsafe extern "C" fn(*mut c_void, *mut c_void) -> c_int);
-        // SAFETY: a state from this FMU.
-        unsafe { f(self.c, state) }
-    }
-
-    pub fn free_state(&self, mut state: *mut c_void) {
-        let f = sym!(self.lib, "fmi2FreeFMUstate", unsafe extern "C" fn(*mut c_void, *mut *mut c_void) -> c_int);
-        // SAFETY: a state from this FMU.
-        assert_eq!(unsafe { f(self.c, &mut state) }, OK);
-        assert!(state.is_null());
-    }
-
-    pub fn serialize(&self, state: *mut c_void) -> Vec<u8> {
-        let size_of = sym!(
-            self.lib,
-            "fmi2SerializedFMUstateSize",
-            unsafe extern "C" fn(*mut c_void, *mut c_void, *mut usize) -> c_int
-        );
-        let serialize = sym!(
-            self.lib,
-            "fmi2SerializeFMUstate",
-            unsafe extern "C" fn(*mut c_void, *mut c_void, *mut u8, usize) -> c_int
-        );
-        let mut size = 0usize;
-        // SAFETY: out-pointer, then a buffer of that size.
-        assert_eq!(unsafe { size_of(self.c, state, &mut size) }, OK);
-        let mut bytes = vec![0u8; size];
-        assert_eq!(unsafe { serialize(self.c, state, bytes.as_mut_ptr(), size) }, OK);
-        bytes
-    }
-
-    pub fn deserialize(&self, bytes: &[u8]) -> (c_int, *mut c_void) {
-        let f = sym!(
-            self.lib,
-            "fmi2DeSerializeFMUstate",
-            unsafe extern "C" fn(*mut c_void, *const u8, usize, *mut *mut c_void) -> c_int
-        );
-        let mut state = std::ptr::null_mut();
-        // SAFETY: a byte buffer and an out-pointer.
-        let status = unsafe { f(self.c, bytes.as_ptr(), bytes.len(), &mut state) };
-        (status, state)
-    }
+    state_calls!(FMI2_STATES);
 }
 
 impl Drop for Fmu2 {
@@ -469,57 +503,7 @@ impl Fmu3 {
         unsafe { f(self.c) }
     }
 
-    pub fn get_state(&self) -> *mut c_void {
-        let f = sym!(self.lib, "fmi3GetFMUState", unsafe extern "C" fn(*mut c_void, *mut *mut c_void) -> c_int);
-        let mut state = std::ptr::null_mut();
-        // SAFETY: an out-pointer.
-        assert_eq!(unsafe { f(self.c, &mut state) }, OK, "{}", self.log.text());
-        state
-    }
-
-    pub fn set_state(&self, state: *mut c_void) -> c_int {
-        let f = sym!(self.lib, "fmi3SetFMUState", unsafe extern "C" fn(*mut c_void, *mut c_void) -> c_int);
-        // SAFETY: a state from this FMU.
-        unsafe { f(self.c, state) }
-    }
-
-    pub fn free_state(&self, mut state: *mut c_void) {
-        let f = sym!(self.lib, "fmi3FreeFMUState", unsafe extern "C" fn(*mut c_void, *mut *mut c_void) -> c_int);
-        // SAFETY: a state from this FMU.
-        assert_eq!(unsafe { f(self.c, &mut state) }, OK);
-        assert!(state.is_null());
-    }
-
-    pub fn serialize(&self, state: *mut c_void) -> Vec<u8> {
-        let size_of = sym!(
-            self.lib,
-            "fmi3SerializedFMUStateSize",
-            unsafe extern "C" fn(*mut c_void, *mut c_void, *mut usize) -> c_int
-        );
-        let serialize = sym!(
-            self.lib,
-            "fmi3SerializeFMUState",
-            unsafe extern "C" fn(*mut c_void, *mut c_void, *mut u8, usize) -> c_int
-        );
-        let mut size = 0usize;
-        // SAFETY: out-pointer, then a buffer of that size.
-        assert_eq!(unsafe { size_of(self.c, state, &mut size) }, OK);
-        let mut bytes = vec![0u8; size];
-        assert_eq!(unsafe { serialize(self.c, state, bytes.as_mut_ptr(), size) }, OK);
-        bytes
-    }
-
-    pub fn deserialize(&self, bytes: &[u8]) -> (c_int, *mut c_void) {
-        let f = sym!(
-            self.lib,
-            "fmi3DeserializeFMUState",
-            unsafe extern "C" fn(*mut c_void, *const u8, usize, *mut *mut c_void) -> c_int
-        );
-        let mut state = std::ptr::null_mut();
-        // SAFETY: a byte buffer and an out-pointer.
-        let status = unsafe { f(self.c, bytes.as_ptr(), bytes.len(), &mut state) };
-        (status, state)
-    }
+    state_calls!(FMI3_STATES);
 
     /// Enter and exit initialization mode at `start`, with the stop time if given.
     pub fn initialize_at(&self, start: f64, stop: Option<f64>) -> c_int {
