@@ -4,7 +4,7 @@
 //! - **Discretisation.** A converged run is judged against two coarser rungs (the ladder's previous
 //!   ones, or halves of explicit element counts): each peak's figure is its change against the next
 //!   coarser rung, relative to the printed value, or, where the three rungs converge at a sane
-//!   observed order ([`crate::studies::verify::richardson`]), the Richardson estimate of the printed value's
+//!   observed order ([`richardson`]), the Richardson estimate of the printed value's
 //!   own error, |v - v_inf| / |v_inf|. A paper-method run is judged against the converged answer:
 //!   its figure is the paper mesh's error.
 //! - **Sensitivity.** A twin run with the drop height changed by 1e-9 (relative; 1e-9 m from 0):
@@ -25,7 +25,6 @@ use crate::error::Result;
 use crate::model::{Method, Scenario};
 use crate::record::{NullRecorder, Recorder};
 use crate::results::{Peaks, Summary};
-use crate::studies::verify::richardson;
 use crate::Simulation;
 
 /// The five peaks by name, in the order of [`Peaks::as_array`].
@@ -277,6 +276,35 @@ pub fn relative(value: f64, reference: f64) -> f64 {
     } else {
         (value - reference).abs() / reference.abs()
     }
+}
+
+/// Observed orders of convergence accepted for a Richardson estimate: below 0.5 the differences
+/// barely shrink (no asymptotic range yet), above 6 they shrink faster than any term of the method
+/// can explain (a coincidence of three numbers, not convergence).
+pub const ORDER_RANGE: (f64, f64) = (0.5, 6.0);
+
+/// A Richardson extrapolation from three meshes, each twice as fine as the one before.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Richardson {
+    /// Observed order p = log2((v_2x - v_1x) / (v_4x - v_2x)).
+    pub order: f64,
+    /// Estimated converged value v_4x + (v_4x - v_2x) / (2^p - 1).
+    pub estimate: f64,
+}
+
+/// The Richardson estimate from the values on three meshes refined by 2 each time, or `None`
+/// where they do not allow one: differences of alternating sign (oscillating or non-monotone
+/// sequence), a zero difference, or an observed order outside [`ORDER_RANGE`].
+pub fn richardson(coarse: f64, medium: f64, fine: f64) -> Option<Richardson> {
+    let ratio = (medium - coarse) / (fine - medium);
+    if !(ratio.is_finite() && ratio > 0.0) {
+        return None;
+    }
+    let order = ratio.log2();
+    if !(ORDER_RANGE.0..=ORDER_RANGE.1).contains(&order) {
+        return None;
+    }
+    Some(Richardson { order, estimate: fine + (fine - medium) / (ratio - 1.0) })
 }
 
 /// The discretisation figure of `fine` against `medium` (and `coarse`, when given).

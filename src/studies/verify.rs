@@ -28,13 +28,10 @@ use crate::record::{Recorder, RunInfo};
 use crate::results::{seconds, ContactEvent, StepResult, Summary, TimeSteps};
 use crate::Simulation;
 
+pub use crate::answer::{richardson, Richardson, ORDER_RANGE};
+
 /// Default largest relative change of a converged peak (1 %).
 pub const DEFAULT_TOLERANCE: f64 = 0.01;
-
-/// Observed orders of convergence accepted for a Richardson estimate: below 0.5 the differences
-/// barely shrink (no asymptotic range yet), above 6 they shrink faster than any term of the method
-/// can explain (a coincidence of three numbers, not convergence).
-pub const ORDER_RANGE: (f64, f64) = (0.5, 6.0);
 
 /// The Table 1 peaks, named as in [`crate::results::Peaks`], in its order.
 pub const PEAK_NAMES: [&str; 4] =
@@ -121,30 +118,6 @@ impl std::fmt::Display for Mesh {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "{} + {}/{}", self.lower, self.upper_to_contact, self.upper_beyond_contact)
     }
-}
-
-/// A Richardson extrapolation from three meshes, each twice as fine as the one before.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct Richardson {
-    /// Observed order p = log2((v_2x - v_1x) / (v_4x - v_2x)).
-    pub order: f64,
-    /// Estimated converged value v_4x + (v_4x - v_2x) / (2^p - 1).
-    pub estimate: f64,
-}
-
-/// The Richardson estimate from the values on three meshes refined by 2 each time, or `None`
-/// where they do not allow one: differences of alternating sign (oscillating or non-monotone
-/// sequence), a zero difference, or an observed order outside [`ORDER_RANGE`].
-pub fn richardson(coarse: f64, medium: f64, fine: f64) -> Option<Richardson> {
-    let ratio = (medium - coarse) / (fine - medium);
-    if !(ratio.is_finite() && ratio > 0.0) {
-        return None;
-    }
-    let order = ratio.log2();
-    if !(ORDER_RANGE.0..=ORDER_RANGE.1).contains(&order) {
-        return None;
-    }
-    Some(Richardson { order, estimate: fine + (fine - medium) / (ratio - 1.0) })
 }
 
 /// The verdict on one peak.
