@@ -5,7 +5,7 @@
 //! log.
 //!
 //! The working directory is per process, so each case runs in a child process: this test binary
-//! run again with `--exact child` and `BEAM_IMPACT_LOG_CHILD=<case>`, in a temporary folder.
+//! run again with `--exact fmi_default_log::child` and `BEAM_IMPACT_LOG_CHILD=<case>`, in a temporary folder.
 //! The child drives the FMU through the C API (libloading) and asserts; the parent checks the
 //! folder.
 
@@ -21,7 +21,7 @@ const CASE: &str = "BEAM_IMPACT_LOG_CHILD";
 
 fn spawn(case: &str, dir: &Path) -> std::process::Child {
     Command::new(std::env::current_exe().unwrap())
-        .args(["--exact", "child", "--nocapture", "--test-threads=1"])
+        .args(["--exact", "fmi_default_log::child", "--nocapture", "--test-threads=1"])
         .env(CASE, case)
         .current_dir(dir)
         .stdout(std::process::Stdio::piped())

@@ -1,7 +1,7 @@
 //! Drift tests: the committed modelDescription.xml files (FMI 2.0 at the top of the repository,
 //! FMI 3.0 under `fmu/`) and the C header in `include/` must equal what the source generates
 //! from the one variable table and the exported functions.
-//! `BEAM_IMPACT_BLESS=1 cargo test --release --test fmi_drift` rewrites them.
+//! `BEAM_IMPACT_BLESS=1 cargo test --release --test integration fmi_drift::` rewrites them.
 
 use std::path::Path;
 
@@ -22,7 +22,7 @@ fn check(relative: &str, generated: &str) {
             .unwrap_or_else(|| committed.lines().count().min(generated.lines().count()));
         panic!(
             "{relative} differs from the generated text from line {} on: committed {:?}, generated {:?}; \
-             run BEAM_IMPACT_BLESS=1 cargo test --release --test fmi_drift and commit",
+             run BEAM_IMPACT_BLESS=1 cargo test --release --test integration fmi_drift:: and commit",
             line + 1,
             committed.lines().nth(line),
             generated.lines().nth(line)

@@ -63,6 +63,7 @@ fn cli_pack(args: &[&str], path: &std::path::Path, target_dir: &std::path::Path)
         .arg("pack")
         .args(args)
         .env("PATH", path)
+        .env_remove("CARGO")
         .env("CARGO_TARGET_DIR", target_dir)
         .output()
         .unwrap();
@@ -102,30 +103,33 @@ fn pack_without_a_library_beside_the_executable_says_how() {
     assert!(stderr.contains("--library") && stderr.lines().count() == 1, "{stderr}");
 }
 
-/// A stand-in `cargo-zigbuild` on PATH: records its arguments and writes the host library with
-/// `marker` appended (still a valid FMU library, and told apart from the host build) where the
-/// real one puts its build (`<--target-dir>/x86_64-unknown-linux-gnu/release/`), or fails.
+/// Stand-ins on PATH: a `cargo-zigbuild` (only looked for: the linker wrapper calls it), and a
+/// `cargo` that records its arguments and writes the host library with `marker` appended (still
+/// a valid FMU library, and told apart from the host build) where the real one puts its build
+/// (`<--target-dir>/release/`), or fails.
 fn fake_zigbuild(dir: &std::path::Path, marker: &str, fail: bool) {
     use std::os::unix::fs::PermissionsExt;
     let built = dir.join("built.so");
     std::fs::write(&built, zigbuilt(marker)).unwrap();
     let script = format!(
         "#!/bin/sh\nPATH=/usr/bin:/bin\nprintf '%s\\n' \"$@\" > '{log}'\n{fail}\nwhile [ $# -gt 0 ]; do [ \"$1\" = --target-dir ] && dir=\"$2\"; \
-         shift; done\nmkdir -p \"$dir/x86_64-unknown-linux-gnu/release\"\ncp '{built}' \
-         \"$dir/x86_64-unknown-linux-gnu/release/libbeam_impact.so\"\n",
+         shift; done\nmkdir -p \"$dir/release\"\ncp '{built}' \"$dir/release/libbeam_impact.so\"\n",
         log = dir.join("args").display(),
         built = built.display(),
         fail = if fail { "exit 1" } else { "" },
     );
-    let path = dir.join("cargo-zigbuild");
-    std::fs::write(&path, script).unwrap();
-    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+    for (name, text) in [("cargo", script.as_str()), ("cargo-zigbuild", "#!/bin/sh\nexit 0\n")] {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+    }
 }
 
-/// Issue 8 item 7: with cargo-zigbuild on PATH, `pack` builds the library for glibc 2.17 itself
-/// (`cargo zigbuild --release --lib --target x86_64-unknown-linux-gnu.2.17` on this crate, into its
-/// own target directory) and packs that build. A stand-in cargo-zigbuild checks the invocation
-/// without the two-minute build; `tests/python/test_glibc.py` checks the real one's symbols.
+/// Issue 8 item 7 (issue 19: without rebuilding the dependencies): with cargo-zigbuild on PATH,
+/// `pack` builds the library for glibc 2.17 itself (`cargo rustc --release --lib --crate-type
+/// cdylib` on this crate, in its target directory, linked by a wrapper that runs `cargo-zigbuild
+/// zig cc -target x86_64-linux-gnu.2.17`) and packs that build. A stand-in cargo checks the
+/// invocation without the build; `tests/python/test_glibc.py` checks the real one's symbols.
 #[test]
 fn pack_builds_and_packs_the_glibc_2_17_library_when_cargo_zigbuild_is_on_path() {
     let bin = tempfile::tempdir().unwrap();
@@ -139,19 +143,26 @@ fn pack_builds_and_packs_the_glibc_2_17_library_when_cargo_zigbuild_is_on_path()
     let args: Vec<String> =
         std::fs::read_to_string(bin.path().join("args")).unwrap().lines().map(String::from).collect();
     let manifest = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("Cargo.toml");
-    let zig_target = target.path().join("zigbuild");
+    let linker = target.path().join("zigbuild").join("zigcc-x86_64-unknown-linux-gnu.2.17.sh");
     let expected = [
-        "zigbuild",
-        "--release",
-        "--lib",
-        "--target",
-        "x86_64-unknown-linux-gnu.2.17",
-        "--manifest-path",
-        manifest.to_str().unwrap(),
-        "--target-dir",
-        zig_target.to_str().unwrap(),
+        "rustc".to_string(),
+        "--release".into(),
+        "--lib".into(),
+        "--crate-type".into(),
+        "cdylib".into(),
+        "--manifest-path".into(),
+        manifest.to_str().unwrap().into(),
+        "--target-dir".into(),
+        target.path().to_str().unwrap().into(),
+        "--".into(),
+        "-C".into(),
+        format!("linker={}", linker.display()),
     ];
     assert_eq!(args, expected);
+    let wrapper = std::fs::read_to_string(&linker).unwrap();
+    let zig = bin.path().join("cargo-zigbuild");
+    assert!(wrapper.contains(&format!("exec '{}' zig cc -- ", zig.display())), "{wrapper}");
+    assert!(wrapper.contains("-target x86_64-linux-gnu.2.17 \"$@\""), "{wrapper}");
     for (fmu, platform) in [("fmi2", "linux64"), ("fmi3", "x86_64-linux")] {
         let so = read(&out.path().join(fmu).join("BeamImpact.fmu"), &format!("binaries/{platform}/BeamImpact.so"));
         assert!(so == zigbuilt("built for glibc 2.17"), "{fmu} holds another library than the zigbuilt one");
@@ -161,7 +172,10 @@ fn pack_builds_and_packs_the_glibc_2_17_library_when_cargo_zigbuild_is_on_path()
     fake_zigbuild(bin.path(), "", true);
     let (ok, _, stderr) = cli_pack(&["--out", out.path().to_str().unwrap()], bin.path(), target.path());
     assert!(!ok);
-    assert!(stderr.contains("zigbuild") && stderr.contains("failed") && stderr.contains("--no-zigbuild"), "{stderr}");
+    assert!(
+        stderr.contains("cargo rustc") && stderr.contains("failed") && stderr.contains("--no-zigbuild"),
+        "{stderr}"
+    );
 }
 
 /// `--no-zigbuild` packs the host build even with cargo-zigbuild on PATH, and runs no build.

@@ -108,7 +108,7 @@ fn rollbacks_keep_the_last_branch() {
 /// Writes the seeds of the cargo-fuzz targets `log_file` (the committed log corpus) and
 /// `log_chunk` (the decompressed records of each chunk of a real log, and all of them at once,
 /// schema data left out):
-/// `cargo test --release --test fuzz_log_reader -- --ignored write_fuzz_seeds`.
+/// `cargo test --release --test integration -- --ignored fuzz_log_reader::write_fuzz_seeds`.
 #[test]
 #[ignore]
 fn write_fuzz_seeds() {
@@ -148,7 +148,7 @@ fn the_fuzz_corpora_replay() {
 /// Prints the time to read the log `$BEAM_IMPACT_BENCH_LOG` with the bounded reader (framing,
 /// zstd, CRCs) and with the mcap crate's `ChunkFlattener` (what `report` used before issue 9), best
 /// of 5; a measurement, not a test:
-/// `BEAM_IMPACT_BENCH_LOG=paper.mcap cargo test --release --test fuzz_log_reader -- --ignored --nocapture bench_readers`.
+/// `BEAM_IMPACT_BENCH_LOG=paper.mcap cargo test --release --test integration -- --ignored --nocapture fuzz_log_reader::bench_readers`.
 #[test]
 #[ignore]
 fn bench_readers() {

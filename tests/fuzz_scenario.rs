@@ -167,7 +167,7 @@ fn seeded_mutations_of_scenario_files_never_panic() {
 }
 
 /// Writes `tests/corpus/scenarios/` (the seeds and hostile files):
-/// `cargo test --release --test fuzz_scenario -- --ignored write_corpus`.
+/// `cargo test --release --test integration -- --ignored fuzz_scenario::write_corpus`.
 #[test]
 #[ignore]
 fn write_corpus() {
@@ -195,7 +195,7 @@ fn write_corpus() {
 }
 
 /// Writes the seeds of the cargo-fuzz target `scenario` (the committed scenario corpus):
-/// `cargo test --release --test fuzz_scenario -- --ignored write_fuzz_seeds`.
+/// `cargo test --release --test integration -- --ignored fuzz_scenario::write_fuzz_seeds`.
 #[test]
 #[ignore]
 fn write_fuzz_seeds() {

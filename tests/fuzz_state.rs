@@ -134,7 +134,7 @@ fn no_single_bit_flip_restores() {
 }
 
 /// Writes `tests/corpus/states/` (real states and a few forged ones):
-/// `cargo test --release --test fuzz_state -- --ignored write_corpus`.
+/// `cargo test --release --test integration -- --ignored fuzz_state::write_corpus`.
 #[test]
 #[ignore]
 fn write_corpus() {
@@ -158,7 +158,7 @@ fn write_corpus() {
 
 /// Writes the seeds of the cargo-fuzz targets `state` (the committed state corpus) and
 /// `state_payload` (the payloads of real states):
-/// `cargo test --release --test fuzz_state -- --ignored write_fuzz_seeds`.
+/// `cargo test --release --test integration -- --ignored fuzz_state::write_fuzz_seeds`.
 #[test]
 #[ignore]
 fn write_fuzz_seeds() {

@@ -186,7 +186,7 @@ fn odd_values_in_the_steps_are_reported_or_refused() {
 
 /// Writes the regression corpus `tests/corpus/logs/` from the builders above (run it after
 /// changing them; fuzz findings are added to the directory by hand):
-/// `cargo test --release --test hostile_logs -- --ignored write_corpus`.
+/// `cargo test --release --test integration -- --ignored hostile_logs::write_corpus`.
 #[test]
 #[ignore]
 fn write_corpus() {

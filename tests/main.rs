@@ -38,6 +38,7 @@ mod mcap_killed;
 mod mcap_layout;
 mod mcap_recording;
 mod modes_fine_mesh;
+mod no_circles;
 mod paper;
 mod reactions;
 mod report_csv;

@@ -31,7 +31,7 @@ fn killed_run_leaves_a_readable_log() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("killed.mcap");
     let mut child = Command::new(std::env::current_exe().unwrap())
-        .args(["--exact", "child_records_a_long_run", "--nocapture", "--test-threads", "1"])
+        .args(["--exact", "mcap_killed::child_records_a_long_run", "--nocapture", "--test-threads", "1"])
         .env(CHILD_ENV, &path)
         .stdout(Stdio::null())
         .stderr(Stdio::null())

@@ -6,17 +6,28 @@
 # FMUs with the library built for glibc 2.17 and runs the Python tests (fmpy, mcap).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# Each stage prints its time, so a slow stage shows where it is.
+started=$SECONDS
+stage_start=$SECONDS
+in_stage=""
+stage() {
+  if [ -n "$in_stage" ]; then echo "   ($((SECONDS - stage_start)) s)"; fi
+  in_stage=1
+  stage_start=$SECONDS
+  echo "== $*"
+}
 
-echo "== cargo fmt --check"
+stage "cargo fmt --check"
 cargo fmt --all -- --check
-echo "== cargo clippy (beam-impact and the Python package's native module, python/native)"
+stage "cargo clippy (beam-impact and the Python package's native module, python/native)"
 cargo clippy --release --workspace --all-targets -- -D warnings
-echo "== cargo doc"
-RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --quiet
-echo "== cargo test --release"
+# --release: the dependencies' metadata is clippy's (the release profile), not checked again.
+stage "cargo doc"
+RUSTDOCFLAGS="-D warnings" cargo doc --release --workspace --no-deps --quiet
+stage "cargo test --release (the library's unit tests, then one binary with every integration test)"
 cargo test --release
 
-echo "== Python venv (.venv) with fmpy, mcap, ziglang, cargo-zigbuild and beam_impact (maturin builds its native module)"
+stage "Python venv (.venv) with fmpy, mcap, ziglang, cargo-zigbuild and beam_impact (maturin builds its native module)"
 if [ ! -x .venv/bin/python ]; then
   python3 -m venv .venv
 fi
@@ -24,12 +35,13 @@ fi
 # cargo-zigbuild finds zig through the venv's python (python3 -m ziglang).
 export PATH="$PWD/.venv/bin:$PATH"
 
-echo "== pack the FMUs (the library built for glibc 2.17 by cargo-zigbuild)"
-cargo build --release
+# The executable `cargo test` built; `pack` relinks the library against glibc 2.17 with zig,
+# reusing the compiled dependencies.
+stage "pack the FMUs (the library linked for glibc 2.17 by cargo-zigbuild's zig)"
 bin="${CARGO_TARGET_DIR:-target}/release/beam-impact"
 "$bin" pack --out target/fmu
 
-echo "== pytest"
+stage "pytest"
 BEAM_IMPACT_FMU_DIR="$PWD/target/fmu" BEAM_IMPACT_BIN="$(cd "$(dirname "$bin")" && pwd)/beam-impact" \
   BEAM_IMPACT_REQUIRE_GLIBC_2_17=1 .venv/bin/python -m pytest -q tests/python
-echo "== all tests passed"
+stage "all tests passed in $((SECONDS - started)) s"

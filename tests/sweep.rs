@@ -112,8 +112,11 @@ fn ten_scenario_sweep_rows_equal_the_single_runs() {
         .unwrap());
     assert!(String::from_utf8_lossy(&out.stdout).contains("10 scenarios"));
     let (header, rows) = read_csv(&csv);
-    assert_eq!(&header[..3], ["drop_height", "damping_ratio", "lower_tip_deflection"]);
-    assert_eq!(header.last().unwrap(), "error");
+    // The FMU's names first; `error` ends them, the former names (duplicates) follow.
+    assert_eq!(&header[..3], ["drop_height", "damping_ratio", "peak.lower.tip_deflection"]);
+    assert_eq!(header.last().unwrap(), "trusted");
+    assert!(header.contains(&"error".to_string()) && header.contains(&"lower_tip_deflection".to_string()));
+    assert!(dir.path().join("rows.units.json").is_file(), "the units sidecar");
     assert_eq!(rows.len(), 10);
     let doc: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let objects = doc.as_array().unwrap();

@@ -17,7 +17,7 @@ cd "$ROOT"
 cargo build --release --quiet
 # The mutations and the big logs come from the same builders as the tests.
 BEAM_IMPACT_HOSTILE_OUT=$OUT BEAM_IMPACT_FUZZ_ITERATIONS=$N \
-    cargo test --release --quiet --test hostile_logs -- --ignored --exact write_measurement_logs >/dev/null
+    cargo test --release --quiet --test integration -- --ignored --exact hostile_logs::write_measurement_logs >/dev/null
 
 measure() { # file label -> "label seconds maxrss_kb exit"
     local file=$1 label=$2 code=0
