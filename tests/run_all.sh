@@ -17,6 +17,17 @@ stage() {
   echo "== $*"
 }
 
+# The Python test environment's packages download and unpack while the Rust stages compile
+# (mostly network and disk); the Python package itself, whose native module maturin builds,
+# waits for `cargo test` (it reuses its compiled dependencies).
+if [ ! -x .venv/bin/python ]; then
+  python3 -m venv .venv
+fi
+.venv/bin/python -m pip install --quiet --disable-pip-version-check -r tests/python/requirements.txt \
+  > .venv/requirements.log 2>&1 &
+requirements=$!
+trap 'kill "$requirements" 2>/dev/null || true' EXIT
+
 stage "cargo fmt --check"
 cargo fmt --all -- --check
 stage "cargo clippy (beam-impact and the Python package's native module, python/native)"
@@ -28,10 +39,12 @@ stage "cargo test --release (the library's unit tests, then one binary with ever
 cargo test --release
 
 stage "Python venv (.venv) with fmpy, mcap, ziglang, cargo-zigbuild and beam_impact (maturin builds its native module)"
-if [ ! -x .venv/bin/python ]; then
-  python3 -m venv .venv
+if ! wait "$requirements"; then
+  cat .venv/requirements.log
+  echo "pip install -r tests/python/requirements.txt failed (its output above)" >&2
+  exit 1
 fi
-.venv/bin/python -m pip install --quiet --disable-pip-version-check -r tests/python/requirements.txt ./python
+.venv/bin/python -m pip install --quiet --disable-pip-version-check ./python
 # cargo-zigbuild finds zig through the venv's python (python3 -m ziglang).
 export PATH="$PWD/.venv/bin:$PATH"
 
