@@ -30,11 +30,11 @@ def main(argv: list[str]) -> int:
     for ratio, color in zip(ratios, colors):
         r = rows[rows["damping_ratio"] == ratio].sort_values("drop_height")
         label = f"{ratio:g}"
-        stress.plot(r["drop_height"], r["lower_clamp_bending_stress"] / 1e6, color=color, lw=1.3, label=label)
-        deflection.plot(r["drop_height"], r["lower_tip_deflection"], color=color, lw=1.3, label=label)
-        bad = r[r["trusted"].astype(str).str.lower() != "true"]
-        stress.plot(bad["drop_height"], bad["lower_clamp_bending_stress"] / 1e6, "x", color="red", ms=5)
-        deflection.plot(bad["drop_height"], bad["lower_tip_deflection"], "x", color="red", ms=5)
+        stress.plot(r["drop_height"], r["peak.lower.clamp_bending_stress"] / 1e6, color=color, lw=1.3, label=label)
+        deflection.plot(r["drop_height"], r["peak.lower.tip_deflection"], color=color, lw=1.3, label=label)
+        bad = r[r["quality.trusted"].astype(str).str.lower() != "true"]
+        stress.plot(bad["drop_height"], bad["peak.lower.clamp_bending_stress"] / 1e6, "x", color="red", ms=5)
+        deflection.plot(bad["drop_height"], bad["peak.lower.tip_deflection"], "x", color="red", ms=5)
     first = rows[rows["damping_ratio"] == ratios[0]].sort_values("drop_height")
     stress.plot(first["drop_height"], first["energy_method.clamp_bending_stress"] / 1e6, "k--", lw=1,
                 label="energy approach")
@@ -47,7 +47,7 @@ def main(argv: list[str]) -> int:
     for ax in (stress, deflection):
         ax.grid(alpha=0.3)
     stress.legend(title="damping ratio", fontsize=7, title_fontsize=8, ncol=2)
-    untrusted = int((rows["trusted"].astype(str).str.lower() != "true").sum())
+    untrusted = int((rows["quality.trusted"].astype(str).str.lower() != "true").sum())
     verdict = f"{untrusted} not trusted (red x)" if untrusted else "all trusted by their energy balance"
     fig.suptitle(f"beam-impact sweep: {len(rows)} scenarios, paper scenario (mesh and steps), 3 s each, {verdict}",
                  fontsize=10)

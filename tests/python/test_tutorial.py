@@ -157,3 +157,16 @@ def test_the_fmu_gives_the_cli_peaks(tutorial):
     assert len(pairs) >= 3, fmu[0]
     for got, want in pairs:
         assert float(got) == pytest.approx(float(want), rel=1e-6), fmu[0]
+
+
+def test_the_readme_sweep_figure_script_draws_a_cli_sweep(tmp_path):
+    """docs/plot_sweep.py (the README's figure) reads the CLI sweep's columns as they are named
+    now: a 2 x 2 grid of short runs, drawn to a PNG."""
+    rows = tmp_path / "sweep.csv"
+    subprocess.run([binary(), "sweep", "--vary", "drop_height=0.3,0.6", "--vary", "damping_ratio=0.02,0.04",
+                    "--set", "duration=0.4", "--out", str(rows)], check=True, capture_output=True, timeout=TIMEOUT)
+    figure = tmp_path / "sweep.png"
+    run = subprocess.run([sys.executable, str(ROOT / "docs" / "plot_sweep.py"), str(rows), str(figure)],
+                         capture_output=True, text=True, timeout=TIMEOUT)
+    assert run.returncode == 0, run.stderr
+    assert figure.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
