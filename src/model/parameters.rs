@@ -284,6 +284,8 @@ fn range_text(name: &str) -> Option<String> {
         "contact_position" => return Some("> 0, below upper.length".into()),
         "step_free" | "step_contact" => return Some("\"auto\", or 1e-9 to 1".into()),
         "modal_cutoff" => return Some("\"auto\", or > 0 up to 1e12".into()),
+        // A CLI field (the FMU's stop time is the importer's): Scenario::validate's bound.
+        "duration" => return Some("> 0, at most 1e6".into()),
         _ if name.contains("elements") => return Some(format!("\"auto\", or 1 to {MAX_ELEMENTS}")),
         _ => {}
     }

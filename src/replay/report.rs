@@ -525,7 +525,7 @@ fn summary_text(data: &LogData, scenario: &Scenario, summary: &Summary, out: &mu
     let _ = writeln!(
         out,
         "scenario: {}",
-        if scenario.is_paper() { "the paper's (Catipovic, Vladimir, Reljic 2008)" } else { "custom" }
+        if scenario.is_paper() { "the paper's (Catipovic, Vladimir, Reljic 2008)" } else { "user" }
     );
     if !scenario.is_paper() {
         for line in scenario.to_toml().lines().filter(|l| !l.trim().is_empty()) {
