@@ -94,10 +94,14 @@ struct Case {
     dir: tempfile::TempDir,
 }
 
+/// The scenario every subcommand reads: 2 ms on the paper's mesh (the paths are under test, not
+/// the physics; `verify` of the converged method took 2.8 s per cell, of this one 0.02 s).
+const SCENARIO: &str = "duration = 0.002\nmethod = \"paper\"\n";
+
 impl Case {
     fn new(log: &[u8]) -> Case {
         let dir = tempfile::tempdir().unwrap();
-        std::fs::write(dir.path().join("s.toml"), "duration = 0.002\n").unwrap();
+        std::fs::write(dir.path().join("s.toml"), SCENARIO).unwrap();
         std::fs::write(dir.path().join("victim.txt"), VICTIM).unwrap();
         std::fs::write(dir.path().join("in.mcap"), log).unwrap();
         Case { dir }
@@ -108,7 +112,7 @@ impl Case {
     /// The inputs and the victim are as they were.
     fn untouched(&self, log: &[u8], context: &str) {
         assert_eq!(std::fs::read_to_string(self.path("victim.txt")).unwrap(), VICTIM, "{context}: victim changed");
-        assert_eq!(std::fs::read_to_string(self.path("s.toml")).unwrap(), "duration = 0.002\n", "{context}: scenario");
+        assert_eq!(std::fs::read_to_string(self.path("s.toml")).unwrap(), SCENARIO, "{context}: scenario");
         assert_eq!(std::fs::read(self.path("in.mcap")).unwrap(), log, "{context}: the log read changed");
         assert!(!self.path("ghost.txt").exists(), "{context}: a dangling link's target was created");
     }
