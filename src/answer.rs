@@ -28,13 +28,7 @@ use crate::results::{Peaks, Summary};
 use crate::Simulation;
 
 /// The five peaks by name, in the order of [`Peaks::as_array`].
-pub const PEAK_NAMES: [&str; 5] = [
-    "lower_tip_deflection",
-    "lower_clamp_bending_stress",
-    "lower_clamp_shear_stress",
-    "upper_contact_bending_stress",
-    "contact_force",
-];
+pub const PEAK_NAMES: [&str; 5] = crate::vocabulary::PEAK_FIELDS;
 
 pub use crate::model::discretisation::LIGHT_DAMPING;
 
@@ -597,8 +591,9 @@ pub fn table(answer: &Answer) -> String {
             .fold(("", f64::NEG_INFINITY), |best, (n, v)| if v > best.1 { (n, v) } else { best });
     let _ = writeln!(
         s,
-        "design: {} (largest utilisation {worst_u:.3}, {worst}; converged peaks against the allowables)",
-        if answer.design.pass { "PASS" } else { "FAIL" }
+        "design: {} (largest utilisation {worst_u:.3}, {}; converged peaks against the allowables)",
+        if answer.design.pass { "PASS" } else { "FAIL" },
+        crate::vocabulary::quantity_name(worst)
     );
     let q = &answer.quality;
     let c = &q.checks;

@@ -23,6 +23,16 @@ pub const PEAK_QUANTITIES: [&str; 5] = [
     "contact.force",
 ];
 
+/// The five peaks' former names, the field names of [`crate::results::Peaks`] (serde keys of
+/// `run --json`'s peak objects), in the order of [`PEAK_QUANTITIES`].
+pub const PEAK_FIELDS: [&str; 5] = [
+    "lower_tip_deflection",
+    "lower_clamp_bending_stress",
+    "lower_clamp_shear_stress",
+    "upper_contact_bending_stress",
+    "contact_force",
+];
+
 /// The SI units of [`PEAK_QUANTITIES`], in their order.
 pub const PEAK_UNITS: [&str; 5] = ["m", "Pa", "Pa", "Pa", "N"];
 
@@ -66,12 +76,18 @@ pub const SWEEP_RENAMES: [(&str, &str); 7] = [
 /// Every former sweep column with its name: `<peak>` -> `peak.<name>`, `<peak>_time` ->
 /// `peak_time.<name>`, then [`SWEEP_RENAMES`].
 pub fn sweep_former_names() -> Vec<(String, String)> {
-    let former = crate::answer::PEAK_NAMES;
+    let former = PEAK_FIELDS;
     let mut pairs: Vec<(String, String)> =
         former.iter().zip(PEAK_QUANTITIES).map(|(f, n)| (f.to_string(), format!("peak.{n}"))).collect();
     pairs.extend(former.iter().zip(PEAK_QUANTITIES).map(|(f, n)| (format!("{f}_time"), format!("peak_time.{n}"))));
     pairs.extend(SWEEP_RENAMES.iter().map(|(f, n)| (f.to_string(), n.to_string())));
     pairs
+}
+
+/// The name of a peaked quantity given by its former name (`lower_clamp_bending_stress` ->
+/// `lower.clamp_bending_stress`), for the printed tables and verdict lines; other names as given.
+pub fn quantity_name(former: &str) -> &str {
+    PEAK_FIELDS.iter().position(|n| *n == former).map_or(former, |k| PEAK_QUANTITIES[k])
 }
 
 /// The sidecar of a CSV (or JSON) file: `sweep.csv` -> `sweep.units.json`.
@@ -126,6 +142,13 @@ mod tests {
             assert!(fmu.contains(&name), "{name}");
             assert!(fmu.contains(&format!("peak.{name}").as_str()), "peak.{name}");
         }
+    }
+
+    #[test]
+    fn printed_names_are_the_fmu_quantities() {
+        assert_eq!(quantity_name("lower_clamp_bending_stress"), "lower.clamp_bending_stress");
+        assert_eq!(quantity_name("contact_force"), "contact.force");
+        assert_eq!(quantity_name("something_else"), "something_else");
     }
 
     #[test]
