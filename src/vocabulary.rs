@@ -90,6 +90,28 @@ pub fn quantity_name(former: &str) -> &str {
     PEAK_FIELDS.iter().position(|n| *n == former).map_or(former, |k| PEAK_QUANTITIES[k])
 }
 
+/// Adds, in every object of a JSON document that holds a peak under its former name
+/// (`"lower_clamp_bending_stress": 4.7e8`), the same value under the quantity's name
+/// (`"lower.clamp_bending_stress"`): `run --json` and the log's `answer.json` keep their nested
+/// structure and speak the FMU's names too, the former keys kept until
+/// [`FORMER_NAMES_REMOVED_IN`].
+pub fn add_quantity_names(value: &mut serde_json::Value) {
+    match value {
+        serde_json::Value::Object(map) => {
+            for v in map.values_mut() {
+                add_quantity_names(v);
+            }
+            for (former, name) in PEAK_FIELDS.iter().zip(PEAK_QUANTITIES) {
+                if let Some(v) = map.get(*former).cloned() {
+                    map.entry(name.to_string()).or_insert(v);
+                }
+            }
+        }
+        serde_json::Value::Array(items) => items.iter_mut().for_each(add_quantity_names),
+        _ => {}
+    }
+}
+
 /// The sidecar of a CSV (or JSON) file: `sweep.csv` -> `sweep.units.json`.
 pub fn units_path(file: &Path) -> PathBuf {
     file.with_extension("units.json")
@@ -149,6 +171,18 @@ mod tests {
         assert_eq!(quantity_name("lower_clamp_bending_stress"), "lower.clamp_bending_stress");
         assert_eq!(quantity_name("contact_force"), "contact.force");
         assert_eq!(quantity_name("something_else"), "something_else");
+    }
+
+    #[test]
+    fn json_peaks_gain_their_quantity_names() {
+        let mut doc = serde_json::json!({"summary": {"peaks": {"contact_force": 5.0, "lower_tip_deflection": 0.6}},
+                                         "runs": [{"peaks": {"contact_force": 1.0}}], "time": 3.0});
+        add_quantity_names(&mut doc);
+        assert_eq!(doc["summary"]["peaks"]["contact.force"], 5.0);
+        assert_eq!(doc["summary"]["peaks"]["contact_force"], 5.0);
+        assert_eq!(doc["summary"]["peaks"]["lower.tip_deflection"], 0.6);
+        assert_eq!(doc["runs"][0]["peaks"]["contact.force"], 1.0);
+        assert_eq!(doc["time"], 3.0);
     }
 
     #[test]

@@ -71,6 +71,9 @@ fn scenario_output_runs_and_json_is_written() {
     let doc: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert!(doc["summary"]["steps"].as_u64().unwrap() > 1000);
     assert!(doc["summary"]["peaks"]["lower_tip_deflection"].as_f64().unwrap() > 0.1);
+    // One name per quantity: the FMU's name beside the former key, the same value.
+    assert_eq!(doc["summary"]["peaks"]["lower.tip_deflection"], doc["summary"]["peaks"]["lower_tip_deflection"]);
+    assert_eq!(doc["summary"]["converged_peaks"]["contact.force"], doc["summary"]["converged_peaks"]["contact_force"]);
 }
 
 /// `report` on a file that is not an MCAP log: one line naming the file, exit code 2.

@@ -64,7 +64,8 @@ fn read_csv(path: &Path) -> (Vec<String>, Vec<BTreeMap<String, String>>) {
 /// module's tables): peaks, `<peak>_time`, `energy_method.<field>`, `max_energy_residual`, `trusted`.
 fn expected_columns(summary: &serde_json::Value) -> BTreeMap<String, serde_json::Value> {
     let mut map = BTreeMap::new();
-    for (name, value) in summary["peaks"].as_object().unwrap() {
+    // The former keys (the JSON also holds each peak under its dotted FMU name, a duplicate).
+    for (name, value) in summary["peaks"].as_object().unwrap().iter().filter(|(name, _)| !name.contains('.')) {
         map.insert(name.clone(), value.clone());
         map.insert(format!("{name}_time"), summary["peak_times"][name].clone());
     }

@@ -142,6 +142,8 @@ pub fn run(args: &RunArgs) -> Result<bool> {
             "units": json_units(),
             "wall_time_s": wall.as_secs_f64(),
         });
+        let mut doc = doc;
+        beam_impact::vocabulary::add_quantity_names(&mut doc);
         let json = serde_json::to_string_pretty(&doc).map_err(|e| Error::Other(format!("JSON: {e}")))?;
         match file {
             Some(mut file) => {
@@ -217,6 +219,8 @@ impl Progress<'_> {
                 "converged_first_contact_peaks": answer.converged_first_contact_peaks,
                 "discretisation": discretisation_json(answer),
             });
+            let mut doc = doc;
+            beam_impact::vocabulary::add_quantity_names(&mut doc);
             let bytes = serde_json::to_vec_pretty(&doc).map_err(|e| Error::Other(format!("JSON: {e}")))?;
             self.inner.attach(beam_impact::record::mcap::ANSWER_ATTACHMENT, "application/json", &bytes)?;
         }
