@@ -112,10 +112,32 @@ pub struct StepResult {
     pub lower_tip_velocity: f64,
     /// Vertical velocity of the bridge's free end, m/s, up positive.
     pub upper_tip_velocity: f64,
+    /// The hinge's heave at this instant, m, up positive (issue 17; 0 for fixed supports): the
+    /// bridge's free end is at `upper_tip_deflection` plus it ([`StepResult::upper_tip_position`]).
+    #[serde(default)]
+    pub upper_support_displacement: f64,
+    /// The clamp's heave plus its rotation times the arrestor's length at this instant, m (0 for
+    /// fixed supports): the rigid rise of the arrestor's end ([`StepResult::lower_tip_position`]).
+    #[serde(default)]
+    pub lower_support_displacement: f64,
     /// Energy account.
     pub energy: EnergyAccount,
     /// Running peaks.
     pub peaks: Peaks,
+}
+
+impl StepResult {
+    /// Absolute vertical position of the bridge's free end, m, up positive: its deflection plus
+    /// the hinge's heave (0 at the undeformed horizontal with the supports at rest).
+    pub fn upper_tip_position(&self) -> f64 {
+        self.upper_support_displacement + self.upper_tip_deflection
+    }
+
+    /// Absolute vertical position of the arrestor's end, m: its deflection plus the clamp's heave
+    /// and rotation's rise there.
+    pub fn lower_tip_position(&self) -> f64 {
+        self.lower_support_displacement + self.lower_tip_deflection
+    }
 }
 
 /// The start or the end of a contact stage.

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::model::system::PROBES;
-use crate::model::{Method, Model, Probe, Scenario};
+use crate::model::{Method, Model, Probe, Scenario, SupportMotion};
 use crate::record::{NullRecorder, Recorder, RunInfo};
 use crate::results::{
     seconds, ContactEvent, ContactWindow, EnergyAccount, FirstContact, ModeTable, Peaks, Quality, StepResult, Summary,
@@ -15,7 +15,8 @@ use crate::results::{
 use crate::solver::contact::{self, Stage};
 use crate::solver::initial::initial_state;
 use crate::solver::{
-    DenseStepper, Energies, EnergyMethod, Kinematics, ModalStepper, ModalSystem, StepPlan, Stepper, TipForces,
+    DenseStepper, Energies, EnergyMethod, Excitation, Kinematics, ModalStepper, ModalSystem, StepPlan, Stepper,
+    TipForces,
 };
 
 /// Everything that changes during a run: enough to restore it exactly (FMU state, rollback).
@@ -55,6 +56,20 @@ pub struct RunState {
     pub input_forces: TipForces,
     /// Peaks of the first sustained contact.
     pub first_contact: FirstContact,
+    /// The supports' motion at `motion_ns`, from which it moves with constant accelerations until
+    /// the next change (issue 17; all zero for fixed supports).
+    #[serde(default)]
+    pub motion: SupportMotion,
+    /// When `motion` was given, ns.
+    #[serde(default)]
+    pub motion_ns: u64,
+    /// The support motion set by the importer at `output_ns`, applied from there on.
+    #[serde(default)]
+    pub input_motion: SupportMotion,
+    /// The supports' inertial potential at the latest state under the current accelerations, J
+    /// (its change over a step is the supports' work on the beams in their own frame).
+    #[serde(default)]
+    pub inertial_potential: f64,
 }
 
 impl RunState {
@@ -110,6 +125,9 @@ impl RunState {
             ("result.energy.external_work", e.external_work),
             ("result.energy.damping_dissipation", e.damping_dissipation),
             ("result.energy.residual", e.residual),
+            ("result.upper_support_displacement", r.upper_support_displacement),
+            ("result.lower_support_displacement", r.lower_support_displacement),
+            ("inertial_potential", self.inertial_potential),
         ];
         if let Some((field, value)) = numbers.iter().find(|(_, x)| !x.is_finite()) {
             return invalid(field, format!("= {value} is not finite"));
@@ -136,6 +154,19 @@ impl RunState {
                     );
                 }
             }
+        }
+        for (field, motion) in [("motion", self.motion), ("input_motion", self.input_motion)] {
+            let values = motion.values();
+            if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+                let name = crate::model::support_motion::MOTION_NAMES[k];
+                return invalid(&format!("{field}.{name}"), format!("= {} is not finite", values[k]));
+            }
+        }
+        if self.motion_ns > self.output_ns {
+            return invalid(
+                "motion_ns",
+                format!("= {} ns is after the outputs' time output_ns = {} ns", self.motion_ns, self.output_ns),
+            );
         }
         if r.time.to_bits() != seconds(r.time_ns).to_bits() {
             return invalid("result.time", format!("= {} s is not result.time_ns = {} ns", r.time, r.time_ns));
@@ -219,16 +250,22 @@ impl Simulation<ModalStepper> {
     /// the static correction), checks the time steps and sets the initial conditions, with the
     /// production stepper.
     pub fn new(scenario: &Scenario) -> Result<Self> {
+        Self::starting_with(scenario, scenario.motion.at_start())
+    }
+
+    /// [`Simulation::new`] with the supports' motion at t = 0 given (an FMU's inputs at the end of
+    /// its initialisation); the scenario's motion table, if any, drives the run from there.
+    pub fn starting_with(scenario: &Scenario, motion: SupportMotion) -> Result<Self> {
         let resolved = crate::discretise::printed(scenario)?;
         let model = Model::new(&resolved)?;
         let full = ModalSystem::new(&model)?;
-        let physical = initial_physical_state(&model, &full)?;
+        let physical = initial_physical_state(&model, &full, &motion)?;
         let modal = match resolved.method {
             Method::Converged if resolved.modal_cutoff > 0.0 => full.truncated(resolved.modal_cutoff)?,
             _ => full,
         };
         let stepper = ModalStepper::new(&model, modal.clone());
-        Self::with_stepper(model, modal, stepper, &physical)
+        Self::with_stepper(model, modal, stepper, &physical, motion)
     }
 }
 
@@ -238,21 +275,39 @@ impl Simulation<DenseStepper> {
     pub fn new_dense(scenario: &Scenario) -> Result<Self> {
         let model = Model::new(&crate::discretise::printed(scenario)?)?;
         let modal = ModalSystem::new(&model)?;
-        let physical = initial_physical_state(&model, &modal)?;
+        let motion = scenario.motion.at_start();
+        let physical = initial_physical_state(&model, &modal, &motion)?;
         let stepper = DenseStepper::new(&model, &modal);
-        Self::with_stepper(model, modal, stepper, &physical)
+        Self::with_stepper(model, modal, stepper, &physical, motion)
     }
 }
 
 /// The initial state in physical coordinates (from the full basis: the bridge's quasi-static
-/// deflection of Eq. 24 in every mode).
-fn initial_physical_state(model: &Model, full: &ModalSystem) -> Result<Kinematics> {
+/// deflection of Eq. 24 in every mode), under the supports' motion at t = 0.
+fn initial_physical_state(model: &Model, full: &ModalSystem, motion: &SupportMotion) -> Result<Kinematics> {
     let forces = TipForces { upper: model.scenario.upper.tip_force, lower: model.scenario.lower.tip_force };
-    initial_state(model, full, forces)
+    initial_state(model, full, &excitation(model, forces, motion))
+}
+
+/// The excitation of the tip forces and the supports' motion at one instant.
+fn excitation(model: &Model, forces: TipForces, motion: &SupportMotion) -> Excitation {
+    let length = model.scenario.lower.length;
+    Excitation {
+        forces,
+        support_acceleration: motion.accelerations(),
+        gap_offset: motion.gap_offset(length),
+        gap_offset_rate: motion.gap_offset_rate(length),
+    }
 }
 
 impl<S: Stepper> Simulation<S> {
-    fn with_stepper(model: Model, modal: ModalSystem, stepper: S, physical: &Kinematics) -> Result<Self> {
+    fn with_stepper(
+        model: Model,
+        modal: ModalSystem,
+        stepper: S,
+        physical: &Kinematics,
+        motion: SupportMotion,
+    ) -> Result<Self> {
         let plan = StepPlan::new(&model.scenario, &modal)?;
         let forces = TipForces { upper: model.scenario.upper.tip_force, lower: model.scenario.lower.tip_force };
         let kinematics = stepper.own_coordinates(physical);
@@ -276,6 +331,10 @@ impl<S: Stepper> Simulation<S> {
             output_ns: 0,
             input_forces: forces,
             first_contact: FirstContact::default(),
+            motion,
+            motion_ns: 0,
+            input_motion: motion,
+            inertial_potential: 0.0,
         };
         let backup = state.kinematics.clone();
         let output = StepResult::default();
@@ -286,9 +345,11 @@ impl<S: Stepper> Simulation<S> {
     }
 
     fn evaluate_initial(&mut self) {
-        let (probes, energies) = self.stepper.measure(&self.state.kinematics, Stage::Free, self.state.forces);
-        let mut result = self.outputs(&probes, Stage::Free);
-        self.set_support_and_tips(&mut result, &self.state.kinematics);
+        let excitation = self.excitation_at(0);
+        let (probes, energies) = self.stepper.measure(&self.state.kinematics, Stage::Free, &excitation);
+        let mut result = self.outputs(&probes, Stage::Free, 0);
+        self.set_support_and_tips(&mut result, &self.state.kinematics, &excitation);
+        self.state.inertial_potential = energies.inertial_potential;
         self.state.gap = probes[Probe::Gap as usize];
         result.energy.kinetic = energies.kinetic;
         result.energy.strain = energies.beam_strain;
@@ -301,11 +362,23 @@ impl<S: Stepper> Simulation<S> {
         self.output = self.state.result;
     }
 
+    /// The supports' motion at `at_ns` (at or after the current motion's start), continued with
+    /// its constant accelerations.
+    pub fn motion_at(&self, at_ns: u64) -> SupportMotion {
+        let state = &self.state;
+        state.motion.after(seconds(at_ns.saturating_sub(state.motion_ns)))
+    }
+
+    /// The excitation at `at_ns` under the current tip forces and support motion.
+    fn excitation_at(&self, at_ns: u64) -> Excitation {
+        excitation(&self.model, self.state.forces, &self.motion_at(at_ns))
+    }
+
     /// Sets the support reactions and tip velocities of `kinematics` on `result`.
-    /// The stage is the one `result`'s step was taken in, the forces those applied.
-    fn set_support_and_tips(&self, result: &mut StepResult, kinematics: &Kinematics) {
+    /// The stage is the one `result`'s step was taken in, the excitation that at its time.
+    fn set_support_and_tips(&self, result: &mut StepResult, kinematics: &Kinematics, excitation: &Excitation) {
         let stage = if result.contact { Stage::Contact } else { Stage::Free };
-        let d = self.stepper.support_and_tips(kinematics, stage, self.state.forces);
+        let d = self.stepper.support_and_tips(kinematics, stage, excitation);
         result.lower_clamp_reaction_force = d.clamp_force;
         result.lower_clamp_reaction_moment = d.clamp_moment;
         result.upper_hinge_reaction_force = d.hinge_force;
@@ -313,11 +386,15 @@ impl<S: Stepper> Simulation<S> {
         result.upper_tip_velocity = d.upper_tip_velocity;
     }
 
-    /// The outputs of the current displacement probes, without time or energy.
-    fn outputs(&self, probes: &[f64; PROBES], stage: Stage) -> StepResult {
+    /// The outputs of the current displacement probes at `at_ns`, without time or energy.
+    fn outputs(&self, probes: &[f64; PROBES], stage: Stage, at_ns: u64) -> StepResult {
         let s = &self.model.scenario;
         let force = contact::bar_force(self.model.bar_stiffness, probes[Probe::Gap as usize], stage);
+        let motion = self.motion_at(at_ns);
+        let (hinge, clamp, rotation) = (motion.hinge_heave, motion.clamp_heave, motion.clamp_rotation);
         StepResult {
+            upper_support_displacement: hinge.displacement,
+            lower_support_displacement: clamp.displacement + rotation.displacement * s.lower.length,
             contact: stage.is_contact(),
             lower_tip_deflection: probes[Probe::LowerTipDeflection as usize],
             upper_contact_deflection: probes[Probe::UpperContactDeflection as usize],
@@ -365,22 +442,16 @@ impl<S: Stepper> Simulation<S> {
     }
 
     /// The largest |value| of each peak output over the first `fraction` of the step just taken
-    /// (from `backup` to the current kinematics, in `stage` under `forces`), with its time, s: the
+    /// (from `backup` to the current kinematics, in `stage`), with its time, s: the
     /// cubic of each output from its values and rates at the step's ends
     /// ([`crate::solver::step_extrema`]). `end` holds the probes at the step's end.
-    fn step_extremes(
-        &self,
-        start: &StepResult,
-        end: &[f64; PROBES],
-        stage: Stage,
-        forces: TipForces,
-        fraction: f64,
-    ) -> [(f64, f64); 5] {
+    fn step_extremes(&self, start: &StepResult, end: &[f64; PROBES], stage: Stage, fraction: f64) -> [(f64, f64); 5] {
         let s = &self.model.scenario;
         let (k0, k1) = (&self.backup, &self.state.kinematics);
         let dt = seconds(self.state.result.time_ns - start.time_ns);
-        let (p0, _) = self.stepper.measure(k0, stage, forces);
-        let (r0, r1) = (self.stepper.rates(k0, stage), self.stepper.rates(k1, stage));
+        let (e0, e1) = (self.excitation_at(start.time_ns), self.excitation_at(self.state.result.time_ns));
+        let (p0, _) = self.stepper.measure(k0, stage, &e0);
+        let (r0, r1) = (self.stepper.rates(k0, stage, &e0), self.stepper.rates(k1, stage, &e1));
         let bar = if stage.is_contact() { self.model.bar_stiffness } else { 0.0 };
         let outputs = [
             (Probe::LowerTipDeflection, 1.0),
@@ -415,11 +486,13 @@ impl<S: Stepper> Simulation<S> {
         let mut dt = seconds(step_ns);
         let forces = self.state.forces;
         self.backup.copy_from(&self.state.kinematics);
-        let (mut probes, mut energies) = self.stepper.step_measured(&mut self.state.kinematics, stage, dt, forces);
+        let mut excitation = self.excitation_at(previous.time_ns + step_ns);
+        let (mut probes, mut energies) = self.stepper.step_measured(&mut self.state.kinematics, stage, dt, &excitation);
         if contact::stage(probes[Probe::Gap as usize]) != stage && step_ns > 1 {
-            step_ns = self.locate_stage_change(stage, step_ns, probes[Probe::Gap as usize], forces);
+            step_ns = self.locate_stage_change(stage, step_ns, probes[Probe::Gap as usize]);
             dt = seconds(step_ns);
-            (probes, energies) = self.stepper.measure(&self.state.kinematics, stage, forces);
+            excitation = self.excitation_at(previous.time_ns + step_ns);
+            (probes, energies) = self.stepper.measure(&self.state.kinematics, stage, &excitation);
         }
         if !(probes.iter().all(|p| p.is_finite()) && energies.kinetic.is_finite() && energies.beam_strain.is_finite()) {
             self.state.kinematics.copy_from(&self.backup);
@@ -432,9 +505,9 @@ impl<S: Stepper> Simulation<S> {
             });
         }
         self.state.gap = probes[Probe::Gap as usize];
-        let mut result = self.outputs(&probes, stage);
+        let mut result = self.outputs(&probes, stage, previous.time_ns + step_ns);
         if details {
-            self.set_support_and_tips(&mut result, &self.state.kinematics);
+            self.set_support_and_tips(&mut result, &self.state.kinematics, &excitation);
         }
         result.step = previous.step + 1;
         result.time_ns = previous.time_ns + step_ns;
@@ -449,9 +522,10 @@ impl<S: Stepper> Simulation<S> {
         self.state.max_strain_energy = self.state.max_strain_energy.max(energy.strain);
         self.state.max_external_work = self.state.max_external_work.max(energy.external_work.abs());
         self.state.dissipation_rate = energies.dissipation_rate;
+        self.state.inertial_potential = energies.inertial_potential;
         self.state.last_forces = forces;
         self.state.result = result;
-        let within_step = self.polynomial_peaks().then(|| self.step_extremes(&previous, &probes, stage, forces, 1.0));
+        let within_step = self.polynomial_peaks().then(|| self.step_extremes(&previous, &probes, stage, 1.0));
         self.update_peaks(energies.upper_strain, within_step);
 
         let windows = &mut self.state.contact_windows;
@@ -471,7 +545,8 @@ impl<S: Stepper> Simulation<S> {
             start: next.is_contact(),
             time_ns: result.time_ns,
             step: result.step + 1,
-            relative_velocity: self.stepper.probes(&self.state.kinematics.velocity)[Probe::Gap as usize],
+            relative_velocity: self.stepper.probes(&self.state.kinematics.velocity)[Probe::Gap as usize]
+                + excitation.gap_offset_rate,
         }))
     }
 
@@ -480,7 +555,8 @@ impl<S: Stepper> Simulation<S> {
     /// starts where the gap crosses zero, whatever the step phase. Regula falsi on the nearly linear
     /// gap(t), alternating with bisection so that the bracket always shrinks (a pure regula falsi
     /// stalls on one side). Returns the step taken, ns; the state is left at its end.
-    fn locate_stage_change(&mut self, stage: Stage, step_ns: u64, gap_end: f64, forces: TipForces) -> u64 {
+    fn locate_stage_change(&mut self, stage: Stage, step_ns: u64, gap_end: f64) -> u64 {
+        let start_ns = self.state.result.time_ns;
         let threshold = -contact::GAP_TOLERANCE;
         let gap_start = self.state.gap;
         let (mut lo, mut hi) = (0u64, step_ns);
@@ -488,8 +564,10 @@ impl<S: Stepper> Simulation<S> {
         let mut state_at_hi = false;
         let retake = |simulation: &mut Self, ns: u64| {
             simulation.state.kinematics.copy_from(&simulation.backup);
-            simulation.stepper.step(&mut simulation.state.kinematics, stage, seconds(ns), forces);
-            simulation.stepper.measure(&simulation.state.kinematics, stage, forces).0[Probe::Gap as usize] - threshold
+            let excitation = simulation.excitation_at(start_ns + ns);
+            simulation.stepper.step(&mut simulation.state.kinematics, stage, seconds(ns), &excitation);
+            simulation.stepper.measure(&simulation.state.kinematics, stage, &excitation).0[Probe::Gap as usize]
+                - threshold
         };
         let mut bisect = false;
         while hi - lo > 1 {
@@ -630,7 +708,8 @@ impl<S: Stepper> Simulation<S> {
     /// The outputs are the latest internal step's, with its support reactions and tip velocities.
     fn outputs_at_latest_step(&mut self) {
         let mut result = self.state.result;
-        self.set_support_and_tips(&mut result, &self.state.kinematics);
+        let excitation = self.excitation_at(result.time_ns);
+        self.set_support_and_tips(&mut result, &self.state.kinematics, &excitation);
         self.state.result = result;
         self.state.output_ns = result.time_ns;
         self.output = result;
@@ -657,10 +736,12 @@ impl<S: Stepper> Simulation<S> {
     }
 
     /// An input change takes effect at its communication point as a true step: the internal
-    /// step ends there (taken with the previous forces), and the acceleration is recomputed
-    /// for the new load, which holds over the following steps.
+    /// step ends there (taken with the previous forces and motion), and the acceleration is
+    /// recomputed for the new load, which holds over the following steps. A support motion that
+    /// continues the current one (to round-off) is no change: the step grid stays unbroken.
     fn apply_input(&mut self, recorder: &mut dyn Recorder) -> Result<()> {
-        if self.state.input_forces == self.state.forces {
+        let motion_changed = !continues(&self.motion_at(self.state.output_ns), &self.state.input_motion);
+        if self.state.input_forces == self.state.forces && !motion_changed {
             return Ok(());
         }
         let at = self.state.output_ns;
@@ -668,10 +749,19 @@ impl<S: Stepper> Simulation<S> {
             self.land_at(at, recorder, false)?;
         }
         let forces = self.state.input_forces;
-        let stage = self.next_stage();
-        self.stepper.equilibrium_acceleration(&mut self.state.kinematics, stage, forces);
+        if motion_changed {
+            self.state.motion = self.state.input_motion;
+            self.state.motion_ns = at;
+        }
         self.state.forces = forces;
         self.state.last_forces = forces;
+        let stage = self.next_stage();
+        let excitation = self.excitation_at(at);
+        self.stepper.equilibrium_acceleration(&mut self.state.kinematics, stage, &excitation);
+        let (probes, energies) = self.stepper.measure(&self.state.kinematics, stage, &excitation);
+        // The gap moves with a jump of the supports' position (a master's inconsistent input).
+        self.state.gap = probes[Probe::Gap as usize];
+        self.state.inertial_potential = energies.inertial_potential;
         self.outputs_at_latest_step();
         Ok(())
     }
@@ -694,21 +784,23 @@ impl<S: Stepper> Simulation<S> {
             velocity: &k0.velocity + &k0.acceleration * tau + &jerk * (0.5 * tau * tau),
             acceleration: &k0.acceleration + &jerk * tau,
         };
-        let (probes, energies) = self.stepper.measure(&kinematics, stage, before.forces);
-        let mut result = self.outputs(&probes, stage);
-        self.set_support_and_tips(&mut result, &kinematics);
+        let excitation = self.excitation_at(at_ns);
+        let (probes, energies) = self.stepper.measure(&kinematics, stage, &excitation);
+        let mut result = self.outputs(&probes, stage, at_ns);
+        self.set_support_and_tips(&mut result, &kinematics, &excitation);
+        result.time_ns = at_ns;
         // The work and the dissipation up to the point, booked as the step books them.
         result.energy = self.energy_account(before, &result, stage, probes[Probe::Gap as usize], &energies, tau);
         result.step = start.step;
-        result.time_ns = at_ns;
         result.time = seconds(at_ns);
         result.step_size = dt;
         result.peaks = start.peaks;
         if self.polynomial_peaks() {
             // The running peaks up to the point: the largest |value| over the step's first part too,
             // so that a peak output is never below an output at a communication point.
-            let (end, _) = self.stepper.measure(&self.state.kinematics, stage, before.forces);
-            let extremes = self.step_extremes(start, &end, stage, before.forces, tau / dt);
+            let end_excitation = self.excitation_at(end.time_ns);
+            let (end, _) = self.stepper.measure(&self.state.kinematics, stage, &end_excitation);
+            let extremes = self.step_extremes(start, &end, stage, tau / dt);
             result.peaks.raise(&extremes.map(|(v, _)| v));
         }
         result
@@ -719,6 +811,12 @@ impl<S: Stepper> Simulation<S> {
     /// change, the dissipation rate's trapezoid over the time, the bar's energy in contact, and
     /// the residual against the initial total. One function so that [`Self::step`] and the
     /// interpolated outputs book them the same way.
+    ///
+    /// Moving supports (issue 17) are booked in their own frame: the energies are those of the
+    /// beams' motion relative to the supports, and the external work adds the supports' work
+    /// on them: their inertia loads' (minus the change of the inertial potential, exact for the
+    /// constant accelerations of a step) and the bar's through the supports' relative
+    /// displacement (F_c dd, a trapezoid like the tip forces').
     fn energy_account(
         &self,
         before: &RunState,
@@ -733,12 +831,17 @@ impl<S: Stepper> Simulation<S> {
         let work = 0.5 * (last.upper + forces.upper) * (reached.upper_tip_deflection - start.upper_tip_deflection)
             + 0.5 * (last.lower + forces.lower) * (reached.lower_tip_deflection - start.lower_tip_deflection);
         let dissipated = 0.5 * interval * (before.dissipation_rate + energies.dissipation_rate);
+        let length = self.model.scenario.lower.length;
+        let offset_change =
+            self.motion_at(reached.time_ns).gap_offset(length) - self.motion_at(start.time_ns).gap_offset(length);
+        let supports = -(energies.inertial_potential - before.inertial_potential)
+            + 0.5 * (start.contact_force + reached.contact_force) * offset_change;
         let bar = if stage.is_contact() { contact::bar_energy(self.model.bar_stiffness, gap) } else { 0.0 };
         let mut energy = EnergyAccount {
             kinetic: energies.kinetic,
             strain: energies.beam_strain + bar,
             gravity_potential: energies.gravity_potential,
-            external_work: start.energy.external_work + work,
+            external_work: start.energy.external_work + work + supports,
             damping_dissipation: start.energy.damping_dissipation + dissipated,
             residual: 0.0,
         };
@@ -761,9 +864,22 @@ impl<S: Stepper> Simulation<S> {
     }
 
     /// Runs the scenario's whole duration into `recorder` (start, every step, finish).
+    /// With a motion table in the scenario, each row inside the run takes effect at its time as
+    /// an FMU's inputs do at a communication point (the same calls in the same order), so a file
+    /// sampled at the communication points reproduces the FMU's run.
     pub fn run(&mut self, recorder: &mut dyn Recorder) -> Result<Summary> {
         self.start_recording(recorder)?;
-        self.finish_at(self.model.scenario.duration_ns(), recorder, false)?;
+        let end_ns = self.model.scenario.duration_ns();
+        let polynomial = self.polynomial_peaks();
+        for (at_ns, motion) in self.model.scenario.motion.changes(end_ns) {
+            if polynomial {
+                self.advance_outputs_to(at_ns, recorder, false)?;
+            } else {
+                self.advance_to(at_ns, recorder, false)?;
+            }
+            self.set_support_motion(motion);
+        }
+        self.finish_at(end_ns, recorder, false)?;
         recorder.finish()?;
         Ok(self.summary())
     }
@@ -772,6 +888,24 @@ impl<S: Stepper> Simulation<S> {
     /// advance first ends the internal step there if the forces changed.
     pub fn set_tip_forces(&mut self, forces: TipForces) {
         self.state.input_forces = forces;
+    }
+
+    /// Sets the supports' motion from the outputs' time on (it moves with constant accelerations
+    /// until the next change): the next advance first ends the internal step there unless it
+    /// continues the current motion (to round-off).
+    pub fn set_support_motion(&mut self, motion: SupportMotion) {
+        self.state.input_motion = motion;
+    }
+
+    /// How the support motion set for the outputs' time disagrees with the motion since the last
+    /// change (see [`SupportMotion::mismatch`]), or `None`.
+    pub fn motion_mismatch(&self) -> Option<crate::model::support_motion::MotionMismatch> {
+        let state = &self.state;
+        let interval = seconds(state.output_ns.saturating_sub(state.motion_ns));
+        if interval <= 0.0 {
+            return None;
+        }
+        state.motion.mismatch(&state.input_motion, interval)
     }
 
     /// Results of the latest internal step.
@@ -838,8 +972,9 @@ impl<S: Stepper> Simulation<S> {
         let previous = std::mem::replace(&mut self.state, state);
         let previous_output = self.output;
         // The outputs at a communication point inside a step are recomputed from that step.
-        let (at, forces) = (self.state.output_ns, self.state.input_forces);
+        let (at, forces, motion) = (self.state.output_ns, self.state.input_forces, self.state.input_motion);
         self.state.input_forces = self.state.forces;
+        self.state.input_motion = self.motion_at(self.state.result.time_ns);
         self.state.output_ns = self.state.result.time_ns;
         self.output = self.state.result;
         if let Err(e) = self.advance_outputs_to(at, &mut NullRecorder, false) {
@@ -849,6 +984,7 @@ impl<S: Stepper> Simulation<S> {
             return Err(e);
         }
         self.state.input_forces = forces;
+        self.state.input_motion = motion;
         Ok(())
     }
 
@@ -909,6 +1045,12 @@ impl<S: Stepper> Simulation<S> {
             time_steps: TimeSteps { free: seconds(self.plan.free_ns), contact: seconds(self.plan.contact_ns) },
         }
     }
+}
+
+/// True when `given` is `expected` to round-off (1e-12 of each value, or of 1): a master that sends
+/// the continued motion changes nothing, whatever its communication step.
+fn continues(expected: &SupportMotion, given: &SupportMotion) -> bool {
+    expected.values().iter().zip(given.values()).all(|(e, g)| (e - g).abs() <= 1e-12 * e.abs().max(g.abs()).max(1.0))
 }
 
 /// Rows: every node of the arrestor, then of the bridge; columns: global modal coordinates.

@@ -44,6 +44,7 @@ mod reactions;
 mod report_csv;
 mod scenario;
 mod stepping;
+mod support_motion;
 mod sweep;
 mod truncation;
 mod verify;

@@ -4,7 +4,7 @@
 
 use beam_impact::model::{Model, TimeStep};
 use beam_impact::record::{MemoryRecorder, NullRecorder};
-use beam_impact::solver::{Kinematics, ModalStepper, ModalSystem, Stage, Stepper, TipForces};
+use beam_impact::solver::{Excitation, Kinematics, ModalStepper, ModalSystem, Stage, Stepper, TipForces};
 use beam_impact::{Error, Scenario, Simulation};
 use nalgebra::DVector;
 
@@ -55,7 +55,7 @@ fn production_and_oracle_agree_at_every_step() {
 /// velocity and the equilibrium acceleration M^-1 F: a release that excites every mode.
 fn undeformed_swing(model: &Model, modal: &ModalSystem) -> (ModalStepper, Kinematics) {
     let stepper = ModalStepper::new(model, modal.clone());
-    let physical = beam_impact::solver::initial::initial_state(model, modal, TipForces::default()).unwrap();
+    let physical = beam_impact::solver::initial::initial_state(model, modal, &Excitation::default()).unwrap();
     let state = stepper.own_coordinates(&Kinematics {
         displacement: DVector::zeros(model.dofs()),
         velocity: physical.velocity,
@@ -74,14 +74,14 @@ fn free_swing_residual(dt: f64, duration: f64) -> (f64, f64) {
     let modal = ModalSystem::new(&model).unwrap();
     let (mut stepper, mut state) = undeformed_swing(&model, &modal);
     let energy = |stepper: &ModalStepper, state: &Kinematics| {
-        let e = stepper.energies(state);
+        let e = stepper.energies(state, &Excitation::default());
         e.kinetic + e.beam_strain + e.gravity_potential
     };
     let e0 = energy(&stepper, &state);
     let steps = (duration / dt).round() as usize;
     let (mut first, mut second) = (0.0f64, 0.0f64);
     for i in 0..steps {
-        stepper.step(&mut state, Stage::Free, dt, TipForces::default());
+        stepper.step(&mut state, Stage::Free, dt, &Excitation::default());
         let residual = (energy(&stepper, &state) - e0).abs();
         if i < steps / 2 {
             first = first.max(residual);
@@ -128,7 +128,7 @@ fn halving_the_step_shrinks_the_error_fourfold() {
     let run = |dt: f64| {
         let (mut stepper, mut state) = undeformed_swing(&model, &modal);
         for _ in 0..(0.05 / dt).round() as usize {
-            stepper.step(&mut state, Stage::Free, dt, TipForces::default());
+            stepper.step(&mut state, Stage::Free, dt, &Excitation::default());
         }
         stepper.probes(&state.displacement)[0]
     };
@@ -266,21 +266,21 @@ fn modified_energy_is_conserved_at_a_fixed_step_and_jumps_at_a_change_of_step() 
     // acceleration: the high modes hold most of the energy, as after many bounces.
     state.displacement.fill(1e-4);
     state.velocity.fill(0.0);
-    stepper.equilibrium_acceleration(&mut state, Stage::Free, TipForces::default());
+    stepper.equilibrium_acceleration(&mut state, Stage::Free, &Excitation::default());
     // In modal coordinates M = I, so a^T M a = |a|^2.
     let true_energy = |stepper: &ModalStepper, state: &Kinematics| {
-        let e = stepper.energies(state);
+        let e = stepper.energies(state, &Excitation::default());
         e.kinetic + e.beam_strain + e.gravity_potential
     };
     let modified = |stepper: &ModalStepper, state: &Kinematics, dt: f64| {
         true_energy(stepper, state) - dt * dt / 24.0 * state.acceleration.norm_squared()
     };
     let dt = 5e-5;
-    let scale = stepper.energies(&state).beam_strain;
+    let scale = stepper.energies(&state, &Excitation::default()).beam_strain;
     let (e0, h0) = (true_energy(&stepper, &state), modified(&stepper, &state, dt));
     let (mut wander, mut drift) = (0.0f64, 0.0f64);
     for _ in 0..2000 {
-        stepper.step(&mut state, Stage::Free, dt, TipForces::default());
+        stepper.step(&mut state, Stage::Free, dt, &Excitation::default());
         wander = wander.max((true_energy(&stepper, &state) - e0).abs());
         drift = drift.max((modified(&stepper, &state, dt) - h0).abs());
     }
@@ -290,7 +290,7 @@ fn modified_energy_is_conserved_at_a_fixed_step_and_jumps_at_a_change_of_step() 
     let short = 1.7e-5;
     let before_h = modified(&stepper, &state, dt);
     let before_a = state.acceleration.norm_squared();
-    stepper.step(&mut state, Stage::Free, short, TipForces::default());
+    stepper.step(&mut state, Stage::Free, short, &Excitation::default());
     let after_a = state.acceleration.norm_squared();
     let jump = modified(&stepper, &state, dt) - before_h;
     let predicted = (dt * dt - short * short) / 24.0 * (before_a - after_a);

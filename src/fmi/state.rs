@@ -39,7 +39,7 @@ pub const MAGIC: &[u8; 8] = b"BEAMFMU\0";
 
 /// Version of the byte format; bump it when the layout, [`Snapshot`], [`RunState`] or the set of
 /// FMU parameters changes.
-pub const FORMAT_VERSION: u32 = 3;
+pub const FORMAT_VERSION: u32 = 4;
 
 /// Bytes before the payload.
 pub const HEADER: usize = 24;
@@ -212,8 +212,9 @@ mod tests {
         let mut other = bytes.clone();
         other[8] = 9;
         match Snapshot::from_bytes(&other) {
-            Err(e @ Error::StateVersion { found: 9, expected: 3 }) => {
-                assert!(e.to_string().contains("format version 9, this binary reads version 3"))
+            Err(e @ Error::StateVersion { found: 9, expected: FORMAT_VERSION }) => {
+                let text = format!("format version 9, this binary reads version {FORMAT_VERSION}");
+                assert!(e.to_string().contains(&text), "{e}")
             }
             other => panic!("{other:?}"),
         }
@@ -305,7 +306,8 @@ mod tests {
         out.insert(format!("{prefix}: {leaf}"));
     }
 
-    /// The payload's layout at FORMAT_VERSION 3 (3: the method, modal cut-off, discretisation
+    /// The payload's layout at FORMAT_VERSION 4 (4: the supports' motion, its start and input, the
+    /// inertial potential and the supports' displacements in the results; 3: the method, modal cut-off, discretisation
     /// tolerance, allowables and yield stresses; the discretisation check's run states): every field path of `Snapshot` and its type, the
     /// FMU parameters by name. Version 2 (one bump for issues 7, 8 and 9): the energy verdict, the
     /// output time and input of grid-independent co-simulation, the first contact's peaks, the
@@ -317,8 +319,8 @@ mod tests {
     /// list together. (A DVector is nalgebra's `[data, nrows, ncols]`: `[][]` the data, `[]` the
     /// sizes; `null` an absent Option or the static column count.)
     #[test]
-    fn snapshot_fields_are_pinned_at_format_version_3() {
-        const VERSION_3: &[&str] = &[
+    fn snapshot_fields_are_pinned_at_format_version_4() {
+        const VERSION_4: &[&str] = &[
             "checks[].contact_windows[].end: f64",
             "checks[].contact_windows[].start: f64",
             "checks[].dissipation_rate: f64",
@@ -338,9 +340,19 @@ mod tests {
             "checks[].forces.lower: f64",
             "checks[].forces.upper: f64",
             "checks[].gap: f64",
+            "checks[].inertial_potential: f64",
             "checks[].initial_energy: f64",
             "checks[].input_forces.lower: f64",
             "checks[].input_forces.upper: f64",
+            "checks[].input_motion.clamp_heave.acceleration: f64",
+            "checks[].input_motion.clamp_heave.displacement: f64",
+            "checks[].input_motion.clamp_heave.velocity: f64",
+            "checks[].input_motion.clamp_rotation.acceleration: f64",
+            "checks[].input_motion.clamp_rotation.displacement: f64",
+            "checks[].input_motion.clamp_rotation.velocity: f64",
+            "checks[].input_motion.hinge_heave.acceleration: f64",
+            "checks[].input_motion.hinge_heave.displacement: f64",
+            "checks[].input_motion.hinge_heave.velocity: f64",
             "checks[].kinematics.acceleration[]: null",
             "checks[].kinematics.acceleration[]: u64",
             "checks[].kinematics.acceleration[][]: f64",
@@ -355,6 +367,16 @@ mod tests {
             "checks[].max_external_work: f64",
             "checks[].max_residual: f64",
             "checks[].max_strain_energy: f64",
+            "checks[].motion.clamp_heave.acceleration: f64",
+            "checks[].motion.clamp_heave.displacement: f64",
+            "checks[].motion.clamp_heave.velocity: f64",
+            "checks[].motion.clamp_rotation.acceleration: f64",
+            "checks[].motion.clamp_rotation.displacement: f64",
+            "checks[].motion.clamp_rotation.velocity: f64",
+            "checks[].motion.hinge_heave.acceleration: f64",
+            "checks[].motion.hinge_heave.displacement: f64",
+            "checks[].motion.hinge_heave.velocity: f64",
+            "checks[].motion_ns: u64",
             "checks[].output_ns: u64",
             "checks[].peak_times.contact_force: f64",
             "checks[].peak_times.lower_clamp_bending_stress: f64",
@@ -374,6 +396,7 @@ mod tests {
             "checks[].result.lower_clamp_reaction_force: f64",
             "checks[].result.lower_clamp_reaction_moment: f64",
             "checks[].result.lower_clamp_shear_stress: f64",
+            "checks[].result.lower_support_displacement: f64",
             "checks[].result.lower_tip_deflection: f64",
             "checks[].result.lower_tip_velocity: f64",
             "checks[].result.peaks.contact_force: f64",
@@ -388,6 +411,7 @@ mod tests {
             "checks[].result.upper_contact_bending_stress: f64",
             "checks[].result.upper_contact_deflection: f64",
             "checks[].result.upper_hinge_reaction_force: f64",
+            "checks[].result.upper_support_displacement: f64",
             "checks[].result.upper_tip_deflection: f64",
             "checks[].result.upper_tip_velocity: f64",
             "checks[].upper_strain_at_peak: f64",
@@ -447,9 +471,19 @@ mod tests {
             "run.forces.lower: f64",
             "run.forces.upper: f64",
             "run.gap: f64",
+            "run.inertial_potential: f64",
             "run.initial_energy: f64",
             "run.input_forces.lower: f64",
             "run.input_forces.upper: f64",
+            "run.input_motion.clamp_heave.acceleration: f64",
+            "run.input_motion.clamp_heave.displacement: f64",
+            "run.input_motion.clamp_heave.velocity: f64",
+            "run.input_motion.clamp_rotation.acceleration: f64",
+            "run.input_motion.clamp_rotation.displacement: f64",
+            "run.input_motion.clamp_rotation.velocity: f64",
+            "run.input_motion.hinge_heave.acceleration: f64",
+            "run.input_motion.hinge_heave.displacement: f64",
+            "run.input_motion.hinge_heave.velocity: f64",
             "run.kinematics.acceleration[]: null",
             "run.kinematics.acceleration[]: u64",
             "run.kinematics.acceleration[][]: f64",
@@ -464,6 +498,16 @@ mod tests {
             "run.max_external_work: f64",
             "run.max_residual: f64",
             "run.max_strain_energy: f64",
+            "run.motion.clamp_heave.acceleration: f64",
+            "run.motion.clamp_heave.displacement: f64",
+            "run.motion.clamp_heave.velocity: f64",
+            "run.motion.clamp_rotation.acceleration: f64",
+            "run.motion.clamp_rotation.displacement: f64",
+            "run.motion.clamp_rotation.velocity: f64",
+            "run.motion.hinge_heave.acceleration: f64",
+            "run.motion.hinge_heave.displacement: f64",
+            "run.motion.hinge_heave.velocity: f64",
+            "run.motion_ns: u64",
             "run.output_ns: u64",
             "run.peak_times.contact_force: f64",
             "run.peak_times.lower_clamp_bending_stress: f64",
@@ -483,6 +527,7 @@ mod tests {
             "run.result.lower_clamp_reaction_force: f64",
             "run.result.lower_clamp_reaction_moment: f64",
             "run.result.lower_clamp_shear_stress: f64",
+            "run.result.lower_support_displacement: f64",
             "run.result.lower_tip_deflection: f64",
             "run.result.lower_tip_velocity: f64",
             "run.result.peaks.contact_force: f64",
@@ -497,6 +542,7 @@ mod tests {
             "run.result.upper_contact_bending_stress: f64",
             "run.result.upper_contact_deflection: f64",
             "run.result.upper_hinge_reaction_force: f64",
+            "run.result.upper_support_displacement: f64",
             "run.result.upper_tip_deflection: f64",
             "run.result.upper_tip_velocity: f64",
             "run.upper_strain_at_peak: f64",
@@ -509,7 +555,7 @@ mod tests {
         let found: Vec<&str> = found.iter().map(String::as_str).collect();
         assert_eq!(
             (FORMAT_VERSION, found.as_slice()),
-            (3, VERSION_3),
+            (4, VERSION_4),
             "Snapshot's fields changed: bump FORMAT_VERSION and update the pinned list"
         );
     }

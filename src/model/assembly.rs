@@ -20,6 +20,8 @@ pub struct Beam {
     pub gravity_load: DVector<f64>,
     /// Total mass, kg (distributed plus lumped).
     pub total_mass: f64,
+    /// The lumped mass at the free end, kg.
+    pub tip_mass: f64,
 }
 
 impl Beam {
@@ -52,7 +54,48 @@ impl Beam {
             m[(tip, tip)] += tip_mass;
             f[tip] -= tip_mass * gravity;
         }
-        Beam { mesh, section, mass: m, stiffness: k, gravity_load: f, total_mass: mass + tip_mass }
+        Beam { mesh, section, mass: m, stiffness: k, gravity_load: f, total_mass: mass + tip_mass, tip_mass }
+    }
+
+    /// M r over the free DOFs for a rigid motion r of the whole beam, support DOFs included
+    /// (translation: w = 1, theta = 0; `rotation`: about the support at x = 0, w = x, theta = 1),
+    /// lumped tip mass included: -(M r) a is the load of a support accelerating at a in the
+    /// moving-base form (issue 17). For the translation it is -gravity_load / g.
+    pub fn rigid_inertia(&self, rotation: bool) -> DVector<f64> {
+        let mut f = DVector::zeros(self.dofs());
+        for e in 0..self.mesh.elements() {
+            let me = beam::consistent_mass(&self.section, self.mesh.element_length(e));
+            let r = self.rigid_field(e, rotation);
+            for (a, d) in self.mesh.element_dofs(e).iter().enumerate() {
+                if let Some(i) = *d {
+                    f[i] += (0..4).map(|b| me[(a, b)] * r[b]).sum::<f64>();
+                }
+            }
+        }
+        if let Some(tip) = self.mesh.tip().w {
+            let r_tip = if rotation { self.mesh.tip().x } else { 1.0 };
+            f[tip] += self.tip_mass * r_tip;
+        }
+        f
+    }
+
+    /// The support DOF `row` (0: deflection, 1: rotation) of M r for the rigid motion of
+    /// [`Self::rigid_inertia`]: the support's own inertia force per unit acceleration, which the
+    /// support reaction carries (only the first element touches the support).
+    pub fn support_rigid_inertia(&self, row: usize, rotation: bool) -> f64 {
+        let me = beam::consistent_mass(&self.section, self.mesh.element_length(0));
+        let r = self.rigid_field(0, rotation);
+        (0..4).map(|b| me[(row, b)] * r[b]).sum()
+    }
+
+    /// Element `e`'s end values (w1, theta1, w2, theta2) of the unit rigid motion.
+    fn rigid_field(&self, e: usize, rotation: bool) -> [f64; 4] {
+        let (x1, x2) = (self.mesh.nodes[e].x, self.mesh.nodes[e + 1].x);
+        if rotation {
+            [x1, 1.0, x2, 1.0]
+        } else {
+            [1.0, 0.0, 1.0, 0.0]
+        }
     }
 
     /// Number of free DOFs.

@@ -5,9 +5,11 @@ pub mod beam;
 pub mod damping;
 pub mod discretisation;
 pub mod mesh;
+pub mod motion_table;
 pub mod parameters;
 pub mod scenario;
 pub mod stress_recovery;
+pub mod support_motion;
 pub mod system;
 pub mod time_step;
 
@@ -15,5 +17,6 @@ pub use assembly::Beam;
 pub use discretisation::Method;
 pub use scenario::Scenario;
 pub use stress_recovery::StressRecovery;
+pub use support_motion::{SupportMotion, Track};
 pub use system::{Model, Probe, Reaction, REACTIONS};
 pub use time_step::TimeStep;

@@ -1,10 +1,14 @@
 //! Every input of a run in one serde struct, with the paper scenario as [`Default`]
 //! (see `docs/scenario.md` for where each number comes from).
 
+use std::sync::Arc;
+
 use serde::{Deserialize, Serialize};
 
 use super::discretisation::{auto_count, auto_real, Method, PAPER_ELEMENTS};
+use super::motion_table::MotionTable;
 use super::stress_recovery::StressRecovery;
+use super::support_motion::SupportMotion;
 use super::time_step::TimeStep;
 use crate::error::{Error, Result};
 
@@ -132,6 +136,40 @@ impl ContactBar {
     }
 }
 
+/// The supports' prescribed motion (issue 17): a time series of the hinge's heave and the
+/// clamp's heave and rotation (see [`MotionTable`] for the file), read by the CLI. Without a file
+/// the supports are fixed (the paper).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct MotionSettings {
+    /// CSV file of the supports' motion, relative to the scenario file (or as given to `--motion`);
+    /// "" (the default): fixed supports.
+    pub file: String,
+    /// The file's time at the run's t = 0 (the impact), s. Default 0. Over one wave period it
+    /// sweeps the wave's phase at impact.
+    pub time_shift: f64,
+    /// The file's rows, loaded by the CLI (not part of the TOML).
+    #[serde(skip)]
+    pub table: Option<Arc<MotionTable>>,
+}
+
+impl MotionSettings {
+    /// True for fixed supports with the default shift (nothing to write in a scenario file).
+    pub fn is_unset(&self) -> bool {
+        self.file.is_empty() && self.time_shift == 0.0 && self.table.is_none()
+    }
+
+    /// The supports' motion at the run's t = 0 (rest without a table).
+    pub fn at_start(&self) -> SupportMotion {
+        self.table.as_ref().map(|t| t.motion_at(self.time_shift)).unwrap_or_default()
+    }
+
+    /// The table's rows inside a run of `duration_ns` as (run time in ns, motion), in order.
+    pub fn changes(&self, duration_ns: u64) -> Vec<(u64, SupportMotion)> {
+        self.table.as_ref().map(|t| t.changes(self.time_shift, duration_ns)).unwrap_or_default()
+    }
+}
+
 /// A whole run: the two beams, the contact bar, the drop, damping and time stepping.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -181,6 +219,9 @@ pub struct Scenario {
     pub lower: LowerBeam,
     /// The contact bar.
     pub contact: ContactBar,
+    /// The supports' prescribed motion (none by default: fixed supports).
+    #[serde(skip_serializing_if = "MotionSettings::is_unset")]
+    pub motion: MotionSettings,
 }
 
 impl Default for Scenario {
@@ -203,6 +244,7 @@ impl Default for Scenario {
             upper: UpperBeam::default(),
             lower: LowerBeam::default(),
             contact: ContactBar::default(),
+            motion: MotionSettings::default(),
         }
     }
 }
@@ -449,6 +491,22 @@ impl Scenario {
         check(size("contact.area", "m^2", c.area, 1e-12, 1e3));
         check(size("contact.length", "m", c.length, 1e-6, 1e3));
         check(size("contact.elastic_modulus", "Pa", c.elastic_modulus, 1e6, 1e13));
+
+        let m = &self.motion;
+        check(within("motion.time_shift", "s", m.time_shift, -1e9, 1e9));
+        match &m.table {
+            None if !m.file.is_empty() => check(Err(Error::invalid(
+                "motion.file",
+                "a CSV file the CLI reads (`run --motion FILE.csv` or `[motion] file` in a scenario file)",
+                format!("'{}', not loaded", m.file),
+            ))),
+            Some(table) if m.time_shift.is_finite() && self.duration.is_finite() => check(
+                table
+                    .check_covers(m.time_shift, m.time_shift + self.duration)
+                    .map_err(|e| Error::invalid("motion.file", "covering the run", format!("'{}' {e}", m.file))),
+            ),
+            _ => {}
+        }
         errors
     }
 

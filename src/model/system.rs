@@ -153,6 +153,30 @@ impl Model {
         [lower(0), lower(1), upper]
     }
 
+    /// The supports' unit inertia loads x_j = -M r_j over the global DOFs, in the order of
+    /// [`super::support_motion::SupportMotion::accelerations`]: hinge heave (the bridge
+    /// translating), clamp heave (the arrestor translating), clamp rotation (the arrestor rotating
+    /// about its clamp). In the moving-base form the supports' motion loads the beams with
+    /// sum_j a_j x_j (issue 17); gravity is -g times the sum of the two translations' M r.
+    pub fn support_loads(&self) -> [DVector<f64>; 3] {
+        let zeros = |n: usize| DVector::<f64>::zeros(n);
+        let (nl, nu) = (self.lower.dofs(), self.upper.dofs());
+        [
+            -self.stack(&zeros(nl), &self.upper.rigid_inertia(false)),
+            -self.stack(&self.lower.rigid_inertia(false), &zeros(nu)),
+            -self.stack(&self.lower.rigid_inertia(true), &zeros(nu)),
+        ]
+    }
+
+    /// The supports' own inertia in each reaction of [`Self::reactions`] per unit acceleration of
+    /// each support motion: reaction k gains `[k][j] * a_j` (the support row of M r_j).
+    pub fn support_reaction_inertia(&self) -> [[f64; 3]; REACTIONS] {
+        let lower = |row: usize| {
+            [0.0, self.lower.support_rigid_inertia(row, false), self.lower.support_rigid_inertia(row, true)]
+        };
+        [lower(0), lower(1), [self.upper.support_rigid_inertia(0, false), 0.0, 0.0]]
+    }
+
     /// Number of global DOFs.
     pub fn dofs(&self) -> usize {
         self.lower.dofs() + self.upper.dofs()

@@ -128,6 +128,8 @@ impl StepMessage {
         self.upper_hinge_reaction_force = r.upper_hinge_reaction_force;
         self.lower_tip_velocity = r.lower_tip_velocity;
         self.upper_tip_velocity = r.upper_tip_velocity;
+        self.upper_support_displacement = r.upper_support_displacement;
+        self.lower_support_displacement = r.lower_support_displacement;
         let e = &r.energy;
         self.energy = Some(EnergyMessage {
             kinetic: e.kinetic,
@@ -171,6 +173,8 @@ impl StepMessage {
             upper_hinge_reaction_force: self.upper_hinge_reaction_force,
             lower_tip_velocity: self.lower_tip_velocity,
             upper_tip_velocity: self.upper_tip_velocity,
+            upper_support_displacement: self.upper_support_displacement,
+            lower_support_displacement: self.lower_support_displacement,
             energy: EnergyAccount {
                 kinetic: e.kinetic,
                 strain: e.strain,
@@ -365,8 +369,10 @@ mod tests {
             "upper_hinge_reaction_force",
             "lower_tip_velocity",
             "upper_tip_velocity",
+            "upper_support_displacement",
+            "lower_support_displacement",
         ];
-        assert_eq!(step.len(), 21);
+        assert_eq!(step.len(), 23);
         for (k, (field, name)) in step.iter().zip(names).enumerate() {
             let number = k as i32 + 1;
             let (ty, label) = match number {
@@ -438,6 +444,8 @@ mod tests {
             upper_hinge_reaction_force: 19.5,
             lower_tip_velocity: 20.5,
             upper_tip_velocity: 21.5,
+            upper_support_displacement: 22.5,
+            lower_support_displacement: 23.5,
         };
         let types = messages(&beam_impact_descriptor());
         let decoded = decode_by_schema(&types, ".beam_impact.Step", &step.encode_to_vec());
@@ -453,7 +461,7 @@ mod tests {
         assert_eq!(decoded["time_ns"], 2);
         assert_eq!(decoded["contact"], 1);
         assert_eq!(f32::from_bits(decoded["modal_coordinates"] as u32), 16.5);
-        assert_eq!(decoded.len(), 21 - 2 + 6 + 5, "{decoded:?}");
+        assert_eq!(decoded.len(), 23 - 2 + 6 + 5, "{decoded:?}");
 
         let modes = ModalCoordinatesMessage { step: 7, time_ns: 8, time: 3.5, coordinates: vec![1.0, 4.5] };
         let decoded = decode_by_schema(&types, ".beam_impact.ModalCoordinates", &modes.encode_to_vec());

@@ -18,9 +18,9 @@ const FIXED64: u8 = 1;
 const LENGTH_DELIMITED: u8 = 2;
 
 /// The largest message: two 10-byte varints and their keys (22), `step_size` (9), `contact` (2),
-/// 8 doubles (72), the energy account (2 + 54) and the peaks (2 + 45), 5 doubles with two-byte
-/// keys (50): 258 bytes.
-const MAX_BYTES: usize = 258;
+/// 8 doubles (72), the energy account (2 + 54) and the peaks (2 + 45), 7 doubles with two-byte
+/// keys (70): 278 bytes.
+const MAX_BYTES: usize = 278;
 
 /// The message built in a fixed array (one pass, no capacity checks), then appended at once.
 struct Bytes {
@@ -116,6 +116,8 @@ pub fn encode_step(buffer: &mut Vec<u8>, r: &StepResult, with_peaks: bool) {
     b.double(19, r.upper_hinge_reaction_force);
     b.double(20, r.lower_tip_velocity);
     b.double(21, r.upper_tip_velocity);
+    b.double(22, r.upper_support_displacement);
+    b.double(23, r.lower_support_displacement);
     buffer.clear();
     buffer.extend_from_slice(&b.bytes[..b.len]);
 }
@@ -181,6 +183,8 @@ mod tests {
             upper_hinge_reaction_force: v,
             lower_tip_velocity: v,
             upper_tip_velocity: v,
+            upper_support_displacement: v,
+            lower_support_displacement: -v,
             energy: EnergyAccount {
                 kinetic: v,
                 strain: v,

@@ -5,7 +5,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::contact::Stage;
-use super::kinematics::{Energies, Kinematics, Stepper, SupportAndTips, TipForces};
+use super::kinematics::{Energies, Excitation, Kinematics, Stepper, SupportAndTips};
 use super::modal::ModalSystem;
 use crate::model::system::PROBES;
 use crate::model::{damping, Model, Probe};
@@ -21,6 +21,13 @@ pub struct DenseStepper {
     gravity: DVector<f64>,
     upper_tip: DVector<f64>,
     lower_tip: DVector<f64>,
+    /// The supports' unit inertia loads x_j = -M r_j.
+    support_loads: [DVector<f64>; 3],
+    /// The supports' own inertia in each reaction per unit acceleration.
+    support_reactions: [[f64; 3]; crate::model::REACTIONS],
+    /// The contact vector b.
+    contact: DVector<f64>,
+    bar_stiffness: f64,
     probes: DMatrix<f64>,
     /// Support reactions in physical coordinates.
     reactions: Vec<PhysicalReaction>,
@@ -56,6 +63,10 @@ impl DenseStepper {
             gravity: model.gravity_load(),
             upper_tip,
             lower_tip,
+            support_loads: model.support_loads(),
+            support_reactions: model.support_reaction_inertia(),
+            contact: model.contact_vector(),
+            bar_stiffness: model.bar_stiffness,
             probes: model.probes.clone(),
             // Physical rows from the modal ones: d = Phi^-T Phi^T k = M Phi (Phi^T k) (mass-normalised
             // modes), and the same for the damping and mass rows.
@@ -76,8 +87,24 @@ impl DenseStepper {
     }
 }
 
+impl DenseStepper {
+    /// F of Eq. (8) at the step's end: gravity, the tip forces, the supports' inertia
+    /// sum_j a_j x_j, and in contact the bar's pull from the supports' offset, -k_c b d.
+    fn load(&self, stage: Stage, excitation: &Excitation) -> DVector<f64> {
+        let forces = excitation.forces;
+        let mut load = &self.gravity + &self.upper_tip * forces.upper + &self.lower_tip * forces.lower;
+        for (x, a) in self.support_loads.iter().zip(excitation.support_acceleration) {
+            load += x * a;
+        }
+        if stage.is_contact() {
+            load -= &self.contact * (self.bar_stiffness * excitation.gap_offset);
+        }
+        load
+    }
+}
+
 impl Stepper for DenseStepper {
-    fn step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, forces: TipForces) {
+    fn step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, excitation: &Excitation) {
         let k = if stage.is_contact() { &self.coupled_stiffness } else { &self.stiffness };
         let c = &self.damping;
         // Eq. (9) and (10).
@@ -86,7 +113,7 @@ impl Stepper for DenseStepper {
         let q = c + k * dt;
         let r = c * (dt / 2.0) + k * (dt * dt / 3.0);
         // Eq. (8).
-        let load = &self.gravity + &self.upper_tip * forces.upper + &self.lower_tip * forces.lower;
+        let load = self.load(stage, excitation);
         let f = load - (p * &state.displacement + q * &state.velocity + r * &state.acceleration);
         // Eq. (7). S is symmetric positive definite for any dt > 0; LU keeps the oracle literal.
         // A failed solve (only with non-finite input) yields NaN, which the simulation reports.
@@ -99,9 +126,9 @@ impl Stepper for DenseStepper {
         state.acceleration = a_next;
     }
 
-    fn equilibrium_acceleration(&mut self, state: &mut Kinematics, stage: Stage, forces: TipForces) {
+    fn equilibrium_acceleration(&mut self, state: &mut Kinematics, stage: Stage, excitation: &Excitation) {
         let k = if stage.is_contact() { &self.coupled_stiffness } else { &self.stiffness };
-        let load = &self.gravity + &self.upper_tip * forces.upper + &self.lower_tip * forces.lower;
+        let load = self.load(stage, excitation);
         let f = load - k * &state.displacement - &self.damping * &state.velocity;
         let n = f.len();
         state.acceleration = self.mass.clone().lu().solve(&f).unwrap_or_else(|| DVector::from_element(n, f64::NAN));
@@ -114,10 +141,17 @@ impl Stepper for DenseStepper {
         out
     }
 
-    fn support_and_tips(&self, state: &Kinematics, _stage: Stage, _forces: TipForces) -> SupportAndTips {
+    fn support_and_tips(&self, state: &Kinematics, _stage: Stage, excitation: &Excitation) -> SupportAndTips {
         let (q, v, a) = (&state.displacement, &state.velocity, &state.acceleration);
-        let r: Vec<f64> =
-            self.reactions.iter().map(|r| r.stiffness.dot(q) + r.damping.dot(v) + r.mass.dot(a) - r.load).collect();
+        let r: Vec<f64> = self
+            .reactions
+            .iter()
+            .zip(&self.support_reactions)
+            .map(|(r, inertia)| {
+                let support: f64 = inertia.iter().zip(excitation.support_acceleration).map(|(m, a)| m * a).sum();
+                r.stiffness.dot(q) + r.damping.dot(v) + r.mass.dot(a) - r.load + support
+            })
+            .collect();
         let rates = &self.probes * v;
         SupportAndTips {
             clamp_force: r[0],
@@ -128,7 +162,7 @@ impl Stepper for DenseStepper {
         }
     }
 
-    fn energies(&self, state: &Kinematics) -> Energies {
+    fn energies(&self, state: &Kinematics, excitation: &Excitation) -> Energies {
         let (d, v) = (&state.displacement, &state.velocity);
         let n0 = self.upper_stiffness_offset;
         let nu = d.len() - n0;
@@ -139,6 +173,12 @@ impl Stepper for DenseStepper {
             beam_strain: 0.5 * d.dot(&(&self.stiffness * d)),
             upper_strain: 0.5 * du.dot(&(ku * du)),
             gravity_potential: -self.gravity.dot(d),
+            inertial_potential: -self
+                .support_loads
+                .iter()
+                .zip(excitation.support_acceleration)
+                .map(|(x, a)| a * x.dot(d))
+                .sum::<f64>(),
             dissipation_rate: v.dot(&(&self.damping * v)),
         }
     }

@@ -4,7 +4,7 @@
 
 use nalgebra::DVector;
 
-use super::kinematics::{Kinematics, TipForces};
+use super::kinematics::{Excitation, Kinematics};
 use super::modal::ModalSystem;
 use crate::error::{Error, Result};
 use crate::model::{damping, Model, Probe};
@@ -32,11 +32,33 @@ impl Pitching {
     }
 }
 
-/// Physical displacements, velocities and accelerations at t = 0 (global DOFs).
-pub fn initial_state(model: &Model, modal: &ModalSystem, forces: TipForces) -> Result<Kinematics> {
+/// Physical displacements, velocities and accelerations at t = 0 (global DOFs), relative to the
+/// supports, under the excitation at t = 0: the fall before it happened under the supports'
+/// accelerations at t = 0 (the bridge pitches under g + a_hinge, the arrestor rests under its
+/// self-weight and its clamp's inertia loads), and the beams touch, the supports' offset included.
+/// So supports sharing one constant vertical acceleration a give the run with gravity g + a.
+pub fn initial_state(model: &Model, modal: &ModalSystem, excitation: &Excitation) -> Result<Kinematics> {
     let s = &model.scenario;
+    let forces = excitation.forces;
     let (upper_tip, lower_tip) = model.tip_force_vectors();
-    let external = &upper_tip * forces.upper + &lower_tip * forces.lower;
+    let mut external = &upper_tip * forces.upper + &lower_tip * forces.lower;
+    for (x, a) in model.support_loads().iter().zip(excitation.support_acceleration) {
+        if a != 0.0 {
+            external += x * a;
+        }
+    }
+    let hinge_gravity = s.gravity + excitation.support_acceleration[0];
+    if hinge_gravity.is_nan() || hinge_gravity <= 0.0 {
+        return Err(Error::invalid(
+            "upper.hinge_heave_acceleration",
+            format!(
+                "> -gravity = {} m/s^2 at t = 0 (the bridge falls onto the arrestor under gravity plus its \
+                 hinge's acceleration)",
+                -s.gravity
+            ),
+            excitation.support_acceleration[0],
+        ));
+    }
     let nl = model.lower.dofs();
     let nu = model.upper.dofs();
     let load_lower = model.lower.gravity_load.clone() + external.rows(0, nl);
@@ -50,7 +72,7 @@ pub fn initial_state(model: &Model, modal: &ModalSystem, forces: TipForces) -> R
         })?;
 
     // Bridge, Eq. (23): rigid rotation about the hinge, pitching down (w = -x alpha, theta = -alpha).
-    let pitching = Pitching::new(s.drop_height, s.upper.length, s.gravity);
+    let pitching = Pitching::new(s.drop_height, s.upper.length, hinge_gravity);
     let mut rotation = DVector::zeros(nu);
     for node in &model.upper.mesh.nodes {
         if let Some(i) = node.w {
@@ -87,7 +109,8 @@ pub fn initial_state(model: &Model, modal: &ModalSystem, forces: TipForces) -> R
         |what: &str| Error::Numerical { what: "initial conditions", detail: format!("{what} has no deflection DOF") };
     let contact_w = model.upper.mesh.nodes[model.contact_node].w.ok_or_else(|| no_dof("the bridge's contact node"))?;
     let lower_tip_w = model.lower.mesh.tip().w.ok_or_else(|| no_dof("the arrestor's end"))?;
-    let target = lower_displacement[lower_tip_w];
+    // The beams touch: the bridge's relative deflection there is the arrestor's less the supports' offset.
+    let target = lower_displacement[lower_tip_w] - excitation.gap_offset;
     let rigid = (0..nu).find(|&i| modal.upper.omega[i] == 0.0).ok_or_else(|| Error::Numerical {
         what: "initial conditions",
         detail: "the hinged bridge has no rigid-body mode".into(),
@@ -104,8 +127,8 @@ pub fn initial_state(model: &Model, modal: &ModalSystem, forces: TipForces) -> R
     // The beams touch at t = 0, to round-off relative to the deflections (the fuzzer found
     // valid scenarios with large deflections for which an absolute 1e-9 m failed).
     debug_assert!({
-        let gap = (model.probes.row(Probe::Gap as usize) * &state.displacement)[0];
-        gap.abs() <= 1e-9 * (1.0 + state.displacement.amax())
+        let gap = (model.probes.row(Probe::Gap as usize) * &state.displacement)[0] + excitation.gap_offset;
+        gap.abs() <= 1e-9 * (1.0 + state.displacement.amax() + excitation.gap_offset.abs())
     });
     Ok(state)
 }

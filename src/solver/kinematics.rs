@@ -36,6 +36,41 @@ pub struct TipForces {
     pub lower: f64,
 }
 
+/// What drives the beams besides gravity at one instant: the tip forces, the supports'
+/// accelerations (each constant between two instants at which the motion is given: the load of
+/// the moving-base form, sum_j a_j x_j with x_j = -M r_j) and the supports' relative displacement,
+/// which the contact gap adds to the beams' relative deflections (issue 17). The default is the
+/// fixed supports of the paper.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Excitation {
+    /// The tip forces, N.
+    pub forces: TipForces,
+    /// Hinge heave, clamp heave (m/s^2) and clamp rotation (rad/s^2) accelerations.
+    pub support_acceleration: [f64; 3],
+    /// h - c - theta l_l at the instant, m: added to the beams' relative gap.
+    pub gap_offset: f64,
+    /// Its rate, m/s.
+    pub gap_offset_rate: f64,
+}
+
+impl Excitation {
+    /// The fixed supports under `forces`.
+    pub fn forces(forces: TipForces) -> Excitation {
+        Excitation { forces, ..Excitation::default() }
+    }
+
+    /// True when the loads (tip forces, support accelerations) equal `other`'s: the modal load
+    /// is the same, whatever the gap offset.
+    pub fn same_load(&self, other: &Excitation) -> bool {
+        self.forces == other.forces && self.support_acceleration == other.support_acceleration
+    }
+
+    /// True when a support accelerates.
+    pub fn moves(&self) -> bool {
+        self.support_acceleration.iter().any(|a| *a != 0.0)
+    }
+}
+
 /// Energy terms that depend on the state alone.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Energies {
@@ -47,6 +82,10 @@ pub struct Energies {
     pub upper_strain: f64,
     /// -F_g^T delta: potential of gravity from the undeformed horizontal position, J.
     pub gravity_potential: f64,
+    /// -(sum_j a_j x_j)^T delta: potential of the supports' inertia loads at the excitation's
+    /// accelerations, J (zero for fixed supports). Constant accelerations make it a potential
+    /// between two given instants; the simulation books its change as the supports' work.
+    pub inertial_potential: f64,
     /// v^T C v: power dissipated by damping, W.
     pub dissipation_rate: f64,
 }
@@ -69,8 +108,8 @@ pub struct SupportAndTips {
 
 /// One integration method for Eqs. (7)-(11) over a model.
 pub trait Stepper {
-    /// Advances `state` by `dt` in `stage`, with the tip forces at the end of the step (F_{i+1}).
-    fn step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, forces: TipForces);
+    /// Advances `state` by `dt` in `stage`, with the excitation at the end of the step (F_{i+1}).
+    fn step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, excitation: &Excitation);
     /// [`Stepper::step`], then the probes and energies of the new state (a stepper may sum them
     /// in its update pass).
     fn step_measured(
@@ -78,36 +117,43 @@ pub trait Stepper {
         state: &mut Kinematics,
         stage: Stage,
         dt: f64,
-        forces: TipForces,
+        excitation: &Excitation,
     ) -> ([f64; PROBES], Energies) {
-        self.step(state, stage, dt, forces);
-        (self.probes(&state.displacement), self.energies(state))
+        self.step(state, stage, dt, excitation);
+        self.measure(state, stage, excitation)
     }
     /// Sets the acceleration that Eq. (1) gives for the state's displacement and velocity under
-    /// `forces` (gravity included): M a = F - K delta - C delta', with the bar's stiffness in
-    /// contact. Used where the load jumps, so that the next step starts from equilibrium.
-    fn equilibrium_acceleration(&mut self, state: &mut Kinematics, stage: Stage, forces: TipForces);
+    /// `excitation` (gravity included): M a = F - K delta - C delta', with the bar in contact.
+    /// Used where the load jumps, so that the next step starts from equilibrium.
+    fn equilibrium_acceleration(&mut self, state: &mut Kinematics, stage: Stage, excitation: &Excitation);
     /// The model's probes (see [`crate::model::Probe`]) applied to a displacement vector (or to
-    /// a velocity vector, for rates), in the stepper's coordinates.
+    /// a velocity vector, for rates), in the stepper's coordinates: the beams' relative
+    /// deflections (the gap without the supports' offset).
     fn probes(&self, displacement: &DVector<f64>) -> [f64; PROBES];
     /// The rates of the probes at a state in `stage` (the probes of the velocity, with a truncated
-    /// basis's static correction moving with the contact force).
-    fn rates(&self, state: &Kinematics, stage: Stage) -> [f64; PROBES] {
+    /// basis's static correction moving with the contact force), the gap's with the supports'.
+    fn rates(&self, state: &Kinematics, stage: Stage, excitation: &Excitation) -> [f64; PROBES] {
         let _ = stage;
-        self.probes(&state.velocity)
+        let mut rates = self.probes(&state.velocity);
+        rates[crate::model::Probe::Gap as usize] += excitation.gap_offset_rate;
+        rates
     }
     /// Support reactions (the supports' rows of the unconstrained equations of motion: stiffness,
     /// damping, consistent mass and loads) and tip velocities of the state,
-    /// in `stage` under `forces` (a truncated basis adds its discarded modes' static response).
-    fn support_and_tips(&self, state: &Kinematics, stage: Stage, forces: TipForces) -> SupportAndTips;
-    /// The probes and energy terms of a state in `stage` under `forces`: [`Stepper::probes`] and
-    /// [`Stepper::energies`], with a truncated basis's static correction.
-    fn measure(&self, state: &Kinematics, stage: Stage, forces: TipForces) -> ([f64; PROBES], Energies) {
-        let _ = (stage, forces);
-        (self.probes(&state.displacement), self.energies(state))
+    /// in `stage` under `excitation` (a truncated basis adds its discarded modes' static response;
+    /// the supports' own inertia is included).
+    fn support_and_tips(&self, state: &Kinematics, stage: Stage, excitation: &Excitation) -> SupportAndTips;
+    /// The probes and energy terms of a state in `stage` under `excitation`: [`Stepper::probes`]
+    /// (the gap with the supports' offset) and [`Stepper::energies`], with a truncated basis's
+    /// static correction.
+    fn measure(&self, state: &Kinematics, stage: Stage, excitation: &Excitation) -> ([f64; PROBES], Energies) {
+        let _ = stage;
+        let mut probes = self.probes(&state.displacement);
+        probes[crate::model::Probe::Gap as usize] += excitation.gap_offset;
+        (probes, self.energies(state, excitation))
     }
-    /// Energy terms of the state.
-    fn energies(&self, state: &Kinematics) -> Energies;
+    /// Energy terms of the state (the inertial potential at the excitation's accelerations).
+    fn energies(&self, state: &Kinematics, excitation: &Excitation) -> Energies;
     /// The stepper's state from physical kinematics.
     fn own_coordinates(&self, physical: &Kinematics) -> Kinematics;
 }

@@ -20,7 +20,7 @@ pub use contact::Stage;
 pub use dense::DenseStepper;
 pub use eigen::{natural_modes, Modes};
 pub use energy_method::EnergyMethod;
-pub use kinematics::{Energies, Kinematics, Stepper, SupportAndTips, TipForces};
+pub use kinematics::{Energies, Excitation, Kinematics, Stepper, SupportAndTips, TipForces};
 pub use modal::ModalSystem;
 pub use step_plan::StepPlan;
 pub use stepper::ModalStepper;

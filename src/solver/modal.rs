@@ -33,6 +33,12 @@ pub struct ModalSystem {
     pub upper_tip: DVector<f64>,
     /// Unit lower tip force in modal coordinates.
     pub lower_tip: DVector<f64>,
+    /// The supports' unit inertia loads in modal coordinates, Phi^T x_j (hinge heave, clamp heave,
+    /// clamp rotation; see [`Model::support_loads`]).
+    pub support_loads: [DVector<f64>; 3],
+    /// The supports' own inertia in each reaction per unit support acceleration
+    /// ([`Model::support_reaction_inertia`]).
+    pub support_reactions: [[f64; 3]; REACTIONS],
     /// Probe functionals in modal coordinates (probes Phi).
     pub probes: DMatrix<f64>,
     /// Number of arrestor modes (the first block of coordinates).
@@ -93,6 +99,8 @@ impl ModalSystem {
             gravity: shapes.transpose() * model.gravity_load(),
             upper_tip: shapes.transpose() * upper_tip,
             lower_tip: shapes.transpose() * lower_tip,
+            support_loads: model.support_loads().map(|x| shapes.transpose() * x),
+            support_reactions: model.support_reaction_inertia(),
             probes: &model.probes * &shapes,
             reactions: model.reactions().map(|r| {
                 let displacement = shapes.transpose() * &r.stiffness;
@@ -136,6 +144,30 @@ impl ModalSystem {
     /// physical DOF, one column per kept mode.
     pub fn shapes(&self) -> DMatrix<f64> {
         block_columns(&self.lower.shapes, &self.upper.shapes)
+    }
+
+    /// The modal load Phi^T (F_g + F_tips + sum_j a_j x_j) of an excitation.
+    pub fn load(&self, excitation: &super::kinematics::Excitation) -> DVector<f64> {
+        let f = excitation.forces;
+        let mut load = &self.gravity + &self.upper_tip * f.upper + &self.lower_tip * f.lower;
+        for (x, a) in self.support_loads.iter().zip(excitation.support_acceleration) {
+            if a != 0.0 {
+                load.axpy(a, x, 1.0);
+            }
+        }
+        load
+    }
+
+    /// The combined support inertia load sum_j a_j Phi^T x_j of an excitation (zero when no support
+    /// accelerates).
+    pub fn support_load(&self, excitation: &super::kinematics::Excitation) -> DVector<f64> {
+        let mut load = DVector::zeros(self.dofs());
+        for (x, a) in self.support_loads.iter().zip(excitation.support_acceleration) {
+            if a != 0.0 {
+                load.axpy(a, x, 1.0);
+            }
+        }
+        load
     }
 
     /// True when modes were discarded (the static correction is in use).

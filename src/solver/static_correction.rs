@@ -3,6 +3,7 @@
 //! add from them. Its own file because [`super::modal::ModalSystem`] holds one and
 //! [`super::truncation`] builds it from a `ModalSystem`.
 
+use super::kinematics::Excitation;
 use crate::model::system::PROBES;
 use crate::model::REACTIONS;
 
@@ -14,11 +15,18 @@ pub const UPPER_TIP: usize = 1;
 pub const LOWER_TIP: usize = 2;
 /// Index of the contact vector b (gap = b^T u).
 pub const CONTACT: usize = 3;
+/// Index of the hinge heave's unit inertia load (-M r of the bridge translating).
+pub const HINGE_HEAVE: usize = 4;
+/// Index of the clamp heave's unit inertia load.
+pub const CLAMP_HEAVE: usize = 5;
+/// Index of the clamp rotation's unit inertia load.
+pub const CLAMP_ROTATION: usize = 6;
 /// Number of load vectors.
-pub const LOADS: usize = 4;
+pub const LOADS: usize = 7;
 
-/// The discarded modes' static response, as bilinear forms over the four load vectors
-/// (gravity, unit upper tip force, unit lower tip force, contact vector). All zero for a full basis.
+/// The discarded modes' static response, as bilinear forms over the seven load vectors
+/// (gravity, unit upper tip force, unit lower tip force, contact vector, the three supports'
+/// unit inertia loads). All zero for a full basis.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct StaticCorrection {
     /// x_a^T R x_b over both beams.
@@ -36,7 +44,8 @@ pub struct StaticCorrection {
 /// The static correction's part of a state's measurements.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Correction {
-    /// The load coefficients c of f = sum c_a x_a: (1, F_upper, F_lower, -F_c).
+    /// The load coefficients c of f = sum c_a x_a: (1, F_upper, F_lower, -F_c, a_hinge,
+    /// a_clamp, alpha_clamp).
     pub loads: [f64; LOADS],
     /// 1/2 c^T R c, J.
     pub strain: f64,
@@ -44,27 +53,30 @@ pub struct Correction {
     pub upper_strain: f64,
     /// -F_g^T R f, J.
     pub gravity_potential: f64,
+    /// -(sum_j a_j x_j)^T R f, J.
+    pub inertial_potential: f64,
 }
 
 impl StaticCorrection {
-    /// b^T R (F_g + F_t): the discarded modes' static part of the gap under the external loads, m.
-    pub fn gap_shift(&self, upper: f64, lower: f64) -> f64 {
-        let g = &self.gram[CONTACT];
-        g[GRAVITY] + upper * g[UPPER_TIP] + lower * g[LOWER_TIP]
+    /// b^T R f_ext: the discarded modes' static part of the gap under the external loads
+    /// (gravity, tip forces, the supports' inertia), m.
+    pub fn gap_shift(&self, excitation: &Excitation) -> f64 {
+        row_dot(&self.gram[CONTACT], &external_loads(excitation))
     }
 
-    /// The correction for a state whose kept modes give the gap `modal_gap` = b^T Phi_k q, in the
-    /// given stage, under the given tip forces.
-    pub fn evaluate(&self, modal_gap: f64, contact: bool, upper: f64, lower: f64) -> Correction {
+    /// The correction for a state whose kept modes give the gap `modal_gap` = b^T Phi_k q (with the
+    /// supports' offset), in the given stage, under `excitation`.
+    pub fn evaluate(&self, modal_gap: f64, contact: bool, excitation: &Excitation) -> Correction {
         let gram = &self.gram;
-        let shifted = modal_gap + self.gap_shift(upper, lower);
+        let mut loads = external_loads(excitation);
+        let shifted = modal_gap + row_dot(&gram[CONTACT], &loads);
         // In contact F_c = k_c gap with gap = shifted - F_c f_r: F_c = k_c shifted / (1 + k_c f_r).
         let force = if contact {
             self.bar_stiffness * shifted / (1.0 + self.bar_stiffness * gram[CONTACT][CONTACT])
         } else {
             0.0
         };
-        let loads = [1.0, upper, lower, -force];
+        loads[CONTACT] = -force;
         let quadratic = |g: &[[f64; LOADS]; LOADS]| {
             let mut sum = 0.0;
             for a in 0..LOADS {
@@ -79,6 +91,10 @@ impl StaticCorrection {
             strain: quadratic(gram),
             upper_strain: quadratic(&self.gram_upper),
             gravity_potential: -row_dot(&gram[GRAVITY], &loads),
+            inertial_potential: -[HINGE_HEAVE, CLAMP_HEAVE, CLAMP_ROTATION]
+                .iter()
+                .map(|&j| loads[j] * row_dot(&gram[j], &loads))
+                .sum::<f64>(),
         }
     }
 
@@ -93,6 +109,12 @@ impl StaticCorrection {
     pub fn reaction(&self, index: usize, correction: &Correction) -> f64 {
         row_dot(&self.reactions[index], &correction.loads)
     }
+}
+
+/// The load coefficients of the external loads (the contact's left at 0).
+fn external_loads(excitation: &Excitation) -> [f64; LOADS] {
+    let (f, a) = (excitation.forces, excitation.support_acceleration);
+    [1.0, f.upper, f.lower, 0.0, a[0], a[1], a[2]]
 }
 
 fn row_dot(row: &[f64; LOADS], loads: &[f64; LOADS]) -> f64 {

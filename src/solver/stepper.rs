@@ -5,7 +5,7 @@
 use nalgebra::DVector;
 
 use super::contact::Stage;
-use super::kinematics::{Energies, Kinematics, Stepper, SupportAndTips, TipForces};
+use super::kinematics::{Energies, Excitation, Kinematics, Stepper, SupportAndTips};
 use super::modal::ModalSystem;
 use crate::model::system::PROBES;
 use crate::model::{Model, Probe, REACTIONS};
@@ -35,11 +35,14 @@ pub struct ModalStepper {
     detail_rows: Vec<DetailRow>,
     /// The most recent S^-1 of each stage (index 0 free, 1 contact).
     cache: [Option<StageInverse>; 2],
-    /// Modal load for `load_forces`.
+    /// Modal load for `load_excitation`.
     load: DVector<f64>,
-    /// The static correction's gap shift b^T R (F_g + F_t) for `load_forces`, m (0 for a full basis).
+    /// The supports' combined modal inertia load sum_j a_j Phi^T x_j for `load_excitation` (its
+    /// potential is the energy account's inertial potential).
+    support_load: DVector<f64>,
+    /// The static correction's gap shift b^T R f_ext for `load_excitation`, m (0 for a full basis).
     shift: f64,
-    load_forces: Option<TipForces>,
+    load_excitation: Option<Excitation>,
     /// Work vectors: z of Eq. (8) and D^-1 f.
     z: DVector<f64>,
     y: DVector<f64>,
@@ -73,8 +76,9 @@ impl ModalStepper {
             detail_rows,
             cache: [None, None],
             load: DVector::zeros(n),
+            support_load: DVector::zeros(n),
             shift: 0.0,
-            load_forces: None,
+            load_excitation: None,
             z: DVector::zeros(n),
             y: DVector::zeros(n),
         }
@@ -135,7 +139,7 @@ impl ModalStepper {
         state: &mut Kinematics,
         stage: Stage,
         dt: f64,
-        forces: TipForces,
+        excitation: &Excitation,
     ) -> ([f64; PROBES], Energies) {
         let contact = stage.is_contact();
         let s = &self.system;
@@ -146,12 +150,17 @@ impl ModalStepper {
             Some(c) if c.dt == dt => c,
             _ => slot.insert(StageInverse::new(s, contact, dt)),
         };
-        // The modal load F = Phi^T (F_g + F_ext) changes only when the tip forces do.
-        if self.load_forces != Some(forces) {
-            self.load = &s.gravity + &s.upper_tip * forces.upper + &s.lower_tip * forces.lower;
-            self.shift = s.correction.gap_shift(forces.upper, forces.lower);
-            self.load_forces = Some(forces);
+        // The modal load F = Phi^T (F_g + F_ext + sum_j a_j x_j) changes only when the tip forces
+        // or the supports' accelerations do.
+        if !self.load_excitation.is_some_and(|e| e.same_load(excitation)) {
+            self.load = s.load(excitation);
+            self.support_load = s.support_load(excitation);
+            self.shift = s.correction.gap_shift(excitation);
+            self.load_excitation = Some(*excitation);
         }
+        // The bar acts on the absolute gap: the beams' relative one plus the supports' offset.
+        let gap_offset = excitation.gap_offset;
+        let moves = excitation.moves();
         let n = state.displacement.len();
         let (dt2_3, dt_2, dt2_6) = (dt * dt / 3.0, 0.5 * dt, dt * dt / 6.0);
         // Plain slices of one length: the loops below run without bounds checks.
@@ -176,7 +185,7 @@ impl ModalStepper {
         // adds kappa b b^T to K: f loses kappa b (b . z), and Sherman-Morrison corrects D^-1.
         if contact {
             // The truncated basis's bar acts on b^T z + s (the discarded modes' static gap).
-            let bz: f64 = b.iter().zip(z.iter()).map(|(bi, zi)| bi * zi).sum::<f64>() + self.shift;
+            let bz: f64 = b.iter().zip(z.iter()).map(|(bi, zi)| bi * zi).sum::<f64>() + self.shift + gap_offset;
             let kbz = s.bar_stiffness * bz;
             let mut by = 0.0;
             for i in 0..n {
@@ -205,15 +214,19 @@ impl ModalStepper {
             for (k, p) in probes.iter_mut().enumerate() {
                 *p = dot(&self.probe_columns.column(k).as_slice()[..n], q);
             }
+            probes[Probe::Gap as usize] += gap_offset;
             let lower = s.lower_dofs.min(n);
             let lower_strain = 0.5 * weighted_squares(&omega2[..lower], &q[..lower]);
             e.upper_strain = 0.5 * weighted_squares(&omega2[lower..], &q[lower..]);
             e.beam_strain = lower_strain + e.upper_strain;
             e.kinetic = 0.5 * dot(v, v);
             e.gravity_potential = -dot(&s.gravity.as_slice()[..n], q);
+            if moves {
+                e.inertial_potential = -dot(&self.support_load.as_slice()[..n], q);
+            }
             e.dissipation_rate = weighted_squares(damping, v);
             if truncated {
-                apply_correction(s, &mut probes, &mut e, contact, forces);
+                apply_correction(s, &mut probes, &mut e, contact, excitation);
             }
         }
         (probes, e)
@@ -221,17 +234,18 @@ impl ModalStepper {
 }
 
 /// Adds the discarded modes' static response to measurements taken from the kept modes.
-fn apply_correction(s: &ModalSystem, probes: &mut [f64; PROBES], e: &mut Energies, contact: bool, forces: TipForces) {
-    let c = s.correction.evaluate(probes[Probe::Gap as usize], contact, forces.upper, forces.lower);
+fn apply_correction(s: &ModalSystem, probes: &mut [f64; PROBES], e: &mut Energies, contact: bool, ex: &Excitation) {
+    let c = s.correction.evaluate(probes[Probe::Gap as usize], contact, ex);
     s.correction.correct_probes(probes, &c);
     e.beam_strain += c.strain;
     e.upper_strain += c.upper_strain;
     e.gravity_potential += c.gravity_potential;
+    e.inertial_potential += c.inertial_potential;
 }
 
 impl Stepper for ModalStepper {
-    fn step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, forces: TipForces) {
-        self.advance::<false>(state, stage, dt, forces);
+    fn step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, excitation: &Excitation) {
+        self.advance::<false>(state, stage, dt, excitation);
     }
 
     fn step_measured(
@@ -239,17 +253,18 @@ impl Stepper for ModalStepper {
         state: &mut Kinematics,
         stage: Stage,
         dt: f64,
-        forces: TipForces,
+        excitation: &Excitation,
     ) -> ([f64; PROBES], Energies) {
-        self.advance::<true>(state, stage, dt, forces)
+        self.advance::<true>(state, stage, dt, excitation)
     }
 
-    fn equilibrium_acceleration(&mut self, state: &mut Kinematics, stage: Stage, forces: TipForces) {
-        // In modal coordinates M = I: a = F - diag(omega^2) q - diag(c) v - kappa b (b . q).
+    fn equilibrium_acceleration(&mut self, state: &mut Kinematics, stage: Stage, excitation: &Excitation) {
+        // In modal coordinates M = I: a = F - diag(omega^2) q - diag(c) v - kappa b (b . q + s + d).
         let s = &self.system;
-        let load = &s.gravity + &s.upper_tip * forces.upper + &s.lower_tip * forces.lower;
+        let load = s.load(excitation);
         let bar = if stage.is_contact() {
-            s.bar_stiffness * (s.contact.dot(&state.displacement) + s.correction.gap_shift(forces.upper, forces.lower))
+            s.bar_stiffness
+                * (s.contact.dot(&state.displacement) + s.correction.gap_shift(excitation) + excitation.gap_offset)
         } else {
             0.0
         };
@@ -267,20 +282,23 @@ impl Stepper for ModalStepper {
         out
     }
 
-    fn measure(&self, state: &Kinematics, stage: Stage, forces: TipForces) -> ([f64; PROBES], Energies) {
+    fn measure(&self, state: &Kinematics, stage: Stage, excitation: &Excitation) -> ([f64; PROBES], Energies) {
         let mut probes = self.probes(&state.displacement);
-        let mut e = self.energies(state);
+        probes[Probe::Gap as usize] += excitation.gap_offset;
+        let mut e = self.energies(state, excitation);
         if self.system.is_truncated() {
-            apply_correction(&self.system, &mut probes, &mut e, stage.is_contact(), forces);
+            apply_correction(&self.system, &mut probes, &mut e, stage.is_contact(), excitation);
         }
         (probes, e)
     }
 
-    fn rates(&self, state: &Kinematics, stage: Stage) -> [f64; PROBES] {
+    fn rates(&self, state: &Kinematics, stage: Stage, excitation: &Excitation) -> [f64; PROBES] {
         let mut rates = self.probes(&state.velocity);
+        rates[Probe::Gap as usize] += excitation.gap_offset_rate;
         let s = &self.system;
         if s.is_truncated() && stage.is_contact() {
-            // The static correction's contact load -F_c = -k_eff (b . q + s) moves at -k_eff b . v.
+            // The static correction's contact load -F_c = -k_eff (b . q + s + d) moves at
+            // -k_eff (b . v + d').
             let load_rate = -s.bar_stiffness * rates[Probe::Gap as usize];
             for (rate, row) in rates.iter_mut().zip(&s.correction.probes) {
                 *rate += row[super::static_correction::CONTACT] * load_rate;
@@ -289,7 +307,7 @@ impl Stepper for ModalStepper {
         rates
     }
 
-    fn support_and_tips(&self, state: &Kinematics, stage: Stage, forces: TipForces) -> SupportAndTips {
+    fn support_and_tips(&self, state: &Kinematics, stage: Stage, excitation: &Excitation) -> SupportAndTips {
         let s = &self.system;
         let (q, v, a) = (&state.displacement, &state.velocity, &state.acceleration);
         let [r0, r1, r2] = &s.reactions;
@@ -318,10 +336,16 @@ impl Stepper for ModalStepper {
         let mut sums = [row(0), row(1), row(2), even.velocity[3] + odd.velocity[3], even.velocity[4] + odd.velocity[4]];
         if s.is_truncated() {
             // The discarded modes' static displacement loads the supports through their stiffness rows.
-            let gap = self.probe_columns.column(Probe::Gap as usize).dot(&state.displacement);
-            let c = s.correction.evaluate(gap, stage.is_contact(), forces.upper, forces.lower);
+            let gap = self.probe_columns.column(Probe::Gap as usize).dot(&state.displacement) + excitation.gap_offset;
+            let c = s.correction.evaluate(gap, stage.is_contact(), excitation);
             for (k, sum) in sums.iter_mut().take(REACTIONS).enumerate() {
                 *sum += s.correction.reaction(k, &c);
+            }
+        }
+        if excitation.moves() {
+            // The supports' own inertia: the support rows of M r_j a_j.
+            for (sum, row) in sums.iter_mut().zip(&s.support_reactions) {
+                *sum += row.iter().zip(excitation.support_acceleration).map(|(m, a)| m * a).sum::<f64>();
             }
         }
         SupportAndTips {
@@ -333,10 +357,13 @@ impl Stepper for ModalStepper {
         }
     }
 
-    fn energies(&self, state: &Kinematics) -> Energies {
+    fn energies(&self, state: &Kinematics, excitation: &Excitation) -> Energies {
         let s = &self.system;
         let (q, v) = (&state.displacement, &state.velocity);
         let mut e = Energies::default();
+        if excitation.moves() {
+            e.inertial_potential = -s.support_load(excitation).dot(q);
+        }
         for i in 0..q.len() {
             let strain = 0.5 * s.omega2[i] * q[i] * q[i];
             e.beam_strain += strain;

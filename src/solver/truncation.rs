@@ -25,7 +25,10 @@ use nalgebra::{DMatrix, DVector};
 use super::eigen::Modes;
 use super::modal::{block_columns, ModalReaction, ModalSystem};
 use super::secular::coupled_modes;
-pub use super::static_correction::{Correction, StaticCorrection, CONTACT, GRAVITY, LOADS, LOWER_TIP, UPPER_TIP};
+pub use super::static_correction::{
+    Correction, StaticCorrection, CLAMP_HEAVE, CLAMP_ROTATION, CONTACT, GRAVITY, HINGE_HEAVE, LOADS, LOWER_TIP,
+    UPPER_TIP,
+};
 use crate::error::Result;
 use crate::model::system::PROBES;
 use crate::model::REACTIONS;
@@ -41,7 +44,15 @@ impl ModalSystem {
             return Ok(self.clone());
         }
         let discarded: Vec<usize> = (0..n).filter(|&i| self.omega2[i].sqrt() > cutoff).collect();
-        let loads = [&self.gravity, &self.upper_tip, &self.lower_tip, &self.contact];
+        let loads = [
+            &self.gravity,
+            &self.upper_tip,
+            &self.lower_tip,
+            &self.contact,
+            &self.support_loads[0],
+            &self.support_loads[1],
+            &self.support_loads[2],
+        ];
         let mut correction = StaticCorrection { bar_stiffness: self.bar_stiffness, ..StaticCorrection::default() };
         for &i in &discarded {
             let w = 1.0 / self.omega2[i];
@@ -85,6 +96,8 @@ impl ModalSystem {
             gravity: pick(&self.gravity),
             upper_tip: pick(&self.upper_tip),
             lower_tip: pick(&self.lower_tip),
+            support_loads: std::array::from_fn(|j| pick(&self.support_loads[j])),
+            support_reactions: self.support_reactions,
             probes: DMatrix::from_fn(PROBES, keep.len(), |k, j| self.probes[(k, keep[j])]),
             reactions: std::array::from_fn(|s| {
                 let r = &self.reactions[s];
