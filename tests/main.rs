@@ -24,6 +24,7 @@ mod fmi_drift;
 mod fmi_grid;
 mod fmi_importer;
 mod fmi_misuse;
+mod fmi_motion;
 mod fmi_pack;
 mod fmi_quality;
 mod fmi_state_restore;

@@ -153,6 +153,12 @@ pub struct RunArgs {
     /// (repeatable): `--set upper.mass=14000 --set step_free=auto --set stress_recovery=left`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
+    /// The supports' motion, a CSV file: `time` (s) and any of upper.hinge_heave,
+    /// lower.clamp_heave, lower.clamp_rotation with their _velocity and _acceleration columns
+    /// (all three of a moving support). Between rows each support moves with the row's constant
+    /// acceleration. `--set motion.time_shift=S` starts the run at the file's time S.
+    #[arg(long, value_name = "FILE.csv")]
+    pub motion: Option<PathBuf>,
 }
 
 #[derive(Args)]
@@ -166,6 +172,10 @@ pub struct SweepArgs {
     /// Change a field of every scenario, KEY=VALUE (repeatable), as `run --set`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
+    /// The supports' motion for every scenario, a CSV file as `run --motion`; vary
+    /// motion.time_shift over a wave period to find the worst phase at impact.
+    #[arg(long, value_name = "FILE.csv")]
+    pub motion: Option<PathBuf>,
     /// The rows, one per scenario in grid order, as CSV.
     #[arg(long, value_name = "FILE.csv")]
     pub out: PathBuf,

@@ -44,7 +44,44 @@ pub fn read_scenario(path: &Path) -> Result<Scenario> {
     let file = open_input(path, "cannot read scenario")?;
     let text = read_bounded(file, MAX_SCENARIO_BYTES, "the scenario")
         .map_err(|source| io("cannot read scenario", path, source))?;
-    Scenario::from_toml(&text, &path.display().to_string())
+    let mut scenario = Scenario::from_toml(&text, &path.display().to_string())?;
+    if !scenario.motion.file.is_empty() {
+        // `[motion] file` is relative to the scenario file.
+        let motion = path.parent().unwrap_or(Path::new("")).join(&scenario.motion.file);
+        load_motion(&mut scenario, &motion)?;
+    }
+    Ok(scenario)
+}
+
+/// Largest motion file read: 10^7 rows of ten numbers.
+const MAX_MOTION_BYTES: u64 = 1 << 30;
+
+/// Reads the support-motion file `path` (`run --motion`, `[motion] file`) into the scenario: its
+/// rows checked (one line of error naming the row), and the rows that disagree with the motion
+/// before them reported on standard error (the run uses them as given).
+pub fn load_motion(scenario: &mut Scenario, path: &Path) -> Result<()> {
+    let file = open_input(path, "cannot read motion file")?;
+    let text = read_bounded(file, MAX_MOTION_BYTES, "the motion file")
+        .map_err(|source| io("cannot read motion file", path, source))?;
+    let table = beam_impact::model::motion_table::MotionTable::parse(&text)
+        .map_err(|e| Error::Other(format!("motion file {}: {e}", path.display())))?;
+    let mismatches = table.mismatches();
+    if let Some(first) = mismatches.first() {
+        eprintln!(
+            "{}",
+            bounded_line(&format!(
+                "warning: motion file {}: {} row(s) disagree with the row before them (row {}: {}); they are used \
+                 as given",
+                path.display(),
+                mismatches.len(),
+                first.row,
+                first.mismatch
+            ))
+        );
+    }
+    scenario.motion.file = path.display().to_string();
+    scenario.motion.table = Some(std::sync::Arc::new(table));
+    Ok(())
 }
 
 pub fn io(action: &'static str, path: &Path, source: std::io::Error) -> Error {

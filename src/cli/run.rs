@@ -26,6 +26,9 @@ pub fn run(args: &RunArgs) -> Result<bool> {
         None if settings.is_empty() => Scenario::paper(),
         None => Scenario::default(),
     };
+    if let Some(motion) = &args.motion {
+        super::common::load_motion(&mut scenario, motion)?;
+    }
     beam_impact::studies::sweep::apply_settings(&mut scenario, &settings)?;
     let mcap = args
         .mcap

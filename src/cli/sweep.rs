@@ -22,6 +22,9 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
         Some(path) => read_scenario(path)?,
         None => Scenario::default(),
     };
+    if let Some(motion) = &args.motion {
+        super::common::load_motion(&mut base, motion)?;
+    }
     apply_settings(&mut base, &parse_settings(&args.set)?)?;
     let sweep = Sweep::new(base, parse_axes(&args.vary)?, args.max_steps)?;
     let jobs = args.jobs.map_or_else(default_jobs, |j| usize::try_from(j).unwrap_or(usize::MAX));

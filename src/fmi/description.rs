@@ -135,7 +135,7 @@ fn initial_dependencies(v: &Variable, variables: &[Variable]) -> Vec<u32> {
         .iter()
         .filter(|k| match k.source {
             Source::Parameter(p) => affects_values(p),
-            Source::Input(_) => v.causality == Causality::Output,
+            Source::Input(_) | Source::Motion(_) => v.causality == Causality::Output,
             _ => false,
         })
         .map(|k| k.vr)

@@ -17,6 +17,7 @@ use super::variables::{table, Column, Source, Tip, Type, Variable};
 use crate::error::Error;
 use crate::model::parameters::{self, find};
 use crate::model::scenario::MAX_TIP_FORCE;
+use crate::model::SupportMotion;
 use crate::record::mcap::McapRecorder;
 use crate::record::{Recorder, RunInfo};
 use crate::results::{seconds, ContactEvent, StepResult};
@@ -99,7 +100,14 @@ pub struct Instance {
     untrusted_reported: bool,
     /// Whether the MCAP log's size cap has been reported (once).
     log_cap_reported: bool,
+    /// The support-motion inputs as last set (issue 17).
+    motion: SupportMotion,
+    /// Support-motion inputs that disagreed with the motion before them, so far.
+    motion_mismatches: u64,
 }
+
+/// How many support-motion mismatches are logged one by one (the rest are counted).
+const LOGGED_MISMATCHES: u64 = 10;
 
 /// `log.path`'s start value, which stands for the default log: a new file per instance and run in
 /// the working directory, `BeamImpact-<instance>-<UTC date and time>-<n>.mcap` (see [`unique_log`]).
@@ -228,6 +236,8 @@ impl Instance {
             before_error: State::Instantiated,
             untrusted_reported: false,
             log_cap_reported: false,
+            motion: SupportMotion::default(),
+            motion_mismatches: 0,
         }
     }
 
@@ -410,7 +420,8 @@ impl Instance {
                 }
                 return Err(format!("invalid parameter: {last}"));
             }
-            let simulation = Simulation::new(&self.scenario).map_err(|e| format!("invalid parameters: {e}"))?;
+            let simulation = Simulation::starting_with(&self.scenario, self.motion)
+                .map_err(|e| format!("invalid parameters: {e}"))?;
             let checks = self
                 .check_runs(&self.scenario)
                 .map_err(|e| format!("invalid parameters (discretisation check): {e}"))?;
@@ -556,6 +567,24 @@ impl Instance {
         }
         let target_ns = target_ns as u64;
         let early = self.version == Version::Fmi3 && self.early_return_allowed;
+        let mismatch = self.simulation.as_ref().ok_or("no simulation")?.motion_mismatch();
+        let mut mismatched = false;
+        if let Some(m) = mismatch {
+            self.motion_mismatches += 1;
+            mismatched = true;
+            if self.motion_mismatches <= LOGGED_MISMATCHES {
+                let more = if self.motion_mismatches == LOGGED_MISMATCHES {
+                    " (further mismatches are counted, not logged)"
+                } else {
+                    ""
+                };
+                self.log(
+                    Status::Warning,
+                    Status::Warning.category(),
+                    &format!("support motion at t = {current} s: {m}; the values are used as given{more}"),
+                );
+            }
+        }
         let simulation = self.simulation.as_mut().ok_or("no simulation")?;
         let mut tap = Tap { inner: self.recorder.as_mut(), events: Vec::new() };
         // The stop time ends the run as the CLI's does (`finish_at`: the converged method records
@@ -569,8 +598,10 @@ impl Instance {
         if advance.is_ok() {
             let reached = simulation.output().time_ns;
             let forces = simulation.state().forces;
+            let motion = simulation.state().input_motion;
             for check in self.checks.iter_mut().flatten() {
                 check.set_tip_forces(forces);
+                check.set_support_motion(motion);
                 let moved = if at_stop {
                     check.finish_at(reached, &mut crate::record::NullRecorder, false)
                 } else {
@@ -648,7 +679,7 @@ impl Instance {
                 &format!("at t = {time} s the results are no longer trusted: {}", reasons.join("; ")),
             );
         }
-        Ok(StepOutcome { early_return, last_successful_time: time, untrusted: untrusted || capped_now })
+        Ok(StepOutcome { early_return, last_successful_time: time, untrusted: untrusted || capped_now || mismatched })
     }
 
     /// Completes the MCAP log; its error is returned (and so logged).
@@ -729,6 +760,7 @@ impl Instance {
             Source::Parameter(p) => (p.get)(&self.scenario),
             Source::Input(Tip::Upper) => self.forces().upper,
             Source::Input(Tip::Lower) => self.forces().lower,
+            Source::Motion(k) => self.motion.values()[k],
             Source::Output(get) => get(self.computed(&v.name)?.output()),
             Source::Mode(column, k) => {
                 let table = self.computed(&v.name)?.mode_table(super::variables::MODES);
@@ -814,7 +846,9 @@ impl Instance {
             Source::Parameter(_) | Source::LogPath | Source::CheckSensitivity => {
                 (super::status::allowed::SET_PARAMETER, "parameters are fixed at ExitInitializationMode")
             }
-            Source::Input(_) => (super::status::allowed::SET_INPUT, "inputs are set until Terminate"),
+            Source::Input(_) | Source::Motion(_) => {
+                (super::status::allowed::SET_INPUT, "inputs are set until Terminate")
+            }
             _ => return Err(format!("`{}` is a {} and cannot be set", v.name, v.causality.name())),
         };
         if !allowed.contains(self.state) {
@@ -858,6 +892,22 @@ impl Instance {
                         self.simulation = None;
                     }
                     _ => self.simulation()?.set_tip_forces(forces),
+                }
+            }
+            Source::Motion(k) => {
+                let mut values = self.motion.values();
+                values[k] = value;
+                let motion = SupportMotion::from_values(values);
+                match self.state {
+                    State::Instantiated | State::Initialization => {
+                        // The fall before t = 0 happened under the accelerations at t = 0.
+                        self.motion = motion;
+                        self.simulation = None;
+                    }
+                    _ => {
+                        self.simulation()?.set_support_motion(motion);
+                        self.motion = motion;
+                    }
                 }
             }
             _ => return Err(format!("`{}` cannot be set", v.name)),
@@ -979,6 +1029,7 @@ impl Instance {
         }
         self.scenario = scenario;
         self.checks = checks;
+        self.motion = snapshot.run.input_motion;
         self.start_time = snapshot.start_time;
         self.last_successful_time = self.time();
         if self.state == State::Error {
@@ -1042,7 +1093,7 @@ impl Instance {
         if self.check_sensitivity {
             scenarios.push(crate::answer::twin_scenario(scenario));
         }
-        scenarios.iter().map(Simulation::new).collect()
+        scenarios.iter().map(|s| Simulation::starting_with(s, self.motion)).collect()
     }
 
     /// The discretisation check's runs and the twin (when run), apart.

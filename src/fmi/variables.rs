@@ -3,6 +3,7 @@
 //! [`PARAMETERS`]; the value reference of a variable is its index in [`table`].
 
 use crate::model::parameters::{Kind, Parameter, PARAMETERS};
+use crate::model::support_motion::{MOTION_NAMES, MOTION_UNITS};
 use crate::results::StepResult;
 use crate::solver::EnergyMethod;
 use crate::Scenario;
@@ -126,6 +127,8 @@ pub enum Source {
     LogPath,
     /// An input tip force.
     Input(Tip),
+    /// A support-motion input: its index in [`crate::model::support_motion::MOTION_NAMES`].
+    Motion(usize),
     /// A real output of the latest step.
     Output(fn(&StepResult) -> f64),
     /// Whether the latest step was in contact.
@@ -552,8 +555,59 @@ pub fn table() -> Vec<Variable> {
         Some("false".into()),
         Source::CheckSensitivity,
     ));
+    // Issue 17: the supports' motion, as a vessel-motion model hands it over (appended).
+    let motion_descriptions = [
+        "Vertical displacement of the bridge's hinge, up positive (its support moves with it)",
+        "Vertical velocity of the bridge's hinge",
+        "Vertical acceleration of the bridge's hinge (loads the bridge with its inertia)",
+        "Vertical displacement of the arrestor's clamp, up positive",
+        "Vertical velocity of the arrestor's clamp",
+        "Vertical acceleration of the arrestor's clamp (loads the arrestor with its inertia)",
+        "Rotation of the arrestor's clamp, the sign of the arrestor's slope dw/dx (positive raises its end by \
+         lower.length times it); small angles",
+        "Angular velocity of the arrestor's clamp",
+        "Angular acceleration of the arrestor's clamp",
+    ];
+    for (k, (name, unit)) in MOTION_NAMES.iter().zip(MOTION_UNITS).enumerate() {
+        push((
+            (*name).into(),
+            Type::Real,
+            Causality::Input,
+            Variability::Continuous,
+            Some(true),
+            Some(unit),
+            format!(
+                "{}. Between communication points the support moves as z + v tau + a tau^2/2 from the values set \
+                 at the point: displacement, velocity and acceleration must agree (a warning names a mismatch)",
+                motion_descriptions[k]
+            ),
+            Some("0.0".into()),
+            Source::Motion(k),
+        ));
+    }
+    for row in POSITION_OUTPUTS {
+        push(output(row));
+    }
     v
 }
+
+/// The tips' absolute positions (issue 17), appended after the support-motion inputs.
+const POSITION_OUTPUTS: &[OutputRow] = &[
+    (
+        "upper.tip_position",
+        "m",
+        "Absolute vertical position of the bridge's free end: upper.tip_deflection plus the hinge's heave (0 at the \
+         undeformed horizontal with the supports at rest)",
+        |r| r.upper_tip_position(),
+    ),
+    (
+        "lower.tip_position",
+        "m",
+        "Absolute vertical position of the arrestor's free end: lower.tip_deflection plus the clamp's heave plus its \
+         rotation times lower.length",
+        |r| r.lower_tip_position(),
+    ),
+];
 
 /// Every unit the table uses: its base-unit exponents (kg, m, s, rad) and the type definition
 /// that declares it (name, quantity), as the Reference-FMUs declare units: through
@@ -575,6 +629,8 @@ const UNITS: &[(&str, [i32; 4], &str, &str)] = &[
     ("Pa", [1, -1, -2, 0], "Stress", "Stress"),
     ("J", [1, 2, -2, 0], "Energy", "Energy"),
     ("rad/s", [0, 0, -1, 1], "AngularVelocity", "AngularVelocity"),
+    ("rad", [0, 0, 0, 1], "Angle", "Angle"),
+    ("rad/s2", [0, 0, -2, 1], "AngularAcceleration", "AngularAcceleration"),
 ];
 
 /// Base-unit exponents (kg, m, s, rad) of every unit the table uses.

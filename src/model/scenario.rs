@@ -414,10 +414,18 @@ impl Scenario {
     /// Checks every field that can be checked without assembling the model. The stability of
     /// the time steps needs the natural frequencies and is checked by [`crate::solver::ModalSystem::new`].
     pub fn validate(&self) -> Result<()> {
-        match self.validation_errors().into_iter().next() {
-            Some(e) => Err(e),
-            None => Ok(()),
+        if let Some(e) = self.validation_errors().into_iter().next() {
+            return Err(e);
         }
+        // A scenario file's `[motion] file` is read by the CLI after the TOML is parsed.
+        if self.motion.table.is_none() && !self.motion.file.is_empty() {
+            return Err(Error::invalid(
+                "motion.file",
+                "a CSV file the CLI reads (`run --motion FILE.csv` or `[motion] file` in a scenario file)",
+                format!("'{}', not loaded", self.motion.file),
+            ));
+        }
+        Ok(())
     }
 
     /// Every field that breaks its rule, each as its own error naming the field, its rule (with
@@ -495,11 +503,6 @@ impl Scenario {
         let m = &self.motion;
         check(within("motion.time_shift", "s", m.time_shift, -1e9, 1e9));
         match &m.table {
-            None if !m.file.is_empty() => check(Err(Error::invalid(
-                "motion.file",
-                "a CSV file the CLI reads (`run --motion FILE.csv` or `[motion] file` in a scenario file)",
-                format!("'{}', not loaded", m.file),
-            ))),
             Some(table) if m.time_shift.is_finite() && self.duration.is_finite() => check(
                 table
                     .check_covers(m.time_shift, m.time_shift + self.duration)

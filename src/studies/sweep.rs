@@ -61,10 +61,24 @@ pub static TIP_FORCES: [Parameter; 2] = [
     },
 ];
 
+/// The support motion's time shift (issue 17): a scenario field of the CLI (the FMU takes the
+/// motion as inputs), which `--vary` sweeps over a wave period.
+pub static MOTION_FIELDS: [Parameter; 1] = [Parameter {
+    name: "motion.time_shift",
+    unit: "s",
+    description: "The motion file's time at the run's t = 0 (the impact)",
+    kind: Kind::Real,
+    get: |s| s.motion.time_shift,
+    put: |s, v| {
+        s.motion.time_shift = v;
+        Ok(())
+    },
+}];
+
 /// The field named `name` (the dotted names of `beam-impact scenario`).
 pub fn field(name: &str) -> Result<&'static Parameter> {
     parameters::find(name).or_else(|_| {
-        TIP_FORCES.iter().find(|p| p.name == name).ok_or_else(|| {
+        TIP_FORCES.iter().chain(&MOTION_FIELDS).find(|p| p.name == name).ok_or_else(|| {
             Error::Other(format!(
                 "unknown parameter `{name}`: the names are those of `beam-impact scenario`, dotted ({})",
                 "drop_height, damping_ratio, upper.mass, lower.elements, ..."
