@@ -5,9 +5,9 @@
  *
  * Axes (right-handed, fixed to the vessel's mean position): x forward from the centre of
  * flotation (CF), y to port, z up. Heave z is up positive; pitch theta is the rotation about +y,
- * positive BOW DOWN, so a deck point at x moves vertically by z - x theta (small angles; its
- * horizontal motion, z theta-sized, is neglected). Head seas: the wave comes from ahead,
- * travelling towards -x.
+ * positive BOW DOWN, so a deck point at x moves vertically by z - x theta (small angles; the
+ * points' horizontal motion is left out: BeamImpact's beams move vertically). Head seas: the wave
+ * comes from ahead, travelling towards -x.
  *
  *   wave elevation at the CF  zeta(t)  = zeta_a cos(omega t + phase)
  *   heave                     z(t)     = |H_z| zeta_a cos(omega t + phase + eps_z)
