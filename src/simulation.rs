@@ -903,7 +903,16 @@ impl<S: Stepper> Simulation<S> {
         let state = &self.state;
         let interval = seconds(state.output_ns.saturating_sub(state.motion_ns));
         if interval <= 0.0 {
-            return None;
+            // Set again at the instant the current motion was given (at t = 0: after the initial
+            // state was computed from it): any change is a jump.
+            let (given, expected) = (state.input_motion.values(), state.motion.values());
+            let k = (0..9).find(|&k| !continues_value(expected[k], given[k]))?;
+            return Some(crate::model::support_motion::MotionMismatch {
+                name: crate::model::support_motion::MOTION_NAMES[k],
+                given: given[k],
+                expected: expected[k],
+                interval: 0.0,
+            });
         }
         state.motion.mismatch(&state.input_motion, interval)
     }
@@ -1050,7 +1059,12 @@ impl<S: Stepper> Simulation<S> {
 /// True when `given` is `expected` to round-off (1e-12 of each value, or of 1): a master that sends
 /// the continued motion changes nothing, whatever its communication step.
 fn continues(expected: &SupportMotion, given: &SupportMotion) -> bool {
-    expected.values().iter().zip(given.values()).all(|(e, g)| (e - g).abs() <= 1e-12 * e.abs().max(g.abs()).max(1.0))
+    expected.values().iter().zip(given.values()).all(|(e, g)| continues_value(*e, g))
+}
+
+/// One value of [`continues`].
+fn continues_value(expected: f64, given: f64) -> bool {
+    (expected - given).abs() <= 1e-12 * expected.abs().max(given.abs()).max(1.0)
 }
 
 /// Rows: every node of the arrestor, then of the bridge; columns: global modal coordinates.

@@ -231,7 +231,7 @@ fn parameters_are_fixed_after_initialization() {
     assert_eq!(fmu.set("upper.tip_force", -1e3), OK, "{}", fmu.log.text());
     assert_eq!(fmu.do_step(0.0, 1e-3), OK);
     assert_eq!(fmu.set("contact.force", 1.0), ERROR);
-    assert!(fmu.log.text().contains("`contact.force` is a output and cannot be set"), "{}", fmu.log.text());
+    assert!(fmu.log.text().contains("`contact.force` is an output and cannot be set"), "{}", fmu.log.text());
 }
 
 /// A failed doStep puts the instance in Error, where doStep is refused until SetFMUstate (or Reset).

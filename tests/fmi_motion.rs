@@ -162,3 +162,20 @@ fn the_fmu_and_run_motion_agree_on_the_same_samples() {
 fn peak(summary: &serde_json::Value, quantity: &str) -> Option<f64> {
     summary["summary"]["peaks"][quantity]["value"].as_f64().or_else(|| summary["summary"]["peaks"][quantity].as_f64())
 }
+
+/// A master that sets the motion at t = 0 only after ExitInitializationMode (the initial state was
+/// computed with the supports at rest) is warned that the support jumps, by name: the fall before
+/// t = 0 happens under the motion given in Initialization Mode.
+#[test]
+fn a_motion_changed_after_the_initial_state_is_warned() {
+    let lib = fmi_common::importer::load();
+    let fmu = Fmu2::new(&lib);
+    assert_eq!(fmu.setup(0.0, Some(0.1)), OK);
+    assert_eq!(fmu.set_string("log.path", ""), OK);
+    assert_eq!(fmu.call0("fmi2EnterInitializationMode"), OK);
+    assert_eq!(fmu.call0("fmi2ExitInitializationMode"), OK);
+    assert_eq!(fmu.set("lower.clamp_heave", -0.167), OK);
+    assert_eq!(fmu.do_step(0.0, 0.01), WARNING, "{}", fmu.log.text());
+    let log = fmu.log.text();
+    assert!(log.contains("lower.clamp_heave = -1.67e-1 changes the value 0e0 given at the same instant"), "{log}");
+}

@@ -101,6 +101,16 @@ pub fn run(args: &RunArgs) -> Result<bool> {
         resolved.upper.elements_beyond_contact,
         scenario.duration
     );
+    if let Some(table) = &scenario.motion.table {
+        text += &format!(
+            "supports moving: {} ({} rows of {}), from its time {} s; deflections are relative to the supports, \
+             the energy approach's column assumes fixed ones\n\n",
+            scenario.motion.file,
+            table.times.len(),
+            table.columns.join(", "),
+            scenario.motion.time_shift
+        );
+    }
     text += &compare::comparison(summary, paper);
     if paper {
         text += "(Table 1's FEM column is bound to the paper's 7 + 7/7 mesh; the converged answer follows.)\n";

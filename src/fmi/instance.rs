@@ -849,7 +849,11 @@ impl Instance {
             Source::Input(_) | Source::Motion(_) => {
                 (super::status::allowed::SET_INPUT, "inputs are set until Terminate")
             }
-            _ => return Err(format!("`{}` is a {} and cannot be set", v.name, v.causality.name())),
+            _ => {
+                let kind = v.causality.name();
+                let article = if kind.starts_with(['a', 'e', 'i', 'o', 'u']) { "an" } else { "a" };
+                return Err(format!("`{}` is {article} {kind} and cannot be set", v.name));
+            }
         };
         if !allowed.contains(self.state) {
             return Err(format!(

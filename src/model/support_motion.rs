@@ -100,6 +100,14 @@ pub struct MotionMismatch {
 
 impl std::fmt::Display for MotionMismatch {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.interval == 0.0 {
+            return write!(
+                f,
+                "{} = {:e} changes the value {:e} given at the same instant, which the state was computed from (a \
+                 support cannot jump; at t = 0 set the motion before the initial state: in Initialization Mode)",
+                self.name, self.given, self.expected
+            );
+        }
         write!(
             f,
             "{} = {:e} disagrees with {:e}, where the values {:e} s earlier lead (z + v tau + a tau^2/2; \

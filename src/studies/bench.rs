@@ -98,6 +98,59 @@ pub fn stepper_benchmark(runs: usize) -> Result<String> {
         );
     }
     out += &converged_benchmark(runs)?;
+    out += &motion_benchmark(runs)?;
+    Ok(out)
+}
+
+/// The cost per step with and without support motion (issue 17), side by side in one process, on
+/// the paper scenario (paper method, 3 s): fixed supports; all three supports moving with
+/// constant accelerations (one motion over the run: the stepper's extra work alone, an O(1) gap
+/// offset and, in the measured steps, one more dot product); and a sine heave of the hinge given
+/// every 1 ms (a vessel model's communication step: each row ends an internal step there and
+/// recomputes the load, O(n)). Medians of `runs`.
+pub fn motion_benchmark(runs: usize) -> Result<String> {
+    use crate::model::motion_table::MotionTable;
+    use crate::model::{SupportMotion, Track};
+    let mut out = String::new();
+    let paper = Scenario::paper();
+    let moving = SupportMotion {
+        hinge_heave: Track { displacement: 0.0, velocity: 0.2, acceleration: -1.0 },
+        clamp_heave: Track { displacement: 0.0, velocity: -0.1, acceleration: 0.5 },
+        clamp_rotation: Track { displacement: 0.0, velocity: 0.002, acceleration: -0.01 },
+    };
+    let omega = 2.0 * std::f64::consts::PI * 0.15;
+    let mut text = String::from("time,upper.hinge_heave,upper.hinge_heave_velocity,upper.hinge_heave_acceleration\n");
+    for n in 0..=3000 {
+        let t = n as f64 * 1e-3;
+        let (s, c) = (omega * t).sin_cos();
+        let _ = writeln!(text, "{t},{},{},{}", 0.5 * s, 0.5 * omega * c, -0.5 * omega * omega * s);
+    }
+    let table = MotionTable::parse(&text).map_err(crate::Error::Other)?;
+    let mut sampled = paper.clone();
+    sampled.motion.file = "1 ms sine heave".into();
+    sampled.motion.table = Some(std::sync::Arc::new(table));
+    // The same trajectory (to 1e-13) with and without the motion machinery: gravity g + 2 m/s^2
+    // against both supports accelerating upwards at 2 m/s^2.
+    let heavier = Scenario { gravity: paper.gravity + 2.0, ..paper.clone() };
+    let lift = Track { displacement: 0.0, velocity: 0.0, acceleration: 2.0 };
+    let lifted = SupportMotion { hinge_heave: lift, clamp_heave: lift, ..SupportMotion::default() };
+    let (fixed, fixed_steps) = time_run(|| Simulation::new(&heavier), runs)?;
+    let (same, same_steps) = time_run(|| Simulation::starting_with(&paper, lifted), runs)?;
+    let (constant, constant_steps) = time_run(|| Simulation::starting_with(&paper, moving), runs)?;
+    let (rows, rows_steps) = time_run(|| Simulation::new(&sampled), runs)?;
+    let per = |d: Duration, n: u64| d.as_secs_f64() * 1e9 / n as f64;
+    let base = per(fixed, fixed_steps);
+    let _ = writeln!(out, "support motion (paper scenario, 3 s, median of {runs} runs):");
+    for (what, d, n) in [
+        ("fixed supports, gravity g + 2 m/s^2   ", fixed, fixed_steps),
+        ("both supports at +2 m/s^2 (same run)  ", same, same_steps),
+        ("all three moving, constant accel.     ", constant, constant_steps),
+        ("hinge heave given every 1 ms          ", rows, rows_steps),
+    ] {
+        let ns = per(d, n);
+        let _ =
+            writeln!(out, "  {what}: {:8.2} ms  {n} steps  {ns:6.0} ns/step  x{:.2}", d.as_secs_f64() * 1e3, ns / base);
+    }
     Ok(out)
 }
 
