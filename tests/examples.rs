@@ -23,7 +23,14 @@ fn every_example_scenario_is_valid_and_paper_toml_is_the_papers() {
     assert!(files.len() >= 2, "{files:?}");
     for file in &files {
         let text = std::fs::read_to_string(file).unwrap();
-        let scenario = Scenario::from_toml(&text, &file.display().to_string()).unwrap();
+        let mut scenario = Scenario::from_toml(&text, &file.display().to_string()).unwrap();
+        if !scenario.motion.file.is_empty() {
+            // `[motion] file` is relative to the scenario file, read as the CLI reads it.
+            let csv = std::fs::read_to_string(file.parent().unwrap().join(&scenario.motion.file)).unwrap();
+            let table = beam_impact::model::motion_table::MotionTable::parse(&csv).unwrap();
+            assert!(table.mismatches().is_empty(), "{}: its rows describe one motion", scenario.motion.file);
+            scenario.motion.table = Some(std::sync::Arc::new(table));
+        }
         scenario.validate().unwrap();
         if file.ends_with("paper.toml") {
             assert!(scenario.is_paper(), "examples/paper.toml is the paper's scenario and method");

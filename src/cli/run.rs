@@ -103,11 +103,17 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     );
     if let Some(table) = &scenario.motion.table {
         text += &format!(
-            "supports moving: {} ({} rows of {}), from its time {} s; deflections are relative to the supports, \
-             the energy approach's column assumes fixed ones\n\n",
+            "supports moving: {} ({} rows of {}, each with its velocity and acceleration), from its time {} s; \
+             deflections are relative to the supports, the energy approach's column assumes fixed ones\n\n",
             scenario.motion.file,
             table.times.len(),
-            table.columns.join(", "),
+            table
+                .columns
+                .iter()
+                .filter(|c| !c.ends_with("_velocity") && !c.ends_with("_acceleration"))
+                .copied()
+                .collect::<Vec<_>>()
+                .join(", "),
             scenario.motion.time_shift
         );
     }
