@@ -325,3 +325,26 @@ fn the_log_stores_the_runs_answer_and_report_prints_its_verdict() {
         assert!(text.contains(expected), "{text}");
     }
 }
+
+/// `run --motion` with a bad file: one line naming what is wrong and where (the row and line, or the
+/// end the file does not reach), exit status 2, no panic.
+#[test]
+fn bad_motion_files_are_one_line_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let header = "time,lower.clamp_heave,lower.clamp_heave_velocity,lower.clamp_heave_acceleration\n";
+    let cases = [
+        ("unknown.csv", "time,lower.clamp_hieve\n0,0\n".to_string(), "unknown column `lower.clamp_hieve`"),
+        ("order.csv", format!("{header}0,0,0,0\n1,0,0,0\n0.5,0,0,0\n"), "row 3 (line 4): time 0.5 s is not after"),
+        ("nan.csv", format!("{header}0,0,0,0\n1,NaN,0,0\n"), "row 2 (line 3): `lower.clamp_heave` = NaN is not finite"),
+        ("short.csv", format!("{header}0,0,0,0\n0.5,0,0,0\n"), "which ends at 0.5 s, before the run's end at 3 s"),
+    ];
+    for (name, text, expected) in cases {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        let out = beam_impact().args(["run", "--no-mcap", "--motion"]).arg(&path).output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{name}: {stderr}");
+        assert!(stderr.contains(expected), "{name}: {stderr}");
+        assert_eq!(stderr.trim_end().lines().count(), 1, "{name}: {stderr}");
+    }
+}

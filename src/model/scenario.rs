@@ -503,11 +503,19 @@ impl Scenario {
         let m = &self.motion;
         check(within("motion.time_shift", "s", m.time_shift, -1e9, 1e9));
         match &m.table {
-            Some(table) if m.time_shift.is_finite() && self.duration.is_finite() => check(
-                table
-                    .check_covers(m.time_shift, m.time_shift + self.duration)
-                    .map_err(|e| Error::invalid("motion.file", "covering the run", format!("'{}' {e}", m.file))),
-            ),
+            Some(table) if m.time_shift.is_finite() && self.duration.is_finite() => {
+                check(table.check_covers(m.time_shift, m.time_shift + self.duration).map_err(|e| {
+                    Error::invalid(
+                        "motion.file",
+                        format!(
+                            "rows from time_shift to time_shift + duration ({} to {} s)",
+                            m.time_shift,
+                            m.time_shift + self.duration
+                        ),
+                        format!("'{}', which {e}", m.file),
+                    )
+                }))
+            }
             _ => {}
         }
         errors
