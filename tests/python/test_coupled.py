@@ -124,12 +124,22 @@ def _callbacks(logger) -> fmi2CallbackFunctions:
 
 
 CALLBACKS = _callbacks(_record)
+_RECORD = fmi2CallbackLoggerTYPE(_record)  # the recorder's thunk, alive for the process
 PRINTING = _callbacks(printLogMessage)  # what fmpy's default callbacks print through
+
+
+def listen() -> None:
+    """Makes the recorder the process's logger again. conftest.py hands the slot back to a printing
+    logger after every test, and addLoggerProxy skips a struct whose logger is already the proxy:
+    so the struct gets the recorder's thunk back before it is registered (without this, the checks
+    on MESSAGES after the first test saw an empty list and could not fail)."""
+    CALLBACKS.logger = _RECORD
+    addLoggerProxy(byref(CALLBACKS))
 
 
 @pytest.fixture(scope="module", autouse=True)
 def recording_logger():
-    addLoggerProxy(byref(CALLBACKS))
+    listen()
     yield
     addLoggerProxy(byref(PRINTING))  # give the process's FMUs their printing logger back
 
@@ -144,7 +154,8 @@ class Slave:
         self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
         self.fmu = FMU2Slave(guid=self.md.guid, modelIdentifier=self.md.coSimulation.modelIdentifier,
                              unzipDirectory=extract(str(path), str(unzip_dir)), instanceName=name)
-        self.fmu.instantiate(callbacks=CALLBACKS)
+        listen()  # this test's runs record their messages, whatever ran before
+        self.fmu.instantiate(callbacks=CALLBACKS, loggingOn=True)  # the contact events too
 
     @property
     def messages(self) -> list[tuple[int, str, str]]:
@@ -291,8 +302,10 @@ def test_external_work_equals_the_masters_sum_of_force_times_displacement(couple
 
 def test_energy_verdict_stays_trusted(coupled):
     assert set(coupled["statuses"]) == {fmi2OK}, "a doStep returned fmi2Warning: the run is not trusted"
+    # The recorder hears the beam (its contact events are logged at fmi2OK), so the check below can fail.
+    assert any("contact starts" in m[2] for m in coupled["messages"]), coupled["messages"][:5]
     assert not [m for m in coupled["messages"] if m[0] != fmi2OK], coupled["messages"]
-    assert not coupled["spring_messages"], coupled["spring_messages"]
+    assert not [m for m in coupled["spring_messages"] if m[0] != fmi2OK], coupled["spring_messages"]
     flow = max(coupled["potential"] + max(abs(w) for w in coupled["work"]), max(coupled["strain"]))
     worst = max(abs(r) for r in coupled["residual"])
     assert worst <= 0.01 * flow, f"energy residual {worst} J against {flow} J that flows"
