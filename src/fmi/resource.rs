@@ -1,18 +1,34 @@
 //! The FMU's resource location: FMI 2 gives a URI (`file:///a/b`, `file:///a/b/`, `file:/a/b`,
 //! `file://localhost/a/b`, percent-encoded), FMI 3 a plain path with a trailing `/`.
+//!
+//! On Windows the URI's path is a drive path (`file:///C:/a/b`, `file:/C:/a/b`, `file:///C|/a/b`,
+//! `file://localhost/C:/a/b`: the slash before the drive letter is dropped) or a share
+//! (`file://server/share/a`: `\\server\share\a`), and FMI 3's path may end in `\`. The
+//! parsing is plain string logic, tested for both platforms on either ([`parse_uri_for`]).
 
 use std::path::PathBuf;
 
 /// Parses an FMI 2 `fmuResourceLocation` into a directory path. Returns `None` for schemes other
 /// than `file` or a remote host (the FMU does not need its resources, so this is not an error).
 pub fn parse_uri(uri: &str) -> Option<PathBuf> {
+    parse_uri_for(uri, cfg!(windows)).map(PathBuf::from)
+}
+
+/// [`parse_uri`] as a string, for Windows (`windows`) or Unix: the directory with a trailing
+/// separator.
+pub fn parse_uri_for(uri: &str, windows: bool) -> Option<String> {
     let rest = uri.strip_prefix("file:").or_else(|| uri.strip_prefix("FILE:"))?;
     let path = if let Some(authority_and_path) = rest.strip_prefix("//") {
         // file://host/path: only an empty host or localhost is local.
         let slash = authority_and_path.find('/').unwrap_or(authority_and_path.len());
         let (host, path) = authority_and_path.split_at(slash);
         if !(host.is_empty() || host.eq_ignore_ascii_case("localhost")) {
-            return None;
+            // A share on another machine: a path Windows opens (`\\host\share\...`), none on Unix.
+            if !windows || path.len() <= 1 {
+                return None;
+            }
+            let decoded = percent_decode(path)?;
+            return Some(format!("\\\\{host}{}\\", decoded.trim_end_matches('/').replace('/', "\\")));
         }
         path
     } else {
@@ -22,12 +38,27 @@ pub fn parse_uri(uri: &str) -> Option<PathBuf> {
         return None;
     }
     let decoded = percent_decode(path)?;
-    Some(PathBuf::from(decoded.trim_end_matches('/').to_string()).join(""))
+    if windows {
+        // `/C:/a`, `/C|/a` (the old form) -> `C:\a`.
+        let drive = decoded.strip_prefix('/').unwrap_or(&decoded);
+        let b = drive.as_bytes();
+        if b.len() >= 2 && b[0].is_ascii_alphabetic() && (b[1] == b':' || b[1] == b'|') {
+            // `C:` alone would be the drive's current folder: `C:\\` is its root.
+            let path = format!("{}:{}", &drive[..1], &drive[2..]).replace('/', "\\");
+            return Some(format!("{}\\", path.trim_end_matches('\\')));
+        }
+        return Some(format!("{}\\", decoded.trim_end_matches('/').replace('/', "\\")));
+    }
+    // As `PathBuf::from(trimmed).join("")`: a trailing `/` unless the path is empty.
+    let trimmed = decoded.trim_end_matches('/');
+    Some(if trimmed.is_empty() { String::new() } else { format!("{trimmed}/") })
 }
 
-/// FMI 3's `resourcePath`: a plain path (normally with a trailing separator). Empty means none.
+/// FMI 3's `resourcePath`: a plain path (normally with a trailing separator; `\` too on Windows).
+/// Empty means none.
 pub fn parse_path(path: &str) -> Option<PathBuf> {
-    (!path.is_empty()).then(|| PathBuf::from(path.trim_end_matches('/')).join(""))
+    let separators: &[char] = if cfg!(windows) { &['/', '\\'] } else { &['/'] };
+    (!path.is_empty()).then(|| PathBuf::from(path.trim_end_matches(separators)).join(""))
 }
 
 /// Decodes `%XX` escapes; `None` on a malformed escape or invalid UTF-8.
@@ -73,6 +104,26 @@ mod tests {
         assert_eq!(parse_uri("file:///tmp/bad%2"), None);
         assert_eq!(parse_uri("file:///tmp/bad%zz"), None);
         assert_eq!(parse_uri(""), None);
+    }
+
+    #[test]
+    fn windows_file_uris() {
+        let w = |uri| parse_uri_for(uri, true);
+        let s = |text: &str| Some(text.to_string());
+        assert_eq!(w("file:///C:/Users/me/fmu/resources"), s("C:\\Users\\me\\fmu\\resources\\"));
+        assert_eq!(w("file:///C:/Users/me/fmu/resources/"), s("C:\\Users\\me\\fmu\\resources\\"));
+        assert_eq!(w("file:/C:/tmp/x"), s("C:\\tmp\\x\\"));
+        assert_eq!(w("file:///c|/tmp/x"), s("c:\\tmp\\x\\"));
+        assert_eq!(w("file://localhost/D:/my%20dir/r%C3%A9s"), s("D:\\my dir\\rés\\"));
+        assert_eq!(w("file:///C:/"), s("C:\\"));
+        assert_eq!(w("file:///Z:/tmp/x"), s("Z:\\tmp\\x\\"));
+        assert_eq!(w("file://server/share/fmu/resources"), s("\\\\server\\share\\fmu\\resources\\"));
+        assert_eq!(w("file://server"), None);
+        assert_eq!(w("http://example.com/x"), None);
+        assert_eq!(w("file:///C:/bad%2"), None);
+        // The Unix forms stay as they were.
+        assert_eq!(parse_uri_for("file:///C:/x", false), s("/C:/x/"));
+        assert_eq!(parse_uri_for("file:///tmp/x", false), s("/tmp/x/"));
     }
 
     #[test]

@@ -127,8 +127,7 @@ impl McapRecorder {
             // removed, never written through; a plain file (a killed run's, or the FMU's
             // reservation of a unique name) is taken over below once its lock is free.
             if let Ok(m) = std::fs::symlink_metadata(partial) {
-                use std::os::unix::fs::MetadataExt;
-                if m.file_type().is_symlink() || (m.is_file() && m.nlink() > 1) {
+                if m.file_type().is_symlink() || (m.is_file() && super::output::has_other_links(&m)) {
                     std::fs::remove_file(partial).map_err(|e| io_error("cannot create MCAP log", e))?;
                 }
             }

@@ -3,9 +3,21 @@
 //! a reader appears: the run, or the FMU's host, would hang), a device only where the caller
 //! allows it (the CLI's `/dev/null`). Opening never blocks: `O_NONBLOCK` is set for the open
 //! and the file type is checked on the opened descriptor, so there is no race with a swap.
+//!
+//! On Windows (the FMU's win64 binary) the same rules hold where Windows can tell, with std's
+//! stable API only (module `platform` holds the differences): an output is opened with
+//! `FILE_FLAG_OPEN_REPARSE_POINT`, so a symbolic link or junction at the last component is
+//! opened itself, seen on the opened handle and refused before anything is written; devices are
+//! recognised by name before anything is opened (`NUL`, `CON`, `COM1`, ... with any extension,
+//! and every `\\.\` path, which covers named pipes), and only `NUL` is written where the caller
+//! allows a device; opening never waits for a reader there (a named pipe without a server fails
+//! at once), so nothing needs `O_NONBLOCK`. Two paths name one file when their canonical paths
+//! agree (a new file: its folder's canonical path and its name, compared case-insensitively).
+//! What Windows cannot tell through std: two hard links to one file are two files there (no
+//! stable link count or file index), so a leftover `NAME.partial` that is a hard link is not
+//! removed before it is written, and `check_distinct` does not see two hard links as one file.
 
 use std::fs::File;
-use std::os::unix::fs::{FileTypeExt, OpenOptionsExt};
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
@@ -14,18 +26,14 @@ use crate::error::{Error, Result};
 /// once it holds the file, e.g. after taking a lock). `what` names the file in errors.
 pub fn open_output(path: &Path, allow_devices: bool, what: &'static str) -> Result<File> {
     let io = |source| Error::Io { action: what, path: path.display().to_string(), source };
-    let file = std::fs::OpenOptions::new()
-        .write(true)
-        .create(true)
-        .truncate(false)
-        .custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK)
+    platform::check_name(path, allow_devices).map_err(io)?;
+    let file = platform::no_follow(std::fs::OpenOptions::new().write(true).create(true).truncate(false))
         .open(path)
-        .map_err(|e| match e.raw_os_error() {
-            Some(libc::ELOOP) => io(std::io::Error::other("it is a symbolic link; give the link's target instead")),
-            Some(libc::ENXIO) => io(std::io::Error::other("it is a FIFO without a reader")),
-            _ => io(e),
+        .map_err(|e| match platform::explain_open_error(&e) {
+            Some(why) => io(std::io::Error::other(why)),
+            None => io(e),
         })?;
-    check_kind(&file, allow_devices).map_err(io)?;
+    check_kind(path, &file, allow_devices).map_err(io)?;
     Ok(file)
 }
 
@@ -38,8 +46,9 @@ pub fn open_input(path: &Path, what: &'static str) -> Result<File> {
 /// [`open_input`] with `hint` after the refusal of a FIFO or a socket.
 fn open_for_reading(path: &Path, what: &'static str, hint: &str) -> Result<File> {
     let io = |source| Error::Io { action: what, path: path.display().to_string(), source };
-    let file = std::fs::OpenOptions::new().read(true).custom_flags(libc::O_NONBLOCK).open(path).map_err(io)?;
-    check_kind(&file, true)
+    platform::check_name(path, true).map_err(io)?;
+    let file = platform::no_block(std::fs::OpenOptions::new().read(true)).open(path).map_err(io)?;
+    check_kind(path, &file, true)
         .map_err(|e| if e.to_string().contains("FIFO") { std::io::Error::other(format!("{e}{hint}")) } else { e })
         .map_err(io)?;
     Ok(file)
@@ -120,7 +129,8 @@ impl std::io::Seek for OutputFile {
 /// link, a folder, a FIFO or a socket is an error, before anything is written.
 pub fn partial_for(path: &Path) -> std::io::Result<Option<PathBuf>> {
     match std::fs::symlink_metadata(path) {
-        Ok(m) if m.file_type().is_char_device() || m.file_type().is_block_device() => Ok(None),
+        _ if platform::device_by_name(path).is_some() => Ok(None),
+        Ok(m) if platform::is_device(&m) => Ok(None),
         Ok(m) if !m.is_file() => {
             let kind = if m.file_type().is_symlink() {
                 "a symbolic link; give the link's target instead"
@@ -152,8 +162,7 @@ fn create_exclusive(path: &Path) -> std::io::Result<File> {
             return Err(std::io::Error::other(format!("{} is a folder", path.display())));
         }
         if m.is_file() {
-            let leftover =
-                std::fs::OpenOptions::new().read(true).custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK).open(path)?;
+            let leftover = platform::no_follow(std::fs::OpenOptions::new().read(true)).open(path)?;
             if leftover.try_lock().is_err() {
                 return Err(std::io::Error::other(format!(
                     "{} is being written by another run (its lock is taken)",
@@ -163,11 +172,7 @@ fn create_exclusive(path: &Path) -> std::io::Result<File> {
         }
         std::fs::remove_file(path)?;
     }
-    let file = std::fs::OpenOptions::new()
-        .write(true)
-        .create_new(true)
-        .custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK)
-        .open(path)?;
+    let file = platform::no_follow(std::fs::OpenOptions::new().write(true).create_new(true)).open(path)?;
     file.try_lock().map_err(|e| std::io::Error::other(format!("{} cannot be locked ({e})", path.display())))?;
     Ok(file)
 }
@@ -215,23 +220,28 @@ pub fn create_output_dir(dir: &Path, what: &'static str) -> Result<()> {
 /// What a path names, to tell whether two paths are one file: the device and inode of an
 /// existing file, or for a file still to be created the device and inode of its folder and its
 /// final name. `None` for a device (`/dev/null` takes any number of outputs) and `-`.
-fn identity(path: &Path) -> Option<(u64, u64, Option<std::ffi::OsString>)> {
-    use std::os::unix::fs::MetadataExt;
-    if path.as_os_str() == "-" {
+fn identity(path: &Path) -> Option<(platform::FileKey, Option<std::ffi::OsString>)> {
+    if path.as_os_str() == "-" || platform::device_by_name(path).is_some() {
         return None;
     }
     match std::fs::metadata(path) {
-        Ok(m) if m.file_type().is_char_device() || m.file_type().is_block_device() => None,
-        Ok(m) => Some((m.dev(), m.ino(), None)),
+        Ok(m) if platform::is_device(&m) => None,
+        Ok(m) => Some((platform::key(path, &m)?, None)),
         Err(_) => {
             let parent = match path.parent() {
                 Some(p) if !p.as_os_str().is_empty() => p,
                 _ => Path::new("."),
             };
             let m = std::fs::metadata(parent).ok()?;
-            Some((m.dev(), m.ino(), Some(path.file_name()?.to_os_string())))
+            Some((platform::key(parent, &m)?, Some(platform::name_key(path.file_name()?))))
         }
     }
+}
+
+/// Whether the regular file `m` has other names (hard links), which writing it would change too.
+/// Always false on Windows, where std has no stable link count (see the module's notes).
+pub fn has_other_links(m: &std::fs::Metadata) -> bool {
+    platform::has_other_links(m)
 }
 
 /// Refuses two of `files` (role, path: the inputs a command reads and the outputs it writes)
@@ -270,13 +280,12 @@ pub fn check_distinct(files: &[(&str, &Path)]) -> Result<()> {
 
 /// Whether `path`'s folder is `dir` (by device and inode; false when either is missing).
 pub fn same_folder(path: &Path, dir: &Path) -> bool {
-    use std::os::unix::fs::MetadataExt;
     let parent = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
     match (std::fs::metadata(parent), std::fs::metadata(dir)) {
-        (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+        (Ok(a), Ok(b)) => platform::key(parent, &a).is_some_and(|a| platform::key(dir, &b) == Some(a)),
         _ => false,
     }
 }
@@ -294,12 +303,6 @@ pub fn read_bounded(reader: impl std::io::Read, limit: u64, what: &str) -> std::
         return Err(std::io::Error::other(format!("{what} is larger than {limit} bytes (the limit)")));
     }
     String::from_utf8(bytes).map_err(|e| std::io::Error::other(format!("{what} is not UTF-8 text ({e})")))
-}
-
-/// Whether `m` is the null device (the one device outputs may name).
-fn is_null_device(m: &std::fs::Metadata) -> bool {
-    use std::os::unix::fs::MetadataExt;
-    m.file_type().is_char_device() && std::fs::metadata("/dev/null").is_ok_and(|null| null.rdev() == m.rdev())
 }
 
 /// Refuses an input that lies in `dir` (a figure folder) under a figure's extension: drawing the
@@ -330,29 +333,212 @@ pub fn open_regular_input(path: &Path, what: &'static str) -> Result<File> {
     Ok(file)
 }
 
-fn check_kind(file: &File, allow_devices: bool) -> std::io::Result<()> {
-    let kind = file.metadata()?.file_type();
-    if kind.is_fifo() || kind.is_socket() {
+/// Checks the opened `file` (at `path`): no FIFO or socket, a device only where allowed and only
+/// the null device, no folder, no symbolic link (Windows, where the link itself was opened).
+fn check_kind(path: &Path, file: &File, allow_devices: bool) -> std::io::Result<()> {
+    if platform::device_by_name(path).is_some() {
+        // Windows: checked by name before opening (`check_name`); the handle may have no metadata.
+        return Ok(());
+    }
+    let m = file.metadata()?;
+    let kind = m.file_type();
+    if platform::is_fifo_or_socket(&m) {
         return Err(std::io::Error::other("it is a FIFO or a socket, not a regular file"));
     }
-    if kind.is_char_device() || kind.is_block_device() {
+    if platform::is_device(&m) {
         if !allow_devices {
             return Err(std::io::Error::other("it is a device, not a regular file"));
         }
-        if !is_null_device(&file.metadata()?) {
+        if !platform::is_null_device(&m) {
             return Err(std::io::Error::other("it is a device other than /dev/null, not a regular file"));
         }
     }
     if kind.is_dir() {
         return Err(std::io::Error::other("it is a directory"));
     }
+    if kind.is_symlink() {
+        return Err(std::io::Error::other("it is a symbolic link; give the link's target instead"));
+    }
     Ok(())
+}
+
+/// A Windows device's name if `path` names one: a reserved DOS device name as the last component
+/// (`NUL`, `CON`, `PRN`, `AUX`, `COM0`-`COM9`, `LPT0`-`LPT9`, `CONIN$`, `CONOUT$`, with any
+/// extension or trailing spaces, any case) or a `\\.\` path (named pipes, volumes, devices).
+/// Plain string logic, so that it is tested on every platform; used on Windows only.
+#[cfg_attr(not(windows), allow(dead_code))]
+fn windows_device_name(path: &str) -> Option<String> {
+    let upper = path.to_ascii_uppercase();
+    if let Some(rest) = upper.strip_prefix("\\\\.\\").or_else(|| upper.strip_prefix("//./")) {
+        return Some(rest.to_string());
+    }
+    let name = upper.rsplit(['/', '\\']).next()?;
+    let name = name.rsplit_once(':').map_or(name, |(drive, rest)| if drive.len() == 1 { rest } else { name });
+    let stem = name.split('.').next()?.trim_end_matches(' ');
+    let numbered = |prefix: &str| {
+        stem.strip_prefix(prefix).is_some_and(|n| {
+            matches!(n, "0" | "1" | "2" | "3" | "4" | "5" | "6" | "7" | "8" | "9" | "\u{b9}" | "\u{b2}" | "\u{b3}")
+        })
+    };
+    let reserved =
+        matches!(stem, "CON" | "PRN" | "AUX" | "NUL" | "CONIN$" | "CONOUT$") || numbered("COM") || numbered("LPT");
+    reserved.then(|| stem.to_string())
+}
+
+/// What opening and identifying files needs that differs between Unix and Windows.
+#[cfg(unix)]
+mod platform {
+    use std::ffi::{OsStr, OsString};
+    use std::fs::{Metadata, OpenOptions};
+    use std::os::unix::fs::{FileTypeExt, MetadataExt, OpenOptionsExt};
+    use std::path::Path;
+
+    /// Opening never follows a symbolic link at the last component and never blocks.
+    pub fn no_follow(options: &mut OpenOptions) -> &mut OpenOptions {
+        options.custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK)
+    }
+
+    /// Opening never blocks (a FIFO without a writer).
+    pub fn no_block(options: &mut OpenOptions) -> &mut OpenOptions {
+        options.custom_flags(libc::O_NONBLOCK)
+    }
+
+    /// The refusal in words for what [`no_follow`] makes the open fail with.
+    pub fn explain_open_error(e: &std::io::Error) -> Option<&'static str> {
+        match e.raw_os_error() {
+            Some(libc::ELOOP) => Some("it is a symbolic link; give the link's target instead"),
+            Some(libc::ENXIO) => Some("it is a FIFO without a reader"),
+            _ => None,
+        }
+    }
+
+    /// Devices are told by their file type on Unix, never by name.
+    pub fn check_name(_path: &Path, _allow_devices: bool) -> std::io::Result<()> {
+        Ok(())
+    }
+
+    pub fn device_by_name(_path: &Path) -> Option<String> {
+        None
+    }
+
+    pub fn is_device(m: &Metadata) -> bool {
+        m.file_type().is_char_device() || m.file_type().is_block_device()
+    }
+
+    pub fn is_fifo_or_socket(m: &Metadata) -> bool {
+        m.file_type().is_fifo() || m.file_type().is_socket()
+    }
+
+    /// Whether `m` is the null device (the one device outputs may name).
+    pub fn is_null_device(m: &Metadata) -> bool {
+        m.file_type().is_char_device() && std::fs::metadata("/dev/null").is_ok_and(|null| null.rdev() == m.rdev())
+    }
+
+    /// A file's identity: device and inode.
+    pub type FileKey = (u64, u64);
+
+    pub fn key(_path: &Path, m: &Metadata) -> Option<FileKey> {
+        Some((m.dev(), m.ino()))
+    }
+
+    pub fn name_key(name: &OsStr) -> OsString {
+        name.to_os_string()
+    }
+
+    pub fn has_other_links(m: &Metadata) -> bool {
+        m.nlink() > 1
+    }
+}
+
+/// What opening and identifying files needs that differs between Unix and Windows.
+#[cfg(windows)]
+mod platform {
+    use std::ffi::{OsStr, OsString};
+    use std::fs::{Metadata, OpenOptions};
+    use std::os::windows::fs::OpenOptionsExt;
+    use std::path::{Path, PathBuf};
+
+    /// `FILE_FLAG_OPEN_REPARSE_POINT`: a link at the last component is opened itself, not followed.
+    const FILE_FLAG_OPEN_REPARSE_POINT: u32 = 0x0020_0000;
+
+    /// Opening does not follow a symbolic link or junction at the last component: the link itself
+    /// is opened, and `check_kind` refuses it before anything is written.
+    pub fn no_follow(options: &mut OpenOptions) -> &mut OpenOptions {
+        options.custom_flags(FILE_FLAG_OPEN_REPARSE_POINT)
+    }
+
+    /// Opening a file, a device or a named pipe does not wait for a peer on Windows.
+    pub fn no_block(options: &mut OpenOptions) -> &mut OpenOptions {
+        options
+    }
+
+    pub fn explain_open_error(_e: &std::io::Error) -> Option<&'static str> {
+        None
+    }
+
+    /// Refuses a device named by `path` before it is opened, except `NUL` where devices are allowed.
+    pub fn check_name(path: &Path, allow_devices: bool) -> std::io::Result<()> {
+        match device_by_name(path) {
+            None => Ok(()),
+            Some(name) if allow_devices && name == "NUL" => Ok(()),
+            Some(_) if allow_devices => Err(std::io::Error::other("it is a device other than NUL, not a regular file")),
+            Some(_) => Err(std::io::Error::other("it is a device, not a regular file")),
+        }
+    }
+
+    pub fn device_by_name(path: &Path) -> Option<String> {
+        super::windows_device_name(&path.to_string_lossy())
+    }
+
+    /// Devices are told by name on Windows ([`device_by_name`]).
+    pub fn is_device(_m: &Metadata) -> bool {
+        false
+    }
+
+    pub fn is_fifo_or_socket(_m: &Metadata) -> bool {
+        false
+    }
+
+    pub fn is_null_device(_m: &Metadata) -> bool {
+        false
+    }
+
+    /// A file's identity: its canonical path (links and `..` resolved, the file system's case).
+    pub type FileKey = PathBuf;
+
+    pub fn key(path: &Path, _m: &Metadata) -> Option<FileKey> {
+        std::fs::canonicalize(path).ok()
+    }
+
+    /// File names compare case-insensitively on Windows.
+    pub fn name_key(name: &OsStr) -> OsString {
+        name.to_string_lossy().to_lowercase().into()
+    }
+
+    /// Not known through std on Windows (no stable link count): see the module's notes.
+    pub fn has_other_links(_m: &Metadata) -> bool {
+        false
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    #[test]
+    fn windows_device_names() {
+        for device in ["NUL", "nul", "C:\\out\\NUL.mcap", "dir/con", "COM1", "lpt9.txt", "NUL ", "c:nul", "AUX.tar.gz"]
+        {
+            assert!(windows_device_name(device).is_some(), "{device}");
+        }
+        assert_eq!(windows_device_name("out\\Nul.mcap").as_deref(), Some("NUL"));
+        assert_eq!(windows_device_name("\\\\.\\pipe\\log").as_deref(), Some("PIPE\\LOG"));
+        for file in ["null", "nul_x.mcap", "C:\\NUL\\x.mcap", "COM10", "console", "run.mcap", "\\\\?\\C:\\x"] {
+            assert_eq!(windows_device_name(file), None, "{file}");
+        }
+    }
+
+    #[cfg(unix)]
     #[test]
     fn symlinks_fifos_and_devices_are_refused_where_they_must_be() {
         let dir = tempfile::tempdir().unwrap();
