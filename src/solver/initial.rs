@@ -25,7 +25,7 @@ pub struct Pitching {
 impl Pitching {
     /// Eqs. (17), (20)-(22).
     pub fn new(drop_height: f64, length: f64, gravity: f64) -> Pitching {
-        let initial_angle = (drop_height / (length / 2.0)).atan();
+        let initial_angle = libm::atan(drop_height / (length / 2.0));
         let angular_acceleration = 1.5 * gravity / length;
         let fall_time = (4.0 / 3.0 * length / gravity * initial_angle).sqrt();
         Pitching { initial_angle, angular_acceleration, fall_time, angular_velocity: angular_acceleration * fall_time }

@@ -158,7 +158,7 @@ fn deflate(d: &mut [f64], z: &mut [f64], rho: f64) -> Vec<Rotation> {
             continue;
         }
         if let Some(p) = last {
-            let r = z[p].hypot(z[q]);
+            let r = libm::hypot(z[p], z[q]);
             let (c, s) = (z[q] / r, z[p] / r);
             let t = d[q] - d[p];
             if t <= 0.0 || (t * c * s).abs() <= 8.0 * f64::EPSILON * d[p].abs().max(d[q].abs()) {
