@@ -4,17 +4,21 @@
 # comparison) and the win64 DLL (scripts/cross-build.sh), runs both through the same FMI 2
 # importer (scripts/wine-check.sh) and prints one verdict line with each stage's time.
 #
-# The cross build's directory is cached too, under ~/.cache/beam-impact-cross/target (CI's fresh
-# clone has no target/): std and the dependencies are compiled once, later runs compile this crate.
+# The toolchain and the cross build's directory are cached too, under ~/.cache/beam-impact-cross
+# (toolchain/, target/; CI's fresh clone has no .cross/ or target/): std, the dependencies, zig's
+# MinGW runtime and the wine prefix are built once, later runs compile this crate only.
 #
 # Usage: scripts/cross-check.sh
-# Environment: BEAM_IMPACT_CROSS_DIR (toolchain, default .cross), BEAM_IMPACT_CROSS_CACHE
+# Environment: BEAM_IMPACT_CROSS_DIR (toolchain, default ~/.cache/beam-impact-cross/toolchain), BEAM_IMPACT_CROSS_CACHE
 # (downloads and the build directory, default ~/.cache/beam-impact-cross).
 set -eu
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 CACHE=${BEAM_IMPACT_CROSS_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/beam-impact-cross}
 export BEAM_IMPACT_CROSS_CACHE="$CACHE"
+# The toolchain lives in the cache too (not .cross/): a freshly installed zig rebuilds its MinGW C
+# runtime at its first Windows link (3 minutes on two busy cores), a fresh sysroot moves std's path.
+export BEAM_IMPACT_CROSS_DIR="${BEAM_IMPACT_CROSS_DIR:-$CACHE/toolchain}"
 CROSS_TARGET=${BEAM_IMPACT_CROSS_TARGET:-$CACHE/target}
 
 now() { date +%s; }
