@@ -67,6 +67,20 @@ pub enum Command {
         /// Pack the host build next to this executable even when cargo-zigbuild is on PATH.
         #[arg(long)]
         no_zigbuild: bool,
+        /// The platforms whose binaries go into both FMUs: `all` or a list of linux, windows,
+        /// darwin (`linux,windows`). Windows and macOS binaries are cross-built by
+        /// scripts/cross-build.sh with the toolchain of scripts/cross-toolchain.sh (in
+        /// $BEAM_IMPACT_CROSS_DIR, else .cross/, else ~/.cache/beam-impact-cross/toolchain)
+        /// unless given with --windows-library / --darwin-library.
+        #[arg(long, default_value = "linux", value_name = "LIST")]
+        platforms: String,
+        /// The Windows x86-64 DLL to pack, as it is (instead of cross-building it).
+        #[arg(long, value_name = "FILE.dll")]
+        windows_library: Option<PathBuf>,
+        /// The macOS universal2 dylib (x86-64 and arm64) to pack, as it is (instead of
+        /// cross-building it).
+        #[arg(long, value_name = "FILE.dylib")]
+        darwin_library: Option<PathBuf>,
     },
     /// Read an MCAP log: print its summary and write Figures 6-9 (SVG and PNG), and Figures 10-12
     /// (natural modes) of its scenario.

@@ -4,15 +4,162 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use beam_impact::fmi::pack::Platform;
 use beam_impact::{Error, Result};
 
 use super::common::{emit, io};
 
-/// Packs `library`, or else the glibc 2.17 build that cargo-zigbuild makes when it is on PATH (and
-/// `no_zigbuild` is not set), or else the host build next to this executable. The build runs here,
-/// in the CLI, not in `fmi::pack`: that module is part of the shared library loaded into every
-/// FMU host, which has no business spawning cargo; `fmi::pack` packs the file it is given.
-pub fn pack(out: &Path, library: Option<PathBuf>, no_zigbuild: bool) -> Result<()> {
+/// What `pack` is asked for (the command line's options).
+pub struct Request {
+    /// Output directory (DIR/fmi2/BeamImpact.fmu, DIR/fmi3/BeamImpact.fmu).
+    pub out: PathBuf,
+    /// The Linux library to pack as it is.
+    pub library: Option<PathBuf>,
+    /// Pack the host build rather than a glibc 2.17 build.
+    pub no_zigbuild: bool,
+    /// `all` or a list of platform names.
+    pub platforms: String,
+    /// The Windows DLL to pack as it is.
+    pub windows_library: Option<PathBuf>,
+    /// The macOS universal2 dylib to pack as it is.
+    pub darwin_library: Option<PathBuf>,
+}
+
+/// Packs the FMUs for the platforms asked for. Linux: `library`, or else the glibc 2.17 build
+/// that cargo-zigbuild makes when it is on PATH (and `no_zigbuild` is not set), or else the host
+/// build next to this executable. Windows and macOS: the file given, or else the cross build of
+/// `scripts/cross-build.sh` (the toolchain checked first: one line naming what is missing). The
+/// builds run here, in the CLI, not in `fmi::pack`: that module is part of the shared library
+/// loaded into every FMU host, which has no business spawning cargo; `fmi::pack` packs the files
+/// it is given. The packed descriptions' `generationTool` names the git commit of the source.
+pub fn pack(request: &Request) -> Result<()> {
+    let platforms = Platform::parse_list(&request.platforms)?;
+    for (given, option, platform) in [
+        (request.library.is_some(), "--library", Platform::Linux),
+        (request.windows_library.is_some(), "--windows-library", Platform::Windows),
+        (request.darwin_library.is_some(), "--darwin-library", Platform::Darwin),
+    ] {
+        if given && !platforms.contains(&platform) {
+            return Err(Error::Other(format!(
+                "{option} is given but --platforms `{}` has no {}",
+                request.platforms,
+                platform.name()
+            )));
+        }
+    }
+    // Every cross build's toolchain is checked before anything is built.
+    let needs_cross = (platforms.contains(&Platform::Windows) && request.windows_library.is_none())
+        || (platforms.contains(&Platform::Darwin) && request.darwin_library.is_none());
+    let toolchain = if needs_cross { Some(cross_toolchain(&platforms)?) } else { None };
+    let mut binaries = Vec::new();
+    for platform in platforms {
+        let path = match platform {
+            Platform::Linux => linux_library(request.library.clone(), request.no_zigbuild)?,
+            Platform::Windows => match &request.windows_library {
+                Some(path) => path.clone(),
+                None => cross_build(toolchain.as_ref(), "x86_64-pc-windows-gnu", platform)?,
+            },
+            Platform::Darwin => match &request.darwin_library {
+                Some(path) => path.clone(),
+                None => cross_build(toolchain.as_ref(), "universal2-apple-darwin", platform)?,
+            },
+        };
+        binaries.push((platform, path));
+    }
+    let tool = beam_impact::fmi::description::generation_tool(git_commit().as_deref());
+    for path in beam_impact::fmi::pack::pack_platforms(&binaries, &request.out, &tool)? {
+        emit(&format!("wrote {}\n", path.display()))?;
+    }
+    Ok(())
+}
+
+/// The crate's source directory (the cross builds and the glibc 2.17 build run there).
+fn source_dir() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The source's git commit (12 hex digits, `+dirty` when tracked files differ from it), or
+/// `None` when there is no git or no repository.
+fn git_commit() -> Option<String> {
+    let git = |args: &[&str]| {
+        std::process::Command::new("git")
+            .arg("-C")
+            .arg(source_dir())
+            .args(args)
+            .stderr(std::process::Stdio::null())
+            .output()
+            .ok()
+            .filter(|o| o.status.success())
+            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+    };
+    let commit = git(&["rev-parse", "--short=12", "HEAD"]).filter(|c| !c.is_empty())?;
+    let dirty = git(&["status", "--porcelain", "--untracked-files=no"]).is_some_and(|s| !s.is_empty());
+    Some(if dirty { format!("{commit}+dirty") } else { commit })
+}
+
+/// The cross toolchain of scripts/cross-toolchain.sh: `$BEAM_IMPACT_CROSS_DIR`, else `.cross/` in
+/// the source, else `~/.cache/beam-impact-cross/toolchain` (where scripts/cross-check.sh keeps
+/// it); an error in one line naming what is missing and how to install it.
+fn cross_toolchain(platforms: &[Platform]) -> Result<PathBuf> {
+    let script = source_dir().join("scripts").join("cross-build.sh");
+    let names: Vec<&str> = platforms.iter().filter(|p| **p != Platform::Linux).map(|p| p.name()).collect();
+    let names = names.join(" and ");
+    if !script.is_file() {
+        return Err(Error::Other(format!(
+            "cannot cross-build the {names} binary: the crate's source {} is gone (pass --windows-library /              --darwin-library)",
+            source_dir().display()
+        )));
+    }
+    let cache = std::env::var_os("XDG_CACHE_HOME")
+        .map(PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").map(|home| Path::new(&home).join(".cache")))
+        .map(|cache| cache.join("beam-impact-cross").join("toolchain"));
+    let candidates: Vec<PathBuf> = match std::env::var_os("BEAM_IMPACT_CROSS_DIR") {
+        Some(dir) => vec![PathBuf::from(dir)],
+        None => std::iter::once(source_dir().join(".cross")).chain(cache).collect(),
+    };
+    let complete = |dir: &Path| {
+        dir.join("bin").join("rustc").is_file() && dir.join("venv").join("bin").join("cargo-zigbuild").is_file()
+    };
+    candidates.iter().find(|dir| complete(dir)).cloned().ok_or_else(|| {
+        let looked: Vec<String> = candidates.iter().map(|d| d.display().to_string()).collect();
+        Error::Other(format!(
+            "cannot cross-build the {names} binary: no cross toolchain (rustc wrapper and cargo-zigbuild) in {}: run              scripts/cross-toolchain.sh (downloads about 240 MB once), or pass --windows-library / --darwin-library",
+            looked.join(" or ")
+        ))
+    })
+}
+
+/// Runs `scripts/cross-build.sh TRIPLE OUT` with `toolchain`; returns OUT
+/// (`target/cross/BeamImpact-<platform>.<ext>` in the source).
+fn cross_build(toolchain: Option<&PathBuf>, triple: &str, platform: Platform) -> Result<PathBuf> {
+    let toolchain = toolchain.ok_or_else(|| Error::Other("no cross toolchain".into()))?;
+    let script = source_dir().join("scripts").join("cross-build.sh");
+    let dir = source_dir().join("target").join("cross");
+    std::fs::create_dir_all(&dir).map_err(|source| io("cannot create", &dir, source))?;
+    let out = dir.join(format!("BeamImpact-{}.{}", platform.name(), platform.extension()));
+    eprintln!("beam-impact: cross-building the {} binary ({triple}) with {}", platform.name(), script.display());
+    let started = Instant::now();
+    let status = std::process::Command::new("sh")
+        .arg(&script)
+        .arg(triple)
+        .arg(&out)
+        .env("BEAM_IMPACT_CROSS_DIR", toolchain)
+        .status()
+        .map_err(|source| io("cannot run", &script, source))?;
+    if !status.success() {
+        return Err(Error::Other(format!(
+            "`scripts/cross-build.sh {triple}` failed ({status}; its output is above): the {} binary was not built",
+            platform.name()
+        )));
+    }
+    eprintln!("beam-impact: built {} in {:.0} s", out.display(), started.elapsed().as_secs_f64());
+    Ok(out)
+}
+
+/// The Linux library: `library` as given, the glibc 2.17 build (cargo-zigbuild on PATH, not
+/// `no_zigbuild`) or the host build.
+fn linux_library(library: Option<PathBuf>, no_zigbuild: bool) -> Result<PathBuf> {
     /// The build's target: x86_64 Linux, linked against glibc 2.17 symbols (manylinux2014: loads
     /// on RHEL 7/8, Ubuntu 20.04, Debian 11 and later); as zig names it.
     const TARGET: &str = "x86_64-unknown-linux-gnu.2.17";
@@ -99,7 +246,7 @@ pub fn pack(out: &Path, library: Option<PathBuf>, no_zigbuild: bool) -> Result<(
             .map_err(|source| io("cannot write", path, source))
     }
 
-    let library = match library {
+    Ok(match library {
         Some(path) => path,
         None => {
             let zig = if no_zigbuild { None } else { on_path("cargo-zigbuild") };
@@ -116,11 +263,7 @@ pub fn pack(out: &Path, library: Option<PathBuf>, no_zigbuild: bool) -> Result<(
                 }
             }
         }
-    };
-    for path in beam_impact::fmi::pack::pack(&library, out)? {
-        emit(&format!("wrote {}\n", path.display()))?;
-    }
-    Ok(())
+    })
 }
 
 /// The host build of the library: beside the running executable (`cargo build`), or in its

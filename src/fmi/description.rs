@@ -183,19 +183,34 @@ fn is_initial_unknown(v: &Variable) -> bool {
     v.causality == Causality::CalculatedParameter || (v.causality == Causality::Output && v.exact == Some(false))
 }
 
-/// The FMI 2.0 modelDescription.xml.
+/// `generationTool`: the crate and its version; `commit` (the packed FMU's git commit) is added
+/// only when given, so that the committed descriptions stay free of drift.
+pub fn generation_tool(commit: Option<&str>) -> String {
+    let tool = format!("beam-impact {}", env!("CARGO_PKG_VERSION"));
+    match commit {
+        Some(commit) => format!("{tool} (git {commit})"),
+        None => tool,
+    }
+}
+
+/// The FMI 2.0 modelDescription.xml (as committed: no commit in `generationTool`).
 pub fn fmi2() -> String {
+    fmi2_by(&generation_tool(None))
+}
+
+/// The FMI 2.0 modelDescription.xml with `generation_tool` ([`generation_tool`]).
+pub fn fmi2_by(generation_tool: &str) -> String {
     let variables = table();
     let mut out = String::new();
     out.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     let _ = writeln!(
         out,
         "<fmiModelDescription fmiVersion=\"2.0\" modelName=\"{MODEL_IDENTIFIER}\" guid=\"{}\"\n  \
-         description=\"{}\"\n  generationTool=\"beam-impact {}\" generationDateAndTime=\"{GENERATION_DATE_AND_TIME}\"\n  \
+         description=\"{}\"\n  generationTool=\"{}\" generationDateAndTime=\"{GENERATION_DATE_AND_TIME}\"\n  \
          variableNamingConvention=\"structured\" numberOfEventIndicators=\"0\">",
         token(),
         esc(DESCRIPTION),
-        env!("CARGO_PKG_VERSION")
+        esc(generation_tool)
     );
     let _ = writeln!(
         out,
@@ -233,19 +248,24 @@ pub fn fmi2() -> String {
     out
 }
 
-/// The FMI 3.0 modelDescription.xml.
+/// The FMI 3.0 modelDescription.xml (as committed: no commit in `generationTool`).
 pub fn fmi3() -> String {
+    fmi3_by(&generation_tool(None))
+}
+
+/// The FMI 3.0 modelDescription.xml with `generation_tool` ([`generation_tool`]).
+pub fn fmi3_by(generation_tool: &str) -> String {
     let variables = table();
     let mut out = String::new();
     out.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     let _ = writeln!(
         out,
         "<fmiModelDescription fmiVersion=\"3.0\" modelName=\"{MODEL_IDENTIFIER}\" instantiationToken=\"{}\"\n  \
-         description=\"{}\"\n  generationTool=\"beam-impact {}\" generationDateAndTime=\"{GENERATION_DATE_AND_TIME}\"\n  \
+         description=\"{}\"\n  generationTool=\"{}\" generationDateAndTime=\"{GENERATION_DATE_AND_TIME}\"\n  \
          variableNamingConvention=\"structured\">",
         token(),
         esc(DESCRIPTION),
-        env!("CARGO_PKG_VERSION")
+        esc(generation_tool)
     );
     let _ = writeln!(
         out,

@@ -9,15 +9,19 @@
 //! - [`state`]: FMU state snapshots and their portable byte format; [`slots`]: the importer's handles to them.
 //! - [`resource`]: resource-location parsing.
 //! - [`description`]: the two modelDescription.xml files, generated from the table.
-//! - [`pack`]: writes the two .fmu archives.
+//! - [`pack`]: writes the two .fmu archives (one binary per platform); [`reference`](mod@reference): the paper
+//!   scenario run through an instance, their reference results; [`documentation`]: their
+//!   `documentation/index.html` and figures.
 
 pub mod boundary;
 pub mod description;
+pub mod documentation;
 pub mod fmi2;
 pub mod fmi3;
 pub mod instance;
 pub mod logger;
 pub mod pack;
+pub mod reference;
 pub mod resource;
 pub mod slots;
 pub mod state;

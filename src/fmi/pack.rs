@@ -1,14 +1,18 @@
 //! Writes the two FMUs: `out_root/fmi2/BeamImpact.fmu` and `out_root/fmi3/BeamImpact.fmu`, each
-//! with its modelDescription.xml, the shared library under the platform directory its standard
-//! names, and `documentation/` (the repository's `fmu/documentation/`).
+//! with its modelDescription.xml, one binary per platform under the directory its standard names
+//! (FMI 2: `linux64`, `win64`, `darwin64`; FMI 3: `x86_64-linux`, `x86_64-windows`,
+//! `x86_64-darwin`, `aarch64-darwin`), `documentation/` (the repository's `fmu/documentation/`,
+//! its `index.html` completed by [`super::documentation`]) and the reference results in `extra/`.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+use std::ops::Range;
 use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, ZipWriter};
 
 use super::description::{self, MODEL_IDENTIFIER};
+use super::reference::{reference_run, reference_run_with, REFERENCE_CSV};
 use crate::error::{Error, Result};
 
 /// The documentation directory: `fmu/documentation/` of the repository this crate was built from,
@@ -49,7 +53,77 @@ fn documentation_files(dir: &Path) -> Result<Vec<(String, PathBuf)>> {
     Ok(files)
 }
 
-fn write_fmu(fmu: &Path, xml: &str, platform: &str, library: &[u8], docs: &[(String, PathBuf)]) -> Result<()> {
+/// A platform an FMU carries a binary for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Platform {
+    /// Linux x86-64: an ELF shared object (glibc 2.17 when built by `pack`).
+    Linux,
+    /// Windows x86-64: a DLL.
+    Windows,
+    /// macOS: a universal2 Mach-O dylib (x86-64 and arm64 slices).
+    Darwin,
+}
+
+impl Platform {
+    /// Every platform, in the order the FMUs list them.
+    pub const ALL: [Platform; 3] = [Platform::Linux, Platform::Windows, Platform::Darwin];
+
+    /// The name `pack --platforms` takes.
+    pub fn name(self) -> &'static str {
+        match self {
+            Platform::Linux => "linux",
+            Platform::Windows => "windows",
+            Platform::Darwin => "darwin",
+        }
+    }
+
+    /// The binary's file extension.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Platform::Linux => "so",
+            Platform::Windows => "dll",
+            Platform::Darwin => "dylib",
+        }
+    }
+
+    /// The FMI 2.0 platform directory (one per platform: macOS's is the universal2 binary).
+    pub fn fmi2_dir(self) -> &'static str {
+        match self {
+            Platform::Linux => "linux64",
+            Platform::Windows => "win64",
+            Platform::Darwin => "darwin64",
+        }
+    }
+
+    /// `all`, or a comma-separated list of names (`linux,windows`), in [`Platform::ALL`] order
+    /// without repeats; an unknown or empty name is an error naming it.
+    pub fn parse_list(list: &str) -> Result<Vec<Platform>> {
+        if list.trim() == "all" {
+            return Ok(Platform::ALL.to_vec());
+        }
+        let mut platforms = Vec::new();
+        for name in list.split(',').map(str::trim) {
+            let platform = Platform::ALL.into_iter().find(|p| p.name() == name).ok_or_else(|| {
+                Error::Other(format!(
+                    "--platforms: unknown platform `{name}` in `{list}` (known: linux, windows, darwin, or all)"
+                ))
+            })?;
+            platforms.push(platform);
+        }
+        platforms.sort();
+        platforms.dedup();
+        Ok(platforms)
+    }
+}
+
+/// One file of an FMU: its path inside the archive, its bytes, whether it is executable.
+struct Entry {
+    name: String,
+    data: Vec<u8>,
+    executable: bool,
+}
+
+fn write_fmu(fmu: &Path, entries: &[Entry]) -> Result<()> {
     if let Some(parent) = fmu.parent() {
         // Never into a folder that is a symbolic link (the output guard's rule for folders).
         crate::record::output::create_output_dir(parent, "cannot create directory")?;
@@ -57,25 +131,44 @@ fn write_fmu(fmu: &Path, xml: &str, platform: &str, library: &[u8], docs: &[(Str
     let file = crate::record::output::OutputFile::create(fmu, false, "cannot create FMU")?;
     let mut zip = ZipWriter::new(file);
     let options = SimpleFileOptions::default().compression_method(CompressionMethod::Deflated);
-    zip.start_file("modelDescription.xml", options).map_err(zip_error(fmu))?;
-    zip.write_all(xml.as_bytes()).map_err(io("cannot write FMU", fmu))?;
-    zip.start_file(format!("binaries/{platform}/{MODEL_IDENTIFIER}.so"), options.unix_permissions(0o755))
-        .map_err(zip_error(fmu))?;
-    zip.write_all(library).map_err(io("cannot write FMU", fmu))?;
-    for (name, path) in docs {
-        let data = std::fs::read(path).map_err(io("cannot read", path))?;
-        zip.start_file(format!("documentation/{name}"), options).map_err(zip_error(fmu))?;
-        zip.write_all(&data).map_err(io("cannot write FMU", fmu))?;
+    for entry in entries {
+        let options = if entry.executable { options.unix_permissions(0o755) } else { options };
+        zip.start_file(entry.name.as_str(), options).map_err(zip_error(fmu))?;
+        zip.write_all(&entry.data).map_err(io("cannot write FMU", fmu))?;
     }
     // Complete: the FMU replaces an earlier one only now.
     zip.finish().map_err(zip_error(fmu))?.commit()
 }
 
-/// The entry points an importer looks up first, as they stand in the dynamic string table.
+/// The entry points an importer looks up first, as they stand in the ELF and PE name tables.
 const ENTRY_POINTS: [&[u8]; 2] = [b"\0fmi2Instantiate\0", b"\0fmi3InstantiateCoSimulation\0"];
+/// ... and in a Mach-O string table (C names take a leading underscore there).
+const MACHO_ENTRY_POINTS: [&[u8]; 2] = [b"\0_fmi2Instantiate\0", b"\0_fmi3InstantiateCoSimulation\0"];
 
-/// Checks that `binary` is what an FMU must carry: a 64-bit little-endian x86-64 ELF shared
-/// object (e_type ET_DYN) that names the FMI 2 and FMI 3 entry points.
+fn names_entry_points(binary: &[u8], names: &[&[u8]]) -> std::result::Result<(), String> {
+    for name in names {
+        if !binary.windows(name.len()).any(|w| w == *name) {
+            let shown = String::from_utf8_lossy(&name[1..name.len() - 1]).into_owned();
+            return Err(format!("it does not export {shown}: not the beam-impact library"));
+        }
+    }
+    Ok(())
+}
+
+fn u16_le(b: &[u8], at: usize) -> Option<u16> {
+    Some(u16::from_le_bytes(b.get(at..at + 2)?.try_into().ok()?))
+}
+
+fn u32_le(b: &[u8], at: usize) -> Option<u32> {
+    Some(u32::from_le_bytes(b.get(at..at + 4)?.try_into().ok()?))
+}
+
+fn u32_be(b: &[u8], at: usize) -> Option<u32> {
+    Some(u32::from_be_bytes(b.get(at..at + 4)?.try_into().ok()?))
+}
+
+/// Checks that `binary` is what an FMU must carry on Linux: a 64-bit little-endian x86-64 ELF
+/// shared object (e_type ET_DYN) that names the FMI 2 and FMI 3 entry points.
 pub fn check_library(binary: &[u8]) -> std::result::Result<(), String> {
     if binary.len() < 64 || &binary[..4] != b"\x7fELF" {
         return Err(format!("not an ELF file ({} bytes, no ELF magic)", binary.len()));
@@ -89,39 +182,228 @@ pub fn check_library(binary: &[u8]) -> std::result::Result<(), String> {
     if e_type != 3 {
         return Err(format!("not a shared object (ELF type {e_type}, a shared object is 3)"));
     }
-    for name in ENTRY_POINTS {
-        if !binary.windows(name.len()).any(|w| w == name) {
-            let shown = String::from_utf8_lossy(&name[1..name.len() - 1]).into_owned();
-            return Err(format!("it does not export {shown}: not the beam-impact library"));
-        }
-    }
-    Ok(())
+    names_entry_points(binary, &ENTRY_POINTS)
 }
 
-/// Packs `library` (the crate's `libbeam_impact.so`, checked by [`check_library`]) into both FMUs
-/// under `out_root`; returns their paths.
-pub fn pack(library: &Path, out_root: &Path) -> Result<Vec<PathBuf>> {
-    let binary = {
-        use std::io::Read;
-        // A regular file only (a FIFO would block, a device never end), at most 1 GiB.
-        let file = crate::record::output::open_regular_input(library, "cannot read the shared library to pack")?;
-        let mut bytes = Vec::new();
-        file.take(1 << 30).read_to_end(&mut bytes).map_err(io("cannot read the shared library to pack", library))?;
-        bytes
-    };
-    check_library(&binary).map_err(|why| Error::Other(format!("{} cannot be packed: {why}", library.display())))?;
-    let docs = documentation_files(&documentation_dir())?;
-    if !docs.iter().any(|(name, _)| name == "index.html") {
-        return Err(Error::Other(format!(
-            "{} has no index.html (the FMU's main documentation page)",
-            documentation_dir().display()
-        )));
+/// Checks that `binary` is a Windows x86-64 DLL (PE32+, machine AMD64, IMAGE_FILE_DLL) that names
+/// the FMI entry points. (Its exact exports and imports are checked where it is built,
+/// `scripts/cross-build.sh`.)
+pub fn check_dll(binary: &[u8]) -> std::result::Result<(), String> {
+    if binary.get(..2) != Some(b"MZ") {
+        return Err(format!("not a Windows DLL ({} bytes, no MZ header)", binary.len()));
     }
+    let pe = u32_le(binary, 0x3c).map(|p| p as usize).filter(|&p| binary.get(p..p + 4) == Some(b"PE\0\0"));
+    let Some(pe) = pe else { return Err("not a Windows DLL (no PE signature)".into()) };
+    let machine = u16_le(binary, pe + 4).unwrap_or(0);
+    let characteristics = u16_le(binary, pe + 22).unwrap_or(0);
+    if machine != 0x8664 {
+        return Err(format!("not an x86-64 PE file (machine 0x{machine:04x}, x86-64 is 0x8664)"));
+    }
+    if characteristics & 0x2000 == 0 {
+        return Err("a PE file but not a DLL (IMAGE_FILE_DLL not set)".into());
+    }
+    names_entry_points(binary, &ENTRY_POINTS)
+}
+
+/// Mach-O CPU types of the two slices of a universal2 binary, with the FMI 3.0 platform
+/// directory of each.
+const MACHO_SLICES: [(u32, &str); 2] = [(0x0100_0007, "x86_64-darwin"), (0x0100_000c, "aarch64-darwin")];
+
+/// Checks that `binary` is a universal2 Mach-O (a fat file holding an x86-64 and an arm64
+/// 64-bit dylib, MH_DYLIB, each naming the FMI entry points); returns each slice's FMI 3.0
+/// platform directory and byte range. (Exports, linked libraries and code signatures are
+/// checked where it is built, `scripts/cross-build.sh`.)
+pub fn check_universal_dylib(binary: &[u8]) -> std::result::Result<Vec<(&'static str, Range<usize>)>, String> {
+    if u32_be(binary, 0) != Some(0xcafe_babe) {
+        return Err(format!(
+            "not a universal (fat) Mach-O file ({} bytes, no 0xcafebabe magic): pack a universal2 dylib",
+            binary.len()
+        ));
+    }
+    let count = u32_be(binary, 4).unwrap_or(0) as usize;
+    if !(1..=8).contains(&count) {
+        return Err(format!("a fat Mach-O header with {count} architectures"));
+    }
+    let mut slices = Vec::new();
+    for k in 0..count {
+        let at = 8 + 20 * k;
+        let (Some(cpu), Some(offset), Some(size)) =
+            (u32_be(binary, at), u32_be(binary, at + 8), u32_be(binary, at + 12))
+        else {
+            return Err("a fat Mach-O header cut short".into());
+        };
+        let range = offset as usize..offset as usize + size as usize;
+        let slice = binary.get(range.clone()).ok_or(format!(
+            "architecture {k} of the fat Mach-O lies beyond the file (bytes {}..{} of {})",
+            range.start,
+            range.end,
+            binary.len()
+        ))?;
+        if u32_le(slice, 0) != Some(0xfeed_facf) || u32_le(slice, 4) != Some(cpu) {
+            return Err(format!("architecture {k} of the fat Mach-O is not a 64-bit Mach-O of CPU type 0x{cpu:08x}"));
+        }
+        let file_type = u32_le(slice, 12).unwrap_or(0);
+        if file_type != 6 {
+            return Err(format!("architecture {k} is not a dylib (Mach-O file type {file_type}, MH_DYLIB is 6)"));
+        }
+        names_entry_points(slice, &MACHO_ENTRY_POINTS)?;
+        if let Some(&(_, dir)) = MACHO_SLICES.iter().find(|(c, _)| *c == cpu) {
+            slices.push((dir, range));
+        }
+    }
+    for (cpu, dir) in MACHO_SLICES {
+        if !slices.iter().any(|(d, _)| *d == dir) {
+            return Err(format!("the fat Mach-O has no {dir} slice (CPU type 0x{cpu:08x}): pack a universal2 dylib"));
+        }
+    }
+    Ok(slices)
+}
+
+/// Reads a binary to pack: a regular file only (a FIFO would block, a device never end), at
+/// most 1 GiB.
+fn read_binary(path: &Path) -> Result<Vec<u8>> {
+    use std::io::Read;
+    let file = crate::record::output::open_regular_input(path, "cannot read the shared library to pack")?;
+    let mut bytes = Vec::new();
+    file.take(1 << 30).read_to_end(&mut bytes).map_err(io("cannot read the shared library to pack", path))?;
+    Ok(bytes)
+}
+
+/// The binary files of each FMU for one checked binary: (FMI 2 entries, FMI 3 entries).
+fn binary_entries(platform: Platform, path: &Path) -> Result<(Vec<Entry>, Vec<Entry>)> {
+    let bytes = read_binary(path)?;
+    let refuse = |why: String| {
+        Error::Other(format!("{} cannot be packed as the {} binary: {why}", path.display(), platform.name()))
+    };
+    let file = format!("{MODEL_IDENTIFIER}.{}", platform.extension());
+    let entry = |dir: &str, data: Vec<u8>| Entry { name: format!("binaries/{dir}/{file}"), data, executable: true };
+    let fmi3 = match platform {
+        Platform::Linux => {
+            check_library(&bytes).map_err(refuse)?;
+            vec![entry("x86_64-linux", bytes.clone())]
+        }
+        Platform::Windows => {
+            check_dll(&bytes).map_err(refuse)?;
+            vec![entry("x86_64-windows", bytes.clone())]
+        }
+        // FMI 3 has one directory per architecture: each gets its own slice (a thin dylib).
+        Platform::Darwin => check_universal_dylib(&bytes)
+            .map_err(refuse)?
+            .into_iter()
+            .map(|(dir, range)| entry(dir, bytes[range].to_vec()))
+            .collect(),
+    };
+    Ok((vec![entry(platform.fmi2_dir(), bytes)], fmi3))
+}
+
+/// What each platform's binary is, for the documentation page: (FMI 2 and FMI 3 directories, what).
+fn platform_lines(platforms: &[Platform], fmi3: bool) -> Vec<(String, String)> {
+    platforms
+        .iter()
+        .map(|p| match (p, fmi3) {
+            (Platform::Linux, false) => {
+                ("linux64".into(), "Linux x86-64 (glibc 2.17 or later when packed by `beam-impact pack`)".into())
+            }
+            (Platform::Linux, true) => {
+                ("x86_64-linux".into(), "Linux x86-64 (glibc 2.17 or later when packed by `beam-impact pack`)".into())
+            }
+            (Platform::Windows, false) => ("win64".into(), "Windows x86-64 DLL (system DLLs only)".into()),
+            (Platform::Windows, true) => ("x86_64-windows".into(), "Windows x86-64 DLL (system DLLs only)".into()),
+            (Platform::Darwin, false) => {
+                ("darwin64".into(), "macOS universal2 dylib (x86-64 and arm64; libSystem only; not run here)".into())
+            }
+            (Platform::Darwin, true) => (
+                "x86_64-darwin, aarch64-darwin".into(),
+                "macOS dylibs, Intel and Apple silicon (libSystem only; not run here)".into(),
+            ),
+        })
+        .collect()
+}
+
+/// Packs the binaries (one per platform, each checked for its platform: [`check_library`],
+/// [`check_dll`], [`check_universal_dylib`]) into both FMUs under `out_root`, with
+/// `generation_tool` in their descriptions ([`description::generation_tool`]), the completed
+/// documentation and the reference results; returns the two FMUs' paths.
+pub fn pack_platforms(
+    binaries: &[(Platform, PathBuf)],
+    out_root: &Path,
+    generation_tool: &str,
+) -> Result<Vec<PathBuf>> {
+    if binaries.is_empty() {
+        return Err(Error::Other("no binary to pack".into()));
+    }
+    let mut fmi2_binaries = Vec::new();
+    let mut fmi3_binaries = Vec::new();
+    let mut platforms = Vec::new();
+    for (platform, path) in binaries {
+        if platforms.contains(platform) {
+            return Err(Error::Other(format!("two {} binaries to pack (one per platform)", platform.name())));
+        }
+        let (two, three) = binary_entries(*platform, path)?;
+        fmi2_binaries.extend(two);
+        fmi3_binaries.extend(three);
+        platforms.push(*platform);
+    }
+    platforms.sort();
+    let dir = documentation_dir();
+    let docs = documentation_files(&dir)?;
+    let template = docs
+        .iter()
+        .find(|(name, _)| name == "index.html")
+        .map(|(_, path)| std::fs::read_to_string(path).map_err(io("cannot read", path)))
+        .transpose()?
+        .ok_or_else(|| {
+            Error::Other(format!("{} has no index.html (the FMU's main documentation page)", dir.display()))
+        })?;
+    // The reference results and the documentation come from runs of this build's model.
+    let reference = reference_run().map_err(Error::Other)?;
+    let paper = reference_run_with(&[("method", 1)]).map_err(Error::Other)?;
+    let figures = super::documentation::figures(&reference).map_err(Error::Other)?;
+    let mut shared: Vec<Entry> = Vec::new();
+    for (name, path) in docs.iter().filter(|(name, _)| name != "index.html") {
+        let data = std::fs::read(path).map_err(io("cannot read", path))?;
+        shared.push(Entry { name: format!("documentation/{name}"), data, executable: false });
+    }
+    for (name, svg) in figures {
+        shared.push(Entry { name: format!("documentation/{name}"), data: svg.into_bytes(), executable: false });
+    }
+    shared.push(Entry { name: REFERENCE_CSV.into(), data: reference.csv().into_bytes(), executable: false });
+    let page = |fmi3: bool| -> Result<Entry> {
+        let html = super::documentation::index_html(
+            &template,
+            &platform_lines(&platforms, fmi3),
+            generation_tool,
+            &reference,
+            &paper,
+        )
+        .map_err(Error::Other)?;
+        Ok(Entry { name: "documentation/index.html".into(), data: html.into_bytes(), executable: false })
+    };
+    let assemble = |xml: String, binaries: Vec<Entry>, page: Entry| -> Vec<Entry> {
+        let mut entries =
+            vec![Entry { name: "modelDescription.xml".into(), data: xml.into_bytes(), executable: false }];
+        entries.extend(binaries);
+        entries.push(page);
+        entries.extend(shared.iter().map(|e| Entry {
+            name: e.name.clone(),
+            data: e.data.clone(),
+            executable: e.executable,
+        }));
+        entries
+    };
+    let fmi2_entries = assemble(description::fmi2_by(generation_tool), fmi2_binaries, page(false)?);
+    let fmi3_entries = assemble(description::fmi3_by(generation_tool), fmi3_binaries, page(true)?);
     // Created only once everything is checked (a refused library leaves no folder).
     crate::record::output::create_output_dir(out_root, "cannot create directory")?;
     let fmi2 = out_root.join("fmi2").join(format!("{MODEL_IDENTIFIER}.fmu"));
     let fmi3 = out_root.join("fmi3").join(format!("{MODEL_IDENTIFIER}.fmu"));
-    write_fmu(&fmi2, &description::fmi2(), "linux64", &binary, &docs)?;
-    write_fmu(&fmi3, &description::fmi3(), "x86_64-linux", &binary, &docs)?;
+    write_fmu(&fmi2, &fmi2_entries)?;
+    write_fmu(&fmi3, &fmi3_entries)?;
     Ok(vec![fmi2, fmi3])
+}
+
+/// Packs `library` (the crate's `libbeam_impact.so`, checked by [`check_library`]) as the Linux
+/// binary of both FMUs under `out_root`, with the committed descriptions; returns their paths.
+pub fn pack(library: &Path, out_root: &Path) -> Result<Vec<PathBuf>> {
+    pack_platforms(&[(Platform::Linux, library.to_path_buf())], out_root, &description::generation_tool(None))
 }

@@ -712,6 +712,17 @@ impl Drawing for Figure {
     }
 }
 
+/// A time-history figure as SVG text (the packed FMU's documentation carries it as a file).
+pub fn figure_svg(figure: &Figure) -> Result<String> {
+    register_fonts();
+    let mut svg = String::new();
+    {
+        let area = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        figure.draw(&area, Output::Svg)?;
+    }
+    Ok(svg)
+}
+
 /// Writes a time-history figure as `<stem>.svg` and `<stem>.png` into `dir`.
 pub fn write_figure(figure: &Figure, dir: &Path) -> Result<Vec<PathBuf>> {
     write_svg_png(figure, dir)
