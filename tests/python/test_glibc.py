@@ -64,3 +64,33 @@ def test_packed_fmu_runs(version, tmp_path, monkeypatch):
     )
     # The first impact's arrestor deflection, 0.657 m in the paper run (README), reached by 0.5 s.
     assert abs(result["peak.lower.tip_deflection"][-1] - 0.657) < 0.01
+
+
+def fmi_functions() -> set[str]:
+    """Every `extern "C" fn fmi2*/fmi3*` of the source (what scripts/cross-build.sh exports too)."""
+    names = set()
+    for source in (ROOT / "src" / "fmi").glob("*.rs"):
+        names.update(re.findall(r'extern "C" fn (fmi[23]\w+)', source.read_text()))
+    return names
+
+
+@pytest.mark.parametrize("version", ["fmi2", "fmi3"])
+def test_packed_library_exports_the_fmi_functions_only(version, tmp_path):
+    """Issue 18: each binary exports the FMI functions and nothing else of ours (rustc's version
+    script for a cdylib on Linux), and needs only the C runtime's libraries."""
+    fmu = FMU_DIR / version / "BeamImpact.fmu"
+    with zipfile.ZipFile(fmu) as archive:
+        library = Path(archive.extract(BINARIES[version], tmp_path))
+    objdump = shutil.which("objdump")
+    assert objdump, "objdump not found (binutils, installed with gcc)"
+    table = subprocess.run([objdump, "-T", str(library)], check=True, capture_output=True, text=True).stdout
+    defined = {
+        line.split()[-1] for line in table.splitlines() if re.match(r"^[0-9a-f]{16} g", line) and "*UND*" not in line
+    }
+    expected = fmi_functions()
+    assert len(expected) > 100, "the FMI functions were not found in src/fmi"
+    assert defined == expected, f"extra: {sorted(defined - expected)[:5]}, missing: {sorted(expected - defined)[:5]}"
+    headers = subprocess.run([objdump, "-p", str(library)], check=True, capture_output=True, text=True).stdout
+    needed = set(re.findall(r"NEEDED\s+(\S+)", headers))
+    system = {"libc.so.6", "libm.so.6", "libgcc_s.so.1", "libpthread.so.0", "libdl.so.2", "librt.so.1", "ld-linux-x86-64.so.2"}
+    assert needed <= system, f"links more than the C runtime: {sorted(needed - system)}"
