@@ -69,7 +69,7 @@ t2=$(date +%s)
 "$WINE/usr/lib/wine/wineserver" -k 2>/dev/null || true
 
 # The printed values: the same names on both, numbers to 1e-12 relative, the rest equal.
-VALUES=$(python3 - windows.txt linux.txt <<'EOF'
+python3 - windows.txt linux.txt values.txt <<'EOF' || exit 1
 import sys
 def read(path):
     return dict(line.split(" ", 1) for line in open(path).read().splitlines())
@@ -92,11 +92,10 @@ for name in l:
     bits += w[name] == l[name]
     if ".peak." in name or ".at_save.peak." in name:
         peaks += 1
-        print(f"  {name:44s} windows {w[name]:>24s}  linux {l[name]:>24s}", file=sys.stderr)
-print(f"{peaks} {n} {bits} {worst:.3g}")
+        print(f"  {name:46s} windows {w[name]:>24s}  linux {l[name]:>24s}")
+open(sys.argv[3], "w").write(f"{peaks} {n} {bits} {worst:.3g}\n")
 EOF
-) || exit 1
-set -- $VALUES
+set -- $(cat values.txt)
 PEAKS=$1 NVALUES=$2 BITS=$3 WORST=$4
 
 # The serialized states: the portable byte format, the same bytes on every platform.
@@ -111,7 +110,7 @@ done
 LOG_BYTES=0
 for v in fmi2 fmi3; do
     out=$(python3 "$ROOT/scripts/mcap_compare.py" "windows-$v.mcap" "linux-$v.mcap") || fail "the $v logs: ${out#mcap-compare: }"
-    echo "  $v log: $out" >&2
+    echo "  $v log: $out"
     LOG_BYTES=$((LOG_BYTES + $(wc -c <"linux-$v.mcap")))
 done
 rm -f windows-*.mcap linux-*.mcap
