@@ -22,6 +22,8 @@
 #include <time.h>
 
 #ifdef _WIN32
+#include <fcntl.h>
+#include <io.h>
 #include <windows.h>
 typedef HMODULE lib_t;
 static lib_t lib_open(const char *path) { return LoadLibraryA(path); }
@@ -418,6 +420,9 @@ int main(int argc, char **argv) {
         return 2;
     }
     double stop = argc > 4 ? atof(argv[4]) : 3.0, h = argc > 5 ? atof(argv[5]) : 1e-3;
+#ifdef _WIN32
+    _setmode(_fileno(stdout), _O_BINARY); /* "\n", not "\r\n": the same bytes as on Linux */
+#endif
     lib_t lib = lib_open(argv[1]);
     if (!lib) {
         fprintf(stderr, "importer: cannot load %s: %s\n", argv[1], lib_error());
