@@ -38,6 +38,6 @@ stage() {
 cd "$ROOT"
 stage toolchain "$ROOT/scripts/cross-toolchain.sh" --wine
 stage linux-lib cargo build --release --lib --quiet
-stage windows-dll env CARGO_TARGET_DIR="$CROSS_TARGET" "$ROOT/scripts/cross-build.sh" "$ROOT/target/cross/beam_impact.dll"
+stage windows-dll env BEAM_IMPACT_CROSS_TARGET="$CROSS_TARGET" "$ROOT/scripts/cross-build.sh" x86_64-pc-windows-gnu "$ROOT/target/cross/beam_impact.dll"
 stage wine "$ROOT/scripts/wine-check.sh" "$ROOT/target/cross/beam_impact.dll" "$ROOT/target/release/libbeam_impact.so"
 echo "cross-check: OK: win64 DLL built, exports the FMI functions only, imports system DLLs only, matches Linux under wine (${TIMES%,}; total $(($(now) - START)) s)"
