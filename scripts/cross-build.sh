@@ -6,8 +6,11 @@
 #   x86_64-pc-windows-gnu     Windows x86-64 DLL (imports: system DLLs only, no MinGW runtime DLL)
 #   x86_64-apple-darwin       macOS x86-64 dylib (Mach-O MH_DYLIB, macOS >= 10.12)
 #   aarch64-apple-darwin      macOS arm64 dylib (macOS >= 11.0, ad-hoc code signature)
-#   universal2-apple-darwin   both macOS dylibs merged into one fat (universal2) Mach-O
-#                             (scripts/macho_info.py --merge), as an FMU's binaries/darwin64 needs
+#   universal2-apple-darwin   both macOS dylibs merged into one fat (universal2) Mach-O, as an
+#                             FMU's binaries/darwin64 needs: built one after the other, each as
+#                             above, then merged by scripts/macho_info.py --merge (not by
+#                             cargo-zigbuild's own universal2 target, which builds both in one
+#                             cargo run with one MACOSX_DEPLOYMENT_TARGET and one target directory)
 #
 # Only this crate's cdylib is built (`cargo rustc --lib --crate-type cdylib`), std with it
 # (-Zbuild-std), each target in its own cargo target directory ($BEAM_IMPACT_CROSS_TARGET/TRIPLE)
@@ -33,7 +36,8 @@
 # Also for macOS: MACOSX_DEPLOYMENT_TARGET as rustc's own defaults (10.12, 11.0; zig would write
 # 15.0); `-dead_strip_dylibs` (the libc crate links libiconv, for functions nothing here calls,
 # and cargo-zigbuild adds libcharset); install name @rpath/<OUT's file name> (not the build path);
-# CARGO_PROFILE_RELEASE_STRIP=false (rustc would run the host's `strip` on the Mach-O).
+# CARGO_PROFILE_RELEASE_STRIP=false, as issue 18 found (rustc strips Apple binaries with an
+# external tool after the link; the local symbols, about 0.8 MB a slice, stay).
 #
 # Usage: scripts/cross-build.sh TARGET OUT
 # Environment: BEAM_IMPACT_CROSS_DIR (toolchain, default .cross), BEAM_IMPACT_CROSS_TARGET (build
