@@ -52,10 +52,15 @@ LOAD_COMMANDS = {
     0x2C: "LC_ENCRYPTION_INFO_64", 0x2D: "LC_LINKER_OPTION", 0x32: "LC_BUILD_VERSION",
     0x33 | LC_REQ_DYLD: "LC_DYLD_EXPORTS_TRIE", 0x34 | LC_REQ_DYLD: "LC_DYLD_CHAINED_FIXUPS",
 }
-DYLIB_COMMANDS = {"LC_LOAD_DYLIB", "LC_LOAD_WEAK_DYLIB", "LC_REEXPORT_DYLIB", "LC_LAZY_LOAD_DYLIB", "LC_LOAD_UPWARD_DYLIB"}
+DYLIB_COMMANDS = {
+    "LC_LOAD_DYLIB", "LC_LOAD_WEAK_DYLIB", "LC_REEXPORT_DYLIB", "LC_LAZY_LOAD_DYLIB", "LC_LOAD_UPWARD_DYLIB",
+}
 PLATFORMS = {1: "macos", 2: "ios", 3: "tvos", 4: "watchos", 6: "maccatalyst"}
 # CodeDirectory hash types: name, hashlib name, size.
-HASH_TYPES = {1: ("sha1", "sha1", 20), 2: ("sha256", "sha256", 32), 3: ("sha256-truncated", "sha256", 20), 4: ("sha384", "sha384", 48)}
+HASH_TYPES = {
+    1: ("sha1", "sha1", 20), 2: ("sha256", "sha256", 32), 3: ("sha256-truncated", "sha256", 20),
+    4: ("sha384", "sha384", 48),
+}
 CSMAGIC_EMBEDDED_SIGNATURE, CSMAGIC_CODEDIRECTORY = 0xFADE0CC0, 0xFADE0C02
 CS_ADHOC, CS_LINKER_SIGNED = 0x2, 0x20000
 N_STAB, N_PEXT, N_TYPE, N_EXT, N_ABS, N_SECT = 0xE0, 0x10, 0x0E, 0x01, 0x2, 0xE
@@ -237,7 +242,9 @@ def read_slice(data):
         external = []
         for i in range(nsyms):
             strx, ntype, _sect, _desc, _value = struct.unpack_from("<IBBHQ", data, symoff + 16 * i)
-            if ntype & N_STAB or not ntype & N_EXT or ntype & N_PEXT or (ntype & N_TYPE) not in (N_SECT, N_ABS):
+            if ntype & N_STAB or not ntype & N_EXT or ntype & N_PEXT:
+                continue
+            if (ntype & N_TYPE) not in (N_SECT, N_ABS):
                 continue
             external.append(cstr(data, stroff + strx))
         external = sorted(set(external))
@@ -347,7 +354,8 @@ def synthetic_dylib(cpu, names, minos, sign):
     data += b"\0" * (text - len(data)) + code + trie + syms + strtab
     data += b"\0" * (sig_off - len(data))
     if sign:
-        hashes = b"".join(hashlib.sha256(data[i * page : min((i + 1) * page, sig_off)]).digest() for i in range(n_code))
+        pages = (data[i * page : min((i + 1) * page, sig_off)] for i in range(n_code))
+        hashes = b"".join(hashlib.sha256(p).digest() for p in pages)
         cd = struct.pack(">IIIIIIIIIBBBBIIIIQQQQ", CSMAGIC_CODEDIRECTORY, cd_len, 0x20400, CS_ADHOC | CS_LINKER_SIGNED,
                          88 + len(ident), 88, 0, n_code, sig_off, 32, 2, 0, 12, 0, 0, 0, 0, 0, 0, 0, 0)
         data += struct.pack(">III", CSMAGIC_EMBEDDED_SIGNATURE, sig_len, 1) + struct.pack(">II", 0, 20) + cd + ident + hashes
@@ -375,8 +383,10 @@ def self_test():
             assert "filetype MH_DYLIB" in mine, mine
             assert [m for m in mine if m.startswith("export ")] == ["export " + n for n in names], mine
             assert "exports 3 (export trie; the symbol table's external defined symbols agree)" in mine, mine
-            assert "id @rpath/Test.dylib" in mine and any(m.startswith("dylib /usr/lib/libSystem.B.dylib (LC_LOAD_DYLIB") for m in mine), mine
-        assert "x86_64 signature none" in lines and "x86_64 minos 10.12 sdk 27.0 (LC_BUILD_VERSION platform macos)" in lines, lines
+            assert "id @rpath/Test.dylib" in mine, mine
+            assert any(m.startswith("dylib /usr/lib/libSystem.B.dylib (LC_LOAD_DYLIB") for m in mine), mine
+        assert "x86_64 signature none" in lines, lines
+        assert "x86_64 minos 10.12 sdk 27.0 (LC_BUILD_VERSION platform macos)" in lines, lines
         sig = [line for line in lines if line.startswith("arm64 signature ")][0]
         assert sig.startswith("arm64 signature ok ad-hoc linker-signed (sha256, 2 pages of 4096 bytes"), sig
         assert "arm64 minos 11.0 sdk 27.0 (LC_BUILD_VERSION platform macos)" in lines, lines
