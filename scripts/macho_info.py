@@ -28,6 +28,7 @@ is present), so `ok` means the signature matches the bytes, as the kernel checks
 """
 
 import hashlib
+import os
 import struct
 import sys
 
@@ -300,6 +301,7 @@ def merge(out, inputs, align=14):
         raise ValueError("a fat file past 4 GiB needs FAT_MAGIC_64")
     with open(out, "wb") as f:
         f.write(header + b"".join(body))
+    os.chmod(out, os.stat(inputs[0]).st_mode & 0o777)  # as the thin files (0755 from the linker)
 
 
 def synthetic_dylib(cpu, names, minos, sign):
@@ -363,7 +365,6 @@ def synthetic_dylib(cpu, names, minos, sign):
 
 
 def self_test():
-    import os
     import tempfile
 
     names = ["_fmi2GetTypesPlatform", "_fmi2GetVersion", "_fmi3GetVersion"]
