@@ -1,16 +1,22 @@
 #!/bin/sh
-# The Windows cross build and its wine test in one command, for CI: installs the toolchain and
-# wine64 (scripts/cross-toolchain.sh --wine; downloads cached), builds the Linux library (for the
-# comparison) and the win64 DLL (scripts/cross-build.sh), runs both through the same FMI 2
-# importer (scripts/wine-check.sh) and prints one verdict line with each stage's time.
+# Issue 18 in one command, for CI (`.ci/run` runs it after tests/run_all.sh): installs the cross
+# toolchain and wine64 (scripts/cross-toolchain.sh --wine; downloads cached), packs the FMUs for
+# every platform (`beam-impact pack --platforms all`: Linux for glibc 2.17, the win64 DLL and the
+# macOS universal2 dylib through scripts/cross-build.sh, which checks each one's exports and
+# libraries), checks both FMUs (fmpy's validate_fmu, the binaries in each platform directory, the
+# Mach-O slices with scripts/macho_info.py), and runs the DLL taken from the packed FMU under wine
+# against the Linux library taken from it (scripts/wine-check.sh: FMI 2 and FMI 3, state
+# serialization, MCAP logs byte for byte). Prints `unzip -l` of both FMUs and one verdict line with
+# each stage's time.
 #
-# The toolchain and the cross build's directory are cached too, under ~/.cache/beam-impact-cross
-# (toolchain/, target/; CI's fresh clone has no .cross/ or target/): std, the dependencies, zig's
-# MinGW runtime and the wine prefix are built once, later runs compile this crate only.
+# The toolchain and the cross builds' directories are cached under ~/.cache/beam-impact-cross
+# (toolchain/, target/<triple>/; CI's fresh clone has no .cross/ or target/): std, the
+# dependencies, zig's C runtimes and the wine prefix are built once (about 20 minutes on two
+# cores); later runs compile this crate only (about 1 minute per target).
 #
 # Usage: scripts/cross-check.sh
-# Environment: BEAM_IMPACT_CROSS_DIR (toolchain, default ~/.cache/beam-impact-cross/toolchain), BEAM_IMPACT_CROSS_CACHE
-# (downloads and the build directory, default ~/.cache/beam-impact-cross).
+# Environment: BEAM_IMPACT_CROSS_DIR (toolchain, default ~/.cache/beam-impact-cross/toolchain),
+# BEAM_IMPACT_CROSS_CACHE (downloads and build directories, default ~/.cache/beam-impact-cross).
 set -eu
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -19,7 +25,9 @@ export BEAM_IMPACT_CROSS_CACHE="$CACHE"
 # The toolchain lives in the cache too (not .cross/): a freshly installed zig rebuilds its MinGW C
 # runtime at its first Windows link (3 minutes on two busy cores), a fresh sysroot moves std's path.
 export BEAM_IMPACT_CROSS_DIR="${BEAM_IMPACT_CROSS_DIR:-$CACHE/toolchain}"
-CROSS_TARGET=${BEAM_IMPACT_CROSS_TARGET:-$CACHE/target}
+export BEAM_IMPACT_CROSS_TARGET="${BEAM_IMPACT_CROSS_TARGET:-$CACHE/target}"
+OUT=$ROOT/target/fmu-all
+CHECK=$ROOT/target/cross/fmu-check
 
 now() { date +%s; }
 START=$(now)
@@ -35,9 +43,73 @@ stage() {
     TIMES="$TIMES $name $(($(now) - t0)) s,"
 }
 
+# fmpy for validate_fmu: the test venv when tests/run_all.sh made it, else one in the cache.
+python_with_fmpy() {
+    if [ -x "$ROOT/.venv/bin/python" ] && "$ROOT/.venv/bin/python" -c "import fmpy" 2>/dev/null; then
+        PYTHON=$ROOT/.venv/bin/python
+        return 0
+    fi
+    PYTHON=$CACHE/fmpy-venv/bin/python
+    if ! "$PYTHON" -c "import fmpy" 2>/dev/null; then
+        python3 -m venv "$CACHE/fmpy-venv" &&
+            "$PYTHON" -m pip install --quiet --disable-pip-version-check "$(grep '^fmpy==' "$ROOT/tests/python/requirements.txt")"
+    fi
+}
+
+# Both FMUs: fmpy's validation, each platform directory holding its binary (FMI 3: one macOS
+# slice per directory, each checked again), unzip -l for the record; the DLL and the Linux library
+# taken out of the FMI 3 FMU for the wine test.
+check_fmus() {
+    rm -rf "$CHECK"
+    mkdir -p "$CHECK"
+    for fmi in fmi2 fmi3; do
+        echo "--- unzip -l target/fmu-all/$fmi/BeamImpact.fmu"
+        unzip -l "$OUT/$fmi/BeamImpact.fmu" || return 1
+    done
+    "$PYTHON" - "$OUT" "$CHECK" <<'EOF' || return 1
+import sys, zipfile
+from pathlib import Path
+from fmpy import supported_platforms
+from fmpy.validation import validate_fmu
+out, check = Path(sys.argv[1]), Path(sys.argv[2])
+want = {
+    "fmi2": ["binaries/linux64/BeamImpact.so", "binaries/win64/BeamImpact.dll", "binaries/darwin64/BeamImpact.dylib"],
+    "fmi3": ["binaries/x86_64-linux/BeamImpact.so", "binaries/x86_64-windows/BeamImpact.dll",
+             "binaries/x86_64-darwin/BeamImpact.dylib", "binaries/aarch64-darwin/BeamImpact.dylib"],
+}
+for fmi, binaries in want.items():
+    fmu = out / fmi / "BeamImpact.fmu"
+    problems = validate_fmu(str(fmu))
+    if problems:
+        sys.exit(f"cross-check: fmpy's validate_fmu on {fmu}: {problems}")
+    with zipfile.ZipFile(fmu) as archive:
+        names = set(archive.namelist())
+        missing = [b for b in binaries if b not in names]
+        if missing:
+            sys.exit(f"cross-check: {fmu} lacks {missing}")
+        extra = sorted(n for n in names if n.startswith("binaries/") and n not in binaries)
+        if extra:
+            sys.exit(f"cross-check: {fmu} holds unexpected binaries {extra}")
+        for b in binaries:
+            archive.extract(b, check / fmi)
+    print(f"cross-check: {fmi}: validate_fmu finds nothing; platforms {supported_platforms(str(fmu))}")
+EOF
+    python3 "$ROOT/scripts/macho_info.py" --self-test >/dev/null || return 1
+    for slice in x86_64 aarch64; do
+        info=$(python3 "$ROOT/scripts/macho_info.py" "$CHECK/fmi3/binaries/$slice-darwin/BeamImpact.dylib") || return 1
+        echo "$info" | grep -q " filetype MH_DYLIB$" || { echo "cross-check: fmi3 $slice-darwin is not a dylib" >&2; return 1; }
+        echo "$info" | grep -E " (filetype|minos|dylib|signature|exports) " | sed "s|^|cross-check: fmi3 $slice-darwin: |"
+    done
+    python3 "$ROOT/scripts/macho_info.py" "$CHECK/fmi3/binaries/aarch64-darwin/BeamImpact.dylib" |
+        grep -q "^arm64 signature ok" || { echo "cross-check: the packed arm64 slice's code signature does not verify" >&2; return 1; }
+}
+
 cd "$ROOT"
 stage toolchain "$ROOT/scripts/cross-toolchain.sh" --wine
-stage linux-lib cargo build --release --lib --quiet
-stage windows-dll env BEAM_IMPACT_CROSS_TARGET="$CROSS_TARGET" "$ROOT/scripts/cross-build.sh" x86_64-pc-windows-gnu "$ROOT/target/cross/beam_impact.dll"
-stage wine "$ROOT/scripts/wine-check.sh" "$ROOT/target/cross/beam_impact.dll" "$ROOT/target/release/libbeam_impact.so"
-echo "cross-check: OK: win64 DLL built, exports the FMI functions only, imports system DLLs only, matches Linux under wine (${TIMES%,}; total $(($(now) - START)) s)"
+stage host-build cargo build --release --quiet
+# cargo-zigbuild from the toolchain's venv: pack links the Linux library for glibc 2.17 too.
+stage pack env PATH="$BEAM_IMPACT_CROSS_DIR/venv/bin:$PATH" "$ROOT/target/release/beam-impact" pack --platforms all --out "$OUT"
+stage fmpy python_with_fmpy
+stage fmu-check check_fmus
+stage wine "$ROOT/scripts/wine-check.sh" "$CHECK/fmi3/binaries/x86_64-windows/BeamImpact.dll" "$CHECK/fmi3/binaries/x86_64-linux/BeamImpact.so"
+echo "cross-check: OK: both FMUs carry Linux, Windows and macOS (universal2) binaries, pass validate_fmu and the binary checks; the packed DLL matches the packed Linux library under wine (${TIMES%,}; total $(($(now) - START)) s)"
