@@ -92,6 +92,8 @@ if [ "$TARGET" = x86_64-pc-windows-gnu ]; then
     [ -f "$BUILT" ] || fail "the build wrote no $BUILT"
     cp "$BUILT" "$OUT.new"
     mv "$OUT.new" "$OUT"
+    # A binary that fails a check below is removed: nothing picks it up later as if checked.
+    trap 'rm -f "$OUT"' EXIT
 
     # Exports and imports, read with the PE reader in scripts/pe_info.py (no binutils for PE needed).
     python3 "$ROOT/scripts/pe_info.py" "$OUT" >"$OUT.pe.txt"
@@ -103,6 +105,7 @@ if [ "$TARGET" = x86_64-pc-windows-gnu ]; then
     IMPORTS=$(sed -n 's/^import //p' "$OUT.pe.txt" | tr 'A-Z' 'a-z')
     BAD=$(echo "$IMPORTS" | grep -vE '^(kernel32|ntdll|ws2_32|userenv|bcryptprimitives|advapi32|bcrypt|api-ms-win-[a-z0-9-]+|ucrtbase|msvcrt)\.dll$' || true)
     [ -z "$BAD" ] || fail "the DLL imports non-system DLLs: $(echo "$BAD" | tr '\n' ' ')"
+    trap - EXIT
     echo "cross-build: $OUT ($(du -k "$OUT" | cut -f1) KiB): exports $N FMI functions and nothing else; imports $(echo "$IMPORTS" | tr '\n' ' ')"
     exit 0
 fi
@@ -152,6 +155,8 @@ else
     cp "$TARGET_BASE/$TARGET/$TARGET/release/libbeam_impact.dylib" "$OUT.new"
 fi
 mv "$OUT.new" "$OUT"
+# A binary that fails a check below is removed: nothing picks it up later as if checked.
+trap 'rm -f "$OUT"' EXIT
 
 # Every slice, read with the Mach-O reader in scripts/macho_info.py (lines `ARCH KEY VALUE`).
 python3 "$ROOT/scripts/macho_info.py" "$OUT" >"$OUT.macho.txt" || fail "scripts/macho_info.py cannot read $OUT"
@@ -183,4 +188,5 @@ for a in $ARCHS; do
     SIGNED="$SIGNED; $a: macOS >= $(sed -n 's/^minos \([^ ]*\).*/\1/p' "$OUT.$a.txt"), $SIG"
     rm -f "$OUT.$a.txt"
 done
+trap - EXIT
 echo "cross-build: $OUT ($(du -k "$OUT" | cut -f1) KiB, $ARCHS): exports the $WANT FMI functions and nothing else of ours; links$(echo "$DYLIBS" | tr ' ' '\n' | sort -u | tr '\n' ' ' | sed 's/ $//')${SIGNED}"

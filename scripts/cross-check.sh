@@ -11,8 +11,8 @@
 #
 # The toolchain and the cross builds' directories are cached under ~/.cache/beam-impact-cross
 # (toolchain/, target/<triple>/; CI's fresh clone has no .cross/ or target/): std, the
-# dependencies, zig's C runtimes and the wine prefix are built once (about 20 minutes on two
-# cores); later runs compile this crate only (about 1 minute per target).
+# dependencies, zig's C runtimes and the wine prefix are built once (a clean run took 21 minutes
+# on two cores: pack 16, wine 4); later runs compile this crate only (warm: about 2 minutes).
 #
 # Usage: scripts/cross-check.sh
 # Environment: BEAM_IMPACT_CROSS_DIR (toolchain, default ~/.cache/beam-impact-cross/toolchain),
@@ -94,14 +94,21 @@ for fmi, binaries in want.items():
             archive.extract(b, check / fmi)
     print(f"cross-check: {fmi}: validate_fmu finds nothing; platforms {supported_platforms(str(fmu))}")
 EOF
+    # The packed Linux library: glibc 2.17 symbols at most (manylinux2014), as tests/python/test_glibc.py asks.
+    glibc=$(objdump -T "$CHECK/fmi3/binaries/x86_64-linux/BeamImpact.so" | grep -o 'GLIBC_[0-9.]*' | sort -t. -k2,2n -k3,3n -u | tail -1)
+    [ -n "$glibc" ] || { echo "cross-check: no GLIBC symbol version found in the packed Linux library (objdump -T)" >&2; return 1; }
+    case "$glibc" in
+    GLIBC_2.[0-9] | GLIBC_2.[0-9].* | GLIBC_2.1[0-7] | GLIBC_2.1[0-7].*) echo "cross-check: x86_64-linux needs $glibc at most" ;;
+    *) echo "cross-check: the packed Linux library needs $glibc, newer than GLIBC_2.17" >&2 && return 1 ;;
+    esac
     python3 "$ROOT/scripts/macho_info.py" --self-test >/dev/null || return 1
     for slice in x86_64 aarch64; do
         info=$(python3 "$ROOT/scripts/macho_info.py" "$CHECK/fmi3/binaries/$slice-darwin/BeamImpact.dylib") || return 1
         echo "$info" | grep -q " filetype MH_DYLIB$" || { echo "cross-check: fmi3 $slice-darwin is not a dylib" >&2; return 1; }
         echo "$info" | grep -E " (filetype|minos|dylib|signature|exports) " | sed "s|^|cross-check: fmi3 $slice-darwin: |"
     done
-    python3 "$ROOT/scripts/macho_info.py" "$CHECK/fmi3/binaries/aarch64-darwin/BeamImpact.dylib" |
-        grep -q "^arm64 signature ok" || { echo "cross-check: the packed arm64 slice's code signature does not verify" >&2; return 1; }
+    info=$(python3 "$ROOT/scripts/macho_info.py" "$CHECK/fmi3/binaries/aarch64-darwin/BeamImpact.dylib") || return 1
+    echo "$info" | grep -q "^arm64 signature ok" || { echo "cross-check: the packed arm64 slice's code signature does not verify" >&2; return 1; }
 }
 
 cd "$ROOT"

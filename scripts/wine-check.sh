@@ -14,12 +14,13 @@
 # difference is reported with the record, chunk, topic and message index where it starts).
 #
 # Usage: scripts/wine-check.sh [WINDOWS.dll [LINUX.so]]
-#   defaults: target/cross/beam_impact.dll (scripts/cross-build.sh), target/release/libbeam_impact.so
+#   defaults: target/cross/BeamImpact-windows.dll (what `beam-impact pack --platforms windows`
+#   builds), target/release/libbeam_impact.so
 set -eu
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 CROSS=${BEAM_IMPACT_CROSS_DIR:-$ROOT/.cross}
-DLL=${1:-$ROOT/target/cross/beam_impact.dll}
+DLL=${1:-$ROOT/target/cross/BeamImpact-windows.dll}
 SO=${2:-$ROOT/target/release/libbeam_impact.so}
 WORK=$ROOT/target/cross/wine
 WINE=$CROSS/wine/root
@@ -29,7 +30,7 @@ fail() {
     exit 1
 }
 [ -x "$WINE/usr/lib/wine/wine64" ] || fail "no wine64 in $CROSS/wine: run scripts/cross-toolchain.sh --wine"
-[ -f "$DLL" ] || fail "no $DLL: run scripts/cross-build.sh"
+[ -f "$DLL" ] || fail "no $DLL: run beam-impact pack --platforms windows (or scripts/cross-build.sh)"
 [ -f "$SO" ] || fail "no $SO: run cargo build --release --lib"
 command -v cc >/dev/null || fail "cc is missing (the Linux importer)"
 SO=$(cd "$(dirname "$SO")" && pwd)/$(basename "$SO")
@@ -48,11 +49,18 @@ rm -f "$WORK"/windows-* "$WORK"/linux-*
 # The prefix (C:, the registry: ~700 MB, 10 s to 3 min to create) is kept in the cache across clones.
 CACHE=${BEAM_IMPACT_CROSS_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/beam-impact-cross}
 export WINEPREFIX="$CACHE/wine-prefix-8.0" WINEDEBUG=-all WINEDLLPATH="$WINE/usr/x86_64-w64-mingw32/lib"
-if [ ! -d "$WINEPREFIX" ]; then
+# No Mono or Gecko installer prompts; wine's processes ended however this script ends.
+export WINEDLLOVERRIDES="mscoree,mshtml="
+trap '"$WINE/usr/lib/wine/wineserver" -k 2>/dev/null || true' EXIT
+if [ ! -f "$WINEPREFIX/.ready" ]; then
     # Wait for wineboot's processes (wineserver -w): a prefix cut short at `wineserver -k` below
-    # is updated again at the next run, which took 3 minutes.
-    "$WINE/usr/lib/wine/wine64" wineboot --init >/dev/null 2>&1 || true
-    "$WINE/usr/lib/wine/wineserver" -w || true
+    # is updated again at the next run, which took 3 minutes. A prefix whose creation was cut
+    # short (no .ready) is made again.
+    rm -rf "$WINEPREFIX"
+    timeout 900 "$WINE/usr/lib/wine/wine64" wineboot --init >/dev/null 2>&1 || true
+    timeout 300 "$WINE/usr/lib/wine/wineserver" -w || true
+    [ -f "$WINEPREFIX/system.reg" ] || fail "wineboot did not create the prefix $WINEPREFIX"
+    touch "$WINEPREFIX/.ready"
 fi
 # The DLL's folder as Wine sees it (Z: is /), and a resource URI in that form.
 WIN_DIR="Z:$(echo "$WORK" | tr / '\\')"
@@ -60,10 +68,10 @@ URI="file:///Z:$WORK/resources"
 
 cd "$WORK"
 t0=$(date +%s)
-"$WINE/usr/lib/wine/wine64" importer.exe "$WIN_DIR\\beam_impact.dll" "$URI" windows >windows.txt 2>windows.err ||
+timeout 900 "$WINE/usr/lib/wine/wine64" importer.exe "$WIN_DIR\\beam_impact.dll" "$URI" windows >windows.txt 2>windows.err ||
     fail "the importer failed under wine: $(grep -v '^importer: fmi[23]: ' windows.err | tail -3 | tr '\n' ' ')"
 t1=$(date +%s)
-./importer "$SO" "file://$WORK/resources" linux >linux.txt 2>linux.err ||
+timeout 900 ./importer "$SO" "file://$WORK/resources" linux >linux.txt 2>linux.err ||
     fail "the importer failed on Linux: $(grep -v '^importer: fmi[23]: ' linux.err | tail -3 | tr '\n' ' ')"
 t2=$(date +%s)
 "$WINE/usr/lib/wine/wineserver" -k 2>/dev/null || true

@@ -294,7 +294,9 @@ pub fn richardson(coarse: f64, medium: f64, fine: f64) -> Option<Richardson> {
     if !(ratio.is_finite() && ratio > 0.0) {
         return None;
     }
-    let order = ratio.log2();
+    // libm's log2 (pure Rust), as the physics' atan and hypot: the FMU computes this check, and
+    // every platform's binary must decide it alike.
+    let order = libm::log2(ratio);
     if !(ORDER_RANGE.0..=ORDER_RANGE.1).contains(&order) {
         return None;
     }

@@ -344,6 +344,50 @@ fn pack_refuses_a_binary_of_another_platform() {
         (Platform::Darwin, write("arm.dylib", fake_fat(&[(ARM64, fake_slice(ARM64, ""))])), "no x86_64-darwin slice"),
         (Platform::Darwin, write("lie.dylib", fake_fat(&[(X86_64, fake_slice(ARM64, ""))])), "not a 64-bit Mach-O"),
         (Platform::Linux, write("b.dll", fake_dll("")), "not an ELF file"),
+        // Hostile headers: read with bounds, refused with a reason, never a panic.
+        (
+            Platform::Darwin,
+            write("dup.dylib", fake_fat(&[(X86_64, fake_slice(X86_64, "")), (X86_64, fake_slice(X86_64, ""))])),
+            "two x86_64-darwin slices",
+        ),
+        (Platform::Darwin, write("none.dylib", fake_fat(&[])), "with 0 architectures"),
+        (
+            Platform::Darwin,
+            write("beyond.dylib", {
+                let mut b = fake_fat(&[(X86_64, fake_slice(X86_64, "")), (ARM64, fake_slice(ARM64, ""))]);
+                b[16..20].copy_from_slice(&0xffff_f000u32.to_be_bytes());
+                b[20..24].copy_from_slice(&0xffff_ffffu32.to_be_bytes());
+                b
+            }),
+            "lies beyond the file",
+        ),
+        (
+            Platform::Windows,
+            write("far.dll", {
+                let mut b = fake_dll("");
+                b[0x3c..0x40].copy_from_slice(&0xffff_fff0u32.to_le_bytes());
+                b
+            }),
+            "no PE signature",
+        ),
+        (
+            Platform::Windows,
+            write("exe.dll", {
+                let mut b = fake_dll("");
+                b[0x96..0x98].copy_from_slice(&0x0022u16.to_le_bytes());
+                b
+            }),
+            "not a DLL",
+        ),
+        (
+            Platform::Windows,
+            write("arm.dll", {
+                let mut b = fake_dll("");
+                b[0x84..0x86].copy_from_slice(&0xaa64u16.to_le_bytes());
+                b
+            }),
+            "not an x86-64 PE file",
+        ),
     ];
     for (platform, path, why) in cases {
         let out = dir.path().join("fmu");
@@ -398,6 +442,7 @@ fn pack_without_the_cross_toolchain_says_what_is_missing() {
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{stderr}");
         assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        assert!(!stderr.contains("  "), "a run of spaces: {stderr}");
         assert!(
             stderr.contains("no cross toolchain")
                 && stderr.contains("scripts/cross-toolchain.sh")
@@ -470,8 +515,9 @@ fn packed_fmu_carries_reference_results_and_its_documentation() {
             assert_eq!(row.len(), header.len());
             assert_eq!(row[0], k as f64 * 1e-3, "row {k}");
         }
-        // The paper's run (Table 1, FEM): the running peaks at 3 s within 15 % (the FMU's default
-        // converged method moves the shear stress by 13 %: README "Answers an engineer can sign").
+        // The defaults' run (the converged method) against Table 1 (FEM): the running peaks at 3 s
+        // within 15 % (the converged method moves the shear stress by 13 %: README "Answers an
+        // engineer can sign").
         let last = rows.last().unwrap();
         let peak = |name: &str| last[header.iter().position(|h| h == name).unwrap()];
         for (name, paper) in [
@@ -490,7 +536,14 @@ fn packed_fmu_carries_reference_results_and_its_documentation() {
         for v in table() {
             assert!(page.contains(&format!("<code>{}</code>", v.name.replace('&', "&amp;"))), "{} not listed", v.name);
         }
+        // Table 1: the paper's values beside this FMU's own peaks at 3 s (the CSV's last row).
         assert!(page.contains("492 MPa") && page.contains("0.691 m"), "Table 1's values");
+        for (name, shown) in [
+            ("peak.lower.tip_deflection", format!("{:.4} m", peak("peak.lower.tip_deflection"))),
+            ("peak.lower.clamp_bending_stress", format!("{:.1} MPa", peak("peak.lower.clamp_bending_stress") * 1e-6)),
+        ] {
+            assert!(page.contains(&format!("<td>{shown}</td>")), "{name}: {shown} not on the page");
+        }
         for (file, _) in FIGURES {
             assert!(page.contains(&format!("src=\"{file}\"")));
             let svg = String::from_utf8(read(fmu, &format!("documentation/{file}"))).unwrap();
@@ -504,4 +557,28 @@ fn packed_fmu_carries_reference_results_and_its_documentation() {
             );
         }
     }
+}
+
+/// The wine check's importer (`tests/wine/importer.c`, built for Windows and Linux) reads outputs
+/// by value reference and instantiates with the token: both must be this build's, or the two
+/// platforms would compare the same wrong variables under the right labels.
+#[test]
+fn wine_importer_names_this_builds_value_references_and_token() {
+    let source =
+        std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/wine/importer.c"))
+            .unwrap();
+    assert!(source.contains(&format!("#define TOKEN \"{}\"", description::token())), "TOKEN in importer.c is stale");
+    let table = beam_impact::fmi::variables::table();
+    let mut checked = 0;
+    for piece in source.split("{\"").skip(1) {
+        let Some((name, rest)) = piece.split_once("\",") else { continue };
+        let Some(vr) = rest.trim_start().split('}').next().and_then(|v| v.trim().parse::<u32>().ok()) else { continue };
+        let v = table
+            .iter()
+            .find(|v| v.name == name)
+            .unwrap_or_else(|| panic!("importer.c names `{name}`, not a variable"));
+        assert_eq!(v.vr, vr, "importer.c reads `{name}` as value reference {vr}");
+        checked += 1;
+    }
+    assert!(checked >= 8, "only {checked} (name, value reference) pairs found in importer.c");
 }

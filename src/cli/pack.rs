@@ -31,7 +31,8 @@ pub struct Request {
 /// `scripts/cross-build.sh` (the toolchain checked first: one line naming what is missing). The
 /// builds run here, in the CLI, not in `fmi::pack`: that module is part of the shared library
 /// loaded into every FMU host, which has no business spawning cargo; `fmi::pack` packs the files
-/// it is given. The packed descriptions' `generationTool` names the git commit of the source.
+/// it is given. The packed descriptions' `generationTool` names the git commit of the source tree
+/// this executable was built from (also when the binaries are given as files).
 pub fn pack(request: &Request) -> Result<()> {
     let platforms = Platform::parse_list(&request.platforms)?;
     for (given, option, platform) in [
@@ -92,6 +93,12 @@ fn git_commit() -> Option<String> {
             .filter(|o| o.status.success())
             .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
     };
+    // Only the source's own repository (not one it happens to sit in, e.g. a home directory
+    // under git holding ~/.cargo/registry).
+    let top = git(&["rev-parse", "--show-toplevel"])?;
+    if std::fs::canonicalize(&top).ok()? != std::fs::canonicalize(source_dir()).ok()? {
+        return None;
+    }
     let commit = git(&["rev-parse", "--short=12", "HEAD"]).filter(|c| !c.is_empty())?;
     let dirty = git(&["status", "--porcelain", "--untracked-files=no"]).is_some_and(|s| !s.is_empty());
     Some(if dirty { format!("{commit}+dirty") } else { commit })
@@ -106,7 +113,8 @@ fn cross_toolchain(platforms: &[Platform]) -> Result<PathBuf> {
     let names = names.join(" and ");
     if !script.is_file() {
         return Err(Error::Other(format!(
-            "cannot cross-build the {names} binary: the crate's source {} is gone (pass --windows-library /              --darwin-library)",
+            "cannot cross-build the {names} binary: the crate's source {} is gone (pass --windows-library / \
+             --darwin-library)",
             source_dir().display()
         )));
     }
@@ -124,7 +132,8 @@ fn cross_toolchain(platforms: &[Platform]) -> Result<PathBuf> {
     candidates.iter().find(|dir| complete(dir)).cloned().ok_or_else(|| {
         let looked: Vec<String> = candidates.iter().map(|d| d.display().to_string()).collect();
         Error::Other(format!(
-            "cannot cross-build the {names} binary: no cross toolchain (rustc wrapper and cargo-zigbuild) in {}: run              scripts/cross-toolchain.sh (downloads about 240 MB once), or pass --windows-library / --darwin-library",
+            "cannot cross-build the {names} binary: no cross toolchain (rustc wrapper and cargo-zigbuild) in {}: run \
+             scripts/cross-toolchain.sh (downloads about 240 MB once), or pass --windows-library / --darwin-library",
             looked.join(" or ")
         ))
     })

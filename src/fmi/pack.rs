@@ -192,7 +192,9 @@ pub fn check_dll(binary: &[u8]) -> std::result::Result<(), String> {
     if binary.get(..2) != Some(b"MZ") {
         return Err(format!("not a Windows DLL ({} bytes, no MZ header)", binary.len()));
     }
-    let pe = u32_le(binary, 0x3c).map(|p| p as usize).filter(|&p| binary.get(p..p + 4) == Some(b"PE\0\0"));
+    let pe = u32_le(binary, 0x3c)
+        .and_then(|p| usize::try_from(p).ok())
+        .filter(|&p| p.checked_add(4).and_then(|end| binary.get(p..end)) == Some(b"PE\0\0"));
     let Some(pe) = pe else { return Err("not a Windows DLL (no PE signature)".into()) };
     let machine = u16_le(binary, pe + 4).unwrap_or(0);
     let characteristics = u16_le(binary, pe + 22).unwrap_or(0);
@@ -232,7 +234,9 @@ pub fn check_universal_dylib(binary: &[u8]) -> std::result::Result<Vec<(&'static
         else {
             return Err("a fat Mach-O header cut short".into());
         };
-        let range = offset as usize..offset as usize + size as usize;
+        // u64: no overflow of offset + size on any host.
+        let (start, end) = (u64::from(offset), u64::from(offset) + u64::from(size));
+        let range = usize::try_from(start).unwrap_or(usize::MAX)..usize::try_from(end).unwrap_or(usize::MAX);
         let slice = binary.get(range.clone()).ok_or(format!(
             "architecture {k} of the fat Mach-O lies beyond the file (bytes {}..{} of {})",
             range.start,
@@ -248,6 +252,9 @@ pub fn check_universal_dylib(binary: &[u8]) -> std::result::Result<Vec<(&'static
         }
         names_entry_points(slice, &MACHO_ENTRY_POINTS)?;
         if let Some(&(_, dir)) = MACHO_SLICES.iter().find(|(c, _)| *c == cpu) {
+            if slices.iter().any(|(d, _)| *d == dir) {
+                return Err(format!("the fat Mach-O has two {dir} slices (CPU type 0x{cpu:08x})"));
+            }
             slices.push((dir, range));
         }
     }
@@ -259,27 +266,63 @@ pub fn check_universal_dylib(binary: &[u8]) -> std::result::Result<Vec<(&'static
     Ok(slices)
 }
 
+/// The largest binary `pack` reads, bytes (ours are 3-7 MB).
+const MAX_BINARY: u64 = 1 << 30;
+
 /// Reads a binary to pack: a regular file only (a FIFO would block, a device never end), at
-/// most 1 GiB.
+/// most [`MAX_BINARY`] bytes (a larger file is refused, not cut).
 fn read_binary(path: &Path) -> Result<Vec<u8>> {
     use std::io::Read;
     let file = crate::record::output::open_regular_input(path, "cannot read the shared library to pack")?;
     let mut bytes = Vec::new();
-    file.take(1 << 30).read_to_end(&mut bytes).map_err(io("cannot read the shared library to pack", path))?;
+    file.take(MAX_BINARY + 1).read_to_end(&mut bytes).map_err(io("cannot read the shared library to pack", path))?;
+    if bytes.len() as u64 > MAX_BINARY {
+        return Err(Error::Other(format!(
+            "{} cannot be packed: larger than {MAX_BINARY} bytes (not the beam-impact library)",
+            path.display()
+        )));
+    }
     Ok(bytes)
 }
 
-/// The binary files of each FMU for one checked binary: (FMI 2 entries, FMI 3 entries).
-fn binary_entries(platform: Platform, path: &Path) -> Result<(Vec<Entry>, Vec<Entry>)> {
+/// The newest glibc symbol version an ELF library names (`GLIBC_2.17` gives (2, 17)).
+pub fn glibc_needed(binary: &[u8]) -> Option<(u32, u32)> {
+    const TAG: &[u8] = b"GLIBC_2.";
+    let mut newest = None;
+    let mut at = 0;
+    while let Some(found) = binary[at..].windows(TAG.len()).position(|w| w == TAG) {
+        let digits = &binary[at + found + TAG.len()..];
+        let end = digits.iter().position(|b| !b.is_ascii_digit()).unwrap_or(digits.len());
+        if let Some(minor) = std::str::from_utf8(&digits[..end]).ok().and_then(|d| d.parse::<u32>().ok()) {
+            newest = newest.max(Some((2, minor)));
+        }
+        at += found + TAG.len();
+    }
+    newest
+}
+
+/// The binary files of each FMU for one checked binary: (FMI 2 entries, FMI 3 entries, what the
+/// documentation page says of it).
+fn binary_entries(platform: Platform, path: &Path) -> Result<(Vec<Entry>, Vec<Entry>, String)> {
     let bytes = read_binary(path)?;
     let refuse = |why: String| {
         Error::Other(format!("{} cannot be packed as the {} binary: {why}", path.display(), platform.name()))
     };
     let file = format!("{MODEL_IDENTIFIER}.{}", platform.extension());
     let entry = |dir: &str, data: Vec<u8>| Entry { name: format!("binaries/{dir}/{file}"), data, executable: true };
+    let mut what = match platform {
+        Platform::Linux => "Linux x86-64 shared library".to_string(),
+        Platform::Windows => "Windows x86-64 DLL".to_string(),
+        Platform::Darwin => {
+            "macOS universal2 dylib, x86-64 and arm64 (never loaded on macOS by the project's tests)".to_string()
+        }
+    };
     let fmi3 = match platform {
         Platform::Linux => {
             check_library(&bytes).map_err(refuse)?;
+            if let Some((major, minor)) = glibc_needed(&bytes) {
+                what = format!("{what} (needs glibc {major}.{minor} or later)");
+            }
             vec![entry("x86_64-linux", bytes.clone())]
         }
         Platform::Windows => {
@@ -293,31 +336,7 @@ fn binary_entries(platform: Platform, path: &Path) -> Result<(Vec<Entry>, Vec<En
             .map(|(dir, range)| entry(dir, bytes[range].to_vec()))
             .collect(),
     };
-    Ok((vec![entry(platform.fmi2_dir(), bytes)], fmi3))
-}
-
-/// What each platform's binary is, for the documentation page: (FMI 2 and FMI 3 directories, what).
-fn platform_lines(platforms: &[Platform], fmi3: bool) -> Vec<(String, String)> {
-    platforms
-        .iter()
-        .map(|p| match (p, fmi3) {
-            (Platform::Linux, false) => {
-                ("linux64".into(), "Linux x86-64 (glibc 2.17 or later when packed by `beam-impact pack`)".into())
-            }
-            (Platform::Linux, true) => {
-                ("x86_64-linux".into(), "Linux x86-64 (glibc 2.17 or later when packed by `beam-impact pack`)".into())
-            }
-            (Platform::Windows, false) => ("win64".into(), "Windows x86-64 DLL (system DLLs only)".into()),
-            (Platform::Windows, true) => ("x86_64-windows".into(), "Windows x86-64 DLL (system DLLs only)".into()),
-            (Platform::Darwin, false) => {
-                ("darwin64".into(), "macOS universal2 dylib (x86-64 and arm64; libSystem only; not run here)".into())
-            }
-            (Platform::Darwin, true) => (
-                "x86_64-darwin, aarch64-darwin".into(),
-                "macOS dylibs, Intel and Apple silicon (libSystem only; not run here)".into(),
-            ),
-        })
-        .collect()
+    Ok((vec![entry(platform.fmi2_dir(), bytes)], fmi3, what))
 }
 
 /// Packs the binaries (one per platform, each checked for its platform: [`check_library`],
@@ -334,17 +353,32 @@ pub fn pack_platforms(
     }
     let mut fmi2_binaries = Vec::new();
     let mut fmi3_binaries = Vec::new();
-    let mut platforms = Vec::new();
+    let mut platforms: Vec<(Platform, String)> = Vec::new();
     for (platform, path) in binaries {
-        if platforms.contains(platform) {
+        if platforms.iter().any(|(p, _)| p == platform) {
             return Err(Error::Other(format!("two {} binaries to pack (one per platform)", platform.name())));
         }
-        let (two, three) = binary_entries(*platform, path)?;
+        let (two, three, what) = binary_entries(*platform, path)?;
         fmi2_binaries.extend(two);
         fmi3_binaries.extend(three);
-        platforms.push(*platform);
+        platforms.push((*platform, what));
     }
     platforms.sort();
+    // What the documentation page lists: each FMI version's directories with what is in them.
+    let listed = |fmi3: bool| -> Vec<(String, String)> {
+        platforms
+            .iter()
+            .map(|(p, what)| {
+                let dir = match (p, fmi3) {
+                    (Platform::Darwin, true) => "x86_64-darwin, aarch64-darwin".to_string(),
+                    (Platform::Linux, true) => "x86_64-linux".to_string(),
+                    (Platform::Windows, true) => "x86_64-windows".to_string(),
+                    (p, false) => p.fmi2_dir().to_string(),
+                };
+                (dir, what.clone())
+            })
+            .collect()
+    };
     let dir = documentation_dir();
     let docs = documentation_files(&dir)?;
     let template = docs
@@ -369,14 +403,8 @@ pub fn pack_platforms(
     }
     shared.push(Entry { name: REFERENCE_CSV.into(), data: reference.csv().into_bytes(), executable: false });
     let page = |fmi3: bool| -> Result<Entry> {
-        let html = super::documentation::index_html(
-            &template,
-            &platform_lines(&platforms, fmi3),
-            generation_tool,
-            &reference,
-            &paper,
-        )
-        .map_err(Error::Other)?;
+        let html = super::documentation::index_html(&template, &listed(fmi3), generation_tool, &reference, &paper)
+            .map_err(Error::Other)?;
         Ok(Entry { name: "documentation/index.html".into(), data: html.into_bytes(), executable: false })
     };
     let assemble = |xml: String, binaries: Vec<Entry>, page: Entry| -> Vec<Entry> {
