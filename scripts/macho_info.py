@@ -158,6 +158,8 @@ def check_signature(data, dataoff, datasize):
         return f"invalid: hash type {hash_type} of size {hash_size}"
     name, algo, _ = HASH_TYPES[hash_type]
     page = 1 << page_shift if page_shift else code_limit
+    if page <= 0:
+        return f"invalid: page size {page} (page shift {page_shift}, code limit {code_limit})"
     if code_limit != dataoff:
         return f"invalid: the signature covers {code_limit} bytes, the code signature starts at {dataoff}"
     if n_code != (code_limit + page - 1) // page:

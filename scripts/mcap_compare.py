@@ -163,7 +163,7 @@ def main():
             print(f"mcap-compare: {a.path} and {b.path} differ at {first_difference(a, b)}")
             return 1
         n, chunks, per_topic = a.count()
-    except Bad as e:
+    except (Bad, struct.error) as e:
         print(f"mcap-compare: {e}")
         return 1
     messages = sum(per_topic.values())

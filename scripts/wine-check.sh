@@ -80,7 +80,11 @@ t2=$(date +%s)
 python3 - windows.txt linux.txt values.txt <<'EOF' || exit 1
 import sys
 def read(path):
-    return dict(line.split(" ", 1) for line in open(path).read().splitlines())
+    lines = open(path).read().splitlines()
+    odd = [line for line in lines if " " not in line]
+    if odd:
+        sys.exit(f"wine-check: {path} has a line without a value: {odd[0][:80]!r}")
+    return dict(line.split(" ", 1) for line in lines)
 w, l = read(sys.argv[1]), read(sys.argv[2])
 if set(w) != set(l):
     sys.exit(f"wine-check: the importers printed different names: {sorted(set(w) ^ set(l))}")

@@ -42,7 +42,15 @@ fn documentation_files(dir: &Path) -> Result<Vec<(String, PathBuf)>> {
         for entry in std::fs::read_dir(&path).map_err(io("cannot read documentation directory", &path))? {
             let entry = entry.map_err(io("cannot read documentation directory", &path))?;
             let name = format!("{prefix}{}", entry.file_name().to_string_lossy());
-            if entry.path().is_dir() {
+            let kind = entry.file_type().map_err(io("cannot read documentation directory", &path))?;
+            // A link could point anywhere (or loop): the documentation is packed as it stands.
+            if kind.is_symlink() {
+                return Err(Error::Other(format!(
+                    "{} is a symbolic link: the FMU's documentation takes regular files and folders only",
+                    entry.path().display()
+                )));
+            }
+            if kind.is_dir() {
                 pending.push((format!("{name}/"), entry.path()));
             } else {
                 files.push((name, entry.path()));
@@ -95,10 +103,10 @@ impl Platform {
         }
     }
 
-    /// `all`, or a comma-separated list of names (`linux,windows`), in [`Platform::ALL`] order
-    /// without repeats; an unknown or empty name is an error naming it.
+    /// `all` (also inside a list), or a comma-separated list of names (`linux,windows`), in
+    /// [`Platform::ALL`] order without repeats; an unknown or empty name is an error naming it.
     pub fn parse_list(list: &str) -> Result<Vec<Platform>> {
-        if list.trim() == "all" {
+        if list.split(',').any(|name| name.trim() == "all") {
             return Ok(Platform::ALL.to_vec());
         }
         let mut platforms = Vec::new();
@@ -434,4 +442,29 @@ pub fn pack_platforms(
 /// binary of both FMUs under `out_root`, with the committed descriptions; returns their paths.
 pub fn pack(library: &Path, out_root: &Path) -> Result<Vec<PathBuf>> {
     pack_platforms(&[(Platform::Linux, library.to_path_buf())], out_root, &description::generation_tool(None))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn platform_lists_are_all_or_known_names_in_order_without_repeats() {
+        use Platform::*;
+        assert_eq!(Platform::parse_list("all").unwrap(), vec![Linux, Windows, Darwin]);
+        assert_eq!(Platform::parse_list("linux, all").unwrap(), vec![Linux, Windows, Darwin]);
+        assert_eq!(Platform::parse_list("darwin,linux,darwin").unwrap(), vec![Linux, Darwin]);
+        for bad in ["", "linux,", "Linux", "win64"] {
+            let err = Platform::parse_list(bad).unwrap_err().to_string();
+            assert!(err.contains("unknown platform") && err.contains("known: linux, windows, darwin"), "{bad}: {err}");
+        }
+    }
+
+    /// The newest `GLIBC_2.N` wins by number, not by text (2.17 > 2.3.4 > 2.2.5).
+    #[test]
+    fn glibc_needed_is_the_newest_version_named() {
+        assert_eq!(glibc_needed(b"\0GLIBC_2.2.5\0GLIBC_2.17\0GLIBC_2.3.4\0GLIBC_2.14"), Some((2, 17)));
+        assert_eq!(glibc_needed(b"no versions here"), None);
+        assert_eq!(glibc_needed(b"GLIBC_2."), None);
+    }
 }
