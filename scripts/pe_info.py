@@ -41,24 +41,17 @@ def read_pe(data: bytes):
         names_rva = struct.unpack_from("<I", data, e + 32)[0]
         for i in range(n_names):
             exports.append(cstr(struct.unpack_from("<I", data, off(names_rva) + 4 * i)[0]))
-    imp_rva = struct.unpack_from("<I", data, dirs + 8)[0]
-    if imp_rva:
-        d = off(imp_rva)
-        while True:
-            name_rva = struct.unpack_from("<I", data, d + 12)[0]
+    # The DLL names of the import directory (entry 1: descriptors of 20 bytes, the name's RVA at
+    # +12) and of the delay-load directory (entry 13: 32 bytes, the name at +4); a zero name ends each.
+    for entry, size, name_at in ((1, 20, 12), (13, 32, 4)):
+        rva = struct.unpack_from("<I", data, dirs + entry * 8)[0]
+        d = off(rva) if rva else None
+        while d is not None:
+            name_rva = struct.unpack_from("<I", data, d + name_at)[0]
             if name_rva == 0:
                 break
             imports.append(cstr(name_rva))
-            d += 20
-    delay_rva = struct.unpack_from("<I", data, dirs + 13 * 8)[0]
-    if delay_rva:
-        d = off(delay_rva)
-        while True:
-            name_rva = struct.unpack_from("<I", data, d + 4)[0]
-            if name_rva == 0:
-                break
-            imports.append(cstr(name_rva))
-            d += 32
+            d += size
     return machine, exports, imports
 
 

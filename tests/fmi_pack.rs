@@ -245,6 +245,13 @@ fn fake_dll(marker: &str) -> Vec<u8> {
     b
 }
 
+/// [`fake_dll`] with `bytes` written at `at` (a header field made hostile).
+fn patched_dll(at: usize, bytes: &[u8]) -> Vec<u8> {
+    let mut b = fake_dll("");
+    b[at..at + bytes.len()].copy_from_slice(bytes);
+    b
+}
+
 /// A stand-in 64-bit Mach-O dylib slice of CPU type `cpu`, 4096 bytes.
 fn fake_slice(cpu: u32, marker: &str) -> Vec<u8> {
     let mut b = vec![0u8; 4096];
@@ -361,33 +368,9 @@ fn pack_refuses_a_binary_of_another_platform() {
             }),
             "lies beyond the file",
         ),
-        (
-            Platform::Windows,
-            write("far.dll", {
-                let mut b = fake_dll("");
-                b[0x3c..0x40].copy_from_slice(&0xffff_fff0u32.to_le_bytes());
-                b
-            }),
-            "no PE signature",
-        ),
-        (
-            Platform::Windows,
-            write("exe.dll", {
-                let mut b = fake_dll("");
-                b[0x96..0x98].copy_from_slice(&0x0022u16.to_le_bytes());
-                b
-            }),
-            "not a DLL",
-        ),
-        (
-            Platform::Windows,
-            write("arm.dll", {
-                let mut b = fake_dll("");
-                b[0x84..0x86].copy_from_slice(&0xaa64u16.to_le_bytes());
-                b
-            }),
-            "not an x86-64 PE file",
-        ),
+        (Platform::Windows, write("far.dll", patched_dll(0x3c, &0xffff_fff0u32.to_le_bytes())), "no PE signature"),
+        (Platform::Windows, write("exe.dll", patched_dll(0x96, &0x0022u16.to_le_bytes())), "not a DLL"),
+        (Platform::Windows, write("arm.dll", patched_dll(0x84, &0xaa64u16.to_le_bytes())), "not an x86-64 PE file"),
     ];
     for (platform, path, why) in cases {
         let out = dir.path().join("fmu");
