@@ -17,7 +17,7 @@ const UNTRUSTED: u8 = 3;
 
 fn main() -> ExitCode {
     std::panic::set_hook(Box::new(|info| {
-        eprintln!("beam-impact: internal error: {info}");
+        cli::common::note(&format!("beam-impact: internal error: {info}"));
     }));
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -26,7 +26,7 @@ fn main() -> ExitCode {
         Err(e) if !e.use_stderr() => e.exit(),
         Err(e) => {
             let text = e.to_string();
-            eprintln!("beam-impact: {}", bounded_line(text.trim().trim_start_matches("error: ")));
+            cli::common::note(&format!("beam-impact: {}", bounded_line(text.trim().trim_start_matches("error: "))));
             return ExitCode::from(2);
         }
     };
@@ -34,7 +34,7 @@ fn main() -> ExitCode {
         Ok(Outcome::Done) => ExitCode::SUCCESS,
         Ok(Outcome::Untrusted) => ExitCode::from(UNTRUSTED),
         Err(e) => {
-            eprintln!("beam-impact: {}", bounded_line(&e.to_string()));
+            cli::common::note(&format!("beam-impact: {}", bounded_line(&e.to_string())));
             ExitCode::from(2)
         }
     }

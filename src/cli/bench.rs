@@ -6,8 +6,10 @@ use super::common::emit;
 
 pub fn bench(runs: usize) -> Result<()> {
     let runs = runs.max(1);
-    eprintln!("beam-impact bench: 1/2 production stepper vs dense oracle, per-step cost ({runs} runs each)...");
+    super::common::note(&format!(
+        "beam-impact bench: 1/2 production stepper vs dense oracle, per-step cost ({runs} runs each)..."
+    ));
     emit(&beam_impact::studies::bench::stepper_benchmark(runs)?)?;
-    eprintln!("beam-impact bench: 2/2 recorded vs unrecorded paper run ({runs} runs each)...");
+    super::common::note(&format!("beam-impact bench: 2/2 recorded vs unrecorded paper run ({runs} runs each)..."));
     emit(&format!("\n{}", beam_impact::record::bench::recording_benchmark(runs)?))
 }

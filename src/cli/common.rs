@@ -4,7 +4,9 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use beam_impact::record::output::{open_input, read_bounded, MAX_SCENARIO_BYTES};
+use beam_impact::record::output::{
+    check_size, open_input, open_regular_input, read_bounded, shown, MAX_SCENARIO_BYTES,
+};
 use beam_impact::{Error, Result, Scenario};
 
 /// An error as one line of bounded length: a value quoted from a hostile input (a 4 MiB string in
@@ -36,48 +38,68 @@ pub fn bounded_line(message: &str) -> String {
 /// Reads and validates a scenario file (missing fields take their defaults); `-` is the standard
 /// input. A FIFO or socket is refused rather than waited on.
 pub fn read_scenario(path: &Path) -> Result<Scenario> {
-    if path.as_os_str() == "-" {
+    let (text, folder, name) = if path.as_os_str() == "-" {
         let text = read_bounded(std::io::stdin().lock(), MAX_SCENARIO_BYTES, "the scenario")
             .map_err(|source| io("cannot read scenario", Path::new("standard input"), source))?;
-        return Scenario::from_toml(&text, "standard input");
-    }
-    let file = open_input(path, "cannot read scenario")?;
-    let text = read_bounded(file, MAX_SCENARIO_BYTES, "the scenario")
-        .map_err(|source| io("cannot read scenario", path, source))?;
-    let mut scenario = Scenario::from_toml(&text, &path.display().to_string())?;
+        // A scenario from standard input names its motion file relative to the current folder.
+        (text, Path::new(""), "standard input".to_string())
+    } else {
+        let file = open_input(path, "cannot read scenario")?;
+        let text = check_size(&file, MAX_SCENARIO_BYTES, "the scenario")
+            .and_then(|()| read_bounded(file, MAX_SCENARIO_BYTES, "the scenario"))
+            .map_err(|source| io("cannot read scenario", path, source))?;
+        (text, path.parent().unwrap_or(Path::new("")), shown(path))
+    };
+    let mut scenario = Scenario::from_toml(&text, &name)?;
     if !scenario.motion.file.is_empty() {
-        // `[motion] file` is relative to the scenario file.
-        let motion = path.parent().unwrap_or(Path::new("")).join(&scenario.motion.file);
+        let motion = motion_file_of_scenario(&scenario.motion.file, folder)?;
         load_motion(&mut scenario, &motion)?;
     }
     Ok(scenario)
 }
 
-/// Largest motion file read: 10^7 rows of ten numbers.
-const MAX_MOTION_BYTES: u64 = 1 << 30;
+/// Where a scenario file's `[motion] file` points: a relative path inside the scenario's folder
+/// (its folder or below, no `..`), resolved against that folder. A stranger's scenario can reach
+/// nothing else (`/proc/self/environ`, `../../etc/shadow`); the user's own motion file anywhere
+/// is given with `--motion PATH`.
+pub fn motion_file_of_scenario(file: &str, folder: &Path) -> Result<PathBuf> {
+    use std::path::Component;
+    let relative = Path::new(file);
+    let inside = relative.components().all(|c| matches!(c, Component::Normal(_) | Component::CurDir));
+    if !inside || file.contains('\0') {
+        return Err(Error::invalid(
+            "motion.file",
+            "a path relative to the scenario file's folder, inside it (no absolute path, no `..`; give any other \
+             file with --motion PATH)",
+            format!("'{}'", beam_impact::model::motion_table::quote_cell(file)),
+        ));
+    }
+    Ok(folder.join(relative))
+}
+
+/// Largest motion file read, bytes (256 MiB: about 1.3 million rows of ten numbers, 22 minutes
+/// at 1 ms), checked from the file's size before it is read.
+pub const MAX_MOTION_BYTES: u64 = 256 << 20;
 
 /// Reads the support-motion file `path` (`run --motion`, `[motion] file`) into the scenario: its
 /// rows checked (one line of error naming the row), and the rows that disagree with the motion
 /// before them reported on standard error (the run uses them as given).
 pub fn load_motion(scenario: &mut Scenario, path: &Path) -> Result<()> {
-    let file = open_input(path, "cannot read motion file")?;
-    let text = read_bounded(file, MAX_MOTION_BYTES, "the motion file")
+    let file = open_regular_input(path, "cannot read motion file")?;
+    let text = check_size(&file, MAX_MOTION_BYTES, "the motion file")
+        .and_then(|()| read_bounded(file, MAX_MOTION_BYTES, "the motion file"))
         .map_err(|source| io("cannot read motion file", path, source))?;
     let table = beam_impact::model::motion_table::MotionTable::parse(&text)
-        .map_err(|e| Error::Other(format!("motion file {}: {e}", path.display())))?;
+        .map_err(|e| Error::Other(format!("motion file {}: {e}", shown(path))))?;
     let mismatches = table.mismatches();
     if let Some(first) = mismatches.first() {
-        eprintln!(
-            "{}",
-            bounded_line(&format!(
-                "warning: motion file {}: {} row(s) disagree with the row before them (row {}: {}); they are used \
-                 as given",
-                path.display(),
-                mismatches.len(),
-                first.row,
-                first.mismatch
-            ))
-        );
+        warn(&format!(
+            "motion file {}: {} row(s) disagree with the row before them (row {}: {}); they are used as given",
+            shown(path),
+            mismatches.len(),
+            first.row,
+            first.mismatch
+        ));
     }
     scenario.motion.file = path.display().to_string();
     scenario.motion.table = Some(std::sync::Arc::new(table));
@@ -85,7 +107,19 @@ pub fn load_motion(scenario: &mut Scenario, path: &Path) -> Result<()> {
 }
 
 pub fn io(action: &'static str, path: &Path, source: std::io::Error) -> Error {
-    Error::Io { action, path: path.display().to_string(), source }
+    Error::Io { action, path: shown(path), source }
+}
+
+/// Prints `beam-impact: warning: MESSAGE` (one bounded line) to standard error; a standard error
+/// that cannot be written (`2>/dev/full`, a closed pipe) loses the warning, never the run.
+pub fn warn(message: &str) {
+    let line = format!("beam-impact: warning: {}\n", bounded_line(message));
+    let _ = std::io::stderr().lock().write_all(line.as_bytes());
+}
+
+/// Prints `line` to standard error, ignoring a failure (see [`warn`]).
+pub fn note(line: &str) {
+    let _ = std::io::stderr().lock().write_all(format!("{line}\n").as_bytes());
 }
 
 /// Writes to standard output; a reader that went away (`| head`) ends the output quietly.

@@ -147,7 +147,11 @@ fn cross_build(toolchain: Option<&PathBuf>, triple: &str, platform: Platform) ->
     let dir = source_dir().join("target").join("cross");
     std::fs::create_dir_all(&dir).map_err(|source| io("cannot create", &dir, source))?;
     let out = dir.join(format!("BeamImpact-{}.{}", platform.name(), platform.extension()));
-    eprintln!("beam-impact: cross-building the {} binary ({triple}) with {}", platform.name(), script.display());
+    super::common::note(&format!(
+        "beam-impact: cross-building the {} binary ({triple}) with {}",
+        platform.name(),
+        script.display()
+    ));
     let started = Instant::now();
     let status = std::process::Command::new("sh")
         .arg(&script)
@@ -162,7 +166,7 @@ fn cross_build(toolchain: Option<&PathBuf>, triple: &str, platform: Platform) ->
             platform.name()
         )));
     }
-    eprintln!("beam-impact: built {} in {:.0} s", out.display(), started.elapsed().as_secs_f64());
+    super::common::note(&format!("beam-impact: built {} in {:.0} s", out.display(), started.elapsed().as_secs_f64()));
     Ok(out)
 }
 
@@ -217,7 +221,10 @@ fn linux_library(library: Option<PathBuf>, no_zigbuild: bool) -> Result<PathBuf>
             zigbuild.display()
         );
         write_executable(&linker, &script)?;
-        eprintln!("beam-impact: building the library for glibc 2.17 (linked by {})", zigbuild.display());
+        super::common::note(&format!(
+            "beam-impact: building the library for glibc 2.17 (linked by {})",
+            zigbuild.display()
+        ));
         let started = Instant::now();
         let status = std::process::Command::new(&cargo)
             .args(["rustc", "--release", "--lib", "--crate-type", "cdylib", "--manifest-path"])
@@ -239,11 +246,11 @@ fn linux_library(library: Option<PathBuf>, no_zigbuild: bool) -> Result<PathBuf>
         let built = target_dir.join("release").join("libbeam_impact.so");
         let library = zig_dir.join("libbeam_impact.so");
         std::fs::copy(&built, &library).map_err(|source| io("cannot copy", &built, source))?;
-        eprintln!(
+        super::common::note(&format!(
             "beam-impact: built {} for glibc 2.17 in {:.1} s",
             library.display(),
             started.elapsed().as_secs_f64()
-        );
+        ));
         Ok(library)
     }
 
@@ -263,9 +270,9 @@ fn linux_library(library: Option<PathBuf>, no_zigbuild: bool) -> Result<PathBuf>
                 Some(zig) => zigbuild(&zig)?,
                 None => {
                     if !no_zigbuild {
-                        eprintln!(
-                            "beam-impact: warning: cargo-zigbuild is not on PATH: packing the host build, which needs \
-                             this machine's glibc or newer (pip install ziglang cargo-zigbuild for a glibc 2.17 build)"
+                        super::common::warn(
+                            "cargo-zigbuild is not on PATH: packing the host build, which needs this machine's glibc \
+                             or newer (pip install ziglang cargo-zigbuild for a glibc 2.17 build)",
                         );
                     }
                     host_library()?

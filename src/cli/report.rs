@@ -31,12 +31,12 @@ pub fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>) -> Result<(
         let data = beam_impact::replay::report::read_log(file)?;
         if csv_to_stdout && (!data.complete || data.stopped_early.is_some()) {
             // The summary, which would say so, is not printed.
-            eprintln!(
-                "beam-impact: warning: {}: {}; the CSV holds the {} step messages before it",
-                file.display(),
+            super::common::warn(&format!(
+                "{}: {}; the CSV holds the {} step messages before it",
+                beam_impact::record::output::shown(file),
                 data.problem.as_deref().or(data.stopped_early.as_deref()).unwrap_or("incomplete log"),
                 data.steps.len()
-            );
+            ));
         }
         let written = match target {
             Some(mut target) => {

@@ -47,6 +47,9 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     if let Some(file) = args.file.as_deref() {
         files.push(("the scenario file", file));
     }
+    if !scenario.motion.file.is_empty() {
+        files.push(("the motion file", Path::new(&scenario.motion.file)));
+    }
     if let Some(json) = args.json.as_deref() {
         files.push(("--json", json));
     }
@@ -85,7 +88,7 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     progress.complete(&answer)?;
     progress.bar.finish_and_clear();
     if let Some(reason) = progress.stopped_early() {
-        eprintln!("beam-impact: warning: {reason}");
+        super::common::warn(reason);
     }
     let wall = started.elapsed();
     let summary = &answer.summary;
@@ -135,10 +138,10 @@ pub fn run(args: &RunArgs) -> Result<bool> {
         },
     );
     for line in quality.advisories.iter() {
-        eprintln!("beam-impact: note: {line}");
+        super::common::note(&format!("beam-impact: note: {}", super::common::bounded_line(line)));
     }
     for line in quality.reasons.iter() {
-        eprintln!("beam-impact: warning: results not trusted: {line}");
+        super::common::warn(&format!("results not trusted: {line}"));
     }
     text += &format!("wall time: {:.1} ms (assembly, modes and stepping", wall.as_secs_f64() * 1e3);
     if !args.no_mcap {

@@ -29,6 +29,9 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
     let sweep = Sweep::new(base, parse_axes(&args.vary)?, args.max_steps)?;
     let jobs = args.jobs.map_or_else(default_jobs, |j| usize::try_from(j).unwrap_or(usize::MAX));
     let mut files: Vec<(&str, &Path)> = args.file.as_deref().map(|f| ("the scenario file", f)).into_iter().collect();
+    if !sweep.base.motion.file.is_empty() {
+        files.push(("the motion file", Path::new(&sweep.base.motion.file)));
+    }
     files.push(("--out", &args.out));
     files.extend(args.json.as_deref().map(|j| ("--json", j)));
     let data: Vec<&Path> = std::iter::once(args.out.as_path()).chain(args.json.as_deref()).collect();
@@ -65,16 +68,16 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
     let sidecars = write_units_sidecars(&sidecars, &column_units(&sweep.axes), &sweep_former_names())?;
     let wall = started.elapsed().as_secs_f64();
     if tally.failed > 0 {
-        eprintln!(
-            "beam-impact: warning: {} of {} scenarios failed (their rows hold the error)",
+        super::common::warn(&format!(
+            "{} of {} scenarios failed (their rows hold the error)",
             tally.failed, tally.scenarios
-        );
+        ));
     }
     if tally.untrusted > 0 {
-        eprintln!(
-            "beam-impact: warning: {} of {} scenarios not trusted (column trusted)",
+        super::common::warn(&format!(
+            "{} of {} scenarios not trusted (column trusted)",
             tally.untrusted, tally.scenarios
-        );
+        ));
     }
     let mut text = format!(
         "sweep: {} scenarios on {} threads in {wall:.2} s ({:.1} ms of a thread each): {} ran, {} failed, {} not \

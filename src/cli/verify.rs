@@ -18,6 +18,9 @@ pub fn verify(file: Option<&Path>, set: &[String], json: Option<&Path>, toleranc
     let scenario = scenario_with_settings(file, set)?;
     let plan = Plan::new(&scenario, tolerance)?;
     let mut files: Vec<(&str, &Path)> = file.map(|f| ("the scenario file", f)).into_iter().collect();
+    if !scenario.motion.file.is_empty() {
+        files.push(("the motion file", Path::new(&scenario.motion.file)));
+    }
     files.extend(json.map(|j| ("--json", j)));
     check_distinct(&files)?;
     let json_file = match json {

@@ -3,10 +3,36 @@
 //! rows each support moves as z_n + v_n tau + a_n tau^2 / 2 from the row before, as an FMU's inputs
 //! do between communication points. Parsed from text (the CLI reads the file): no I/O here.
 
-use super::support_motion::{MotionMismatch, SupportMotion, MOTION_NAMES};
+use super::support_motion::{check_motion_value, MotionMismatch, SupportMotion, MOTION_NAMES};
 
-/// Largest number of rows a motion file may hold (10^7 rows: 3 hours at 1 ms, ~1 GB of text).
+/// Largest number of rows a motion file may hold (10^7 rows: 3 hours at 1 ms).
 pub const MAX_ROWS: usize = 10_000_000;
+
+/// Most characters of a cell an error quotes (issue 27: an error quotes the offending cell, cut,
+/// never a line of a file that is not a motion CSV).
+pub const MAX_QUOTED: usize = 200;
+
+/// `cell` as an error quotes it: at most [`MAX_QUOTED`] characters, control characters escaped
+/// (`\u{1b}`), with the count of what was cut.
+pub fn quote_cell(cell: &str) -> String {
+    let mut out = String::new();
+    let mut count = 0;
+    for c in cell.chars() {
+        count += 1;
+        if count > MAX_QUOTED {
+            continue;
+        }
+        if c.is_control() {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    if count > MAX_QUOTED {
+        out.push_str(&format!("... ({} characters cut)", count - MAX_QUOTED));
+    }
+    out
+}
 
 /// A parsed, checked support-motion time series.
 #[derive(Clone, Debug, PartialEq)]
@@ -26,6 +52,14 @@ pub struct RowMismatch {
     pub row: usize,
     /// What disagrees.
     pub mismatch: MotionMismatch,
+}
+
+/// The error of a first line that is not a motion header (nothing of it quoted).
+fn not_a_header(line: usize) -> String {
+    format!(
+        "line {line} is not a motion-file header: it has no `time` column (expected `time` and any of {})",
+        MOTION_NAMES.join(", ")
+    )
 }
 
 impl MotionTable {
@@ -51,8 +85,14 @@ impl MotionTable {
                 continue;
             }
             let Some(k) = MOTION_NAMES.iter().position(|n| n == name) else {
+                // A first line without a `time` column is not a motion header: nothing of it is
+                // quoted (the file may be any file a scenario named).
+                if !names.contains(&"time") {
+                    return Err(not_a_header(header_line));
+                }
                 return Err(format!(
-                    "line {header_line}: unknown column `{name}` (expected `time` and any of {})",
+                    "line {header_line}: unknown column `{}` (expected `time` and any of {})",
+                    quote_cell(name),
                     MOTION_NAMES.join(", ")
                 ));
             };
@@ -62,7 +102,8 @@ impl MotionTable {
             columns.push(MOTION_NAMES[k]);
             slots.push(Some(k));
         }
-        let time_column = time_column.ok_or_else(|| format!("line {header_line}: no `time` column"))?;
+
+        let time_column = time_column.ok_or_else(|| not_a_header(header_line))?;
         if columns.is_empty() {
             return Err(format!("line {header_line}: no support-motion column (any of {})", MOTION_NAMES.join(", ")));
         }
@@ -96,14 +137,20 @@ impl MotionTable {
             let mut values = [0.0; 9];
             let mut time = 0.0;
             for (c, field) in fields.iter().enumerate() {
-                let value: f64 = field
-                    .parse()
-                    .map_err(|_| format!("row {row} (line {line}): `{}` = `{field}` is not a number", names[c]))?;
+                let value: f64 = field.parse().map_err(|_| {
+                    format!("row {row} (line {line}): `{}` = `{}` is not a number", names[c], quote_cell(field))
+                })?;
                 if !value.is_finite() {
                     return Err(format!("row {row} (line {line}): `{}` = {value} is not finite", names[c]));
                 }
                 match slots[c] {
-                    Some(k) => values[k] = value,
+                    Some(k) => {
+                        check_motion_value(k, value).map_err(|e| format!("row {row} (line {line}): {e}"))?;
+                        values[k] = value;
+                    }
+                    None if value.abs() > 1e9 => {
+                        return Err(format!("row {row} (line {line}): time = {value:e} s is beyond +-1e9 s"));
+                    }
                     None => time = value,
                 }
             }
@@ -123,6 +170,30 @@ impl MotionTable {
             return Err(format!("no data rows after the header (line {header_line})"));
         }
         Ok(MotionTable { columns, times, motions })
+    }
+
+    /// The table as CSV that [`MotionTable::parse`] reads back to an equal table: a header of
+    /// `time` and the columns given, then one line per row, every value in Rust's shortest
+    /// round-trip form (the log's `motion.csv` attachment).
+    pub fn to_csv(&self) -> String {
+        let slots: Vec<usize> =
+            self.columns.iter().map(|c| MOTION_NAMES.iter().position(|n| n == c).unwrap_or(0)).collect();
+        let mut out = String::with_capacity(24 * (1 + slots.len()) * (1 + self.times.len()));
+        out.push_str("time");
+        for c in &self.columns {
+            out.push(',');
+            out.push_str(c);
+        }
+        out.push('\n');
+        for (time, motion) in self.times.iter().zip(&self.motions) {
+            let values = motion.values();
+            out.push_str(&format!("{time:?}"));
+            for &k in &slots {
+                out.push_str(&format!(",{:?}", values[k]));
+            }
+            out.push('\n');
+        }
+        out
     }
 
     /// Checks that the rows cover the run from `start` to `end` s (file time); the error names
@@ -195,12 +266,57 @@ mod tests {
     }
 
     #[test]
+    fn the_csv_written_to_the_log_reads_back_to_the_same_table() {
+        let text = format!(
+            "# a comment\n{}\n0,0.1,1e-300,-3.25,0.01,0.02,0.03\n0.1,0.0900000000000001,1e-7,-3.25,0.011,0.02,0.03\n",
+            "time,lower.clamp_rotation,lower.clamp_rotation_velocity,lower.clamp_rotation_acceleration,\
+             lower.clamp_heave,lower.clamp_heave_velocity,lower.clamp_heave_acceleration"
+        );
+        let table = MotionTable::parse(&text).unwrap();
+        let csv = table.to_csv();
+        assert!(csv.starts_with("time,lower.clamp_rotation,"), "{csv}");
+        assert_eq!(MotionTable::parse(&csv).unwrap(), table);
+        let example = include_str!("../../examples/vessel-motion.csv");
+        let table = MotionTable::parse(example).unwrap();
+        assert_eq!(MotionTable::parse(&table.to_csv()).unwrap(), table);
+    }
+
+    #[test]
+    fn errors_quote_at_most_the_offending_cell_and_nothing_of_a_file_that_is_not_a_motion_csv() {
+        // /etc/shadow's or /proc/self/environ's first line: no `time` column, nothing quoted.
+        for secret in ["root:$6$secret:19000:0:99999:7:::", "PATH=/bin\0SECRET=hunter2", "a,b,SECRET=x"] {
+            let e = MotionTable::parse(secret).unwrap_err();
+            assert!(!e.contains("secret") && !e.contains("SECRET") && !e.contains("PATH"), "{e}");
+            assert!(e.contains("not a motion-file header"), "{e}");
+        }
+        // A cell of a million NUL bytes: cut to 200 characters, each escaped.
+        let cell = "\0".repeat(1_000_000);
+        let e = MotionTable::parse(&format!("{HEAVE}0,0,0,{cell}\n")).unwrap_err();
+        assert!(e.len() < 2000 && e.contains("\\u{0}") && e.contains("999800 characters cut"), "{}", &e[..200]);
+        assert!(!e.contains('\0'));
+        // An escape sequence in a cell reaches no terminal.
+        let e = MotionTable::parse(&format!("{HEAVE}0,0,0,\u{1b}[31mred\n")).unwrap_err();
+        assert!(!e.contains('\u{1b}') && e.contains("\\u{1b}[31mred"), "{e}");
+    }
+
+    #[test]
+    fn motion_beyond_the_models_range_is_refused_naming_row_and_input() {
+        let rotation = "time,lower.clamp_rotation,lower.clamp_rotation_velocity,lower.clamp_rotation_acceleration\n";
+        let e = MotionTable::parse(&format!("{rotation}0,0,0,0\n1,1.5,0,0\n")).unwrap_err();
+        assert!(e.starts_with("row 2 (line 3): lower.clamp_rotation must be finite with |value| <= 0.1 rad"), "{e}");
+        let e = MotionTable::parse(&format!("{HEAVE}0,0,0,1e5\n")).unwrap_err();
+        assert!(e.contains("upper.hinge_heave_acceleration") && e.contains("100 m/s2"), "{e}");
+        assert!(MotionTable::parse(&format!("{HEAVE}2e9,0,0,0\n")).unwrap_err().contains("beyond +-1e9 s"));
+    }
+
+    #[test]
     fn bad_files_are_one_line_errors_naming_the_row() {
         let cases = [
             ("", "no header"),
             ("time,upper.hinge_heave\n0,0\n", "needs upper.hinge_heave_velocity and upper.hinge_heave_acceleration"),
             ("time,lower.clamp_hieve\n", "unknown column `lower.clamp_hieve`"),
             ("upper.hinge_heave,upper.hinge_heave_velocity,upper.hinge_heave_acceleration\n", "no `time` column"),
+            ("time,lower.clamp_hieve\u{1b}[2J\n", "unknown column `lower.clamp_hieve\\u{1b}[2J`"),
             (&format!("{HEAVE}0,0,0,0\n0,0,0,0\n"), "row 2 (line 3): time 0 s is not after"),
             (&format!("{HEAVE}0,0,0,0\n1,nan,0,0\n"), "row 2 (line 3): `upper.hinge_heave` = NaN is not finite"),
             (&format!("{HEAVE}0,0,0,x\n"), "row 1 (line 2): `upper.hinge_heave_acceleration` = `x` is not a number"),

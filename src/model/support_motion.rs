@@ -28,6 +28,28 @@ pub const MOTION_NAMES: [&str; 9] = [
 /// The unit of each of [`MOTION_NAMES`].
 pub const MOTION_UNITS: [&str; 9] = ["m", "m/s", "m/s2", "m", "m/s", "m/s2", "rad", "rad/s", "rad/s2"];
 
+/// The largest magnitude each of [`MOTION_NAMES`] may take (issue 27), in its unit. The model is
+/// linear in the supports' motion, so the bounds are where that stops being true or physical:
+/// - clamp rotation 0.1 rad: the arrestor's rotation is linearised (sin theta ~ theta,
+///   cos theta ~ 1); at 0.1 rad those are 0.17 % and 0.5 % off, the agreement the answers are
+///   held to; its rate 0.5 rad/s: the centripetal acceleration omega^2 l_l the linear model
+///   leaves out stays below 0.3 g on a 12 m arrestor (a vessel pitches at ~0.05 rad/s); its
+///   acceleration 10 rad/s^2 (120 m/s^2 at a 12 m arrestor's end, like the heave's bound);
+/// - heave 50 m (beyond any vessel's heave), its rate 20 m/s (ten times a severe sea's),
+///   its acceleration 100 m/s^2 (gravity's bound: an inertia load is a gravity of its own).
+pub const MOTION_LIMITS: [f64; 9] = [50.0, 20.0, 100.0, 50.0, 20.0, 100.0, 0.1, 0.5, 10.0];
+
+/// Checks the `k`-th support-motion value (of [`MOTION_NAMES`]) against its bound: finite and
+/// within [`MOTION_LIMITS`]; the error names the input, its value, bound and unit.
+pub fn check_motion_value(k: usize, value: f64) -> Result<(), String> {
+    let (name, limit, unit) = (MOTION_NAMES[k], MOTION_LIMITS[k], MOTION_UNITS[k]);
+    if value.is_finite() && value.abs() <= limit {
+        return Ok(());
+    }
+    let why = if k == 6 { " (the small-angle range of the model's linearisation)" } else { "" };
+    Err(format!("{name} must be finite with |value| <= {limit} {unit}{why}, got {value:.6e}"))
+}
+
 /// One prescribed coordinate at an instant.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Track {
@@ -234,6 +256,20 @@ mod tests {
             if (b.velocity - a.velocity).abs() > 1e-6 {
                 assert!(v(a).mismatch(&v(b), tau).is_some(), "sample {n}: velocities without accelerations");
             }
+        }
+    }
+
+    #[test]
+    fn motion_values_beyond_the_models_range_are_refused_with_name_and_bound() {
+        assert!(check_motion_value(6, 0.1).is_ok() && check_motion_value(6, -0.1).is_ok());
+        let e = check_motion_value(6, 1.5).unwrap_err();
+        assert!(e.starts_with("lower.clamp_rotation must be finite with |value| <= 0.1 rad"), "{e}");
+        assert!(e.contains("1.5"), "{e}");
+        assert!(check_motion_value(2, 1e5).unwrap_err().contains("upper.hinge_heave_acceleration"));
+        assert!(check_motion_value(4, f64::NAN).is_err() && check_motion_value(4, f64::INFINITY).is_err());
+        for k in 0..9 {
+            assert!(check_motion_value(k, MOTION_LIMITS[k]).is_ok(), "{}", MOTION_NAMES[k]);
+            assert!(check_motion_value(k, -1.0001 * MOTION_LIMITS[k]).is_err(), "{}", MOTION_NAMES[k]);
         }
     }
 

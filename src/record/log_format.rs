@@ -22,6 +22,12 @@ pub const ANSWER_ATTACHMENT: &str = "answer.json";
 pub const SCENARIO_METADATA: &str = "scenario";
 /// Name of the scenario's TOML attachment.
 pub const SCENARIO_ATTACHMENT: &str = "scenario.toml";
+/// The attachment holding the support-motion table a run used (issue 27): its rows as read,
+/// written back as CSV (`time` and the columns the file gave, every value round-trip exact), so
+/// that a log replays without the motion file. The file's name is the scenario's `motion.file`.
+pub const MOTION_ATTACHMENT: &str = "motion.csv";
+/// Media type of [`MOTION_ATTACHMENT`].
+pub const MOTION_MEDIA_TYPE: &str = "text/csv";
 /// Key of the log format in the scenario's Metadata record (absent in format 1 logs).
 pub const LOG_FORMAT_KEY: &str = "log_format";
 /// The format this recorder writes: 2 = modal coordinates on `/beam/modes`.

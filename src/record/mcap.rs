@@ -50,8 +50,9 @@ use std::time::Instant;
 use ::mcap::{Compression, WriteOptions};
 
 pub use super::log_format::{
-    ANSWER_ATTACHMENT, CONTACT_TOPIC, LOG_FORMAT, LOG_FORMAT_KEY, LOG_TOPIC, MODEL_TOPIC, MODES_TOPIC, ROLLBACK_LINE,
-    SCENARIO_ATTACHMENT, SCENARIO_METADATA, SCENE_TOPIC, SIZE_CAP_LINE, STEP_TOPIC,
+    ANSWER_ATTACHMENT, CONTACT_TOPIC, LOG_FORMAT, LOG_FORMAT_KEY, LOG_TOPIC, MODEL_TOPIC, MODES_TOPIC,
+    MOTION_ATTACHMENT, MOTION_MEDIA_TYPE, ROLLBACK_LINE, SCENARIO_ATTACHMENT, SCENARIO_METADATA, SCENE_TOPIC,
+    SIZE_CAP_LINE, STEP_TOPIC,
 };
 pub use super::options::{LogCompression, RecorderOptions, RecorderTiming, MAX_LOG_BYTES};
 use super::scene::SceneBuilder;
@@ -373,6 +374,14 @@ impl Recorder for McapRecorder {
         self.has_scene = self.options.scene_interval_ns > 0;
         let scene = self.has_scene.then(|| SceneBuilder::new(info));
         self.push(Item::Start(Box::new(StartRecord { model, metadata, scenario_toml: toml, scene })));
+        // The motion table travels with the log, so that it replays without the file (issue 27).
+        if let Some(table) = &info.scenario.motion.table {
+            self.push(Item::Attach {
+                name: MOTION_ATTACHMENT.into(),
+                media_type: MOTION_MEDIA_TYPE.into(),
+                data: table.to_csv().into_bytes(),
+            });
+        }
         self.next_scene_ns = 0;
         self.next_modes_ns = 0;
         self.previous = None;

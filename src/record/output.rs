@@ -290,6 +290,27 @@ pub fn same_folder(path: &Path, dir: &Path) -> bool {
     }
 }
 
+/// `path` as printed to a terminal or a log: its display form with control characters escaped
+/// (`\u{1b}`), so that a hostile file name sends no escape sequence (issue 27).
+pub fn shown(path: &Path) -> String {
+    let text = path.display().to_string();
+    if !text.chars().any(char::is_control) {
+        return text;
+    }
+    text.chars().flat_map(|c| if c.is_control() { c.escape_default().collect::<Vec<_>>() } else { vec![c] }).collect()
+}
+
+/// Refuses a file whose size, read from its metadata before a byte of it is read, exceeds
+/// `limit` (a 2 GB sparse file costs nothing to refuse this way). Files whose metadata says 0
+/// (`/proc` files) are still bounded while read ([`read_bounded`]).
+pub fn check_size(file: &File, limit: u64, what: &str) -> std::io::Result<()> {
+    let size = file.metadata()?.len();
+    if size > limit {
+        return Err(std::io::Error::other(format!("{what} is {size} bytes, larger than the limit of {limit} bytes")));
+    }
+    Ok(())
+}
+
 /// Largest scenario file (or standard input) the CLI reads, bytes.
 pub const MAX_SCENARIO_BYTES: u64 = 4 << 20;
 

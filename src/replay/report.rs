@@ -20,10 +20,11 @@ use prost::Message;
 
 use super::safe_read::{read_records, Ending, Limits, Place, Record};
 use crate::error::{Error, Result};
+use crate::model::motion_table::MotionTable;
 use crate::model::Scenario;
 use crate::record::mcap::{
     ANSWER_ATTACHMENT, CONTACT_TOPIC, LOG_FORMAT, LOG_FORMAT_KEY, LOG_TOPIC, MODEL_TOPIC, MODES_TOPIC,
-    SCENARIO_ATTACHMENT, SCENARIO_METADATA, STEP_TOPIC,
+    MOTION_ATTACHMENT, SCENARIO_ATTACHMENT, SCENARIO_METADATA, STEP_TOPIC,
 };
 use crate::record::schema::{ContactEventMessage, LogMessage, ModalCoordinatesMessage, ModelMessage, StepMessage};
 use crate::results::{
@@ -58,6 +59,9 @@ pub struct LogData {
     /// The run's answer with its checks as the CLI stored it (`answer.json`: `quality`,
     /// `design`, `discretisation`), if the log holds it (CLI runs from this version on).
     pub answer_json: Option<String>,
+    /// The support-motion table the run used (`motion.csv`: its rows as CSV), if the run had one
+    /// and the log holds it (CLI runs from issue 27 on).
+    pub motion_csv: Option<String>,
     /// Messages per topic.
     pub messages: BTreeMap<String, u64>,
     /// Whether log times never decreased, across all channels in file order.
@@ -167,9 +171,44 @@ impl History {
 
 impl LogData {
     /// The scenario stored in the log.
+    /// The motion table comes from the log's `motion.csv` attachment, never from the file the
+    /// scenario names (a log replays by itself); a log written before the attachment existed
+    /// replays with fixed supports (see [`LogData::notes`]).
     pub fn scenario(&self) -> Result<Scenario> {
         let text = self.scenario_toml.as_deref().ok_or_else(|| Error::Other("the log holds no scenario".into()))?;
-        Scenario::from_toml(text, SCENARIO_ATTACHMENT)
+        let mut scenario = Scenario::from_toml(text, SCENARIO_ATTACHMENT)?;
+        if !scenario.motion.file.is_empty() {
+            match &self.motion_csv {
+                Some(csv) => {
+                    let table = MotionTable::parse(csv).map_err(|e| {
+                        Error::Other(format!("the log's motion table ({MOTION_ATTACHMENT}) is refused: {e}"))
+                    })?;
+                    scenario.motion.table = Some(std::sync::Arc::new(table));
+                }
+                None => scenario.motion = Default::default(),
+            }
+        }
+        Ok(scenario)
+    }
+
+    /// What a reader should know about how the log is replayed (one line each): today, a run
+    /// with moving supports whose log holds no motion table.
+    pub fn notes(&self) -> Vec<String> {
+        let file = self
+            .scenario_toml
+            .as_deref()
+            .and_then(|t| Scenario::from_toml(t, SCENARIO_ATTACHMENT).ok())
+            .map(|s| s.motion.file)
+            .unwrap_or_default();
+        if file.is_empty() || self.motion_csv.is_some() {
+            return Vec::new();
+        }
+        vec![format!(
+            "note: the run's supports moved ({}), but the log holds no motion table (written before logs carried \
+             {MOTION_ATTACHMENT}): the steps are reported as recorded; the modes and the energy approach are those of \
+             fixed supports",
+            crate::model::motion_table::quote_cell(&file)
+        )]
     }
 }
 
@@ -419,13 +458,18 @@ impl ReadState {
             Record::Attachment { name, media_type, data: bytes, .. } => {
                 let scenario = name == SCENARIO_ATTACHMENT;
                 let answer = name == ANSWER_ATTACHMENT;
-                let size = name.len() + media_type.len() + 64 + if scenario || answer { bytes.len() } else { 0 };
+                let motion = name == MOTION_ATTACHMENT;
+                let kept = scenario || answer || motion;
+                let size = name.len() + media_type.len() + 64 + if kept { bytes.len() } else { 0 };
                 self.keep(size, at, "attachment record")?;
                 if scenario {
                     data.scenario_toml = Some(String::from_utf8_lossy(bytes).into_owned());
                 }
                 if answer {
                     data.answer_json = Some(String::from_utf8_lossy(bytes).into_owned());
+                }
+                if motion {
+                    data.motion_csv = Some(String::from_utf8_lossy(bytes).into_owned());
                 }
                 data.attachments.push((name.to_string(), media_type.to_string(), bytes.len()));
             }
@@ -626,6 +670,9 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
             );
         }
         let _ = writeln!(text, "{}", stored_verdict(data.answer_json.as_deref()));
+        for note in data.notes() {
+            let _ = writeln!(text, "{note}");
+        }
         let counts: Vec<String> = data.messages.iter().map(|(t, n)| format!("{t} {n}")).collect();
         let _ = writeln!(text, "messages: {}", counts.join(", "));
         if !data.monotonic {
