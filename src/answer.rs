@@ -508,6 +508,9 @@ pub fn yield_check(s: &Scenario, peaks: &Peaks) -> Option<Check> {
 /// A fraction as a percentage: 1 %, 0.12 %.
 pub fn percent(fraction: f64) -> String {
     let p = fraction * 100.0;
+    if p.is_infinite() {
+        return "over 1e308 %".into();
+    }
     if p.is_finite() && p != 0.0 && p.abs() < 0.01 {
         format!("{p:.1e} %")
     } else {

@@ -502,6 +502,13 @@ impl Scenario {
 
         let m = &self.motion;
         check(within("motion.time_shift", "s", m.time_shift, -1e9, 1e9));
+        if m.time_shift != 0.0 && m.file.is_empty() && m.table.is_none() {
+            check(Err(Error::invalid(
+                "motion.time_shift",
+                "0 s without a motion file (it shifts the file's time; give one with `[motion] file` or --motion)",
+                bound(m.time_shift),
+            )));
+        }
         match &m.table {
             Some(table) if m.time_shift.is_finite() && self.duration.is_finite() => {
                 check(table.check_covers(m.time_shift, m.time_shift + self.duration).map_err(|e| {

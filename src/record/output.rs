@@ -306,7 +306,7 @@ pub fn shown(path: &Path) -> String {
 pub fn check_size(file: &File, limit: u64, what: &str) -> std::io::Result<()> {
     let size = file.metadata()?.len();
     if size > limit {
-        return Err(std::io::Error::other(format!("{what} is {size} bytes, larger than the limit of {limit} bytes")));
+        return Err(std::io::Error::other(format!("{what} is {size} bytes, larger than {limit} bytes (the limit)")));
     }
     Ok(())
 }
