@@ -40,24 +40,33 @@ def main(argv: list[str] | None = None) -> int:
             sys.stdout = None
             return 0
 
+    from . import _native
     from .dask_sweep import sweep
     from .grid import parse_vary
 
+    # Every output through the CLI's guard (the native module): no NUL, symbolic link, folder,
+    # FIFO, socket or device other than /dev/null; never the FMU or the other output (by device
+    # and inode); checked before any run, and again when written (beside, then renamed).
+    inputs = [("--fmu", args.fmu)]
+    outputs = [("--out", args.out)] + ([("--json", args.json)] if args.json is not None else [])
+
+    def others(role: str) -> list:
+        return [o for o in outputs if o[0] != role]
+
     try:
-        for target in [args.out, args.json]:
-            _check_output(target)
+        for role, target in outputs:
+            _native.check_output(target, role, inputs, others(role), allow_devices=True)
         grid = parse_vary(args.vary)
         started = time.perf_counter()
         frame = sweep(grid, client=args.scheduler, fmu=args.fmu, stop_time=args.stop_time,
                       num_workers=args.workers)
+        wall = time.perf_counter() - started
+        render = {"--out": lambda: frame.to_csv(index=False), "--json": lambda: frame.to_json(orient="records", indent=1)}
+        for role, target in outputs:
+            _native.write_file(target, render[role]().encode(), role, inputs, others(role))
     except (ValueError, FileNotFoundError) as e:
         print(f"python -m beam_impact: {e}", file=sys.stderr)
         return 2
-    wall = time.perf_counter() - started
-    # Written beside and renamed into place, as the CLI's outputs are.
-    _write(args.out, lambda path: frame.to_csv(path, index=False))
-    if args.json:
-        _write(args.json, lambda path: frame.to_json(path, orient="records", indent=1))
     failed = int((frame["error"] != "").sum())
     if failed:
         print(f"python -m beam_impact: warning: {failed} of {len(frame)} scenarios failed (their rows hold the error)",
@@ -65,38 +74,6 @@ def main(argv: list[str] | None = None) -> int:
     print(f"sweep: {len(frame)} scenarios in {wall:.2f} s: {len(frame) - failed} ran, {failed} failed\n"
           f"rows written to {args.out}" + (f" and {args.json}" if args.json else ""))
     return 0
-
-
-def _check_output(path) -> None:
-    """An output must not be a symbolic link, a FIFO, a socket or a folder (the CLI's guard)."""
-    import os
-    import stat
-
-    if path is None or path == os.devnull:
-        return
-    try:
-        mode = os.lstat(path).st_mode
-    except FileNotFoundError:
-        return
-    if not stat.S_ISREG(mode):
-        raise ValueError(f"{path}: not a regular file (a symbolic link, FIFO, socket or folder is refused as output)")
-
-
-def _write(path, write) -> None:
-    import os
-
-    if path == os.devnull:
-        write(path)
-        return
-    partial = f"{path}.partial"
-    if os.path.lexists(partial):
-        os.remove(partial)
-    try:
-        write(partial)
-        os.replace(partial, path)
-    finally:
-        if os.path.lexists(partial):
-            os.remove(partial)
 
 
 if __name__ == "__main__":

@@ -27,7 +27,7 @@ import uuid
 from contextlib import nullcontext
 from typing import Any, Iterable
 
-from .fmu import CHECK_COLUMNS, FORMER_NAMES, PEAK_OUTPUTS, FmuFile, simulate
+from .fmu import CHECK_COLUMNS, FORMER_NAMES, PEAK_OUTPUTS, FmuFile, _extracted, _path_text, simulate
 from .grid import display, expand
 
 #: Dask key prefix of the sweep's tasks (the progress bar's label).
@@ -55,16 +55,16 @@ def _fmu_path(fmu: "str | os.PathLike | None") -> str:
     path = fmu if fmu is not None else os.environ.get("BEAM_IMPACT_FMU")
     if path is None:
         raise ValueError("no FMU: pass fmu=PATH (or set BEAM_IMPACT_FMU)")
-    path = os.fspath(path)
-    if not os.path.isfile(path):
+    path = _path_text(path)
+    if not os.path.lexists(path):
         raise FileNotFoundError(f"{path}: no such FMU (build it with `beam-impact pack`)")
     return path
 
 
 def _columns(fields: Iterable[str], path: str) -> list[str]:
-    from fmpy import read_model_description
-
-    md = read_model_description(path)
+    # The FMU read through the native module's checks (a regular file of at most 1 GiB), unzipped
+    # once; fmpy never opens the user's path.
+    md = _extracted(path).model_description
     names = {v.name for v in md.modelVariables}
     for f in fields:
         if f != "duration" and f not in names:
@@ -97,7 +97,8 @@ def sweep(
     `client`: None for the local threaded scheduler (`num_workers` threads, default one per core),
     a `dask.distributed.Client`, or a scheduler address ("tcp://host:8786").
     `stop_time`: simulated s per run (a varied `duration` overrides it). `progress`: show a bar
-    (default: when the output is a terminal)."""
+    (default: when the output is a terminal). The FMU is read only if it is a regular file of at
+    most 1 GiB (ValueError at once otherwise: a FIFO, a device, a folder)."""
     import pandas as pd
 
     path = _fmu_path(fmu)

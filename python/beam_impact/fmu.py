@@ -72,8 +72,18 @@ class FmuFile:
 
     @staticmethod
     def read(path: str | os.PathLike) -> "FmuFile":
-        data = Path(path).read_bytes()
-        return FmuFile(Path(path).name, data, hashlib.sha256(data).hexdigest())
+        """The FMU at `path`: a regular file of at most 1 GiB (`beam_impact._native.MAX_FMU_BYTES`,
+        checked by the native module before a byte is read: a FIFO or a device fails at once),
+        else ValueError with one line."""
+        from . import _native
+
+        data = _native.read_fmu(_path_text(path))
+        return FmuFile(Path(_path_text(path)).name, data, hashlib.sha256(data).hexdigest())
+
+
+def _path_text(path: "str | os.PathLike") -> str:
+    """A path as text for the native module (bytes paths decoded as the file system does)."""
+    return os.fsdecode(os.fspath(path))
 
 
 @dataclass
@@ -100,24 +110,26 @@ def _extracted(fmu: "str | os.PathLike | FmuFile") -> _Extracted:
     """The FMU unzipped once per process (keyed by its content), with its model description."""
     from fmpy import extract, read_model_description
 
+    from . import _native
+
     if isinstance(fmu, FmuFile):
-        key, data = fmu.sha256 or hashlib.sha256(fmu.data).hexdigest(), fmu.data
+        key, data, path = fmu.sha256 or hashlib.sha256(fmu.data).hexdigest(), fmu.data, None
     else:
-        path = os.path.abspath(os.fspath(fmu))
-        stat = os.stat(path)
-        key, data = f"{path}:{stat.st_mtime_ns}:{stat.st_size}", None
+        # Checked by the native module before anything reads it: a regular file of at most 1 GiB
+        # (_native.MAX_FMU_BYTES; ValueError at once for a FIFO, a device, a folder or a larger file).
+        path = _path_text(fmu)
+        key, data = f"{os.path.abspath(path)}:{_native.fmu_key(path)}", None
     with _lock:
         hit = _cache.get(key)
         if hit is not None:
             return hit
+        if data is None:
+            data = _native.read_fmu(path)
         scratch = tempfile.mkdtemp(prefix="beam_impact-fmu-")
         _scratch.append(scratch)
-        if data is not None:
-            source = os.path.join(scratch, fmu.name or "model.fmu")
-            with open(source, "wb") as f:
-                f.write(data)
-        else:
-            source = path
+        # fmpy reads this copy, never the user's path (which may have changed since the check).
+        source = os.path.join(scratch, "model.fmu")
+        _native.write_file(source, data, "the FMU's copy")
         directory = extract(source, unzipdir=os.path.join(scratch, "unzipped"))
         md = read_model_description(directory)
         entry = _Extracted(directory, md, {v.name for v in md.modelVariables})
@@ -336,8 +348,20 @@ def simulate(
     (default the CLI's 1e8, its `--max-steps`; the check builds the model's modes, stepping
     nothing).
 
+    The FMU at a path is read only if it is a regular file of at most 1 GiB (held in memory whole;
+    `beam_impact._native.MAX_FMU_BYTES`);
+    otherwise, and for a `log_path` that the output guard of the CLI refuses (a NUL in it, a
+    symbolic link, a folder, a FIFO, a socket or a device, or the FMU file itself, compared by
+    device and inode), ValueError with one line, before the FMU is loaded.
+
     The instance is driven here through fmpy's FMU2Slave / FMU3Slave (not `simulate_fmu`), so that
     runs on several threads of one process keep their logger messages apart (see _Fmi2Messages)."""
+    log_text = "" if log_path is None else _path_text(log_path)
+    if log_text:
+        from . import _native
+
+        inputs = [] if isinstance(fmu, FmuFile) else [("the FMU", _path_text(fmu))]
+        _native.check_output(log_text, "log_path", inputs)
     entry = _extracted(fmu)
     md = entry.model_description
     start, duration = _start_values(dict(parameters or {}), entry.names)
@@ -346,7 +370,7 @@ def simulate(
     if not 0 < stop_time <= 1e6:
         raise SimulationError(f"stop time must be > 0 s and at most 1e6 s (the FMU's limit), got {stop_time}")
     _check_steps(start, stop_time, max_steps)
-    start["log.path"] = "" if log_path is None else os.fspath(log_path)
+    start["log.path"] = log_text
     if output_interval is None:
         output_interval = min(1e-3, stop_time) if histories else stop_time
     method = [v.name for v in md.modelVariables if v.name.startswith("energy_method.")]

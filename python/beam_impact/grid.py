@@ -1,12 +1,14 @@
-"""Grids of scenarios, with the semantics of `beam-impact sweep` (src/sweep.rs).
+"""Grids of scenarios, with the semantics of `beam-impact sweep` (src/studies/sweep.rs).
 
 A grid is a dict {field: [values]}; its scenarios are the product of the lists in the dict's
 order, the last field varying fastest (`itertools.product`). A `--vary` SPEC is
 `start:stop:count` (inclusive, linear: value i is `start + (stop - start) * i / (count - 1)` to 15
 significant digits, the last exactly `stop`; count 1 is `start`) or a comma list. Integer fields
-are rounded (half away from zero) and their duplicates dropped, the first kept. The arithmetic is
-the CLI's, so both give the same bits.
+are rounded (half away from zero) and their duplicates dropped, the first kept.
 
+Text is read by the CLI's own parser (the native module: `parse_vary` and `parse_spec` are
+`beam-impact sweep --vary`'s, `parse_value` its `--set` value's), so Python accepts exactly what
+the CLI accepts (numbers in Rust's grammar: no `1_0`, ASCII digits only) and gives the same bits.
 Values are read per field: numbers; "auto" (0 in the FMU) for the time steps, the element counts
 and `modal_cutoff`; "mean", "left", "right" (0, 1, 2 in the FMU) for `stress_recovery`;
 "converged", "paper" (0, 1) for `method`. In results they are shown as the CLI writes them: "auto"
@@ -46,33 +48,15 @@ PEAKS = (
 
 
 def parse_value(field: str, text: Any) -> float:
-    """One value of `field` in the FMU's parameter form."""
+    """One value of `field` in the FMU's parameter form: a Python number as it is, text read by the
+    CLI's parser (a name the CLI does not know, an FMU-only variable, takes a number)."""
+    from . import _native
+
     if isinstance(text, bool):
         raise ValueError(f"{field} takes a number, got {text!r}")
     if isinstance(text, (int, float)):
         return float(text)
-    t = str(text).strip()
-    if field in AUTO_FIELDS and t == "auto":
-        return 0.0
-    if field in SYMBOLIC and t in SYMBOLIC[field]:
-        return float(SYMBOLIC[field].index(t))
-    try:
-        return float(t)
-    except ValueError:
-        raise ValueError(f"{field} takes {_expected(field)}, got `{t}`") from None
-
-
-def _expected(field: str) -> str:
-    if field in TIME_STEP_FIELDS:
-        return 'a time step in s or "auto"'
-    if field in AUTO_FIELDS:
-        return f'{"a whole number" if field in INTEGER_FIELDS else "a number"} or "auto"'
-    if field in SYMBOLIC:
-        *rest, last = SYMBOLIC[field]
-        return f"{', '.join(rest)} or {last}"
-    if field in INTEGER_FIELDS:
-        return "a whole number"
-    return "a number"
+    return _native.parse_value(str(field), str(text))
 
 
 def display(field: str, value: float) -> Any:
@@ -112,12 +96,6 @@ def linspace(start: float, stop: float, count: int) -> list[float]:
 MAX_SCENARIOS = 1_000_000
 
 
-def quoted(text: Any) -> str:
-    """At most 200 characters of user text for a one-line message."""
-    t = str(text)
-    return t if len(t) <= 200 else t[:200] + "..."
-
-
 def normalize(field: str, values: Iterable[Any]) -> list[float]:
     """Values in parameter form; integer fields rounded and deduplicated (first kept)."""
     parsed = []
@@ -140,37 +118,18 @@ def normalize(field: str, values: Iterable[Any]) -> list[float]:
 
 
 def parse_spec(field: str, spec: str) -> list[float]:
-    """A SPEC, `start:stop:count` or a comma list, as the CLI reads it."""
-    if ":" in spec:
-        parts = spec.split(":")
-        if len(parts) != 3:
-            raise ValueError(f"SPEC is start:stop:count (inclusive, linear) or a comma list, got `{spec}`")
-        try:
-            count = int(parts[2].strip())
-        except ValueError:
-            count = 0
-        if not 1 <= count <= MAX_SCENARIOS:
-            raise ValueError(f"the count of start:stop:count must be a whole number from 1 to {MAX_SCENARIOS}, "
-                             f"got `{quoted(parts[2])}`")
-        return normalize(field, linspace(parse_value(field, parts[0]), parse_value(field, parts[1]), count))
-    return normalize(field, spec.split(","))
+    """A SPEC, `start:stop:count` or a comma list, read by the CLI's parser (`--vary field=SPEC`)."""
+    (values,) = parse_vary([f"{field}={spec}"]).values()
+    return values
 
 
 def parse_vary(texts: Iterable[str]) -> dict[str, list[float]]:
-    """`--vary KEY=SPEC` options into a grid dict (a field given twice is an error)."""
-    grid: dict[str, list[float]] = {}
-    for text in texts:
-        key, sep, spec = text.partition("=")
-        key = key.strip()
-        if not sep or not key:
-            raise ValueError(f"--vary expects KEY=SPEC, got `{text}`")
-        if key in grid:
-            raise ValueError(f"--vary {key} is given twice")
-        try:
-            grid[key] = parse_spec(key, spec)
-        except ValueError as e:
-            raise ValueError(f"--vary {text}: {e}") from None
-    return grid
+    """`--vary KEY=SPEC` options into a grid dict, read by the CLI's parser (`beam-impact sweep
+    --vary`, through the native module): what the CLI refuses (an unknown field, a field given
+    twice, `1_0`, non-ASCII digits) raises ValueError with the CLI's one-line message."""
+    from . import _native
+
+    return dict(_native.parse_vary(list(texts)))
 
 
 def expand(grid: dict[str, Iterable[Any]]) -> list[dict[str, float]]:

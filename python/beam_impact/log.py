@@ -16,6 +16,8 @@
     log.stopped_early       why the log ended before the run (its size cap), "" if it did not
     log.rollbacks           FMU states restored: the steps they superseded are left out, as `report` does
     log.answer              the run's verdict and checks as `beam-impact run` stored them (dict), or None
+    log.motion_csv          the support-motion table the run used (the log's `motion.csv`), or None
+    log.motion              that table as a pandas.DataFrame (`time`, then its columns), or None
 
 The file is read by the Rust reader of `beam-impact report` (the native module
 `beam_impact._native`, built by `pip install ./python`), not by a second reader in Python: every
@@ -26,6 +28,11 @@ complete chunk and no summary: it loads up to its last complete chunk, with `com
 `problem` saying where it ends. Any file that is not a readable beam-impact log (a FIFO, a device,
 a folder, an unknown log format, damaged records before any step) raises `LogError`, one line.
 Step 0 is the initial state.
+
+A run with moving supports replays from its log alone: the motion table it used is stored in the
+log (the attachment `motion.csv`, its rows as the CLI read them), and `motion_csv` / `motion` come
+from there, never from the motion file the scenario names (`motion.file`, which may be gone or
+changed). A log written before logs carried the table has `motion_csv` None.
 
 Both log formats load. Format 2 (metadata `log_format` = 2) keeps the modal coordinates on
 `/beam/modes` (every 1 ms, at contact changes, at the arrestor's peak deflection and at the last
@@ -109,6 +116,30 @@ class Log:
     #: `discretisation`, as in `run --json`); None when the log holds none (an FMU's log, or
     #: one written before it was stored) or it does not parse.
     answer: dict | None = None
+    #: The support-motion table the run used, as stored in the log (`motion.csv`: a header of
+    #: `time` and the support-motion columns given, one line per row); None when the run's
+    #: supports did not move, or the log was written before logs carried the table.
+    motion_csv: str | None = None
+
+    @property
+    def motion(self):
+        """The support-motion table the run used (`motion_csv`) as a pandas.DataFrame, one row per
+        row of the table: `time` (s, the motion file's time: the run's t = 0 is `motion.time_shift`)
+        and the columns the table gave (`upper.hinge_heave`, `lower.clamp_rotation_velocity`, ...;
+        m, m/s, m/s2, rad, rad/s, rad/s2); None when the log holds no table. Read by the CLI's
+        motion-table parser (the native module); a table it refuses raises LogError."""
+        if self.motion_csv is None:
+            return None
+        import pandas as pd
+
+        from . import _native
+
+        try:
+            columns, data = _native.parse_motion(self.motion_csv)
+        except ValueError as e:
+            raise LogError(_one_line(f"the log's motion table (motion.csv) is refused: {e}", 600)) from None
+        values = np.frombuffer(data, dtype=np.float64).reshape(-1, 1 + len(columns))
+        return pd.DataFrame(values, columns=["time", *columns])
 
     def dataframe(self):
         """The step channel as a pandas.DataFrame, one row per internal step (step 0 first)."""
@@ -182,6 +213,7 @@ def _from_native(raw: dict) -> Log:
         stopped_early=raw["stopped_early"],
         rollbacks=raw["rollbacks"],
         answer=_answer(raw["answer_json"]),
+        motion_csv=raw["motion_csv"],
     )
 
 
@@ -215,6 +247,12 @@ def main(argv: list[str]) -> int:
     print(f"{argv[1]}: {len(s['step'])} step messages to t = {s['time'][-1]:.6f} s; messages {log.counts}")
     if not log.complete:
         print(f"incomplete log (a killed run?): {log.problem}")
+    if log.motion_csv is not None:
+        try:
+            motion = log.motion
+            print(f"support motion: {len(motion)} rows of {', '.join(motion.columns[1:])} (the log's motion.csv)")
+        except LogError as e:
+            print(f"support motion: {e}")
     peak = int(np.argmax(np.abs(s["lower_tip_deflection"])))
     print(f"largest arrestor end deflection {abs(s['lower_tip_deflection'][peak]):.4f} m at t = {s['time'][peak]:.5f} s")
     for name in ["lower_clamp_bending_stress", "lower_clamp_shear_stress", "upper_contact_bending_stress"]:

@@ -3,14 +3,26 @@
 //! file, memory the file plus one chunk plus at most 16x the file kept) and no log is read by two
 //! codes. The Python side (`beam_impact/log.py`) turns the flat buffers into numpy arrays.
 //! `check_run` holds `beam_impact.simulate` to the CLI's limits before the FMU steps.
+//! `parse_vary` and `parse_value` are the CLI's `--vary` and value parsers (one grammar of numbers).
+//! Every file the package writes goes through the CLI's output guard (`write_file`,
+//! `check_output`), and an FMU is read only if it is a regular file under `MAX_FMU_BYTES` (1 GiB)
+//! (`fmu_key`, `read_fmu`), issue 27.
 
 use std::collections::HashMap;
-use std::path::PathBuf;
+use std::fs::File;
+use std::io::{Read, Write};
+use std::path::{Path, PathBuf};
 
+use beam_impact::model::motion_table::MotionTable;
 use beam_impact::model::parameters;
+use beam_impact::model::support_motion::MOTION_NAMES;
+use beam_impact::record::output::{
+    check_distinct, check_size, open_output, open_regular_input, partial_for, shown, OutputFile,
+};
 use beam_impact::replay::report::{read_log_with, LogData, ReadOptions};
 use beam_impact::results::StepResult;
-use beam_impact::{Scenario, Simulation};
+use beam_impact::studies::sweep;
+use beam_impact::{Error, Scenario, Simulation};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList};
@@ -77,7 +89,7 @@ fn columns<'py>(py: Python<'py>, steps: &[StepResult]) -> PyResult<Bound<'py, Py
 fn to_python<'py>(py: Python<'py>, data: &LogData) -> PyResult<Bound<'py, PyDict>> {
     let model = data.model.as_ref().ok_or_else(|| {
         let why = data.problem.as_deref().map_or(String::new(), |p| format!(" ({p})"));
-        PyValueError::new_err(format!("no /beam/model message{why}"))
+        value_error(format!("no /beam/model message{why}"))
     })?;
     let (rows, cols) = (model.shape_rows as usize, model.shape_cols as usize);
     if rows.checked_mul(cols) != Some(model.nodal_shapes.len()) {
@@ -119,6 +131,7 @@ fn to_python<'py>(py: Python<'py>, data: &LogData) -> PyResult<Bound<'py, PyDict
     out.set_item("rollbacks", data.rollbacks)?;
     out.set_item("log_format", data.log_format)?;
     out.set_item("answer_json", data.answer_json.clone())?;
+    out.set_item("motion_csv", data.motion_csv.clone())?;
     Ok(out)
 }
 
@@ -127,9 +140,7 @@ fn to_python<'py>(py: Python<'py>, data: &LogData) -> PyResult<Bound<'py, PyDict
 /// readable beam-impact log. The GIL is released while the file is read.
 #[pyfunction]
 fn load_log<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyDict>> {
-    let data = py
-        .detach(|| read_log_with(&path, ReadOptions { history: true }))
-        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let data = py.detach(|| read_log_with(&path, ReadOptions { history: true })).map_err(value_error)?;
     to_python(py, &data)
 }
 
@@ -140,7 +151,7 @@ fn load_log<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyDict>>
 /// one-line message otherwise. Builds the model and its modes (tens of ms), steps nothing.
 #[pyfunction]
 fn check_run(py: Python<'_>, values: HashMap<String, f64>, stop_time: f64, max_steps: u64) -> PyResult<u64> {
-    let error = |e: beam_impact::Error| PyValueError::new_err(e.to_string());
+    let error = |e: beam_impact::Error| value_error(e);
     let mut scenario = Scenario::default();
     for (name, value) in &values {
         if let Ok(parameter) = parameters::find(name) {
@@ -158,11 +169,206 @@ fn check_run(py: Python<'_>, values: HashMap<String, f64>, stop_time: f64, max_s
     .map_err(error)
 }
 
+/// Largest FMU file the package opens, bytes (1 GiB): the FMU is held in memory whole (read
+/// once, scattered to a cluster's workers), and `beam-impact pack` refuses a binary over 1 GiB;
+/// the FMU of this project is about 2 MB.
+const MAX_FMU_BYTES: u64 = 1 << 30;
+
+/// The one-line ValueError of a library error, as the CLI prints it (`bounded_line` of
+/// `src/cli/common.rs`): line breaks and tabs as spaces, other control characters (a terminal's
+/// escape sequences from a hostile value) as U+FFFD, and a line over 600 characters cut to its
+/// first 400 and last 150 with the count cut between.
+fn value_error(e: impl ToString) -> PyErr {
+    PyValueError::new_err(one_line(&e.to_string()))
+}
+
+fn one_line(message: &str) -> String {
+    let chars: Vec<char> = message
+        .chars()
+        .map(|c| match c {
+            '\n' | '\r' | '\t' => ' ',
+            c if c.is_control() => '\u{FFFD}',
+            c => c,
+        })
+        .collect();
+    if chars.len() <= 600 {
+        return chars.into_iter().collect();
+    }
+    let head: String = chars[..400].iter().collect();
+    let tail: String = chars[chars.len() - 150..].iter().collect();
+    format!("{head} [... {} characters cut ...] {tail}", chars.len() - 550)
+}
+
+/// Refuses a path holding a NUL character: the operating system (and fmpy's C strings) would cut
+/// the name there, so `results.csv\0.mcap` would write `results.csv`.
+fn refuse_nul(role: &str, path: &Path) -> PyResult<()> {
+    if path.as_os_str().as_encoded_bytes().contains(&0) {
+        return Err(value_error(format!(
+            "{role} {}: a path holding a NUL character is refused (the file's name would be cut there)",
+            shown(path)
+        )));
+    }
+    Ok(())
+}
+
+/// Files a call names, each with its role in messages ("the FMU", "--out").
+type Named = Vec<(String, PathBuf)>;
+
+/// The output guard's checks of `path` (`role` in messages), before anything is written: no NUL
+/// in any path; not one file (device and inode) with an input or another output, nor the
+/// `NAME.partial` of one; not a symbolic link, a folder, a FIFO or a socket; a device only
+/// where `allow_devices`, and then only the null device.
+fn guard(role: &str, path: &Path, inputs: &Named, others: &Named, allow_devices: bool) -> PyResult<()> {
+    if path.as_os_str().is_empty() {
+        return Err(value_error(format!("{role}: an empty path is refused (give a file name)")));
+    }
+    refuse_nul(role, path)?;
+    for (r, p) in inputs.iter().chain(others) {
+        refuse_nul(r, p)?;
+    }
+    let mut files: Vec<(&str, &Path)> = inputs.iter().map(|(r, p)| (r.as_str(), p.as_path())).collect();
+    files.push((role, path));
+    files.extend(others.iter().map(|(r, p)| (r.as_str(), p.as_path())));
+    check_distinct(&files).map_err(value_error)?;
+    let refused =
+        |source| value_error(Error::Io { action: "cannot create", path: format!("{role} {}", shown(path)), source });
+    match partial_for(path) {
+        Err(e) => Err(refused(e)),
+        Ok(Some(_)) => Ok(()),
+        Ok(None) if !allow_devices => Err(refused(std::io::Error::other("it is a device, not a regular file"))),
+        // Opening checks that the device is the null device (never blocks, writes nothing).
+        Ok(None) => open_output(path, true, "cannot create").map(drop).map_err(value_error),
+    }
+}
+
+/// Checks an output that another writes (the FMU's `log.path`) as the guard would, creating
+/// nothing: ValueError with one line if `path` holds a NUL, names one of `inputs` or
+/// `other_outputs` (lists of (role, path), compared by device and inode), or is a symbolic link,
+/// a folder, a FIFO, a socket or a device (`allow_devices`: the null device is allowed).
+#[pyfunction]
+#[pyo3(signature = (path, role = "output", inputs = Vec::new(), other_outputs = Vec::new(), allow_devices = false))]
+fn check_output(path: PathBuf, role: &str, inputs: Named, other_outputs: Named, allow_devices: bool) -> PyResult<()> {
+    guard(role, &path, &inputs, &other_outputs, allow_devices)
+}
+
+/// Writes `data` to `path` through the CLI's output guard: the checks of `check_output` (the
+/// null device allowed, as the CLI's outputs), then written to `NAME.partial` beside it (created
+/// exclusively, never through a link) and renamed over NAME when complete, so an earlier NAME
+/// stays whole until then. ValueError with one line otherwise. The GIL is released while writing.
+#[pyfunction]
+#[pyo3(signature = (path, data, role = "output", inputs = Vec::new(), other_outputs = Vec::new()))]
+fn write_file(
+    py: Python<'_>,
+    path: PathBuf,
+    data: &[u8],
+    role: &str,
+    inputs: Named,
+    other_outputs: Named,
+) -> PyResult<()> {
+    guard(role, &path, &inputs, &other_outputs, true)?;
+    py.detach(|| {
+        let mut file = OutputFile::create(&path, true, "cannot create")?;
+        file.write_all(data).map_err(|source| Error::Io { action: "cannot write", path: shown(&path), source })?;
+        file.commit()
+    })
+    .map_err(value_error)
+}
+
+/// Opens the FMU at `path`: a regular file (never a FIFO, a device or a folder: opening never
+/// blocks) of at most [`MAX_FMU_BYTES`], its size read from its metadata.
+fn open_fmu(path: &Path) -> PyResult<File> {
+    refuse_nul("the FMU", path)?;
+    let file = open_regular_input(path, "cannot read FMU").map_err(value_error)?;
+    check_size(&file, MAX_FMU_BYTES, "the FMU")
+        .map_err(|source| value_error(Error::Io { action: "cannot read FMU", path: shown(path), source }))?;
+    Ok(file)
+}
+
+/// What identifies the FMU file's content for a cache, read from the opened file (after the
+/// checks of `read_fmu`): its size, modification time and, on Unix, device and inode.
+#[pyfunction]
+fn fmu_key(path: PathBuf) -> PyResult<String> {
+    let m = open_fmu(&path)?.metadata().map_err(value_error)?;
+    let modified = m.modified().ok().and_then(|t| t.duration_since(std::time::UNIX_EPOCH).ok());
+    let mut key = format!("{}:{}", m.len(), modified.map_or(0, |d| d.as_nanos()));
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        key += &format!(":{}:{}", m.dev(), m.ino());
+    }
+    Ok(key)
+}
+
+/// The FMU file's bytes: a regular file of at most [`MAX_FMU_BYTES`] (checked before a byte is
+/// read, and again while reading), else ValueError with one line. The GIL is released.
+#[pyfunction]
+fn read_fmu<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyBytes>> {
+    let file = open_fmu(&path)?;
+    let bytes = py
+        .detach(|| {
+            let mut bytes = Vec::new();
+            file.take(MAX_FMU_BYTES + 1).read_to_end(&mut bytes)?;
+            if bytes.len() as u64 > MAX_FMU_BYTES {
+                return Err(std::io::Error::other(format!("the FMU is larger than {MAX_FMU_BYTES} bytes (the limit)")));
+            }
+            Ok(bytes)
+        })
+        .map_err(|source| value_error(Error::Io { action: "cannot read FMU", path: shown(&path), source }))?;
+    Ok(PyBytes::new(py, &bytes))
+}
+
+/// `--vary KEY=SPEC` options read by the CLI's parser (`beam-impact sweep --vary`): a list of
+/// (field, values) in order, values in parameter form (integer fields rounded, duplicates
+/// dropped); ValueError with the CLI's one-line message for anything the CLI refuses.
+#[pyfunction]
+fn parse_vary(texts: Vec<String>) -> PyResult<Vec<(String, Vec<f64>)>> {
+    let axes = sweep::parse_axes(&texts).map_err(value_error)?;
+    Ok(axes.into_iter().map(|a| (a.field.name.to_string(), a.values)).collect())
+}
+
+/// One value of `field` as the CLI reads it (`--set`, `--vary`): a number in Rust's grammar
+/// (no `1_0`, ASCII digits only), `auto` (0) where the field has it, a symbolic field's names.
+/// A name the CLI does not know (an FMU-only variable) takes a number. ValueError otherwise.
+#[pyfunction]
+fn parse_value(field: &str, text: &str) -> PyResult<f64> {
+    match sweep::field(field) {
+        Ok(parameter) => sweep::parse_value(parameter, text).map_err(value_error),
+        Err(_) => text
+            .trim()
+            .parse::<f64>()
+            .map_err(|_| value_error(format!("{field} takes a number, got `{}`", text.trim()))),
+    }
+}
+
+/// The log's motion table (`motion.csv`, `Log.motion_csv`) read by the CLI's parser: (columns,
+/// rows as f64 bytes, row-major, `time` first then the columns); ValueError with the parser's
+/// one-line message for a table it refuses.
+#[pyfunction]
+fn parse_motion<'py>(py: Python<'py>, text: &str) -> PyResult<(Vec<&'static str>, Bound<'py, PyBytes>)> {
+    let table = py.detach(|| MotionTable::parse(text)).map_err(value_error)?;
+    let slots: Vec<usize> =
+        table.columns.iter().map(|c| MOTION_NAMES.iter().position(|n| n == c).unwrap_or(0)).collect();
+    let rows = table.times.iter().zip(&table.motions).flat_map(|(&time, motion)| {
+        let values = motion.values();
+        std::iter::once(time).chain(slots.iter().map(move |&k| values[k]))
+    });
+    let bytes = f64_bytes(py, rows);
+    Ok((table.columns, bytes))
+}
+
 /// The module `beam_impact._native`.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(load_log, m)?)?;
     m.add_function(wrap_pyfunction!(check_run, m)?)?;
+    m.add_function(wrap_pyfunction!(check_output, m)?)?;
+    m.add_function(wrap_pyfunction!(write_file, m)?)?;
+    m.add_function(wrap_pyfunction!(fmu_key, m)?)?;
+    m.add_function(wrap_pyfunction!(read_fmu, m)?)?;
+    m.add_function(wrap_pyfunction!(parse_vary, m)?)?;
+    m.add_function(wrap_pyfunction!(parse_value, m)?)?;
+    m.add_function(wrap_pyfunction!(parse_motion, m)?)?;
+    m.add("MAX_FMU_BYTES", MAX_FMU_BYTES)?;
     m.add("MAX_STEPS", beam_impact::model::scenario::MAX_STEPS)?;
     // One name per quantity: the step channel's columns as `report --csv` names them.
     m.add("STEP_COLUMNS", beam_impact::replay::csv::names())?;
