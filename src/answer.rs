@@ -240,11 +240,15 @@ pub fn check_scenarios(scenario: &Scenario) -> Result<Vec<Scenario>> {
     })
 }
 
-/// The twin: the drop height changed by [`TWIN_PERTURBATION`] (relative, or absolute from 0 m).
+/// The twin: the drop height changed by [`TWIN_PERTURBATION`] (relative, or absolute from 0 m),
+/// or a stated impact speed changed by it (relative, or absolute from 0 rad/s).
 pub fn twin_scenario(scenario: &Scenario) -> Scenario {
     let mut twin = scenario.clone();
-    let h = scenario.drop_height;
-    twin.drop_height = if h > 0.0 { h * (1.0 + TWIN_PERTURBATION) } else { TWIN_PERTURBATION };
+    let nudge = |x: f64| if x > 0.0 { x * (1.0 + TWIN_PERTURBATION) } else { TWIN_PERTURBATION };
+    match scenario.impact_angular_velocity {
+        Some(omega) => twin.impact_angular_velocity = Some(nudge(omega)),
+        None => twin.drop_height = nudge(scenario.drop_height),
+    }
     twin
 }
 

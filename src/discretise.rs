@@ -25,7 +25,7 @@ fn set_elements(s: &mut Scenario, [lower, inner, outer]: [u32; 3]) {
     if s.upper.elements_to_contact == 0 {
         s.upper.elements_to_contact = inner;
     }
-    if s.upper.elements_beyond_contact == 0 {
+    if s.upper.elements_beyond_contact == 0 && !s.contact_at_free_end() {
         s.upper.elements_beyond_contact = outer;
     }
 }
@@ -89,9 +89,19 @@ pub const LIGHT_DAMPING_CUTOFF: f64 = 2.0;
 fn rung(scenario: &Scenario, index: usize, divisor: u32) -> Result<Scenario> {
     let mut s = scenario.clone();
     let r = LADDER[index];
-    for count in [&mut s.lower.elements, &mut s.upper.elements_to_contact, &mut s.upper.elements_beyond_contact] {
+    let at_end = s.contact_at_free_end();
+    for count in [&mut s.lower.elements, &mut s.upper.elements_to_contact] {
         *count = if *count == 0 { r.elements } else { count.div_ceil(divisor) };
     }
+    // Nothing lies beyond a contact at the bridge's free end.
+    let beyond = &mut s.upper.elements_beyond_contact;
+    *beyond = if at_end {
+        0
+    } else if *beyond == 0 {
+        r.elements
+    } else {
+        beyond.div_ceil(divisor)
+    };
     if s.modal_cutoff == 0.0 {
         s.validate()?;
         s.modal_cutoff = r.cutoff_factor * light_damping_factor(scenario) * reference_frequency(scenario)?;

@@ -313,6 +313,17 @@ pub struct TimeSteps {
     pub contact: f64,
 }
 
+/// The impact as the run starts it (issue 28): printed by every run, `--json`'s `impact`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Impact {
+    /// The bridge's angular velocity about its hinge at first contact, rad/s, free end moving
+    /// down: stated, or from the drop height (Eqs. 20-22).
+    pub angular_velocity: f64,
+    /// The speed at which the contact point closes the gap at t = 0, m/s: omega_0 d plus the
+    /// supports' closing speed.
+    pub closing_speed: f64,
+}
+
 /// The whole run's summary: what the CLI prints and `--json` writes.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Summary {
@@ -344,4 +355,7 @@ pub struct Summary {
     pub first_contact_end: Option<f64>,
     /// The time steps used.
     pub time_steps: TimeSteps,
+    /// The impact's angular velocity and closing speed.
+    #[serde(default)]
+    pub impact: Impact,
 }

@@ -9,11 +9,11 @@ use crate::model::system::PROBES;
 use crate::model::{Method, Model, Probe, Scenario, SupportMotion};
 use crate::record::{NullRecorder, Recorder, RunInfo};
 use crate::results::{
-    seconds, ContactEvent, ContactWindow, EnergyAccount, FirstContact, ModeTable, Peaks, Quality, StepResult, Summary,
-    TimeSteps,
+    seconds, ContactEvent, ContactWindow, EnergyAccount, FirstContact, Impact, ModeTable, Peaks, Quality, StepResult,
+    Summary, TimeSteps,
 };
 use crate::solver::contact::{self, Stage};
-use crate::solver::initial::initial_state;
+use crate::solver::initial::{initial_state, Pitching};
 use crate::solver::{
     DenseStepper, Energies, EnergyMethod, Excitation, Kinematics, ModalStepper, ModalSystem, StepPlan, Stepper,
     TipForces,
@@ -242,6 +242,8 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     /// The outputs at `state.output_ns` (interpolated inside the next internal step when the
     /// communication point falls inside one).
     output: StepResult,
+    /// The impact as the initial state starts it.
+    impact: Impact,
 }
 
 impl Simulation<ModalStepper> {
@@ -338,8 +340,14 @@ impl<S: Stepper> Simulation<S> {
         };
         let backup = state.kinematics.clone();
         let output = StepResult::default();
+        let impact = Impact {
+            angular_velocity: Pitching::of(&model.scenario, model.scenario.gravity + motion.accelerations()[0])
+                .angular_velocity,
+            closing_speed: -((model.probes.row(Probe::Gap as usize) * &physical.velocity)[0]
+                + motion.gap_offset_rate(model.scenario.lower.length)),
+        };
         let mut simulation =
-            Simulation { model, modal, stepper, energy_method, nodal_shapes, plan, state, backup, output };
+            Simulation { model, modal, stepper, energy_method, nodal_shapes, plan, state, backup, output, impact };
         simulation.evaluate_initial();
         Ok(simulation)
     }
@@ -969,7 +977,7 @@ impl<S: Stepper> Simulation<S> {
         let state = &self.state;
         let mut quality = Quality::assess(
             state.max_residual,
-            s.upper.mass * s.gravity * s.drop_height,
+            s.impact_energy(),
             state.max_external_work,
             state.max_strain_energy,
             s.energy_tolerance,
@@ -1073,7 +1081,13 @@ impl<S: Stepper> Simulation<S> {
             first_contact_peaks: s.first_contact.peaks,
             first_contact_end: s.first_contact.end(),
             time_steps: TimeSteps { free: seconds(self.plan.free_ns), contact: seconds(self.plan.contact_ns) },
+            impact: self.impact,
         }
+    }
+
+    /// The impact's angular velocity and closing speed at t = 0.
+    pub fn impact(&self) -> Impact {
+        self.impact
     }
 }
 

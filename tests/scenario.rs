@@ -25,6 +25,8 @@ fn each_invalid_parameter_is_rejected_by_name() {
         "method",
         "lower.yield_stress",
         "upper.yield_stress",
+        // Not given (from drop_height).
+        "impact_angular_velocity",
     ];
     for p in PARAMETERS {
         let mut bad = vec![-3.0];
@@ -62,7 +64,7 @@ fn negative_length_message_names_field_unit_and_value() {
 fn contact_position_beyond_bridge_and_zero_elements_are_rejected() {
     let s = Scenario { contact_position: 30.0, ..Scenario::default() };
     let message = Simulation::new(&s).unwrap_err().to_string();
-    assert!(message.starts_with("contact_position must be inside the upper beam"), "{message}");
+    assert!(message.starts_with("contact_position must be on the upper beam, 0 < d <= upper.length"), "{message}");
     assert!(message.contains("29") && message.contains("30"), "{message}");
     let mut s = Scenario::default();
     s.lower.elements = 257;

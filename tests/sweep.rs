@@ -219,7 +219,7 @@ fn a_failing_scenario_is_a_row_with_its_error_and_the_sweep_goes_on() {
         let (d, h) = (row["contact_position"].as_str(), row["drop_height"].as_str());
         let error = &row["error"];
         if d == "40" {
-            assert!(error.contains("contact_position must be inside the upper beam"), "{error}");
+            assert!(error.contains("contact_position must be on the upper beam"), "{error}");
         }
         if h == "-1" {
             assert!(error.contains("drop_height must be >= 0 m, got -1"), "{error}");

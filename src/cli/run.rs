@@ -104,6 +104,19 @@ pub fn run(args: &RunArgs) -> Result<bool> {
         resolved.upper.elements_beyond_contact,
         scenario.duration
     );
+    let impact = summary.impact;
+    text += &format!(
+        "impact: the bridge turns at {:.6} rad/s about its hinge ({}), its contact point closing at {:.6} m/s\n\n",
+        impact.angular_velocity,
+        match scenario.impact_angular_velocity {
+            Some(_) => "as stated: impact_angular_velocity".to_string(),
+            None => format!(
+                "from drop_height = {} m: omega_0 = sqrt(3 g alpha_0 / l_u), alpha_0 = atan(2 h / l_u), Eqs. 20-22",
+                scenario.drop_height
+            ),
+        },
+        impact.closing_speed
+    );
     if let Some(table) = &scenario.motion.table {
         text += &format!(
             "supports moving: {} ({} rows of {}, each with its velocity and acceleration), from its time {} s; \
@@ -160,6 +173,7 @@ pub fn run(args: &RunArgs) -> Result<bool> {
             "quality": answer.quality,
             "design": answer.design,
             "discretisation": discretisation_json(&answer),
+            "impact": summary.impact,
             "merged_contact_windows": compare::merged_windows(&summary.contact_windows, beam_impact::results::BOUNCE_GAP),
             "units": json_units(),
             "wall_time_s": wall.as_secs_f64(),

@@ -39,7 +39,7 @@ pub const MAGIC: &[u8; 8] = b"BEAMFMU\0";
 
 /// Version of the byte format; bump it when the layout, [`Snapshot`], [`RunState`] or the set of
 /// FMU parameters changes.
-pub const FORMAT_VERSION: u32 = 4;
+pub const FORMAT_VERSION: u32 = 5;
 
 /// Bytes before the payload.
 pub const HEADER: usize = 24;
@@ -306,7 +306,8 @@ mod tests {
         out.insert(format!("{prefix}: {leaf}"));
     }
 
-    /// The payload's layout at FORMAT_VERSION 4 (4: the supports' motion, its start and input, the
+    /// The payload's layout at FORMAT_VERSION 5 (5: the impact's angular velocity among the FMU
+    /// parameters; 4: the supports' motion, its start and input, the
     /// inertial potential and the supports' displacements in the results; 3: the method, modal cut-off, discretisation
     /// tolerance, allowables and yield stresses; the discretisation check's run states): every field path of `Snapshot` and its type, the
     /// FMU parameters by name. Version 2 (one bump for issues 7, 8 and 9): the energy verdict, the
@@ -319,8 +320,8 @@ mod tests {
     /// list together. (A DVector is nalgebra's `[data, nrows, ncols]`: `[][]` the data, `[]` the
     /// sizes; `null` an absent Option or the static column count.)
     #[test]
-    fn snapshot_fields_are_pinned_at_format_version_4() {
-        const VERSION_4: &[&str] = &[
+    fn snapshot_fields_are_pinned_at_format_version_5() {
+        const VERSION_5: &[&str] = &[
             "checks[].contact_windows[].end: f64",
             "checks[].contact_windows[].start: f64",
             "checks[].dissipation_rate: f64",
@@ -425,6 +426,7 @@ mod tests {
             "parameters.drop_height: f64",
             "parameters.energy_tolerance: f64",
             "parameters.gravity: f64",
+            "parameters.impact_angular_velocity: f64",
             "parameters.lower.allowable_bending_stress: f64",
             "parameters.lower.allowable_shear_stress: f64",
             "parameters.lower.elastic_modulus: f64",
@@ -555,7 +557,7 @@ mod tests {
         let found: Vec<&str> = found.iter().map(String::as_str).collect();
         assert_eq!(
             (FORMAT_VERSION, found.as_slice()),
-            (4, VERSION_4),
+            (5, VERSION_5),
             "Snapshot's fields changed: bump FORMAT_VERSION and update the pinned list"
         );
     }

@@ -193,6 +193,18 @@ pub const PARAMETERS: &[Parameter] = &[
     ),
     real!("lower.yield_stress", "Pa", "Arrestor yield stress; 0: none given", lower.yield_stress),
     real!("upper.yield_stress", "Pa", "Bridge yield stress; 0: none given", upper.yield_stress),
+    Parameter {
+        name: "impact_angular_velocity",
+        unit: "rad/s",
+        description: "The bridge's angular velocity about its hinge at first contact, free end moving down; 0: not \
+                      given (from drop_height, Eqs. 20-22; with a speed, set drop_height = 0)",
+        kind: Kind::Real,
+        get: |s| s.impact_angular_velocity.unwrap_or(0.0),
+        put: |s, v| {
+            s.impact_angular_velocity = if v == 0.0 { None } else { Some(v) };
+            Ok(())
+        },
+    },
 ];
 
 /// Looks a parameter up by name.
@@ -226,7 +238,7 @@ pub const RANGES: &[(&str, Option<f64>, Option<f64>)] = &[
     ("rayleigh_beta", Some(0.0), Some(1.0)),
     ("step_free", Some(0.0), Some(1.0)),
     ("step_contact", Some(0.0), Some(1.0)),
-    ("gravity", Some(SMALLEST_POSITIVE), Some(100.0)),
+    ("gravity", Some(0.0), Some(100.0)),
     ("upper.length", Some(0.01), Some(1e3)),
     ("upper.mass", Some(1e-3), Some(1e9)),
     ("upper.elastic_modulus", Some(1e6), Some(1e13)),
@@ -255,6 +267,7 @@ pub const RANGES: &[(&str, Option<f64>, Option<f64>)] = &[
     ("upper.allowable_bending_stress", Some(1e-3), Some(1e12)),
     ("lower.yield_stress", Some(0.0), Some(1e12)),
     ("upper.yield_stress", Some(0.0), Some(1e12)),
+    ("impact_angular_velocity", Some(0.0), Some(crate::model::scenario::MAX_IMPACT_ANGULAR_VELOCITY)),
 ];
 
 /// The smallest positive f64: a lower bound "> 0" in the FMU's `min` (FMI has no exclusive bound).
@@ -302,6 +315,14 @@ fn range_text(name: &str) -> Option<String> {
 /// `toml` (a scenario as [`Scenario::to_toml`] writes it) with each field's unit and description
 /// as a comment on its line, from this table (what `beam-impact scenario` prints; a TOML reader
 /// skips the comments). In TOML an automatic value is `"auto"`, where the FMU takes 0.
+/// A field's comment in `beam-impact scenario`: its unit, description and range.
+fn annotation(p: &Parameter) -> String {
+    let unit = if p.unit.is_empty() { "-" } else { p.unit };
+    let description = p.description.replace("0: automatic", "\"auto\": automatic");
+    let range = range_text(p.name).map_or_else(String::new, |r| format!("; range {r}"));
+    format!("[{unit}] {description}{range}")
+}
+
 pub fn annotate_toml(toml: &str) -> String {
     let mut section = String::new();
     let mut out = String::new();
@@ -313,10 +334,12 @@ pub fn annotate_toml(toml: &str) -> String {
         let key = trimmed.split_once(" = ").map(|(k, _)| format!("{section}{}", k.trim()));
         match key.as_deref().and_then(|k| find(k).ok()) {
             Some(p) => {
-                let unit = if p.unit.is_empty() { "-" } else { p.unit };
-                let description = p.description.replace("0: automatic", "\"auto\": automatic");
-                let range = range_text(p.name).map_or_else(String::new, |r| format!("; range {r}"));
-                out.push_str(&format!("{line}  # [{unit}] {description}{range}\n"));
+                out.push_str(&format!("{line}  # {}\n", annotation(p)));
+                // The impact's speed, an alternative to the drop height, is shown commented out.
+                if p.name == "drop_height" && !toml.lines().any(|l| l.starts_with("impact_angular_velocity = ")) {
+                    let speed = find("impact_angular_velocity").expect("a parameter");
+                    out.push_str(&format!("# impact_angular_velocity = 0.2  # {}\n", annotation(speed)));
+                }
             }
             None if key.as_deref().is_some_and(|k| k.ends_with(".tip_force")) => {
                 out.push_str(&format!(
@@ -343,7 +366,10 @@ mod tests {
         let text = annotate_toml(&Scenario::default().to_toml());
         for (name, _, _) in RANGES {
             let key = name.rsplit('.').next().unwrap_or(name);
-            let line = text.lines().find(|l| l.starts_with(&format!("{key} = "))).unwrap_or_else(|| panic!("{name}"));
+            let line = text
+                .lines()
+                .find(|l| l.starts_with(&format!("{key} = ")) || l.starts_with(&format!("# {key} = ")))
+                .unwrap_or_else(|| panic!("{name}"));
             assert!(line.contains("  # ["), "{name}: no unit: {line}");
             let named_choice = matches!(*name, "method" | "stress_recovery");
             assert_eq!(line.contains("; range "), !named_choice, "{name}: {line}");

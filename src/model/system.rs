@@ -74,7 +74,8 @@ impl Model {
             ("upper.elements_to_contact", scenario.upper.elements_to_contact),
             ("upper.elements_beyond_contact", scenario.upper.elements_beyond_contact),
         ] {
-            if count == 0 {
+            let none_beyond = name == "upper.elements_beyond_contact" && scenario.contact_at_free_end();
+            if count == 0 && !none_beyond {
                 return Err(crate::error::Error::invalid(
                     name,
                     "resolved before a model is assembled (crate::discretise::printed resolves \"auto\")",
@@ -117,11 +118,18 @@ impl Model {
         put(Probe::Gap, Some(-lower.deflection_functional(lower_tip)), Some(upper.deflection_functional(inner)));
         put(Probe::ClampMoment, Some(lower.start_moment_functional(0)), None);
         put(Probe::ClampShear, Some(lower.start_shear_functional(0)), None);
-        let (left, right) = (upper.end_moment_functional(inner - 1), upper.start_moment_functional(inner));
-        let contact_moment = match s.stress_recovery {
-            StressRecovery::Mean => (left + right) * 0.5,
-            StressRecovery::Left => left,
-            StressRecovery::Right => right,
+        let left = upper.end_moment_functional(inner - 1);
+        // At the bridge's free end the moment is zero (the boundary condition M(l_u) = 0; the
+        // element's end moment there is only its inertia's share, which vanishes with the mesh).
+        let contact_moment = if inner == upper_tip {
+            left * 0.0
+        } else {
+            let right = upper.start_moment_functional(inner);
+            match s.stress_recovery {
+                StressRecovery::Mean => (left + right) * 0.5,
+                StressRecovery::Left => left,
+                StressRecovery::Right => right,
+            }
         };
         put(Probe::UpperContactMoment, None, Some(contact_moment));
         Ok(Model {

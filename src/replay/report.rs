@@ -548,7 +548,7 @@ pub fn summary_from_log(data: &LogData, simulation: &Simulation) -> Result<Summa
             let s = simulation.scenario();
             Quality::assess(
                 max_residual,
-                s.upper.mass * s.gravity * s.drop_height,
+                s.impact_energy(),
                 max_work,
                 max_strain,
                 s.energy_tolerance,
@@ -561,6 +561,7 @@ pub fn summary_from_log(data: &LogData, simulation: &Simulation) -> Result<Summa
             let plan = simulation.step_plan();
             TimeSteps { free: seconds(plan.free_ns), contact: seconds(plan.contact_ns) }
         },
+        impact: simulation.impact(),
     })
 }
 

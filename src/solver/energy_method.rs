@@ -84,7 +84,16 @@ impl EnergyMethod {
         let k_f = 3.0 * l.elastic_modulus * l.second_moment / l.length.powi(3);
         let weight = s.upper.mass * s.gravity;
         let (lu, d, h) = (s.upper.length, s.contact_position, s.drop_height);
-        let w = (weight * lu + (weight * (8.0 * d * d * h * k_f + weight * lu * lu)).sqrt()) / (2.0 * d * k_f);
+        // The arrestor's strain energy 1/2 k_f w^2 takes the impact's energy E_0 and the bridge's
+        // weight's further work W l_u w / (2 d): for a drop E_0 = W h (the paper's form below);
+        // for a stated speed E_0 is the bridge's kinetic energy (and W may be 0).
+        let w = match s.impact_angular_velocity {
+            None => (weight * lu + (weight * (8.0 * d * d * h * k_f + weight * lu * lu)).sqrt()) / (2.0 * d * k_f),
+            Some(_) => {
+                let lever = weight * lu / d;
+                (lever + (lever * lever + 8.0 * k_f * s.impact_energy()).sqrt()) / (2.0 * k_f)
+            }
+        };
         let force = k_f * w;
         let strain_energy = 0.5 * force * w;
         let bridge = DeceleratedBridge::new(s.upper.mass, lu, s.gravity, d, force);

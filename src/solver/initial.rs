@@ -30,6 +30,26 @@ impl Pitching {
         let fall_time = (4.0 / 3.0 * length / gravity * initial_angle).sqrt();
         Pitching { initial_angle, angular_acceleration, fall_time, angular_velocity: angular_acceleration * fall_time }
     }
+
+    /// The pitching at impact of a bridge stated by its angular velocity `angular_velocity` at
+    /// first contact (horizontal there): Eq. (17)'s angular acceleration under `gravity` (0 with
+    /// none); the release angle and fall time are those of a fall from rest to that speed under
+    /// `gravity` (Eqs. 21-22 inverted; 0 and infinite without gravity).
+    pub fn at_speed(angular_velocity: f64, length: f64, gravity: f64) -> Pitching {
+        let angular_acceleration = 1.5 * gravity / length;
+        let fall_time = angular_velocity / angular_acceleration;
+        let initial_angle = 0.75 * gravity / length * fall_time * fall_time;
+        Pitching { initial_angle, angular_acceleration, fall_time, angular_velocity }
+    }
+
+    /// The pitching of scenario `s` under `gravity` (g plus the hinge's acceleration): from its
+    /// impact speed when stated, else from its drop height.
+    pub fn of(s: &crate::model::Scenario, gravity: f64) -> Pitching {
+        match s.impact_angular_velocity {
+            Some(omega) => Pitching::at_speed(omega, s.upper.length, gravity),
+            None => Pitching::new(s.drop_height, s.upper.length, gravity),
+        }
+    }
 }
 
 /// Physical displacements, velocities and accelerations at t = 0 (global DOFs), relative to the
@@ -48,7 +68,9 @@ pub fn initial_state(model: &Model, modal: &ModalSystem, excitation: &Excitation
         }
     }
     let hinge_gravity = s.gravity + excitation.support_acceleration[0];
-    if hinge_gravity.is_nan() || hinge_gravity <= 0.0 {
+    // A drop needs a fall; a stated speed does not (gravity may be 0).
+    let falls = s.impact_angular_velocity.is_none();
+    if hinge_gravity.is_nan() || (falls && hinge_gravity <= 0.0) {
         return Err(Error::invalid(
             "upper.hinge_heave_acceleration",
             format!(
@@ -72,7 +94,7 @@ pub fn initial_state(model: &Model, modal: &ModalSystem, excitation: &Excitation
         })?;
 
     // Bridge, Eq. (23): rigid rotation about the hinge, pitching down (w = -x alpha, theta = -alpha).
-    let pitching = Pitching::new(s.drop_height, s.upper.length, hinge_gravity);
+    let pitching = Pitching::of(s, hinge_gravity);
     let mut rotation = DVector::zeros(nu);
     for node in &model.upper.mesh.nodes {
         if let Some(i) = node.w {

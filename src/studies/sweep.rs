@@ -227,6 +227,14 @@ pub fn apply_settings(scenario: &mut Scenario, settings: &[Setting]) -> Result<(
     for s in settings {
         set(scenario, s.field, s.value)?;
     }
+    // The impact is stated one way: a speed set here replaces the drop height it would otherwise
+    // come from, and a drop height set here the speed (both set here: refused by validation).
+    let given = |name: &str| settings.iter().any(|s| s.field.name == name);
+    match (given("impact_angular_velocity"), given("drop_height")) {
+        (true, false) if scenario.impact_angular_velocity.is_some() => scenario.drop_height = 0.0,
+        (false, true) => scenario.impact_angular_velocity = None,
+        _ => {}
+    }
     validate(scenario)
 }
 
@@ -635,10 +643,9 @@ impl Sweep {
     /// The scenario of grid point `values`, validated (every invalid field in one error).
     pub fn scenario(&self, values: &[f64]) -> Result<Scenario> {
         let mut scenario = self.base.clone();
-        for (axis, &value) in self.axes.iter().zip(values) {
-            set(&mut scenario, axis.field, value)?;
-        }
-        validate(&scenario)?;
+        let settings: Vec<Setting> =
+            self.axes.iter().zip(values).map(|(axis, &value)| Setting { field: axis.field, value }).collect();
+        apply_settings(&mut scenario, &settings)?;
         Ok(scenario)
     }
 
