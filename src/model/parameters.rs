@@ -312,9 +312,6 @@ fn range_text(name: &str) -> Option<String> {
     }
 }
 
-/// `toml` (a scenario as [`Scenario::to_toml`] writes it) with each field's unit and description
-/// as a comment on its line, from this table (what `beam-impact scenario` prints; a TOML reader
-/// skips the comments). In TOML an automatic value is `"auto"`, where the FMU takes 0.
 /// A field's comment in `beam-impact scenario`: its unit, description and range.
 fn annotation(p: &Parameter) -> String {
     let unit = if p.unit.is_empty() { "-" } else { p.unit };
@@ -323,6 +320,9 @@ fn annotation(p: &Parameter) -> String {
     format!("[{unit}] {description}{range}")
 }
 
+/// `toml` (a scenario as [`Scenario::to_toml`] writes it) with each field's unit and description
+/// as a comment on its line, from this table (what `beam-impact scenario` prints; a TOML reader
+/// skips the comments). In TOML an automatic value is `"auto"`, where the FMU takes 0.
 pub fn annotate_toml(toml: &str) -> String {
     let mut section = String::new();
     let mut out = String::new();
