@@ -292,12 +292,17 @@ fn initial_physical_state(model: &Model, full: &ModalSystem, motion: &SupportMot
 }
 
 /// The excitation of the tip forces and the supports' motion at one instant.
+/// The excitation of the supports' `motion` and the tip `forces`. The contact acts on the gap
+/// plus the supports' offset plus the contact's clearance (issue 28): a clearance c makes the
+/// contact act only once the beams have closed c beyond touching.
 fn excitation(model: &Model, forces: TipForces, motion: &SupportMotion) -> Excitation {
     let length = model.scenario.lower.length;
+    let clearance = model.scenario.contact.clearance;
+    let offset = motion.gap_offset(length);
     Excitation {
         forces,
         support_acceleration: motion.accelerations(),
-        gap_offset: motion.gap_offset(length),
+        gap_offset: if clearance == 0.0 { offset } else { offset + clearance },
         gap_offset_rate: motion.gap_offset_rate(length),
     }
 }

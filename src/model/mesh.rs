@@ -29,6 +29,8 @@ pub enum Support {
     Clamped,
     /// Deflection fixed, rotation free (the bridge's hinge).
     Hinged,
+    /// Every node fixed: a rigid support (issue 28), a beam without free DOFs.
+    Rigid,
 }
 
 impl Support {
@@ -38,7 +40,7 @@ impl Support {
     /// unreliable on fine meshes (the absolute error grows like omega_max^2 ~ N^4).
     pub fn rigid_modes(self) -> usize {
         match self {
-            Support::Clamped => 0,
+            Support::Clamped | Support::Rigid => 0,
             Support::Hinged => 1,
         }
     }
@@ -57,7 +59,7 @@ impl Mesh {
             .enumerate()
             .map(|(i, &x)| {
                 let (w, theta) = match (i, support) {
-                    (0, Support::Clamped) => (None, None),
+                    (_, Support::Rigid) | (0, Support::Clamped) => (None, None),
                     (0, Support::Hinged) => (None, next()),
                     _ => (next(), next()),
                 };
@@ -71,6 +73,11 @@ impl Mesh {
     pub fn cantilever(length: f64, elements: usize) -> Mesh {
         let x: Vec<f64> = (0..=elements).map(|i| length * i as f64 / elements as f64).collect();
         Mesh::new(&x, Support::Clamped)
+    }
+
+    /// A rigid support of `length` m: one element, no free DOF.
+    pub fn rigid(length: f64) -> Mesh {
+        Mesh::new(&[0.0, length], Support::Rigid)
     }
 
     /// A hinged-free beam with a node at `contact_position`: `inner` equal elements up to it and

@@ -2,7 +2,7 @@
 //! variables and the CLI's messages take names, units and descriptions from.
 
 use super::discretisation::Method;
-use super::scenario::{Scenario, MAX_ELEMENTS};
+use super::scenario::{Scenario, SupportKind, MAX_ELEMENTS};
 use super::stress_recovery::StressRecovery;
 use super::time_step::TimeStep;
 use crate::error::{Error, Result};
@@ -205,6 +205,36 @@ pub const PARAMETERS: &[Parameter] = &[
             Ok(())
         },
     },
+    Parameter {
+        name: "lower.kind",
+        unit: "",
+        description: "What the bridge strikes: 0 the arrestor beam, 1 a rigid point (the contact element alone is the \
+                      support's spring)",
+        kind: Kind::Integer,
+        get: |s| f64::from(s.lower.kind.index()),
+        put: |s, v| {
+            s.lower.kind = SupportKind::from_index(v)
+                .ok_or_else(|| Error::invalid("lower.kind", "0 (beam) or 1 (rigid)", v))?;
+            Ok(())
+        },
+    },
+    Parameter {
+        name: "contact.stiffness",
+        unit: "N/m",
+        description: "The contact's rate k given directly; 0: the bar's E A_c / l_c",
+        kind: Kind::Real,
+        get: |s| s.contact.given_stiffness.unwrap_or(0.0),
+        put: |s, v| {
+            s.contact.given_stiffness = if v == 0.0 { None } else { Some(v) };
+            Ok(())
+        },
+    },
+    real!(
+        "contact.clearance",
+        "m",
+        "A gap the bodies close after first touching before the contact acts",
+        contact.clearance
+    ),
 ];
 
 /// Looks a parameter up by name.
@@ -268,6 +298,9 @@ pub const RANGES: &[(&str, Option<f64>, Option<f64>)] = &[
     ("lower.yield_stress", Some(0.0), Some(1e12)),
     ("upper.yield_stress", Some(0.0), Some(1e12)),
     ("impact_angular_velocity", Some(0.0), Some(crate::model::scenario::MAX_IMPACT_ANGULAR_VELOCITY)),
+    ("lower.kind", Some(0.0), Some(1.0)),
+    ("contact.stiffness", Some(0.0), Some(1e13)),
+    ("contact.clearance", Some(0.0), Some(10.0)),
 ];
 
 /// The smallest positive f64: a lower bound "> 0" in the FMU's `min` (FMI has no exclusive bound).
@@ -292,7 +325,7 @@ fn range_text(name: &str) -> Option<String> {
         }
     };
     match name {
-        "method" | "stress_recovery" => return None,
+        "method" | "stress_recovery" | "lower.kind" => return None,
         "drop_height" => return Some("0 to upper.length / 2 (500 at most)".into()),
         "contact_position" => return Some("> 0, below upper.length".into()),
         "step_free" | "step_contact" => return Some("\"auto\", or 1e-9 to 1".into()),
@@ -320,6 +353,18 @@ fn annotation(p: &Parameter) -> String {
     format!("[{unit}] {description}{range}")
 }
 
+/// Fields of a section that a scenario leaves out unless given, with an example value.
+const OPTIONAL_FIELDS: [(&str, &str); 3] =
+    [("lower.kind", "\"rigid\""), ("contact.stiffness", "2.8e10"), ("contact.clearance", "0.001")];
+
+/// Whether section `[name]` of `toml` sets `key`.
+fn section_has(toml: &str, name: &str, key: &str) -> bool {
+    toml.parse::<toml::Table>()
+        .ok()
+        .and_then(|t| t.get(name).and_then(|s| s.as_table()).map(|s| s.contains_key(key)))
+        .unwrap_or(false)
+}
+
 /// `toml` (a scenario as [`Scenario::to_toml`] writes it) with each field's unit and description
 /// as a comment on its line, from this table (what `beam-impact scenario` prints; a TOML reader
 /// skips the comments). In TOML an automatic value is `"auto"`, where the FMU takes 0.
@@ -330,6 +375,19 @@ pub fn annotate_toml(toml: &str) -> String {
         let trimmed = line.trim();
         if let Some(name) = trimmed.strip_prefix('[').and_then(|t| t.strip_suffix(']')) {
             section = format!("{name}.");
+            out.push_str(line);
+            out.push('\n');
+            // Optional fields (absent when not given) are shown commented out, with an example.
+            for (field, example) in OPTIONAL_FIELDS {
+                let key = field.strip_prefix(section.as_str());
+                let given = |k: &str| section_has(toml, name, k);
+                if let (Some(key), Ok(p)) = (key, find(field)) {
+                    if !given(key) {
+                        out.push_str(&format!("# {key} = {example}  # {}\n", annotation(p)));
+                    }
+                }
+            }
+            continue;
         }
         let key = trimmed.split_once(" = ").map(|(k, _)| format!("{section}{}", k.trim()));
         match key.as_deref().and_then(|k| find(k).ok()) {
@@ -371,7 +429,7 @@ mod tests {
                 .find(|l| l.starts_with(&format!("{key} = ")) || l.starts_with(&format!("# {key} = ")))
                 .unwrap_or_else(|| panic!("{name}"));
             assert!(line.contains("  # ["), "{name}: no unit: {line}");
-            let named_choice = matches!(*name, "method" | "stress_recovery");
+            let named_choice = matches!(*name, "method" | "stress_recovery" | "lower.kind");
             assert_eq!(line.contains("; range "), !named_choice, "{name}: {line}");
         }
         assert!(text.contains("drop_height = 0.567  # [m] ") && text.contains("range 0 to upper.length / 2"));

@@ -59,10 +59,50 @@ impl Default for UpperBeam {
     }
 }
 
+/// What the bridge strikes (issue 28): the arrestor beam, or a rigid point.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SupportKind {
+    /// The paper's arrestor: a cantilever with a tip mass (the default).
+    #[default]
+    Beam,
+    /// A fixed point under the contact: the contact element alone is the support's spring
+    /// (its stiffness `contact.stiffness`, or the bar's E A / l). The arrestor's fields do not
+    /// apply; its outputs (deflection, clamp stresses) are 0.
+    Rigid,
+}
+
+impl SupportKind {
+    /// The FMU's Integer parameter: 0 beam, 1 rigid.
+    pub fn index(self) -> u32 {
+        match self {
+            SupportKind::Beam => 0,
+            SupportKind::Rigid => 1,
+        }
+    }
+
+    /// From the FMU's Integer parameter; `None` outside 0..=1.
+    pub fn from_index(value: f64) -> Option<SupportKind> {
+        match value {
+            0.0 => Some(SupportKind::Beam),
+            1.0 => Some(SupportKind::Rigid),
+            _ => None,
+        }
+    }
+
+    fn is_beam(&self) -> bool {
+        *self == SupportKind::Beam
+    }
+}
+
 /// The arrestor (lower beam): clamped at x = 0, free at x = `length` with a lumped tip mass.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct LowerBeam {
+    /// `"beam"` (the default: the arrestor) or `"rigid"` (a fixed point under the contact; the
+    /// other fields of `[lower]` do not apply).
+    #[serde(skip_serializing_if = "SupportKind::is_beam")]
+    pub kind: SupportKind,
     /// Length l_l, m. Paper: 12 m.
     pub length: f64,
     /// Mass of the uniform beam m_l, kg (Eq. 13): the two longitudinal I-beams, 2 x 0.05374 m^2 x 12 m x 7850 kg/m^3.
@@ -95,6 +135,7 @@ pub struct LowerBeam {
 impl Default for LowerBeam {
     fn default() -> Self {
         LowerBeam {
+            kind: SupportKind::Beam,
             length: 12.0,
             mass: 10_124.0,
             tip_mass: 1_576.0,
@@ -121,18 +162,30 @@ pub struct ContactBar {
     pub length: f64,
     /// Young's modulus, Pa. Paper: 2.1e11 Pa (stiffness E A_c / l_c = 2.8e10 N/m).
     pub elastic_modulus: f64,
+    /// The contact's rate k, N/m, given directly (issue 28) instead of the bar's E A_c / l_c
+    /// (give one of the two). Absent: the bar's.
+    #[serde(default, skip_serializing_if = "Option::is_none", rename = "stiffness")]
+    pub given_stiffness: Option<f64>,
+    /// A gap the bodies close before the contact acts, m (default 0): the beams start touching
+    /// geometrically and the contact force begins once they have closed another `clearance`.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub clearance: f64,
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 impl Default for ContactBar {
     fn default() -> Self {
-        ContactBar { area: 0.04, length: 0.3, elastic_modulus: 2.1e11 }
+        ContactBar { area: 0.04, length: 0.3, elastic_modulus: 2.1e11, given_stiffness: None, clearance: 0.0 }
     }
 }
 
 impl ContactBar {
-    /// Axial stiffness E A_c / l_c, N/m (Eq. 3).
+    /// Axial stiffness k, N/m: as given, or the bar's E A_c / l_c (Eq. 3).
     pub fn stiffness(&self) -> f64 {
-        self.elastic_modulus * self.area / self.length
+        self.given_stiffness.unwrap_or(self.elastic_modulus * self.area / self.length)
     }
 }
 
@@ -377,8 +430,33 @@ impl Scenario {
         let mut scenario: Scenario = toml::from_str(text)
             .map_err(|e| Error::Scenario { path: path.to_string(), message: one_line(&e.to_string()) })?;
         // A speed stated without a drop height: the drop height is not the default's but 0.
-        if scenario.impact_angular_velocity.is_some() && !has_key(text, "drop_height") {
+        if scenario.impact_angular_velocity.is_some() && !has_key(text, &["drop_height"]) {
             scenario.drop_height = 0.0;
+        }
+        // What one field states, another may not state too.
+        let bar = ["area", "length", "elastic_modulus"].map(|k| format!("contact.{k}"));
+        let given_bar: Vec<&str> = bar.iter().map(String::as_str).filter(|k| has_key(text, &split(k))).collect();
+        if scenario.contact.given_stiffness.is_some() && !given_bar.is_empty() {
+            return Err(Error::Other(format!(
+                "contact.stiffness and {} are both given: the contact's rate is one or the bar's E A / l, not both",
+                given_bar.join(", ")
+            )));
+        }
+        if scenario.lower.kind == SupportKind::Rigid {
+            if let Ok(table) = text.parse::<toml::Table>() {
+                let beam_fields: Vec<String> = table
+                    .get("lower")
+                    .and_then(|l| l.as_table())
+                    .map(|l| l.keys().filter(|k| *k != "kind").map(|k| format!("lower.{k}")).collect())
+                    .unwrap_or_default();
+                if !beam_fields.is_empty() {
+                    return Err(Error::Other(format!(
+                        "lower.kind = \"rigid\" has no arrestor beam, but {} {} given: leave them out",
+                        beam_fields.join(", "),
+                        if beam_fields.len() == 1 { "is" } else { "are" }
+                    )));
+                }
+            }
         }
         let mut errors = scenario.validation_errors();
         match errors.len() {
@@ -543,6 +621,10 @@ impl Scenario {
         }));
         check(tip_force("lower.tip_force", l.tip_force));
 
+        if let Some(k) = c.given_stiffness {
+            check(size("contact.stiffness", "N/m", k, 1e-3, 1e13));
+        }
+        check(within("contact.clearance", "m", c.clearance, 0.0, 10.0));
         check(size("contact.area", "m^2", c.area, 1e-12, 1e3));
         check(size("contact.length", "m", c.length, 1e-6, 1e3));
         check(size("contact.elastic_modulus", "Pa", c.elastic_modulus, 1e6, 1e13));
@@ -590,9 +672,22 @@ impl Scenario {
     }
 }
 
-/// Whether the TOML `text` (already parsed once) sets the top-level `key`.
-fn has_key(text: &str, key: &str) -> bool {
-    text.parse::<toml::Table>().is_ok_and(|t| t.contains_key(key))
+/// Whether the TOML `text` (already parsed once) sets the key at `path` (`["contact", "area"]`).
+fn has_key(text: &str, path: &[&str]) -> bool {
+    let Ok(table) = text.parse::<toml::Table>() else { return false };
+    let mut value = &toml::Value::Table(table);
+    for key in path {
+        match value.as_table().and_then(|t| t.get(*key)) {
+            Some(v) => value = v,
+            None => return false,
+        }
+    }
+    true
+}
+
+/// A dotted name's parts.
+fn split(name: &str) -> Vec<&str> {
+    name.split('.').collect()
 }
 
 fn one_line(text: &str) -> String {

@@ -5,7 +5,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::assembly::Beam;
 use super::mesh::Mesh;
-use super::scenario::Scenario;
+use super::scenario::{Scenario, SupportKind};
 use super::stress_recovery::StressRecovery;
 use crate::error::Result;
 
@@ -84,13 +84,17 @@ impl Model {
             }
         }
         let s = scenario;
-        let lower = Beam::assemble(
-            Mesh::cantilever(s.lower.length, s.lower.elements as usize),
-            s.lower.elastic_modulus * s.lower.second_moment,
-            s.lower.mass,
-            s.lower.tip_mass,
-            s.gravity,
-        );
+        let lower = match s.lower.kind {
+            SupportKind::Beam => Beam::assemble(
+                Mesh::cantilever(s.lower.length, s.lower.elements as usize),
+                s.lower.elastic_modulus * s.lower.second_moment,
+                s.lower.mass,
+                s.lower.tip_mass,
+                s.gravity,
+            ),
+            // A rigid point: no free DOF, no mass; every functional of it is empty.
+            SupportKind::Rigid => Beam::assemble(Mesh::rigid(s.lower.length), 1.0, 0.0, 0.0, s.gravity),
+        };
         let inner = s.upper.elements_to_contact as usize;
         let upper = Beam::assemble(
             Mesh::hinged_free(s.upper.length, s.contact_position, inner, s.upper.elements_beyond_contact as usize),

@@ -42,6 +42,10 @@ pub fn natural_modes(stiffness: &DMatrix<f64>, mass: &DMatrix<f64>, rigid_modes:
     if rigid_modes > n {
         return Err(Error::RigidModeCount { what: "natural modes", expected: rigid_modes, dofs: n });
     }
+    // A structure without free DOFs (a rigid support) has no modes.
+    if n == 0 {
+        return Ok(Modes { omega: DVector::zeros(0), shapes: DMatrix::zeros(0, 0) });
+    }
     let cholesky = mass.clone().cholesky().ok_or_else(|| Error::Numerical {
         what: "natural modes",
         detail: format!("the {n}x{n} mass matrix is not positive definite"),

@@ -81,7 +81,10 @@ impl EnergyMethod {
     /// Eqs. (29), (33), (35), (36) for a scenario.
     pub fn new(s: &Scenario) -> EnergyMethod {
         let l = &s.lower;
-        let k_f = 3.0 * l.elastic_modulus * l.second_moment / l.length.powi(3);
+        // The support's spring: the arrestor's flexion (Eq. 29), or for a rigid support the
+        // contact element alone.
+        let rigid = s.lower.kind == crate::model::scenario::SupportKind::Rigid;
+        let k_f = if rigid { s.contact.stiffness() } else { 3.0 * l.elastic_modulus * l.second_moment / l.length.powi(3) };
         let weight = s.upper.mass * s.gravity;
         let (lu, d, h) = (s.upper.length, s.contact_position, s.drop_height);
         // The arrestor's strain energy 1/2 k_f w^2 takes the impact's energy E_0 and the bridge's
@@ -104,8 +107,8 @@ impl EnergyMethod {
             flexion_stiffness: k_f,
             tip_deflection: w,
             force,
-            clamp_bending_stress: force * l.length / l.section_modulus,
-            clamp_shear_stress: force / l.shear_area,
+            clamp_bending_stress: if rigid { 0.0 } else { force * l.length / l.section_modulus },
+            clamp_shear_stress: if rigid { 0.0 } else { force / l.shear_area },
             strain_energy,
             bridge_deceleration: bridge.deceleration,
             bridge_contact_moment,

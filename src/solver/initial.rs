@@ -86,12 +86,15 @@ pub fn initial_state(model: &Model, modal: &ModalSystem, excitation: &Excitation
     let load_lower = model.lower.gravity_load.clone() + external.rows(0, nl);
     let load_upper = model.upper.gravity_load.clone() + external.rows(nl, nu);
 
-    // Arrestor, Eqs. (25)-(26): at rest in its static deflection.
-    let lower_displacement =
+    // Arrestor, Eqs. (25)-(26): at rest in its static deflection (a rigid support: none).
+    let lower_displacement = if nl == 0 {
+        DVector::zeros(0)
+    } else {
         model.lower.stiffness.clone().cholesky().map(|c| c.solve(&load_lower)).ok_or_else(|| Error::Numerical {
             what: "initial conditions",
             detail: "the arrestor's stiffness matrix is singular".into(),
-        })?;
+        })?
+    };
 
     // Bridge, Eq. (23): rigid rotation about the hinge, pitching down (w = -x alpha, theta = -alpha).
     let pitching = Pitching::of(s, hinge_gravity);
@@ -130,9 +133,18 @@ pub fn initial_state(model: &Model, modal: &ModalSystem, excitation: &Excitation
     let no_dof =
         |what: &str| Error::Numerical { what: "initial conditions", detail: format!("{what} has no deflection DOF") };
     let contact_w = model.upper.mesh.nodes[model.contact_node].w.ok_or_else(|| no_dof("the bridge's contact node"))?;
-    let lower_tip_w = model.lower.mesh.tip().w.ok_or_else(|| no_dof("the arrestor's end"))?;
-    // The beams touch: the bridge's relative deflection there is the arrestor's less the supports' offset.
-    let target = lower_displacement[lower_tip_w] - excitation.gap_offset;
+    // The beams touch: the bridge's relative deflection there is the arrestor's (0 for a rigid
+    // support) less the supports' offset.
+    let lower_tip = match model.lower.mesh.tip().w {
+        Some(w) => lower_displacement[w],
+        None if nl == 0 => 0.0,
+        None => return Err(no_dof("the arrestor's end")),
+    };
+    // (The excitation's offset holds the contact's clearance too: the beams touch
+    // geometrically, the clearance still to close.)
+    let clearance = s.contact.clearance;
+    let supports = if clearance == 0.0 { excitation.gap_offset } else { excitation.gap_offset - clearance };
+    let target = lower_tip - supports;
     let rigid = (0..nu).find(|&i| modal.upper.omega[i] == 0.0).ok_or_else(|| Error::Numerical {
         what: "initial conditions",
         detail: "the hinged bridge has no rigid-body mode".into(),
@@ -149,8 +161,8 @@ pub fn initial_state(model: &Model, modal: &ModalSystem, excitation: &Excitation
     // The beams touch at t = 0, to round-off relative to the deflections (the fuzzer found
     // valid scenarios with large deflections for which an absolute 1e-9 m failed).
     debug_assert!({
-        let gap = (model.probes.row(Probe::Gap as usize) * &state.displacement)[0] + excitation.gap_offset;
-        gap.abs() <= 1e-9 * (1.0 + state.displacement.amax() + excitation.gap_offset.abs())
+        let gap = (model.probes.row(Probe::Gap as usize) * &state.displacement)[0] + supports;
+        gap.abs() <= 1e-9 * (1.0 + state.displacement.amax() + supports.abs())
     });
     Ok(state)
 }
