@@ -10,7 +10,7 @@ use std::time::{SystemTime, UNIX_EPOCH};
 
 use super::boundary::panic_message;
 use super::description;
-use super::logger::{c_string, log_with, Logger};
+use super::logger::{c_string, log_with, number, significant, Logger};
 use super::state::{parameters_of, scenario_with, Snapshot};
 use super::status::{Mask, State, Status};
 use super::variables::{table, Column, Source, Tip, Type, Variable};
@@ -57,15 +57,6 @@ pub const MAX_ABSOLUTE_TIME: f64 = 1e6;
 /// Whether `t` is a time the FMU accepts: |t| <= [`MAX_ABSOLUTE_TIME`] (NaN is not).
 fn within_time_limit(t: f64) -> bool {
     t.abs() <= MAX_ABSOLUTE_TIME
-}
-
-/// A time for a message: plain, or in exponent form when huge (1e300 is not 301 digits).
-fn time_text(t: f64) -> String {
-    if t.abs() >= 1e7 {
-        format!("{t:e}")
-    } else {
-        format!("{t}")
-    }
 }
 
 /// An FMU instance (the opaque `fmi2Component` / `fmi3Instance`).
@@ -355,13 +346,14 @@ impl Instance {
     /// `SetupExperiment` / the time arguments of FMI 3's `EnterInitializationMode`.
     pub fn setup_experiment(&mut self, start_time: f64, stop_time: Option<f64>) -> Outcome<Status> {
         if !within_time_limit(start_time) {
-            return Err(format!("startTime must be within +-{MAX_ABSOLUTE_TIME:e} s, got {}", time_text(start_time)));
+            return Err(format!("startTime must be within +-{MAX_ABSOLUTE_TIME:e} s, got {}", number(start_time)));
         }
         if let Some(stop) = stop_time {
             if !(within_time_limit(stop) && stop >= start_time) {
                 return Err(format!(
-                    "stopTime must be >= startTime = {start_time} and within +-{MAX_ABSOLUTE_TIME:e} s, got {}",
-                    time_text(stop)
+                    "stopTime must be >= startTime = {} and within +-{MAX_ABSOLUTE_TIME:e} s, got {}",
+                    number(start_time),
+                    number(stop)
                 ));
             }
         }
@@ -545,25 +537,29 @@ impl Instance {
         let now = self.time();
         if !(current.is_finite() && step.is_finite() && step > 0.0) {
             return Err(format!(
-                "the communication step must be finite and > 0 s, got currentCommunicationPoint = {current}, \
-                 communicationStepSize = {step}"
+                "the communication step must be finite and > 0 s, got currentCommunicationPoint = {}, \
+                 communicationStepSize = {}",
+                number(current),
+                number(step)
             ));
         }
         if (current - now).abs() > time_tolerance(now) {
             return Err(format!(
-                "currentCommunicationPoint = {current} s is not the FMU's time {now} s (tolerance {:e} s)",
+                "currentCommunicationPoint = {} s is not the FMU's time {} s (tolerance {:e} s)",
+                number(current),
+                number(now),
                 time_tolerance(now)
             ));
         }
         let end = current + step;
         if let Some(stop) = self.stop_time {
             if end > stop + time_tolerance(stop) {
-                return Err(format!("the step ends at {end} s, after stopTime = {stop} s"));
+                return Err(format!("the step ends at {} s, after stopTime = {} s", number(end), number(stop)));
             }
         }
         let target_ns = ((end - self.start_time) * 1e9).round();
         if !(0.0..=1.8e19).contains(&target_ns) {
-            return Err(format!("the step ends at {end} s, outside the FMU's time range"));
+            return Err(format!("the step ends at {} s, outside the FMU's time range", number(end)));
         }
         let target_ns = target_ns as u64;
         let early = self.version == Version::Fmi3 && self.early_return_allowed;
@@ -581,7 +577,7 @@ impl Instance {
                 self.log(
                     Status::Warning,
                     Status::Warning.category(),
-                    &format!("support motion at t = {current} s: {m}; the values are used as given{more}"),
+                    &format!("support motion at t = {} s: {m}; the values are used as given{more}", number(current)),
                 );
             }
         }
@@ -618,11 +614,11 @@ impl Instance {
                 Status::Ok,
                 "logEvents",
                 &format!(
-                    "t = {:.9} s (step {}): contact {} (relative velocity {:.4} m/s)",
+                    "t = {:.9} s (step {}): contact {} (relative velocity {} m/s)",
                     self.start_time + seconds(e.time_ns),
                     e.step,
                     if e.start { "starts" } else { "ends" },
-                    e.relative_velocity
+                    significant(e.relative_velocity, 5)
                 ),
             );
         }
@@ -676,7 +672,7 @@ impl Instance {
             self.log(
                 Status::Warning,
                 Status::Warning.category(),
-                &format!("at t = {time} s the results are no longer trusted: {}", reasons.join("; ")),
+                &format!("at t = {} s the results are no longer trusted: {}", number(time), reasons.join("; ")),
             );
         }
         Ok(StepOutcome { early_return, last_successful_time: time, untrusted: untrusted || capped_now || mismatched })
@@ -998,7 +994,7 @@ impl Instance {
         if !within_time_limit(snapshot.start_time) {
             return Err(Error::StateInvalid {
                 field: "start_time".into(),
-                detail: format!("= {} s is not within +-{MAX_ABSOLUTE_TIME:e} s", time_text(snapshot.start_time)),
+                detail: format!("= {} s is not within +-{MAX_ABSOLUTE_TIME:e} s", number(snapshot.start_time)),
             }
             .to_string());
         }
@@ -1040,7 +1036,7 @@ impl Instance {
             self.state = self.before_error;
         }
         let result = *self.simulation.as_ref().ok_or("no simulation")?.result();
-        let restored = format!("t = {} s, step {}", self.time(), result.step);
+        let restored = format!("t = {} s, step {}", number(self.time()), result.step);
         if fresh {
             if !snapshot.initialized {
                 return Ok(Status::Ok);
