@@ -17,6 +17,7 @@ use super::variables::{table, Column, Source, Tip, Type, Variable};
 use crate::error::Error;
 use crate::model::parameters::{self, find};
 use crate::model::scenario::MAX_TIP_FORCE;
+use crate::model::support_motion::{check_motion_value, MOTION_NAMES};
 use crate::model::SupportMotion;
 use crate::record::mcap::McapRecorder;
 use crate::record::{Recorder, RunInfo};
@@ -863,12 +864,17 @@ impl Instance {
     }
 
     /// Writes a Real / Float64 variable (parameters: finite values only; the rest is checked at
-    /// initialization, where each invalid parameter is named).
+    /// initialization, where each invalid parameter is named). The inputs' bounds hold in every
+    /// state: |F| <= [`MAX_TIP_FORCE`] for the tip forces, [`check_motion_value`]'s range for the
+    /// support motion (issue 27).
     pub fn set_real(&mut self, vr: u32, value: f64) -> Outcome<()> {
         let v = self.variable(vr, Type::Real)?;
         self.check_settable(&v)?;
-        if !value.is_finite() {
-            return Err(format!("{} must be a finite number, got {value}", v.name));
+        match v.source {
+            // Its own message names the bound, NaN and inf included.
+            Source::Motion(k) => check_motion_value(k, value)?,
+            _ if !value.is_finite() => return Err(format!("{} must be a finite number, got {value}", v.name)),
+            _ => {}
         }
         match v.source {
             Source::Parameter(p) => {
@@ -997,6 +1003,21 @@ impl Instance {
                 detail: format!("= {} s is not within +-{MAX_ABSOLUTE_TIME:e} s", number(snapshot.start_time)),
             }
             .to_string());
+        }
+        // The support motion within the inputs' range, as the setters hold it (issue 27).
+        for (k, run) in std::iter::once(&snapshot.run).chain(&snapshot.checks).enumerate() {
+            let which = if k == 0 { String::new() } else { format!("checks[{}].", k - 1) };
+            for (field, motion) in [("input_motion", run.input_motion), ("motion", run.motion)] {
+                for (j, value) in motion.values().into_iter().enumerate() {
+                    check_motion_value(j, value).map_err(|detail| {
+                        Error::StateInvalid {
+                            field: format!("{which}{field}.{}", MOTION_NAMES[j]),
+                            detail: format!("is out of range: {detail}"),
+                        }
+                        .to_string()
+                    })?;
+                }
+            }
         }
         let fresh = !self.initialized();
         let mut base = self.scenario.clone();
