@@ -283,3 +283,37 @@ fn declared_parameter_ranges_are_what_validation_accepts() {
     assert_eq!(checked, table().iter().filter(|v| matches!(v.source, Source::Parameter(_))).count());
     assert!(checked >= 27, "{checked}");
 }
+
+/// Issue 27: each support-motion input declares `min` / `max` in both descriptions, its range
+/// (`MOTION_LIMITS`, stated in its description too), and those are exactly what the FMU's setter
+/// accepts: the bounds are, one representable step beyond them is refused with an error.
+#[test]
+fn declared_motion_input_ranges_are_what_the_setters_accept() {
+    use crate::fmi_common::importer::{load, Fmu2, ERROR, OK};
+    use beam_impact::model::support_motion::{MOTION_LIMITS, MOTION_UNITS};
+    let (fmi2, fmi3) = (description::fmi2(), description::fmi3());
+    let fmu = Fmu2::new(&load());
+    let mut checked = 0;
+    for v in table() {
+        let Source::Motion(k) = v.source else { continue };
+        let limit = MOTION_LIMITS[k];
+        assert_eq!((v.min, v.max), (Some(-limit), Some(limit)), "{}", v.name);
+        let e3 = elements(&fmi3, "Float64").into_iter().find(|e| get(e, "name") == Some(v.name.as_str())).unwrap();
+        let index = format!("<!-- index {} -->", v.vr + 1);
+        let e2 = elements(fmi2.split(&index).nth(1).unwrap(), "Real").remove(0);
+        for e in [&e3, &e2] {
+            let parse = |name: &str| get(e, name).map(|x| x.parse::<f64>().unwrap());
+            assert_eq!((parse("min"), parse("max")), (Some(-limit), Some(limit)), "{}", v.name);
+        }
+        assert!(v.description.contains(&format!("|value| <= {limit} {}", MOTION_UNITS[k])), "{}", v.description);
+        for bound in [-limit, limit] {
+            assert_eq!(fmu.set(&v.name, bound), OK, "{} at {bound}: {}", v.name, fmu.log.text());
+        }
+        for beyond in [(-limit).next_down(), limit.next_up()] {
+            assert_eq!(fmu.set(&v.name, beyond), ERROR, "{} at {beyond:e} accepted", v.name);
+        }
+        assert_eq!(fmu.set(&v.name, 0.0), OK);
+        checked += 1;
+    }
+    assert_eq!(checked, MOTION_LIMITS.len());
+}

@@ -452,3 +452,57 @@ fn absurd_experiment_times_are_refused() {
     let fmu = Fmu2::new(&lib);
     assert_eq!(fmu.setup(-1e6, Some(1e6)), OK, "the limits themselves are accepted");
 }
+
+/// The longest run of digits in `text`.
+fn longest_digit_run(text: &str) -> usize {
+    text.split(|c: char| !c.is_ascii_digit()).map(str::len).max().unwrap_or(0)
+}
+
+/// Issue 27 item 8: no logged message carries hundreds of digits (before: a bad tip force was
+/// printed as a 301-digit number, `{}` of 1e300). A tip force of 1e300 N set in FMI 2 and FMI 3,
+/// a forged state holding one, a parameter of 1e300 at initialization and a communication point
+/// of 1e300 s are each refused with a short message that writes the value as 1e300.
+#[test]
+fn huge_numbers_in_error_messages_are_short() {
+    use beam_impact::fmi::logger::MAX_MESSAGE_DIGITS;
+    let short = |text: &str, what: &str| {
+        let errors: Vec<&str> = text.lines().filter(|l| l.starts_with("[logStatusError]")).collect();
+        assert!(!errors.is_empty(), "{what}: nothing logged");
+        for line in errors {
+            assert!(line.contains("1e300"), "{what}: {line}");
+            assert!(longest_digit_run(line) <= MAX_MESSAGE_DIGITS, "{what}: {line}");
+            assert!(line.len() < 400, "{what}: {} characters: {line}", line.len());
+        }
+    };
+    let lib = load();
+    let fmu = fresh();
+    assert_eq!(fmu.set("upper.tip_force", 1e300), ERROR);
+    short(&fmu.log.text(), "FMI 2 tip force");
+    let fmu3 = Fmu3::try_new(&lib, None, false).0.unwrap();
+    assert_eq!(fmu3.set("lower.tip_force", -1e300), ERROR);
+    short(&fmu3.log.text(), "FMI 3 tip force");
+
+    let fmu = fresh();
+    assert_eq!(fmu.set("upper.mass", 1e300), OK);
+    assert_eq!(fmu.initialize(), ERROR);
+    short(&fmu.log.text(), "a parameter of 1e300");
+
+    let fmu = fresh();
+    assert_eq!(fmu.initialize(), OK);
+    assert_eq!(fmu.do_step(1e300, 1e-3), ERROR);
+    short(&fmu.log.text(), "a communication point of 1e300 s");
+
+    let fmu = fresh();
+    assert_eq!(fmu.initialize(), OK);
+    assert_eq!(fmu.do_step(0.0, 1e-2), OK);
+    let state = fmu.get_state();
+    let mut snapshot = beam_impact::fmi::state::Snapshot::from_bytes(&fmu.serialize(state)).unwrap();
+    fmu.free_state(state);
+    snapshot.run.input_forces.upper = 1e300;
+    let (status, forged) = fmu.deserialize(&snapshot.to_bytes().unwrap());
+    assert_eq!(status, OK);
+    fmu.log.clear();
+    assert_eq!(fmu.set_state(forged), ERROR);
+    fmu.free_state(forged);
+    short(&fmu.log.text(), "a forged state's tip force");
+}

@@ -179,3 +179,99 @@ fn a_motion_changed_after_the_initial_state_is_warned() {
     let log = fmu.log.text();
     assert!(log.contains("lower.clamp_heave = -1.67e-1 changes the value 0e0 given at the same instant"), "{log}");
 }
+
+/// `fmi3EnterInitializationMode` alone (start 0, stop `stop`).
+fn fmi3_enter_initialization(fmu: &Fmu3, stop: f64) -> std::ffi::c_int {
+    type Enter = unsafe extern "C" fn(*mut std::ffi::c_void, bool, f64, f64, bool, f64) -> std::ffi::c_int;
+    // SAFETY: the signature of fmi3EnterInitializationMode.
+    let enter: libloading::Symbol<Enter> = unsafe { fmu.lib.get(b"fmi3EnterInitializationMode\0") }.unwrap();
+    // SAFETY: a live instance.
+    unsafe { enter(fmu.c, false, 0.0, 0.0, true, stop) }
+}
+
+/// Issue 27 item 6: a support-motion input beyond its range (a clamp rotation of 1.5 rad or
+/// 1000 rad, past the model's small-angle range; a heave acceleration of 1e5 m/s^2), NaN or inf is
+/// refused with an error status and a message naming the input, the value and the bound, in FMI 2
+/// and FMI 3 and in every state inputs are set in (before, 1.5 rad ran to results identical to
+/// none, "trusted"). The value before is kept, the instance stays in its state and steps on.
+#[test]
+fn out_of_range_motion_inputs_are_errors_naming_the_bound_in_every_state() {
+    use beam_impact::model::support_motion::{MOTION_LIMITS, MOTION_UNITS};
+    use fmi_common::importer::ERROR;
+    let cases = [
+        ("lower.clamp_rotation", 1.5),
+        ("lower.clamp_rotation", -1000.0),
+        ("upper.hinge_heave_acceleration", 1e5),
+        ("lower.clamp_heave_acceleration", -1e6),
+        ("lower.clamp_rotation_velocity", 0.6),
+        ("lower.clamp_heave", f64::NAN),
+        ("upper.hinge_heave_velocity", f64::INFINITY),
+    ];
+    // Sets each case through `set`, checks the refusal and the message; `get` reads the value kept
+    // (None where the state has no getters).
+    let refuse = |set: &dyn Fn(&str, f64) -> i32, get: &dyn Fn(&str) -> Option<f64>, log: &dyn Fn() -> String| {
+        for (name, value) in cases {
+            let k = MOTION_NAMES.iter().position(|n| *n == name).unwrap();
+            let before = get(name);
+            assert_eq!(set(name, value), ERROR, "{name} = {value:e} accepted");
+            let text = log();
+            let line = text.lines().last().unwrap_or_default();
+            assert!(line.starts_with("[logStatusError]") && line.contains(name), "{line}");
+            assert!(line.contains(&format!("|value| <= {} {}", MOTION_LIMITS[k], MOTION_UNITS[k])), "{line}");
+            assert!(line.contains(&format!("got {value:.6e}")), "{line}");
+            assert!(line.len() < 250, "{line}");
+            assert_eq!(get(name).map(f64::to_bits), before.map(f64::to_bits), "{name} changed");
+        }
+    };
+    let lib = fmi_common::importer::load();
+
+    let fmu = Fmu2::new(&lib);
+    assert_eq!(fmu.setup(0.0, Some(0.1)), OK);
+    assert_eq!(fmu.set_string("log.path", ""), OK);
+    let set2 = |name: &str, value: f64| fmu.set(name, value);
+    let log2 = || fmu.log.text();
+    refuse(&set2, &|_| None, &log2);
+    assert_eq!(fmu.call0("fmi2EnterInitializationMode"), OK);
+    refuse(&set2, &|name| Some(fmu.get(name)), &log2);
+    assert_eq!(fmu.call0("fmi2ExitInitializationMode"), OK, "{}", fmu.log.text());
+    assert_eq!(fmu.do_step(0.0, 0.01), OK);
+    refuse(&set2, &|name| Some(fmu.get(name)), &log2);
+    assert_eq!(fmu.do_step(0.01, 0.01), OK, "still in Step Mode: {}", fmu.log.text());
+
+    let fmu3 = Fmu3::try_new(&lib, None, false).0.unwrap();
+    assert_eq!(fmu3.set_string("log.path", ""), OK);
+    let set3 = |name: &str, value: f64| fmu3.set(name, value);
+    let get3 = |name: &str| Some(fmu3.get(name));
+    let log3 = || fmu3.log.text();
+    refuse(&set3, &get3, &log3);
+    assert_eq!(fmi3_enter_initialization(&fmu3, 0.1), OK);
+    refuse(&set3, &get3, &log3);
+    assert_eq!(fmu3.call0("fmi3ExitInitializationMode"), OK, "{}", fmu3.log.text());
+    assert_eq!(fmu3.do_step(0.0, 0.01).0, OK);
+    refuse(&set3, &get3, &log3);
+    assert_eq!(fmu3.do_step(0.01, 0.01).0, OK, "still in Step Mode: {}", fmu3.log.text());
+}
+
+/// Issue 27 item 8: `energy.external_work` books the supports' work, and its description says so
+/// (before: "work done by the two input tip forces since t = 0", while -52.6 kJ stood under a
+/// 0.3 m heave with no tip force). Under a clamp heave with no tip force the work is not zero,
+/// and the energy balance closes with it: the residual is a small part of it.
+#[test]
+fn external_work_books_the_supports_work_and_says_so() {
+    let heave = SupportMotion {
+        clamp_heave: Track { displacement: 0.0, velocity: 0.0, acceleration: -2.0 },
+        ..SupportMotion::default()
+    };
+    let (_, _, fmu) = fmi2_run(0.5, 0.01, |t| heave.after(t));
+    assert_eq!((fmu.get("upper.tip_force"), fmu.get("lower.tip_force")), (0.0, 0.0));
+    let (work, residual) = (fmu.get("energy.external_work"), fmu.get("energy.residual"));
+    assert!(work != 0.0, "no work booked under a moving support");
+    assert!(residual.abs() < 1e-2 * work.abs(), "the balance misses {residual} J of {work} J");
+    let description = beam_impact::fmi::variables::table()
+        .into_iter()
+        .find(|v| v.name == "energy.external_work")
+        .unwrap()
+        .description;
+    assert!(description.contains("tip forces") && description.contains("supports"), "{description}");
+    assert!(description.contains("inertia loads") && description.contains("contact bar"), "{description}");
+}

@@ -231,18 +231,50 @@ fn pack_refuses_a_library_that_is_not_an_fmu_binary() {
     assert!(!dir.path().join("fmu").exists());
 }
 
-/// A stand-in Windows DLL: the PE header fields `check_dll` reads (MZ, PE signature, machine
-/// AMD64, IMAGE_FILE_DLL) and the FMI entry point names; `marker` tells copies apart.
-fn fake_dll(marker: &str) -> Vec<u8> {
-    let mut b = vec![0u8; 0x200];
+/// A stand-in Windows DLL: a PE32+ image (machine AMD64, IMAGE_FILE_DLL) with one section holding
+/// an export directory of `names`; `marker` (after the section) tells copies apart. Offsets: PE
+/// signature 0x80, COFF header 0x84 (sections at 0x86, characteristics at 0x96), optional header
+/// 0x98 (240 bytes, the export directory's entry at 0x108), section table 0x188, the section's
+/// data at file offset 0x200 = RVA 0x1000.
+fn fake_dll_exporting(names: &[&str], marker: &str) -> Vec<u8> {
+    let put16 = |b: &mut Vec<u8>, at: usize, v: u16| b[at..at + 2].copy_from_slice(&v.to_le_bytes());
+    let put32 = |b: &mut Vec<u8>, at: usize, v: u32| b[at..at + 4].copy_from_slice(&v.to_le_bytes());
+    let (rva, raw) = (0x1000u32, 0x200usize);
+    // The section: the export directory (40 bytes), the name pointers, the names.
+    let mut data = vec![0u8; 40 + 4 * names.len()];
+    put32(&mut data, 24, names.len() as u32);
+    put32(&mut data, 32, rva + 40);
+    for (k, name) in names.iter().enumerate() {
+        let at = rva + data.len() as u32;
+        put32(&mut data, 40 + 4 * k, at);
+        data.extend_from_slice(name.as_bytes());
+        data.push(0);
+    }
+    let mut b = vec![0u8; raw];
     b[..2].copy_from_slice(b"MZ");
-    b[0x3c..0x40].copy_from_slice(&0x80u32.to_le_bytes());
+    put32(&mut b, 0x3c, 0x80);
     b[0x80..0x84].copy_from_slice(b"PE\0\0");
-    b[0x84..0x86].copy_from_slice(&0x8664u16.to_le_bytes());
-    b[0x96..0x98].copy_from_slice(&0x2022u16.to_le_bytes());
-    b.extend_from_slice(b"\0fmi2Instantiate\0fmi3InstantiateCoSimulation\0");
+    put16(&mut b, 0x84, 0x8664);
+    put16(&mut b, 0x86, 1);
+    put16(&mut b, 0x94, 240);
+    put16(&mut b, 0x96, 0x2022);
+    put16(&mut b, 0x98, 0x20b);
+    put32(&mut b, 0x98 + 108, 16);
+    put32(&mut b, 0x108, rva);
+    put32(&mut b, 0x10c, data.len() as u32);
+    b[0x188..0x18e].copy_from_slice(b".edata");
+    put32(&mut b, 0x188 + 8, data.len() as u32);
+    put32(&mut b, 0x188 + 12, rva);
+    put32(&mut b, 0x188 + 16, data.len() as u32);
+    put32(&mut b, 0x188 + 20, raw as u32);
+    b.extend_from_slice(&data);
     b.extend_from_slice(marker.as_bytes());
     b
+}
+
+/// A stand-in of the beam-impact DLL: every FMI function exported.
+fn fake_dll(marker: &str) -> Vec<u8> {
+    fake_dll_exporting(&beam_impact::fmi::pack::FMI_FUNCTIONS, marker)
 }
 
 /// [`fake_dll`] with `bytes` written at `at` (a header field made hostile).
@@ -371,6 +403,40 @@ fn pack_refuses_a_binary_of_another_platform() {
         (Platform::Windows, write("far.dll", patched_dll(0x3c, &0xffff_fff0u32.to_le_bytes())), "no PE signature"),
         (Platform::Windows, write("exe.dll", patched_dll(0x96, &0x0022u16.to_le_bytes())), "not a DLL"),
         (Platform::Windows, write("arm.dll", patched_dll(0x84, &0xaa64u16.to_le_bytes())), "not an x86-64 PE file"),
+        // Issue 27: the export directory is read, every offset and count bounded by the file.
+        (Platform::Windows, write("sections.dll", patched_dll(0x86, &0xffffu16.to_le_bytes())), "65535 sections"),
+        (Platform::Windows, write("pe32.dll", patched_dll(0x98, &0x10bu16.to_le_bytes())), "not a PE32+ image"),
+        (
+            Platform::Windows,
+            write("table.dll", patched_dll(0x94, &0xfff0u16.to_le_bytes())),
+            "the PE section table (bytes 65672..65712) lies beyond the file",
+        ),
+        (Platform::Windows, write("noexports.dll", patched_dll(0x108, &0u32.to_le_bytes())), "no export directory"),
+        (
+            Platform::Windows,
+            write("raw.dll", patched_dll(0x188 + 20, &0xffff_ff00u32.to_le_bytes())),
+            "PE section 0's data",
+        ),
+        (
+            Platform::Windows,
+            write("names.dll", patched_dll(0x200 + 24, &0x00ff_ffffu32.to_le_bytes())),
+            "export directory lists 16777215 names",
+        ),
+        (
+            Platform::Windows,
+            write("names-beyond.dll", patched_dll(0x200 + 24, &0x000f_ffffu32.to_le_bytes())),
+            "export name table (1048575 names at RVA 0x1028) lies outside",
+        ),
+        (
+            Platform::Windows,
+            write("entry.dll", patched_dll(0x200 + 40, &0x7fff_0000u32.to_le_bytes())),
+            "export name 0 (RVA 0x7fff0000) lies outside",
+        ),
+        (
+            Platform::Windows,
+            write("two.dll", fake_dll_exporting(&["fmi2Instantiate", "fmi3InstantiateCoSimulation"], "")),
+            "exports 2 of the 109 FMI functions (2 names in all), not fmi2CancelStep",
+        ),
     ];
     for (platform, path, why) in cases {
         let out = dir.path().join("fmu");
@@ -564,4 +630,102 @@ fn wine_importer_names_this_builds_value_references_and_token() {
         checked += 1;
     }
     assert!(checked >= 8, "only {checked} (name, value reference) pairs found in importer.c");
+}
+
+/// The 438-byte fake DLL of issue 27 (a PE header with 65535 sections and no export directory,
+/// only the two entry point names as text): accepted before, refused now with the reason, by
+/// `pack_platforms` and by the CLI (one line, exit 2, no FMU).
+#[test]
+fn pack_refuses_the_438_byte_fake_dll() {
+    let mut b = vec![0u8; 0x188];
+    b[..2].copy_from_slice(b"MZ");
+    b[0x3c..0x40].copy_from_slice(&0x80u32.to_le_bytes());
+    b[0x80..0x84].copy_from_slice(b"PE\0\0");
+    b[0x84..0x86].copy_from_slice(&0x8664u16.to_le_bytes());
+    b[0x86..0x88].copy_from_slice(&0xffffu16.to_le_bytes());
+    b[0x96..0x98].copy_from_slice(&0x2022u16.to_le_bytes());
+    b.extend_from_slice(b"\0fmi2Instantiate\0fmi3InstantiateCoSimulation\0");
+    b.resize(438, 0);
+    let dir = tempfile::tempdir().unwrap();
+    let dll = dir.path().join("fake.dll");
+    std::fs::write(&dll, &b).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_beam-impact"))
+        .args(["pack", "--no-zigbuild", "--platforms", "linux,windows", "--out"])
+        .arg(dir.path().join("fmu"))
+        .arg("--windows-library")
+        .arg(&dll)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("fake.dll cannot be packed as the windows binary: a PE header with 65535 sections"),
+        "{stderr}"
+    );
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(!dir.path().join("fmu").exists());
+}
+
+/// Issue 27 item 5: a binary given to `pack` is checked from its metadata before any of it is
+/// read: a 3 GiB sparse file as `--windows-library`, `--darwin-library` or `--library` is refused
+/// at once, naming its size and the limit (before, 1 GiB was read first). The proof is not a
+/// clock: the CLI runs under a 512 MiB address-space limit (`ulimit -v`), within which reading
+/// 1 GiB cannot be done (before: "cannot read the shared library to pack ...: out of memory").
+#[test]
+fn pack_refuses_a_huge_binary_from_its_size_before_reading_it() {
+    use beam_impact::fmi::pack::{pack_platforms, Platform, MAX_BINARY};
+    let dir = tempfile::tempdir().unwrap();
+    let huge = dir.path().join("huge.bin");
+    std::fs::File::create(&huge).unwrap().set_len(3 << 30).unwrap();
+    let size = 3u64 << 30;
+    for (option, platforms) in
+        [("--windows-library", "windows"), ("--darwin-library", "darwin"), ("--library", "linux")]
+    {
+        let out = std::process::Command::new("sh")
+            .arg("-c")
+            .arg("ulimit -v 524288 && exec \"$@\"")
+            .arg("sh")
+            .arg(env!("CARGO_BIN_EXE_beam-impact"))
+            .args(["pack", "--no-zigbuild", "--platforms", platforms, "--out"])
+            .arg(dir.path().join("fmu"))
+            .arg(option)
+            .arg(&huge)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{option}: {stderr}");
+        assert!(
+            stderr.contains(&format!("huge.bin cannot be packed: {size} bytes, larger than {MAX_BINARY}")),
+            "{stderr}"
+        );
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    }
+    for platform in Platform::ALL {
+        let err = pack_platforms(&[(platform, huge.clone())], &dir.path().join("fmu"), "t").unwrap_err().to_string();
+        assert!(err.contains(&format!("{size} bytes, larger than {MAX_BINARY}")), "{platform:?}: {err}");
+    }
+    assert!(!dir.path().join("fmu").exists());
+}
+
+/// The FMI functions `pack` requires of a DLL are the source's: every `extern "C" fn fmi2*` /
+/// `fmi3*` in `src/fmi`, as `scripts/cross-build.sh` derives them.
+#[test]
+fn the_required_exports_are_the_sources_fmi_functions() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/fmi");
+    let mut source = Vec::new();
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let text = std::fs::read_to_string(entry.unwrap().path()).unwrap();
+        for piece in text.split("extern \"C\" fn ").skip(1) {
+            let name: String = piece.chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').collect();
+            // As cross-build.sh's `fmi[23][A-Za-z0-9_]+`: a name, not the text `fmi2` in a comment.
+            if (name.starts_with("fmi2") || name.starts_with("fmi3")) && name.len() > 4 {
+                source.push(name);
+            }
+        }
+    }
+    source.sort();
+    source.dedup();
+    let mut listed: Vec<String> = beam_impact::fmi::pack::FMI_FUNCTIONS.iter().map(|s| s.to_string()).collect();
+    listed.sort();
+    assert_eq!(listed, source);
 }

@@ -235,7 +235,7 @@ fn forged_states_are_refused_naming_the_field() {
     let (first, bytes) = saved_fmi2(0.0, 0.3, 0.567);
     let good = Snapshot::from_bytes(&bytes).unwrap();
     type Forge = fn(&mut Snapshot);
-    let forgeries: [(&str, Forge, &str); 13] = [
+    let forgeries: [(&str, Forge, &str); 14] = [
         ("a wrapped step counter", |s| s.run.result.step = u64::MAX, "result.step"),
         ("a NaN gap", |s| s.run.gap = f64::NAN, "gap = NaN is not finite"),
         ("an infinite velocity", |s| s.run.kinematics.velocity[3] = f64::INFINITY, "kinematics.velocity[3]"),
@@ -245,6 +245,12 @@ fn forged_states_are_refused_naming_the_field() {
         ("windows out of order", |s| s.run.contact_windows.reverse(), "contact_windows[1]"),
         ("a window after the run", |s| s.run.contact_windows[0].end = 10.0, "contact_windows[0]"),
         ("a huge tip force", |s| s.run.input_forces.upper = 1e30, "input_forces.upper"),
+        // Issue 27: the support-motion inputs' range holds for a restored state too.
+        (
+            "a clamp rotation beyond the small-angle range",
+            |s| s.run.input_motion.clamp_rotation.displacement = 1.5,
+            "input_motion.lower.clamp_rotation is out of range",
+        ),
         ("too many elements", |s| _ = s.parameters.insert("lower.elements".into(), 1e6), "lower.elements"),
         ("a NaN start time", |s| s.start_time = f64::NAN, "start_time"),
         // Issue 16 item 11: at 1e300 s doStep returned OK without advancing time.

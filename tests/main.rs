@@ -21,6 +21,7 @@ mod fmi_answer;
 mod fmi_default_log;
 mod fmi_description;
 mod fmi_drift;
+mod fmi_full_disk;
 mod fmi_grid;
 mod fmi_importer;
 mod fmi_misuse;

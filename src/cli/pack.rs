@@ -48,6 +48,11 @@ pub fn pack(request: &Request) -> Result<()> {
             )));
         }
     }
+    // Every binary given is checked from its metadata (a regular file of at most 1 GiB) before
+    // anything is built or read: a huge or sparse file is refused at once (issue 27).
+    for path in [&request.library, &request.windows_library, &request.darwin_library].into_iter().flatten() {
+        beam_impact::fmi::pack::check_binary_file(path)?;
+    }
     // Every cross build's toolchain is checked before anything is built.
     let needs_cross = (platforms.contains(&Platform::Windows) && request.windows_library.is_none())
         || (platforms.contains(&Platform::Darwin) && request.darwin_library.is_none());

@@ -448,7 +448,7 @@ pub unsafe extern "C" fn fmi2DoStep(
     ffi_boundary! {
         with_run(c, "fmi2DoStep", allowed::DO_STEP, |inst| {
             let outcome = inst.do_step(current_communication_point, communication_step_size)?;
-            Ok(if outcome.untrusted { Status::Warning } else { Status::Ok })
+            Ok(if outcome.warned { Status::Warning } else { Status::Ok })
         })
     }
 }

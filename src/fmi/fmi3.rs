@@ -1100,7 +1100,7 @@ pub unsafe extern "C" fn fmi3DoStep(
             *last_successful_time = inst.last_successful_time();
             let outcome = outcome?;
             *early_return = outcome.early_return;
-            Ok(if outcome.untrusted { Status::Warning } else { Status::Ok })
+            Ok(if outcome.warned { Status::Warning } else { Status::Ok })
         })
     }
 }

@@ -10,13 +10,14 @@ use std::time::{SystemTime, UNIX_EPOCH};
 
 use super::boundary::panic_message;
 use super::description;
-use super::logger::{c_string, log_with, Logger};
+use super::logger::{c_string, log_with, number, significant, Logger};
 use super::state::{parameters_of, scenario_with, Snapshot};
 use super::status::{Mask, State, Status};
 use super::variables::{table, Column, Source, Tip, Type, Variable};
 use crate::error::Error;
 use crate::model::parameters::{self, find};
 use crate::model::scenario::MAX_TIP_FORCE;
+use crate::model::support_motion::{check_motion_value, MOTION_NAMES};
 use crate::model::SupportMotion;
 use crate::record::mcap::McapRecorder;
 use crate::record::{Recorder, RunInfo};
@@ -41,9 +42,10 @@ pub struct StepOutcome {
     pub early_return: bool,
     /// FMU time reached, s.
     pub last_successful_time: f64,
-    /// The run's energy residual crossed its tolerance, or its log reached its size cap, in this
-    /// step (logged; return a warning).
-    pub untrusted: bool,
+    /// In this step the run's results stopped being trusted, its log reached its size cap or was
+    /// dropped (a full disk), or a support motion disagreed with the one before (logged; return
+    /// a warning).
+    pub warned: bool,
 }
 
 /// Internal result: the error message is logged by [`Instance::guard`].
@@ -57,15 +59,6 @@ pub const MAX_ABSOLUTE_TIME: f64 = 1e6;
 /// Whether `t` is a time the FMU accepts: |t| <= [`MAX_ABSOLUTE_TIME`] (NaN is not).
 fn within_time_limit(t: f64) -> bool {
     t.abs() <= MAX_ABSOLUTE_TIME
-}
-
-/// A time for a message: plain, or in exponent form when huge (1e300 is not 301 digits).
-fn time_text(t: f64) -> String {
-    if t.abs() >= 1e7 {
-        format!("{t:e}")
-    } else {
-        format!("{t}")
-    }
 }
 
 /// An FMU instance (the opaque `fmi2Component` / `fmi3Instance`).
@@ -183,30 +176,59 @@ fn time_tolerance(t: f64) -> f64 {
 }
 
 /// Forwards every step to the MCAP log (if any) and keeps the contact events for `logEvents`.
+/// An error of the log (a full disk) never reaches the simulation: it is kept in `failed`, nothing
+/// more is sent to the log, and the instance drops the log after the call ([`Instance::drop_log`]):
+/// the co-simulation goes on without it (issue 27).
 struct Tap<'a> {
     inner: Option<&'a mut McapRecorder>,
     events: Vec<ContactEvent>,
+    failed: Option<Error>,
+}
+
+impl<'a> Tap<'a> {
+    fn new(inner: Option<&'a mut McapRecorder>) -> Self {
+        Tap { inner, events: Vec::new(), failed: None }
+    }
+
+    /// Sends one call to the log while it is written; its first error stops the log, not the run.
+    fn send(&mut self, call: impl FnOnce(&mut McapRecorder) -> crate::Result<()>) -> crate::Result<()> {
+        if let Some(recorder) = self.inner.as_deref_mut() {
+            if let Err(e) = call(recorder) {
+                self.failed = Some(e);
+                self.inner = None;
+            }
+        }
+        Ok(())
+    }
 }
 
 impl Recorder for Tap<'_> {
     fn start(&mut self, info: &RunInfo<'_>) -> crate::Result<()> {
-        self.inner.as_mut().map_or(Ok(()), |r| r.start(info))
+        self.send(|r| r.start(info))
     }
     fn step(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> crate::Result<()> {
-        self.inner.as_mut().map_or(Ok(()), |r| r.step(result, modal_coordinates))
+        self.send(|r| r.step(result, modal_coordinates))
     }
     fn contact_event(&mut self, event: &ContactEvent) -> crate::Result<()> {
         self.events.push(*event);
-        self.inner.as_mut().map_or(Ok(()), |r| r.contact_event(event))
+        self.send(|r| r.contact_event(event))
     }
     fn rollback(&mut self, result: &StepResult) -> crate::Result<()> {
-        self.inner.as_mut().map_or(Ok(()), |r| r.rollback(result))
+        self.send(|r| r.rollback(result))
     }
     fn wants_details(&self) -> bool {
         self.inner.is_some()
     }
     fn finish(&mut self) -> crate::Result<()> {
-        self.inner.as_mut().map_or(Ok(()), |r| r.finish())
+        self.send(|r| r.finish())
+    }
+}
+
+/// Two optional warnings as one.
+fn both(a: Option<String>, b: Option<String>) -> Option<String> {
+    match (a, b) {
+        (Some(a), Some(b)) => Some(format!("{a}; {b}")),
+        (a, b) => a.or(b),
     }
 }
 
@@ -355,13 +377,14 @@ impl Instance {
     /// `SetupExperiment` / the time arguments of FMI 3's `EnterInitializationMode`.
     pub fn setup_experiment(&mut self, start_time: f64, stop_time: Option<f64>) -> Outcome<Status> {
         if !within_time_limit(start_time) {
-            return Err(format!("startTime must be within +-{MAX_ABSOLUTE_TIME:e} s, got {}", time_text(start_time)));
+            return Err(format!("startTime must be within +-{MAX_ABSOLUTE_TIME:e} s, got {}", number(start_time)));
         }
         if let Some(stop) = stop_time {
             if !(within_time_limit(stop) && stop >= start_time) {
                 return Err(format!(
-                    "stopTime must be >= startTime = {start_time} and within +-{MAX_ABSOLUTE_TIME:e} s, got {}",
-                    time_text(stop)
+                    "stopTime must be >= startTime = {} and within +-{MAX_ABSOLUTE_TIME:e} s, got {}",
+                    number(start_time),
+                    number(stop)
                 ));
             }
         }
@@ -495,11 +518,36 @@ impl Instance {
     }
 
     /// Sends the run's description and its latest step (step 0 after initialization, the restored
-    /// step after a restore) to the MCAP log, if any.
-    fn start_log(&mut self) -> Outcome<()> {
+    /// step after a restore) to the MCAP log, if any; a log that fails is dropped (the warning
+    /// returned, to be logged).
+    fn start_log(&mut self) -> Outcome<Option<String>> {
         let simulation = self.simulation.as_mut().ok_or("no simulation")?;
-        let mut tap = Tap { inner: self.recorder.as_mut(), events: Vec::new() };
-        simulation.start_recording(&mut tap).map_err(|e| format!("MCAP log: {e}"))
+        let mut tap = Tap::new(self.recorder.as_mut());
+        simulation.start_recording(&mut tap).map_err(|e| format!("MCAP log: {e}"))?;
+        let failed = tap.failed.take();
+        Ok(failed.map(|e| self.drop_log(&e)))
+    }
+
+    /// Drops the MCAP log after its error `e` (a full disk, issue 27): the log is finished as the
+    /// recorder's rules say (one that failed stays `NAME.partial`, which `report` reads as a log
+    /// cut short; an earlier NAME is left as it was), and the run goes on without a log. Returns
+    /// the warning to log, naming the file, the reason and what is left of it.
+    fn drop_log(&mut self, e: &Error) -> String {
+        let Some(mut recorder) = self.recorder.take() else {
+            return format!("the MCAP log failed ({e}); the run goes on without a log");
+        };
+        let (path, written) = (recorder.path().to_path_buf(), recorder.file_being_written().to_path_buf());
+        let left = match recorder.finish() {
+            Ok(()) => format!("what it holds is complete in {}", path.display()),
+            Err(_) if written != path && written.exists() => {
+                format!("what was written stays in {} (a log cut short)", written.display())
+            }
+            Err(_) => "what was written is left as it is".to_string(),
+        };
+        format!(
+            "the MCAP log {} cannot be written ({e}): it is dropped, {left}; the run goes on without a log",
+            path.display()
+        )
     }
 
     /// `ExitInitializationMode`: builds the model, opens the MCAP log and records the initial state.
@@ -508,10 +556,10 @@ impl Instance {
         self.simulation()?;
         let (recorder, warning) = self.open_log()?;
         self.recorder = recorder;
-        self.start_log()?;
+        let dropped = self.start_log()?;
         self.last_successful_time = self.time();
         self.state = if self.event_mode_used { State::Event } else { State::Step };
-        Ok(self.warn(warning))
+        Ok(self.warn(both(warning, dropped)))
     }
 
     /// FMI 3 `EnterEventMode`.
@@ -545,25 +593,29 @@ impl Instance {
         let now = self.time();
         if !(current.is_finite() && step.is_finite() && step > 0.0) {
             return Err(format!(
-                "the communication step must be finite and > 0 s, got currentCommunicationPoint = {current}, \
-                 communicationStepSize = {step}"
+                "the communication step must be finite and > 0 s, got currentCommunicationPoint = {}, \
+                 communicationStepSize = {}",
+                number(current),
+                number(step)
             ));
         }
         if (current - now).abs() > time_tolerance(now) {
             return Err(format!(
-                "currentCommunicationPoint = {current} s is not the FMU's time {now} s (tolerance {:e} s)",
+                "currentCommunicationPoint = {} s is not the FMU's time {} s (tolerance {:e} s)",
+                number(current),
+                number(now),
                 time_tolerance(now)
             ));
         }
         let end = current + step;
         if let Some(stop) = self.stop_time {
             if end > stop + time_tolerance(stop) {
-                return Err(format!("the step ends at {end} s, after stopTime = {stop} s"));
+                return Err(format!("the step ends at {} s, after stopTime = {} s", number(end), number(stop)));
             }
         }
         let target_ns = ((end - self.start_time) * 1e9).round();
         if !(0.0..=1.8e19).contains(&target_ns) {
-            return Err(format!("the step ends at {end} s, outside the FMU's time range"));
+            return Err(format!("the step ends at {} s, outside the FMU's time range", number(end)));
         }
         let target_ns = target_ns as u64;
         let early = self.version == Version::Fmi3 && self.early_return_allowed;
@@ -581,12 +633,12 @@ impl Instance {
                 self.log(
                     Status::Warning,
                     Status::Warning.category(),
-                    &format!("support motion at t = {current} s: {m}; the values are used as given{more}"),
+                    &format!("support motion at t = {} s: {m}; the values are used as given{more}", number(current)),
                 );
             }
         }
         let simulation = self.simulation.as_mut().ok_or("no simulation")?;
-        let mut tap = Tap { inner: self.recorder.as_mut(), events: Vec::new() };
+        let mut tap = Tap::new(self.recorder.as_mut());
         // The stop time ends the run as the CLI's does (`finish_at`: the converged method records
         // the stop point inside its step grid); elsewhere the outputs are interpolated.
         let at_stop = self.stop_time.is_some_and(|stop| (end - stop).abs() <= time_tolerance(stop));
@@ -613,16 +665,21 @@ impl Instance {
             }
         }
         let events = std::mem::take(&mut tap.events);
+        // A log that failed (a full disk) is dropped with a warning; the step stands (issue 27).
+        let log_dropped = tap.failed.take().map(|e| self.drop_log(&e));
+        if let Some(warning) = &log_dropped {
+            self.log(Status::Warning, Status::Warning.category(), warning);
+        }
         for e in &events {
             self.log(
                 Status::Ok,
                 "logEvents",
                 &format!(
-                    "t = {:.9} s (step {}): contact {} (relative velocity {:.4} m/s)",
+                    "t = {:.9} s (step {}): contact {} (relative velocity {} m/s)",
                     self.start_time + seconds(e.time_ns),
                     e.step,
                     if e.start { "starts" } else { "ends" },
-                    e.relative_velocity
+                    significant(e.relative_velocity, 5)
                 ),
             );
         }
@@ -676,44 +733,54 @@ impl Instance {
             self.log(
                 Status::Warning,
                 Status::Warning.category(),
-                &format!("at t = {time} s the results are no longer trusted: {}", reasons.join("; ")),
+                &format!("at t = {} s the results are no longer trusted: {}", number(time), reasons.join("; ")),
             );
         }
-        Ok(StepOutcome { early_return, last_successful_time: time, untrusted: untrusted || capped_now || mismatched })
+        Ok(StepOutcome {
+            early_return,
+            last_successful_time: time,
+            warned: untrusted || capped_now || mismatched || log_dropped.is_some(),
+        })
     }
 
-    /// Completes the MCAP log; its error is returned (and so logged).
-    fn finish_log(&mut self) -> Outcome<()> {
-        match self.recorder.take() {
-            Some(mut recorder) => recorder
-                .finish()
-                .map_err(|e| format!("cannot complete the MCAP log {}: {e}", recorder.path().display())),
-            None => Ok(()),
-        }
+    /// Completes the MCAP log. A log that cannot be completed (a full disk) is a warning, returned
+    /// to be logged: the run's results stand, and the part written stays `NAME.partial`.
+    fn finish_log(&mut self) -> Option<String> {
+        let mut recorder = self.recorder.take()?;
+        let written = recorder.file_being_written().to_path_buf();
+        let e = recorder.finish().err()?;
+        let path = recorder.path();
+        let left = if written != path && written.exists() {
+            format!("what was written stays in {} (a log cut short)", written.display())
+        } else {
+            "what was written is left as it is".to_string()
+        };
+        Some(format!("the MCAP log {} cannot be completed ({e}): {left}", path.display()))
     }
 
-    /// `Terminate`: completes the MCAP log.
+    /// `Terminate`: completes the MCAP log (a log that cannot be completed is a warning).
     pub fn terminate(&mut self) -> Outcome<Status> {
         self.state = State::Terminated;
-        self.finish_log()?;
-        Ok(Status::Ok)
+        let warning = self.finish_log();
+        Ok(self.warn(warning))
     }
 
-    /// `Reset`: back to Instantiated with the paper scenario (completing an open log first).
+    /// `Reset`: back to Instantiated with the paper scenario (completing an open log first; one
+    /// that cannot be completed is a warning).
     pub fn reset(&mut self) -> Outcome<Status> {
-        let finished = self.finish_log();
+        let warning = self.finish_log();
         let (name, version, logger, logging_on) = (self.name.clone(), self.version, self.logger, self.logging_on);
         let (event_mode_used, early_return_allowed) = (self.event_mode_used, self.early_return_allowed);
         *self = Instance::new(&name, version, logger, logging_on);
         self.set_cosimulation_options(event_mode_used, early_return_allowed);
-        finished?;
-        Ok(Status::Ok)
+        Ok(self.warn(warning))
     }
 
-    /// Called by `FreeInstance`: completes the log if `Terminate` was not called, logging its error.
+    /// Called by `FreeInstance`: completes the log if `Terminate` was not called, logging a log
+    /// that cannot be completed as a warning.
     pub fn free(&mut self) {
-        if let Err(message) = self.finish_log() {
-            self.error(&format!("FreeInstance: {message}"));
+        if let Some(warning) = self.finish_log() {
+            self.log(Status::Warning, Status::Warning.category(), &format!("FreeInstance: {warning}"));
         }
     }
 
@@ -867,12 +934,17 @@ impl Instance {
     }
 
     /// Writes a Real / Float64 variable (parameters: finite values only; the rest is checked at
-    /// initialization, where each invalid parameter is named).
+    /// initialization, where each invalid parameter is named). The inputs' bounds hold in every
+    /// state: |F| <= [`MAX_TIP_FORCE`] for the tip forces, [`check_motion_value`]'s range for the
+    /// support motion (issue 27).
     pub fn set_real(&mut self, vr: u32, value: f64) -> Outcome<()> {
         let v = self.variable(vr, Type::Real)?;
         self.check_settable(&v)?;
-        if !value.is_finite() {
-            return Err(format!("{} must be a finite number, got {value}", v.name));
+        match v.source {
+            // Its own message names the bound, NaN and inf included.
+            Source::Motion(k) => check_motion_value(k, value)?,
+            _ if !value.is_finite() => return Err(format!("{} must be a finite number, got {value}", v.name)),
+            _ => {}
         }
         match v.source {
             Source::Parameter(p) => {
@@ -998,9 +1070,24 @@ impl Instance {
         if !within_time_limit(snapshot.start_time) {
             return Err(Error::StateInvalid {
                 field: "start_time".into(),
-                detail: format!("= {} s is not within +-{MAX_ABSOLUTE_TIME:e} s", time_text(snapshot.start_time)),
+                detail: format!("= {} s is not within +-{MAX_ABSOLUTE_TIME:e} s", number(snapshot.start_time)),
             }
             .to_string());
+        }
+        // The support motion within the inputs' range, as the setters hold it (issue 27).
+        for (k, run) in std::iter::once(&snapshot.run).chain(&snapshot.checks).enumerate() {
+            let which = if k == 0 { String::new() } else { format!("checks[{}].", k - 1) };
+            for (field, motion) in [("input_motion", run.input_motion), ("motion", run.motion)] {
+                for (j, value) in motion.values().into_iter().enumerate() {
+                    check_motion_value(j, value).map_err(|detail| {
+                        Error::StateInvalid {
+                            field: format!("{which}{field}.{}", MOTION_NAMES[j]),
+                            detail: format!("is out of range: {detail}"),
+                        }
+                        .to_string()
+                    })?;
+                }
+            }
         }
         let fresh = !self.initialized();
         let mut base = self.scenario.clone();
@@ -1040,7 +1127,7 @@ impl Instance {
             self.state = self.before_error;
         }
         let result = *self.simulation.as_ref().ok_or("no simulation")?.result();
-        let restored = format!("t = {} s, step {}", self.time(), result.step);
+        let restored = format!("t = {} s, step {}", number(self.time()), result.step);
         if fresh {
             if !snapshot.initialized {
                 return Ok(Status::Ok);
@@ -1051,10 +1138,10 @@ impl Instance {
             }
             let (recorder, warning) = self.open_log()?;
             self.recorder = recorder;
-            self.start_log()?;
+            let dropped = self.start_log()?;
             self.state = State::Step;
             self.log(Status::Ok, "logEvents", &format!("restored a state into Step Mode ({restored})"));
-            return Ok(self.warn(warning));
+            return Ok(self.warn(both(warning, dropped)));
         }
         if !same_model {
             let Some(mut old) = self.recorder.take() else { return Ok(Status::Ok) };
@@ -1063,8 +1150,8 @@ impl Instance {
             let warning = if self.log_path == DEFAULT_LOG_PATH {
                 let (recorder, warning) = self.open_log()?;
                 self.recorder = recorder;
-                self.start_log()?;
-                warning
+                let dropped = self.start_log()?;
+                both(warning, dropped)
             } else {
                 Some(format!(
                     "the state restored ({restored}) belongs to another scenario: the MCAP log {old} describes the \
@@ -1078,13 +1165,11 @@ impl Instance {
             };
             return Ok(self.warn(warning));
         }
-        let rollback = match self.recorder.as_mut() {
-            Some(recorder) => recorder.rollback(&result).map_err(|e| (recorder.path().display().to_string(), e)),
-            None => Ok(()),
-        };
-        if let Err((path, e)) = rollback {
+        let rollback = self.recorder.as_mut().map_or(Ok(()), |recorder| recorder.rollback(&result));
+        if let Err(e) = rollback {
+            let dropped = self.drop_log(&e);
             return Ok(self.warn(Some(format!(
-                "the state is restored ({restored}), but the MCAP log {path} cannot record the rollback: {e}"
+                "the state is restored ({restored}), but the MCAP log cannot record the rollback: {dropped}"
             ))));
         }
         Ok(Status::Ok)

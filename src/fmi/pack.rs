@@ -193,9 +193,236 @@ pub fn check_library(binary: &[u8]) -> std::result::Result<(), String> {
     names_entry_points(binary, &ENTRY_POINTS)
 }
 
-/// Checks that `binary` is a Windows x86-64 DLL (PE32+, machine AMD64, IMAGE_FILE_DLL) that names
-/// the FMI entry points. (Its exact exports and imports are checked where it is built,
-/// `scripts/cross-build.sh`.)
+/// The FMI functions the library exports: every `extern "C" fn fmi2*` / `fmi3*` in `src/fmi`, the
+/// list `scripts/cross-build.sh` derives from the source and requires of the DLL it builds
+/// (`tests/fmi_pack.rs` holds this copy to the source).
+pub const FMI_FUNCTIONS: [&str; 109] = [
+    "fmi2CancelStep",
+    "fmi2DeSerializeFMUstate",
+    "fmi2DoStep",
+    "fmi2EnterInitializationMode",
+    "fmi2ExitInitializationMode",
+    "fmi2FreeFMUstate",
+    "fmi2FreeInstance",
+    "fmi2GetBoolean",
+    "fmi2GetBooleanStatus",
+    "fmi2GetDirectionalDerivative",
+    "fmi2GetFMUstate",
+    "fmi2GetInteger",
+    "fmi2GetIntegerStatus",
+    "fmi2GetReal",
+    "fmi2GetRealOutputDerivatives",
+    "fmi2GetRealStatus",
+    "fmi2GetStatus",
+    "fmi2GetString",
+    "fmi2GetStringStatus",
+    "fmi2GetTypesPlatform",
+    "fmi2GetVersion",
+    "fmi2Instantiate",
+    "fmi2Reset",
+    "fmi2SerializeFMUstate",
+    "fmi2SerializedFMUstateSize",
+    "fmi2SetBoolean",
+    "fmi2SetDebugLogging",
+    "fmi2SetFMUstate",
+    "fmi2SetInteger",
+    "fmi2SetReal",
+    "fmi2SetRealInputDerivatives",
+    "fmi2SetString",
+    "fmi2SetupExperiment",
+    "fmi2Terminate",
+    "fmi3ActivateModelPartition",
+    "fmi3CompletedIntegratorStep",
+    "fmi3DeserializeFMUState",
+    "fmi3DoStep",
+    "fmi3EnterConfigurationMode",
+    "fmi3EnterContinuousTimeMode",
+    "fmi3EnterEventMode",
+    "fmi3EnterInitializationMode",
+    "fmi3EnterStepMode",
+    "fmi3EvaluateDiscreteStates",
+    "fmi3ExitConfigurationMode",
+    "fmi3ExitInitializationMode",
+    "fmi3FreeFMUState",
+    "fmi3FreeInstance",
+    "fmi3GetAdjointDerivative",
+    "fmi3GetBinary",
+    "fmi3GetBoolean",
+    "fmi3GetClock",
+    "fmi3GetContinuousStateDerivatives",
+    "fmi3GetContinuousStates",
+    "fmi3GetDirectionalDerivative",
+    "fmi3GetEventIndicators",
+    "fmi3GetFMUState",
+    "fmi3GetFloat32",
+    "fmi3GetFloat64",
+    "fmi3GetInt16",
+    "fmi3GetInt32",
+    "fmi3GetInt64",
+    "fmi3GetInt8",
+    "fmi3GetIntervalDecimal",
+    "fmi3GetIntervalFraction",
+    "fmi3GetNominalsOfContinuousStates",
+    "fmi3GetNumberOfContinuousStates",
+    "fmi3GetNumberOfEventIndicators",
+    "fmi3GetNumberOfVariableDependencies",
+    "fmi3GetOutputDerivatives",
+    "fmi3GetShiftDecimal",
+    "fmi3GetShiftFraction",
+    "fmi3GetString",
+    "fmi3GetUInt16",
+    "fmi3GetUInt32",
+    "fmi3GetUInt64",
+    "fmi3GetUInt8",
+    "fmi3GetVariableDependencies",
+    "fmi3GetVersion",
+    "fmi3InstantiateCoSimulation",
+    "fmi3InstantiateModelExchange",
+    "fmi3InstantiateScheduledExecution",
+    "fmi3Reset",
+    "fmi3SerializeFMUState",
+    "fmi3SerializedFMUStateSize",
+    "fmi3SetBinary",
+    "fmi3SetBoolean",
+    "fmi3SetClock",
+    "fmi3SetContinuousStates",
+    "fmi3SetDebugLogging",
+    "fmi3SetFMUState",
+    "fmi3SetFloat32",
+    "fmi3SetFloat64",
+    "fmi3SetInt16",
+    "fmi3SetInt32",
+    "fmi3SetInt64",
+    "fmi3SetInt8",
+    "fmi3SetIntervalDecimal",
+    "fmi3SetIntervalFraction",
+    "fmi3SetShiftDecimal",
+    "fmi3SetShiftFraction",
+    "fmi3SetString",
+    "fmi3SetTime",
+    "fmi3SetUInt16",
+    "fmi3SetUInt32",
+    "fmi3SetUInt64",
+    "fmi3SetUInt8",
+    "fmi3Terminate",
+    "fmi3UpdateDiscreteStates",
+];
+
+/// The most sections a PE image has (the Windows loader's limit).
+const MAX_PE_SECTIONS: u16 = 96;
+
+/// The most names an export directory may list here (ours lists 109; a DLL linked without an
+/// export list, such as zig's, a few thousand).
+const MAX_PE_EXPORTS: u32 = 1 << 20;
+
+/// The longest export name read, bytes.
+const MAX_EXPORT_NAME: usize = 512;
+
+/// The names a PE32+ image exports (the name table of its export directory), `pe` being the offset
+/// of its `PE\0\0` signature. Every count and offset is checked against the file before it is
+/// used: a header that lies (65535 sections, a table beyond the file) is refused with a reason.
+pub fn pe_exports(binary: &[u8], pe: usize) -> std::result::Result<Vec<String>, String> {
+    let cut = || format!("a PE header cut short ({} bytes)", binary.len());
+    let sections = u16_le(binary, pe + 6).ok_or_else(cut)?;
+    if !(1..=MAX_PE_SECTIONS).contains(&sections) {
+        return Err(format!("a PE header with {sections} sections (an image has 1 to {MAX_PE_SECTIONS})"));
+    }
+    let optional_size = usize::from(u16_le(binary, pe + 20).ok_or_else(cut)?);
+    let optional = pe + 24;
+    let magic = u16_le(binary, optional).ok_or_else(cut)?;
+    if magic != 0x20b {
+        return Err(format!("not a PE32+ image (optional header magic 0x{magic:04x}, PE32+ is 0x020b)"));
+    }
+    // PE32+: 112 bytes of fields (the count of data directories at 108), then the directories,
+    // the export directory's first.
+    let directories = u32_le(binary, optional + 108).ok_or_else(cut)?;
+    if optional_size < 120 || directories == 0 {
+        return Err(format!(
+            "the PE optional header has no export directory ({optional_size} bytes, {directories} data directories)"
+        ));
+    }
+    let table = optional + optional_size;
+    let table_end = table + 40 * usize::from(sections);
+    if table_end > binary.len() {
+        return Err(format!(
+            "the PE section table (bytes {table}..{table_end}) lies beyond the file ({} bytes)",
+            binary.len()
+        ));
+    }
+    // Each section's (virtual address, raw size, raw offset); its raw data must lie in the file.
+    let mut raw = Vec::with_capacity(usize::from(sections));
+    for k in 0..usize::from(sections) {
+        let at = table + 40 * k;
+        let (va, size, offset) = (u32_le(binary, at + 12), u32_le(binary, at + 16), u32_le(binary, at + 20));
+        let (Some(va), Some(size), Some(offset)) = (va, size, offset) else { return Err(cut()) };
+        let (size, offset) = (u64::from(size), u64::from(offset));
+        if size > 0 && offset + size > binary.len() as u64 {
+            return Err(format!(
+                "PE section {k}'s data (bytes {offset}..{}) lies beyond the file ({} bytes)",
+                offset + size,
+                binary.len()
+            ));
+        }
+        raw.push((u64::from(va), size, offset));
+    }
+    // The file offset of `len` bytes at `rva`, inside one section's raw data.
+    let offset_of = |rva: u32, len: u64| -> Option<usize> {
+        let rva = u64::from(rva);
+        raw.iter()
+            .find(|&&(va, size, _)| rva >= va && rva - va + len <= size)
+            .and_then(|&(va, _, offset)| usize::try_from(offset + (rva - va)).ok())
+    };
+    let export_rva = u32_le(binary, optional + 112).ok_or_else(cut)?;
+    if export_rva == 0 {
+        return Err("it has no export directory: it exports no function".into());
+    }
+    let directory = offset_of(export_rva, 40)
+        .ok_or_else(|| format!("its export directory (RVA 0x{export_rva:x}) lies outside the file's sections"))?;
+    let (Some(count), Some(names_rva)) = (u32_le(binary, directory + 24), u32_le(binary, directory + 32)) else {
+        return Err(cut());
+    };
+    if count > MAX_PE_EXPORTS {
+        return Err(format!("its export directory lists {count} names (more than {MAX_PE_EXPORTS})"));
+    }
+    let names = offset_of(names_rva, 4 * u64::from(count)).ok_or_else(|| {
+        format!("its export name table ({count} names at RVA 0x{names_rva:x}) lies outside the file's sections")
+    })?;
+    let mut exports = Vec::with_capacity(count as usize);
+    for k in 0..count as usize {
+        let rva = u32_le(binary, names + 4 * k).ok_or_else(cut)?;
+        let start = offset_of(rva, 1)
+            .ok_or_else(|| format!("export name {k} (RVA 0x{rva:x}) lies outside the file's sections"))?;
+        let text = &binary[start..binary.len().min(start + MAX_EXPORT_NAME + 1)];
+        let end = text
+            .iter()
+            .position(|&b| b == 0)
+            .ok_or_else(|| format!("export name {k} is not ended within {MAX_EXPORT_NAME} bytes"))?;
+        exports.push(String::from_utf8_lossy(&text[..end]).into_owned());
+    }
+    Ok(exports)
+}
+
+/// Checks that the exported `names` include every one of [`FMI_FUNCTIONS`].
+fn exports_fmi_functions(names: &[String]) -> std::result::Result<(), String> {
+    let exported: std::collections::HashSet<&str> = names.iter().map(String::as_str).collect();
+    let missing: Vec<&str> = FMI_FUNCTIONS.iter().copied().filter(|f| !exported.contains(f)).collect();
+    if missing.is_empty() {
+        return Ok(());
+    }
+    let shown = missing.iter().take(3).copied().collect::<Vec<_>>().join(", ");
+    let more = if missing.len() > 3 { format!(" and {} more", missing.len() - 3) } else { String::new() };
+    Err(format!(
+        "it exports {} of the {} FMI functions ({} names in all), not {shown}{more}: not the beam-impact library",
+        FMI_FUNCTIONS.len() - missing.len(),
+        FMI_FUNCTIONS.len(),
+        names.len()
+    ))
+}
+
+/// Checks that `binary` is a Windows x86-64 DLL (PE32+, machine AMD64, IMAGE_FILE_DLL) whose export
+/// directory names every one of [`FMI_FUNCTIONS`] (issue 27; read by [`pe_exports`], its headers
+/// bounded by the file). Its imports, and that it exports nothing else, are checked where it is
+/// built, `scripts/cross-build.sh`.
 pub fn check_dll(binary: &[u8]) -> std::result::Result<(), String> {
     if binary.get(..2) != Some(b"MZ") {
         return Err(format!("not a Windows DLL ({} bytes, no MZ header)", binary.len()));
@@ -212,7 +439,7 @@ pub fn check_dll(binary: &[u8]) -> std::result::Result<(), String> {
     if characteristics & 0x2000 == 0 {
         return Err("a PE file but not a DLL (IMAGE_FILE_DLL not set)".into());
     }
-    names_entry_points(binary, &ENTRY_POINTS)
+    exports_fmi_functions(&pe_exports(binary, pe)?)
 }
 
 /// Mach-O CPU types of the two slices of a universal2 binary, with the FMI 3.0 platform
@@ -275,14 +502,37 @@ pub fn check_universal_dylib(binary: &[u8]) -> std::result::Result<Vec<(&'static
 }
 
 /// The largest binary `pack` reads, bytes (ours are 3-7 MB).
-const MAX_BINARY: u64 = 1 << 30;
+pub const MAX_BINARY: u64 = 1 << 30;
 
-/// Reads a binary to pack: a regular file only (a FIFO would block, a device never end), at
-/// most [`MAX_BINARY`] bytes (a larger file is refused, not cut).
+/// Opens a binary to pack and checks it before anything of it is read (issue 27): a regular file
+/// (a FIFO would block, a device never end) of at most [`MAX_BINARY`] bytes by its metadata, so
+/// that a huge or sparse file is refused at once. Returns the open file and its size.
+fn open_binary(path: &Path) -> Result<(std::fs::File, u64)> {
+    let what = "cannot read the shared library to pack";
+    let file = crate::record::output::open_regular_input(path, what)?;
+    let size = file.metadata().map_err(io(what, path))?.len();
+    if size > MAX_BINARY {
+        return Err(Error::Other(format!(
+            "{} cannot be packed: {size} bytes, larger than {MAX_BINARY} (not the beam-impact library)",
+            path.display()
+        )));
+    }
+    Ok((file, size))
+}
+
+/// Checks a binary given to `pack` without reading it: a regular file of at most [`MAX_BINARY`]
+/// bytes by its metadata; returns its size. The CLI calls it for every file given before it
+/// builds anything.
+pub fn check_binary_file(path: &Path) -> Result<u64> {
+    open_binary(path).map(|(_, size)| size)
+}
+
+/// Reads a binary to pack, checked first by [`open_binary`]; at most [`MAX_BINARY`] bytes are
+/// read even if the file grows meanwhile (a larger file is refused, not cut).
 fn read_binary(path: &Path) -> Result<Vec<u8>> {
     use std::io::Read;
-    let file = crate::record::output::open_regular_input(path, "cannot read the shared library to pack")?;
-    let mut bytes = Vec::new();
+    let (file, size) = open_binary(path)?;
+    let mut bytes = Vec::with_capacity(usize::try_from(size).unwrap_or(0));
     file.take(MAX_BINARY + 1).read_to_end(&mut bytes).map_err(io("cannot read the shared library to pack", path))?;
     if bytes.len() as u64 > MAX_BINARY {
         return Err(Error::Other(format!(

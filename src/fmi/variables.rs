@@ -3,7 +3,7 @@
 //! [`PARAMETERS`]; the value reference of a variable is its index in [`table`].
 
 use crate::model::parameters::{Kind, Parameter, PARAMETERS};
-use crate::model::support_motion::{MOTION_NAMES, MOTION_UNITS};
+use crate::model::support_motion::{MOTION_LIMITS, MOTION_NAMES, MOTION_UNITS};
 use crate::results::StepResult;
 use crate::solver::EnergyMethod;
 use crate::Scenario;
@@ -171,7 +171,8 @@ pub struct Variable {
     /// SI unit, if any; the descriptions declare it through the unit's type definition
     /// ([`declared_type`]), not on the variable.
     pub unit: Option<&'static str>,
-    /// Declared `min` (parameters the physics bounds, see [`declared_range`]).
+    /// Declared `min` (parameters the physics bounds, see [`declared_range`]; the support-motion
+    /// inputs' range, [`MOTION_LIMITS`]).
     pub min: Option<f64>,
     /// Declared `max`.
     pub max: Option<f64>,
@@ -242,7 +243,14 @@ const OUTPUTS: &[OutputRow] = &[
     ("energy.gravity_potential", "J", "Potential energy of gravity from the undeformed position", |r| {
         r.energy.gravity_potential
     }),
-    ("energy.external_work", "J", "Work done by the two input tip forces since t = 0", |r| r.energy.external_work),
+    (
+        "energy.external_work",
+        "J",
+        "Work done on the beams since t = 0 by the two input tip forces and by the supports when they move: the \
+         inertia loads of their accelerations, and the contact bar's force through the change of the gap their \
+         displacements make (the energies are those of the motion relative to the supports)",
+        |r| r.energy.external_work,
+    ),
     ("energy.damping_dissipation", "J", "Energy dissipated by damping since t = 0", |r| r.energy.damping_dissipation),
     (
         "energy.residual",
@@ -342,6 +350,7 @@ pub fn table() -> Vec<Variable> {
         let vr = v.len() as u32;
         let (min, max) = match source {
             Source::Parameter(p) => declared_range(p),
+            Source::Motion(k) => (Some(-MOTION_LIMITS[k]), Some(MOTION_LIMITS[k])),
             _ => (None, None),
         };
         v.push(Variable { name, vr, ty, causality, variability, exact, unit, min, max, description, start, source });
@@ -564,7 +573,7 @@ pub fn table() -> Vec<Variable> {
         "Vertical velocity of the arrestor's clamp",
         "Vertical acceleration of the arrestor's clamp (loads the arrestor with its inertia)",
         "Rotation of the arrestor's clamp, the sign of the arrestor's slope dw/dx (positive raises its end by \
-         lower.length times it); small angles",
+         lower.length times it); small angles (the model linearises the rotation)",
         "Angular velocity of the arrestor's clamp",
         "Angular acceleration of the arrestor's clamp",
     ];
@@ -577,9 +586,10 @@ pub fn table() -> Vec<Variable> {
             Some(true),
             Some(unit),
             format!(
-                "{}. Between communication points the support moves as z + v tau + a tau^2/2 from the values set \
-                 at the point: displacement, velocity and acceleration must agree (a warning names a mismatch)",
-                motion_descriptions[k]
+                "{}. Range |value| <= {} {unit} (min and max; a value beyond is refused with an error). Between \
+                 communication points the support moves as z + v tau + a tau^2/2 from the values set at the point: \
+                 displacement, velocity and acceleration must agree (a warning names a mismatch)",
+                motion_descriptions[k], MOTION_LIMITS[k]
             ),
             Some("0.0".into()),
             Source::Motion(k),
