@@ -332,6 +332,14 @@ pub fn affects_values(p: &Parameter) -> bool {
 pub fn is_appended_parameter(p: &Parameter) -> bool {
     let index = |name: &str| PARAMETERS.iter().position(|q| q.name == name);
     matches!((index(p.name), index("energy_tolerance")), (Some(i), Some(first)) if i >= first)
+        && !is_issue_28_parameter(p)
+}
+
+/// Whether a parameter came with issue 28 (every parameter from `impact_angular_velocity` on in
+/// [`PARAMETERS`]): its value reference follows the tip positions, the end of the table before it.
+pub fn is_issue_28_parameter(p: &Parameter) -> bool {
+    let index = |name: &str| PARAMETERS.iter().position(|q| q.name == name);
+    matches!((index(p.name), index("impact_angular_velocity")), (Some(i), Some(first)) if i >= first)
 }
 
 /// A variable as [`table`] lists it, before its value reference and declared range: name,
@@ -400,7 +408,8 @@ pub fn table() -> Vec<Variable> {
             Source::Output(get),
         )
     };
-    for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && !is_appended_parameter(p)) {
+    for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && !is_appended_parameter(p) && !is_issue_28_parameter(p))
+    {
         push(parameter(p));
     }
     push((
@@ -597,6 +606,10 @@ pub fn table() -> Vec<Variable> {
     }
     for row in POSITION_OUTPUTS {
         push(output(row));
+    }
+    // Issue 28: the impact's speed, the rigid support, the contact's rate and clearance (appended).
+    for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && is_issue_28_parameter(p)) {
+        push(parameter(p));
     }
     v
 }

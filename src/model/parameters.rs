@@ -213,8 +213,8 @@ pub const PARAMETERS: &[Parameter] = &[
         kind: Kind::Integer,
         get: |s| f64::from(s.lower.kind.index()),
         put: |s, v| {
-            s.lower.kind = SupportKind::from_index(v)
-                .ok_or_else(|| Error::invalid("lower.kind", "0 (beam) or 1 (rigid)", v))?;
+            s.lower.kind =
+                SupportKind::from_index(v).ok_or_else(|| Error::invalid("lower.kind", "0 (beam) or 1 (rigid)", v))?;
             Ok(())
         },
     },

@@ -84,7 +84,8 @@ impl EnergyMethod {
         // The support's spring: the arrestor's flexion (Eq. 29), or for a rigid support the
         // contact element alone.
         let rigid = s.lower.kind == crate::model::scenario::SupportKind::Rigid;
-        let k_f = if rigid { s.contact.stiffness() } else { 3.0 * l.elastic_modulus * l.second_moment / l.length.powi(3) };
+        let k_f =
+            if rigid { s.contact.stiffness() } else { 3.0 * l.elastic_modulus * l.second_moment / l.length.powi(3) };
         let weight = s.upper.mass * s.gravity;
         let (lu, d, h) = (s.upper.length, s.contact_position, s.drop_height);
         // The arrestor's strain energy 1/2 k_f w^2 takes the impact's energy E_0 and the bridge's
