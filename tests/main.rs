@@ -9,6 +9,7 @@ mod fuzz_support;
 mod recording_support;
 
 mod answer;
+mod benchmarks;
 mod cli;
 mod cli_defects;
 mod closed_form;

@@ -468,7 +468,23 @@ impl Scenario {
 
     /// The scenario as TOML, with every field.
     pub fn to_toml(&self) -> String {
-        toml::to_string(self).unwrap_or_else(|e| format!("# cannot serialize scenario: {e}\n"))
+        let text = toml::to_string(self).unwrap_or_else(|e| format!("# cannot serialize scenario: {e}\n"));
+        let rigid = self.lower.kind == SupportKind::Rigid;
+        if !rigid && self.contact.given_stiffness.is_none() {
+            return text;
+        }
+        // Fields that do not apply are left out, so that the text reads back (a rigid support
+        // has no beam fields; a given contact rate no bar).
+        let Ok(mut table) = text.parse::<toml::Table>() else { return text };
+        if let (true, Some(toml::Value::Table(lower))) = (rigid, table.get_mut("lower")) {
+            lower.retain(|k, _| k == "kind");
+        }
+        if let (true, Some(toml::Value::Table(contact))) =
+            (self.contact.given_stiffness.is_some(), table.get_mut("contact"))
+        {
+            contact.retain(|k, _| k != "area" && k != "length" && k != "elastic_modulus");
+        }
+        toml::to_string(&table).unwrap_or(text)
     }
 
     /// The paper's scenario and method: the defaults with the paper's mesh (7 + 7/7 elements, the
