@@ -263,7 +263,11 @@ impl Simulation<ModalStepper> {
         let full = ModalSystem::new(&model)?;
         let physical = initial_physical_state(&model, &full, &motion)?;
         let modal = match resolved.method {
-            Method::Converged if resolved.modal_cutoff > 0.0 => full.truncated(resolved.modal_cutoff)?,
+            // A nonlinear contact law is solved on the full basis (the static correction of the
+            // discarded modes is written for the linear bar).
+            Method::Converged if resolved.modal_cutoff > 0.0 && resolved.contact.nonlinear_law().is_none() => {
+                full.truncated(resolved.modal_cutoff)?
+            }
             _ => full,
         };
         let stepper = ModalStepper::new(&model, modal.clone());
@@ -360,7 +364,7 @@ impl<S: Stepper> Simulation<S> {
     fn evaluate_initial(&mut self) {
         let excitation = self.excitation_at(0);
         let (probes, energies) = self.stepper.measure(&self.state.kinematics, Stage::Free, &excitation);
-        let mut result = self.outputs(&probes, Stage::Free, 0);
+        let mut result = self.outputs(&probes, Stage::Free, 0, 0.0);
         self.set_support_and_tips(&mut result, &self.state.kinematics, &excitation);
         self.state.inertial_potential = energies.inertial_potential;
         self.state.gap = probes[Probe::Gap as usize];
@@ -400,9 +404,34 @@ impl<S: Stepper> Simulation<S> {
     }
 
     /// The outputs of the current displacement probes at `at_ns`, without time or energy.
-    fn outputs(&self, probes: &[f64; PROBES], stage: Stage, at_ns: u64) -> StepResult {
+    /// The contact force (N, negative in compression) at gap `gap` closing at `rate` (m/s): the
+    /// linear bar's k gap (Eq. 5), or a nonlinear law's -P(-gap, -rate).
+    fn contact_force(&self, gap: f64, rate: f64, stage: Stage) -> f64 {
+        match self.modal.law {
+            Some(law) if stage.is_contact() => -law.force(-gap, -rate),
+            _ => contact::bar_force(self.model.bar_stiffness, gap, stage),
+        }
+    }
+
+    /// The gap's rate of `kinematics` (m/s) where a nonlinear law needs it (its damping), else 0.
+    fn gap_rate(&self, kinematics: &Kinematics, stage: Stage, excitation: &Excitation) -> f64 {
+        match self.modal.law {
+            Some(_) if stage.is_contact() => self.stepper.rates(kinematics, stage, excitation)[Probe::Gap as usize],
+            _ => 0.0,
+        }
+    }
+
+    /// The contact's dissipation rate (W) under a nonlinear law with damping, else 0.
+    fn contact_dissipation_rate(&self, gap: f64, rate: f64, stage: Stage) -> f64 {
+        match self.modal.law {
+            Some(law) if stage.is_contact() => law.dissipation_rate(-gap, -rate),
+            _ => 0.0,
+        }
+    }
+
+    fn outputs(&self, probes: &[f64; PROBES], stage: Stage, at_ns: u64, rate: f64) -> StepResult {
         let s = &self.model.scenario;
-        let force = contact::bar_force(self.model.bar_stiffness, probes[Probe::Gap as usize], stage);
+        let force = self.contact_force(probes[Probe::Gap as usize], rate, stage);
         let motion = self.motion_at(at_ns);
         let (hinge, clamp, rotation) = (motion.hinge_heave, motion.clamp_heave, motion.clamp_rotation);
         StepResult {
@@ -473,12 +502,18 @@ impl<S: Stepper> Simulation<S> {
             (Probe::UpperContactMoment, 1.0 / s.upper.section_modulus),
             (Probe::Gap, bar),
         ];
+        let law = self.modal.law.filter(|_| stage.is_contact());
         outputs.map(|(probe, scale)| {
             let k = probe as usize;
             let (value, at) =
                 crate::solver::step_extrema::cubic_extremum(p0[k], end[k], r0[k] * dt, r1[k] * dt, fraction);
             // The time within the run (never past the step's end by round-off).
-            (value * scale.abs(), (seconds(start.time_ns) + at * dt).min(self.state.result.time))
+            let at = (seconds(start.time_ns) + at * dt).min(self.state.result.time);
+            match (probe, law) {
+                // A nonlinear law's force at the step's largest compression (its elastic part).
+                (Probe::Gap, Some(law)) => (law.elastic(value), at),
+                _ => (value * scale.abs(), at),
+            }
         })
     }
 
@@ -523,7 +558,9 @@ impl<S: Stepper> Simulation<S> {
             });
         }
         self.state.gap = probes[Probe::Gap as usize];
-        let mut result = self.outputs(&probes, stage, previous.time_ns + step_ns);
+        let rate = self.gap_rate(&self.state.kinematics, stage, &excitation);
+        energies.dissipation_rate += self.contact_dissipation_rate(self.state.gap, rate, stage);
+        let mut result = self.outputs(&probes, stage, previous.time_ns + step_ns, rate);
         if details {
             self.set_support_and_tips(&mut result, &self.state.kinematics, &excitation);
         }
@@ -803,8 +840,10 @@ impl<S: Stepper> Simulation<S> {
             acceleration: &k0.acceleration + &jerk * tau,
         };
         let excitation = self.excitation_at(at_ns);
-        let (probes, energies) = self.stepper.measure(&kinematics, stage, &excitation);
-        let mut result = self.outputs(&probes, stage, at_ns);
+        let (probes, mut energies) = self.stepper.measure(&kinematics, stage, &excitation);
+        let rate = self.gap_rate(&kinematics, stage, &excitation);
+        energies.dissipation_rate += self.contact_dissipation_rate(probes[Probe::Gap as usize], rate, stage);
+        let mut result = self.outputs(&probes, stage, at_ns, rate);
         self.set_support_and_tips(&mut result, &kinematics, &excitation);
         result.time_ns = at_ns;
         // The work and the dissipation up to the point, booked as the step books them.
@@ -854,7 +893,11 @@ impl<S: Stepper> Simulation<S> {
             self.motion_at(reached.time_ns).gap_offset(length) - self.motion_at(start.time_ns).gap_offset(length);
         let supports = -(energies.inertial_potential - before.inertial_potential)
             + 0.5 * (start.contact_force + reached.contact_force) * offset_change;
-        let bar = if stage.is_contact() { contact::bar_energy(self.model.bar_stiffness, gap) } else { 0.0 };
+        let bar = match self.modal.law {
+            _ if !stage.is_contact() => 0.0,
+            Some(law) => law.energy(-gap),
+            None => contact::bar_energy(self.model.bar_stiffness, gap),
+        };
         let mut energy = EnergyAccount {
             kinetic: energies.kinetic,
             strain: energies.beam_strain + bar,

@@ -13,6 +13,7 @@ mod benchmarks;
 mod cli;
 mod cli_defects;
 mod closed_form;
+mod contact_laws;
 mod converged_references;
 mod energy_method;
 mod energy_safety;

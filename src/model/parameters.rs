@@ -2,6 +2,7 @@
 //! variables and the CLI's messages take names, units and descriptions from.
 
 use super::discretisation::Method;
+use super::contact_law::LawKind;
 use super::scenario::{Scenario, SupportKind, MAX_ELEMENTS};
 use super::stress_recovery::StressRecovery;
 use super::time_step::TimeStep;
@@ -235,6 +236,26 @@ pub const PARAMETERS: &[Parameter] = &[
         "A gap the bodies close after first touching before the contact acts",
         contact.clearance
     ),
+    Parameter {
+        name: "contact.law",
+        unit: "",
+        description: "The contact law: 0 linear (F = k delta, the paper's bar), 1 power (F = k delta^n, n = \
+                      contact.exponent; contact.stiffness then in N/m^n)",
+        kind: Kind::Integer,
+        get: |s| f64::from(s.contact.law.index()),
+        put: |s, v| {
+            s.contact.law = LawKind::from_index(v)
+                .ok_or_else(|| Error::invalid("contact.law", "0 (linear) or 1 (power)", v))?;
+            Ok(())
+        },
+    },
+    real!("contact.exponent", "1", "The power law's exponent n (1.5: Hertz)", contact.exponent),
+    real!(
+        "contact.damping",
+        "s/m",
+        "Hunt and Crossley's damping c: F = k delta^n (1 + c delta'), for either law; 0: none",
+        contact.damping
+    ),
 ];
 
 /// Looks a parameter up by name.
@@ -301,6 +322,9 @@ pub const RANGES: &[(&str, Option<f64>, Option<f64>)] = &[
     ("lower.kind", Some(0.0), Some(1.0)),
     ("contact.stiffness", Some(0.0), Some(1e13)),
     ("contact.clearance", Some(0.0), Some(10.0)),
+    ("contact.law", Some(0.0), Some(1.0)),
+    ("contact.exponent", Some(1.0), Some(3.0)),
+    ("contact.damping", Some(0.0), Some(1e3)),
 ];
 
 /// The smallest positive f64: a lower bound "> 0" in the FMU's `min` (FMI has no exclusive bound).
@@ -325,7 +349,7 @@ fn range_text(name: &str) -> Option<String> {
         }
     };
     match name {
-        "method" | "stress_recovery" | "lower.kind" => return None,
+        "method" | "stress_recovery" | "lower.kind" | "contact.law" => return None,
         "drop_height" => return Some("0 to upper.length / 2 (500 at most)".into()),
         "contact_position" => return Some("> 0, below upper.length".into()),
         "step_free" | "step_contact" => return Some("\"auto\", or 1e-9 to 1".into()),
@@ -354,8 +378,14 @@ fn annotation(p: &Parameter) -> String {
 }
 
 /// Fields of a section that a scenario leaves out unless given, with an example value.
-const OPTIONAL_FIELDS: [(&str, &str); 3] =
-    [("lower.kind", "\"rigid\""), ("contact.stiffness", "2.8e10"), ("contact.clearance", "0.001")];
+const OPTIONAL_FIELDS: [(&str, &str); 6] = [
+    ("lower.kind", "\"rigid\""),
+    ("contact.stiffness", "2.8e10"),
+    ("contact.clearance", "0.001"),
+    ("contact.law", "\"power\""),
+    ("contact.exponent", "1.5"),
+    ("contact.damping", "0.2"),
+];
 
 /// Whether section `[name]` of `toml` sets `key`.
 fn section_has(toml: &str, name: &str, key: &str) -> bool {
@@ -429,7 +459,7 @@ mod tests {
                 .find(|l| l.starts_with(&format!("{key} = ")) || l.starts_with(&format!("# {key} = ")))
                 .unwrap_or_else(|| panic!("{name}"));
             assert!(line.contains("  # ["), "{name}: no unit: {line}");
-            let named_choice = matches!(*name, "method" | "stress_recovery" | "lower.kind");
+            let named_choice = matches!(*name, "method" | "stress_recovery" | "lower.kind" | "contact.law");
             assert_eq!(line.contains("; range "), !named_choice, "{name}: {line}");
         }
         assert!(text.contains("drop_height = 0.567  # [m] ") && text.contains("range 0 to upper.length / 2"));

@@ -6,6 +6,7 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize};
 
 use super::discretisation::{auto_count, auto_real, Method, PAPER_ELEMENTS};
+use super::contact_law::{ContactLaw, LawKind, EXPONENT_RANGE};
 use super::motion_table::MotionTable;
 use super::stress_recovery::StressRecovery;
 use super::support_motion::SupportMotion;
@@ -170,6 +171,20 @@ pub struct ContactBar {
     /// geometrically and the contact force begins once they have closed another `clearance`.
     #[serde(skip_serializing_if = "is_zero")]
     pub clearance: f64,
+    /// `"linear"` (the default: F = k delta, the paper's bar) or `"power"` (F = k delta^n with
+    /// n = `exponent`; `stiffness` then in N/m^n and required).
+    #[serde(skip_serializing_if = "LawKind::is_linear")]
+    pub law: LawKind,
+    /// The power law's exponent n, 1 to 3 (default 1.5: Hertz).
+    #[serde(skip_serializing_if = "is_hertz")]
+    pub exponent: f64,
+    /// Hunt and Crossley's damping c, s/m (default 0): F = k delta^n (1 + c delta'), for either law.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub damping: f64,
+}
+
+fn is_hertz(x: &f64) -> bool {
+    *x == 1.5
 }
 
 fn is_zero(x: &f64) -> bool {
@@ -178,7 +193,16 @@ fn is_zero(x: &f64) -> bool {
 
 impl Default for ContactBar {
     fn default() -> Self {
-        ContactBar { area: 0.04, length: 0.3, elastic_modulus: 2.1e11, given_stiffness: None, clearance: 0.0 }
+        ContactBar {
+            area: 0.04,
+            length: 0.3,
+            elastic_modulus: 2.1e11,
+            given_stiffness: None,
+            clearance: 0.0,
+            law: LawKind::Linear,
+            exponent: 1.5,
+            damping: 0.0,
+        }
     }
 }
 
@@ -186,6 +210,17 @@ impl ContactBar {
     /// Axial stiffness k, N/m: as given, or the bar's E A_c / l_c (Eq. 3).
     pub fn stiffness(&self) -> f64 {
         self.given_stiffness.unwrap_or(self.elastic_modulus * self.area / self.length)
+    }
+
+    /// The law the stepper solves as a scalar equation, or `None` for the paper's linear bar
+    /// without damping (solved in closed form, Sherman-Morrison).
+    pub fn nonlinear_law(&self) -> Option<ContactLaw> {
+        let exponent = if self.law == LawKind::Power { self.exponent } else { 1.0 };
+        (self.law == LawKind::Power || self.damping > 0.0).then(|| ContactLaw {
+            stiffness: self.stiffness(),
+            exponent,
+            damping: self.damping,
+        })
     }
 }
 
@@ -641,6 +676,15 @@ impl Scenario {
             check(size("contact.stiffness", "N/m", k, 1e-3, 1e13));
         }
         check(within("contact.clearance", "m", c.clearance, 0.0, 10.0));
+        check(within("contact.exponent", "", c.exponent, EXPONENT_RANGE.0, EXPONENT_RANGE.1));
+        check(within("contact.damping", "s/m", c.damping, 0.0, 1e3));
+        if c.law == LawKind::Power && c.given_stiffness.is_none() {
+            check(Err(Error::invalid(
+                "contact.stiffness",
+                "given with contact.law = \"power\" (k in N/m^n: the bar's E A / l is a linear rate)",
+                "absent",
+            )));
+        }
         check(size("contact.area", "m^2", c.area, 1e-12, 1e3));
         check(size("contact.length", "m", c.length, 1e-6, 1e3));
         check(size("contact.elastic_modulus", "Pa", c.elastic_modulus, 1e6, 1e13));

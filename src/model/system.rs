@@ -138,7 +138,7 @@ impl Model {
         put(Probe::UpperContactMoment, None, Some(contact_moment));
         Ok(Model {
             scenario: scenario.clone(),
-            bar_stiffness: s.contact.stiffness(),
+            bar_stiffness: contact_rate(s),
             contact_node: inner,
             lower,
             upper,
@@ -249,5 +249,20 @@ impl Model {
     /// Positions of the bridge's nodes and of the arrestor's nodes, m, from each beam's support.
     pub fn node_positions(&self) -> (Vec<f64>, Vec<f64>) {
         (self.lower.mesh.nodes.iter().map(|n| n.x).collect(), self.upper.mesh.nodes.iter().map(|n| n.x).collect())
+    }
+}
+
+/// The contact's rate in the coupled modes, N/m: the linear bar's k, or for a nonlinear law its
+/// largest tangent stiffness when it stores four times the impact's energy, or twice the static
+/// compression under the bridge's weight share (m_u g l_u / 2d), whichever is more: what the
+/// automatic contact step and Table 2's coupled column use. The law itself is solved each step.
+fn contact_rate(s: &Scenario) -> f64 {
+    match s.contact.nonlinear_law() {
+        None => s.contact.stiffness(),
+        Some(law) => {
+            let weight_share = s.upper.mass * s.gravity * s.upper.length / (2.0 * s.contact_position);
+            let static_energy = law.energy(2.0 * (weight_share / law.stiffness).powf(1.0 / law.exponent));
+            law.tangent_stiffness((4.0 * s.impact_energy()).max(static_energy))
+        }
     }
 }

@@ -5,6 +5,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::contact::Stage;
+use crate::model::contact_law::ContactLaw;
 use super::kinematics::{Energies, Excitation, Kinematics, Stepper, SupportAndTips};
 use super::modal::ModalSystem;
 use crate::model::system::PROBES;
@@ -28,6 +29,8 @@ pub struct DenseStepper {
     /// The contact vector b.
     contact: DVector<f64>,
     bar_stiffness: f64,
+    /// A nonlinear contact law (issue 28), solved each step; `None`: the linear bar.
+    law: Option<crate::model::contact_law::ContactLaw>,
     probes: DMatrix<f64>,
     /// Support reactions in physical coordinates.
     reactions: Vec<PhysicalReaction>,
@@ -67,6 +70,7 @@ impl DenseStepper {
             support_reactions: model.support_reaction_inertia(),
             contact: model.contact_vector(),
             bar_stiffness: model.bar_stiffness,
+            law: s.contact.nonlinear_law(),
             probes: model.probes.clone(),
             // Physical rows from the modal ones: d = Phi^-T Phi^T k = M Phi (Phi^T k) (mass-normalised
             // modes), and the same for the damping and mass rows.
@@ -96,15 +100,49 @@ impl DenseStepper {
         for (x, a) in self.support_loads.iter().zip(excitation.support_acceleration) {
             load += x * a;
         }
-        if stage.is_contact() {
+        if stage.is_contact() && self.law.is_none() {
             load -= &self.contact * (self.bar_stiffness * excitation.gap_offset);
         }
         load
     }
 }
 
+impl DenseStepper {
+    /// Eqs. (7)-(11) in contact under a nonlinear law (issue 28), written out: the beams' own
+    /// S a+ = f + b P, with P = law(delta+, delta+') and delta+ = -(b^T q+ + d) solved as one
+    /// scalar equation.
+    fn step_with_law(&self, state: &mut Kinematics, law: &ContactLaw, dt: f64, excitation: &Excitation) {
+        let (k, c) = (&self.stiffness, &self.damping);
+        let s = &self.mass + c * (dt / 2.0) + k * (dt * dt / 6.0);
+        let q = c + k * dt;
+        let r = c * (dt / 2.0) + k * (dt * dt / 3.0);
+        let load = self.load(Stage::Free, excitation);
+        let f = load - (k * &state.displacement + q * &state.velocity + r * &state.acceleration);
+        let n = f.len();
+        let lu = s.lu();
+        let nan = || DVector::from_element(n, f64::NAN);
+        let free = lu.solve(&f).unwrap_or_else(nan);
+        let unit = lu.solve(&self.contact).unwrap_or_else(nan);
+        let (d, v, a) = (&state.displacement, &state.velocity, &state.acceleration);
+        let b = &self.contact;
+        let flexibility = b.dot(&unit);
+        let z = d + v * dt + a * (dt * dt / 3.0);
+        let delta = -(b.dot(&z) + excitation.gap_offset + dt * dt / 6.0 * b.dot(&free));
+        let rate = -(b.dot(&(v + a * (dt / 2.0))) + excitation.gap_offset_rate + dt / 2.0 * b.dot(&free));
+        let force = law.solve(delta, dt * dt / 6.0 * flexibility, rate, dt / 2.0 * flexibility);
+        let a_next = free + unit * force;
+        let a = &state.acceleration;
+        state.displacement += &state.velocity * dt + a * (dt * dt / 3.0) + &a_next * (dt * dt / 6.0);
+        state.velocity += (a + &a_next) * (dt / 2.0);
+        state.acceleration = a_next;
+    }
+}
+
 impl Stepper for DenseStepper {
     fn step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, excitation: &Excitation) {
+        if let (true, Some(law)) = (stage.is_contact(), self.law) {
+            return self.step_with_law(state, &law, dt, excitation);
+        }
         let k = if stage.is_contact() { &self.coupled_stiffness } else { &self.stiffness };
         let c = &self.damping;
         // Eq. (9) and (10).

@@ -54,6 +54,9 @@ pub struct ModalSystem {
     pub cutoff: Option<f64>,
     /// Modal coordinates of the full basis (= physical DOFs of the mesh).
     pub full_dofs: usize,
+    /// A contact law solved each step (a power law or Hunt-Crossley damping; issue 28), or `None`
+    /// for the paper's linear bar; with one, `bar_stiffness` is only the coupled modes' rate.
+    pub law: Option<crate::model::contact_law::ContactLaw>,
 }
 
 /// A support reaction in modal coordinates: R = d . q + v . q' + a . q'' - load.
@@ -122,6 +125,7 @@ impl ModalSystem {
             correction: StaticCorrection::default(),
             cutoff: None,
             full_dofs: model.dofs(),
+            law: s.contact.nonlinear_law(),
         };
         Ok(system)
     }

@@ -20,6 +20,8 @@ struct StageInverse {
     corrected: DVector<f64>,
     /// beta / (1 + beta b^T D^-1 b), beta = k_c dt^2 / 6 (0 out of contact).
     factor: f64,
+    /// b^T D^-1 b (a nonlinear contact law's response of the gap to its force).
+    flexibility: f64,
 }
 
 /// Linear acceleration method in modal coordinates, O(n) per step.
@@ -126,8 +128,9 @@ impl StageInverse {
         let diagonal_inverse = s.omega2.zip_map(&s.damping, |w2, c| 1.0 / (1.0 + 0.5 * dt * c + dt * dt / 6.0 * w2));
         let corrected = diagonal_inverse.component_mul(&s.contact);
         let beta = if contact { s.bar_stiffness * dt * dt / 6.0 } else { 0.0 };
-        let factor = beta / (1.0 + beta * s.contact.dot(&corrected));
-        StageInverse { dt, diagonal_inverse, corrected, factor }
+        let flexibility = s.contact.dot(&corrected);
+        let factor = beta / (1.0 + beta * flexibility);
+        StageInverse { dt, diagonal_inverse, corrected, factor, flexibility }
     }
 }
 
@@ -183,7 +186,27 @@ impl ModalStepper {
         }
         // Eq. (7): a+ = S^-1 f. Out of contact S is diagonal: a+ = D^-1 f = y. In contact the bar
         // adds kappa b b^T to K: f loses kappa b (b . z), and Sherman-Morrison corrects D^-1.
-        if contact {
+        if let (true, Some(law)) = (contact, s.law) {
+            // A nonlinear law (issue 28): a+ = D^-1 (f + b P) with the step-end compression force
+            // P = P(delta+, delta+'), where delta+ = -(b^T q+ + s + d) and its rate fall by
+            // dt^2/6 b^T D^-1 b and dt/2 b^T D^-1 b per newton: one scalar equation
+            // (ContactLaw::solve), the rank-one structure kept. (Nonlinear laws use the full basis.)
+            let mut bz = 0.0;
+            let mut by = 0.0;
+            let mut bw = 0.0;
+            for i in 0..n {
+                bz += b[i] * z[i];
+                by += b[i] * y[i];
+                bw += b[i] * (v[i] + dt_2 * a[i]);
+            }
+            let delta = -(bz + self.shift + gap_offset + dt2_6 * by);
+            let rate = -(bw + excitation.gap_offset_rate + dt_2 * by);
+            let force = law.solve(delta, dt2_6 * inv.flexibility, rate, dt_2 * inv.flexibility);
+            let corrected = &inv.corrected.as_slice()[..n];
+            for i in 0..n {
+                y[i] += force * corrected[i];
+            }
+        } else if contact {
             // The truncated basis's bar acts on b^T z + s (the discarded modes' static gap).
             let bz: f64 = b.iter().zip(z.iter()).map(|(bi, zi)| bi * zi).sum::<f64>() + self.shift + gap_offset;
             let kbz = s.bar_stiffness * bz;

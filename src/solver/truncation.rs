@@ -114,6 +114,7 @@ impl ModalSystem {
             correction,
             cutoff: Some(cutoff),
             full_dofs: self.full_dofs,
+            law: self.law,
         })
     }
 }
