@@ -630,10 +630,13 @@ pub fn table() -> Vec<Variable> {
     v
 }
 
+/// An entry of [`IMPACT_OUTPUTS`]: name, unit, description, accessor.
+type ImpactRow = (&'static str, &'static str, &'static str, fn(&Impact) -> f64);
+
 /// The impact as the run starts it (issue 28), appended after issue 28's parameters: name, unit,
 /// description, accessor of [`crate::Simulation::impact`]. Both are fixed by the parameters and
 /// the support-motion inputs at the end of initialization (constant over the run).
-const IMPACT_OUTPUTS: &[(&str, &str, &str, fn(&Impact) -> f64)] = &[
+const IMPACT_OUTPUTS: &[ImpactRow] = &[
     (
         "impact.angular_velocity",
         "rad/s",
