@@ -71,7 +71,11 @@ fn contact_position_beyond_the_upper_beam() {
     let fmu = fresh();
     assert_eq!(fmu.set("contact_position", 35.0), OK);
     assert_eq!(fmu.initialize(), ERROR);
-    assert!(fmu.log.text().contains("contact_position must be inside the upper beam"), "{}", fmu.log.text());
+    assert!(
+        fmu.log.text().contains("contact_position must be on the upper beam, 0 < d <= upper.length = 29 m, got 35"),
+        "{}",
+        fmu.log.text()
+    );
 }
 
 #[test]

@@ -26,6 +26,7 @@ mod fmi_drift;
 mod fmi_full_disk;
 mod fmi_grid;
 mod fmi_importer;
+mod fmi_issue28;
 mod fmi_misuse;
 mod fmi_motion;
 mod fmi_pack;

@@ -7,7 +7,7 @@
 use std::fmt::Write;
 
 use super::reference::{ReferenceRun, REFERENCE_CSV, REFERENCE_STEP};
-use super::variables::{table, Type};
+use super::variables::{format_real, table, Type, Variable, SMALLEST_POSITIVE};
 use crate::paper::TABLE1_FEM;
 use crate::replay::figures::{figure_svg, Figure, Pen, Series, ARRESTOR, BRIDGE};
 
@@ -65,11 +65,26 @@ fn table1(default: &ReferenceRun, paper: &ReferenceRun) -> Result<String, String
     Ok(out)
 }
 
-/// Every variable: name, causality, variability, type, unit, start value, description.
+/// A variable's accepted range as the page shows it: its declared `min` and `max` ("0 to 1",
+/// "> 0" for the smallest positive bound), empty where none is declared.
+fn range(v: &Variable) -> String {
+    let bound = |x: f64| if v.ty == Type::Integer { format!("{}", x as i64) } else { format_real(x) };
+    match (v.min, v.max) {
+        (Some(min), Some(max)) if min == SMALLEST_POSITIVE => format!("> 0, <= {}", bound(max)),
+        (Some(min), Some(max)) => format!("{} to {}", bound(min), bound(max)),
+        (Some(min), None) if min == SMALLEST_POSITIVE => "> 0".into(),
+        (Some(min), None) => format!(">= {}", bound(min)),
+        (None, Some(max)) => format!("<= {}", bound(max)),
+        (None, None) => String::new(),
+    }
+}
+
+/// Every variable: name, causality, variability, type, unit, declared range, start value,
+/// description (which lists an Integer's choices).
 fn variables() -> String {
     let mut out = String::from(
-        "<table>\n<tr><th>name</th><th>causality</th><th>variability</th><th>type</th><th>unit</th><th>start</th>\
-         <th>description</th></tr>\n",
+        "<table>\n<tr><th>name</th><th>causality</th><th>variability</th><th>type</th><th>unit</th><th>range</th>\
+         <th>start</th><th>description</th></tr>\n",
     );
     for v in table() {
         let unit = match (v.unit, v.display_unit()) {
@@ -80,12 +95,14 @@ fn variables() -> String {
         };
         let _ = writeln!(
             out,
-            "<tr><td><code>{}</code></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            "<tr><td><code>{}</code></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>\
+             <td>{}</td></tr>",
             esc(&v.name),
             v.causality.name(),
             v.variability.name(),
             v.ty.fmi2_name(),
             esc(&unit),
+            esc(&range(&v)),
             esc(v.start.as_deref().unwrap_or("")),
             esc(&v.description),
         );
@@ -223,4 +240,37 @@ pub fn index_html(
         page = page.replacen(marker, &part, 1);
     }
     Ok(page)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The row of variable `name` in the page's variable table.
+    fn row(name: &str) -> String {
+        let table = variables();
+        let start = table.find(&format!("<tr><td><code>{name}</code></td>")).unwrap_or_else(|| panic!("{name}"));
+        table[start..].lines().next().unwrap().to_string()
+    }
+
+    /// Issue 28's parameters are listed with their type, unit, range and choices, and the impact's
+    /// outputs with their units and formulas.
+    #[test]
+    fn the_variable_table_lists_issue_28s_parameters_with_units_ranges_and_choices() {
+        let kind = row("lower.kind");
+        assert!(kind.contains("<td>Integer</td><td></td><td>0 to 1</td><td>0</td>"), "{kind}");
+        assert!(kind.contains("0 the arrestor beam, 1 a rigid point"), "{kind}");
+        let stiffness = row("contact.stiffness");
+        assert!(stiffness.contains("<td>Real</td><td>N/m</td><td>0.0 to 10000000000000.0</td>"), "{stiffness}");
+        assert!(stiffness.contains("0: the bar's E A_c / l_c"), "{stiffness}");
+        assert!(row("contact.clearance").contains("<td>m</td><td>0.0 to 10.0</td>"));
+        assert!(row("impact_angular_velocity").contains("<td>rad/s</td><td>0.0 to 50.0</td>"));
+        assert!(row("gravity").contains("<td>m/s2</td><td>0.0 to 100.0</td>"));
+        assert!(row("contact_position").contains("<td>&gt; 0</td>"));
+        let omega = row("impact.angular_velocity");
+        assert!(omega.contains("<td>output</td>") && omega.contains("<td>rad/s</td>"), "{omega}");
+        assert!(omega.contains("sqrt(3 g alpha_0 / l_u) with alpha_0 = atan(2 h / l_u)"), "{omega}");
+        let closing = row("impact.closing_speed");
+        assert!(closing.contains("<td>m/s</td>") && closing.contains("omega_0 d"), "{closing}");
+    }
 }

@@ -853,6 +853,7 @@ impl Instance {
                 self.computed(&v.name)?;
                 self.sensitivity_spread()
             }
+            Source::Impact(get) => get(&self.computed(&v.name)?.impact()),
             Source::LogPath
             | Source::ContactActive
             | Source::DesignPass

@@ -306,8 +306,8 @@ mod tests {
         out.insert(format!("{prefix}: {leaf}"));
     }
 
-    /// The payload's layout at FORMAT_VERSION 5 (5: the impact's angular velocity among the FMU
-    /// parameters; 4: the supports' motion, its start and input, the
+    /// The payload's layout at FORMAT_VERSION 5 (5: issue 28's FMU parameters, the impact's
+    /// angular velocity, `lower.kind`, `contact.stiffness` and `contact.clearance`; 4: the supports' motion, its start and input, the
     /// inertial potential and the supports' displacements in the results; 3: the method, modal cut-off, discretisation
     /// tolerance, allowables and yield stresses; the discretisation check's run states): every field path of `Snapshot` and its type, the
     /// FMU parameters by name. Version 2 (one bump for issues 7, 8 and 9): the energy verdict, the
@@ -418,8 +418,13 @@ mod tests {
             "checks[].upper_strain_at_peak: f64",
             "initialized: bool",
             "parameters.contact.area: f64",
+            "parameters.contact.clearance: f64",
+            "parameters.contact.damping: f64",
             "parameters.contact.elastic_modulus: f64",
+            "parameters.contact.exponent: f64",
+            "parameters.contact.law: f64",
             "parameters.contact.length: f64",
+            "parameters.contact.stiffness: f64",
             "parameters.contact_position: f64",
             "parameters.damping_ratio: f64",
             "parameters.discretisation_tolerance: f64",
@@ -431,6 +436,7 @@ mod tests {
             "parameters.lower.allowable_shear_stress: f64",
             "parameters.lower.elastic_modulus: f64",
             "parameters.lower.elements: f64",
+            "parameters.lower.kind: f64",
             "parameters.lower.length: f64",
             "parameters.lower.mass: f64",
             "parameters.lower.second_moment: f64",

@@ -4,7 +4,7 @@
 
 use crate::model::parameters::{Kind, Parameter, PARAMETERS};
 use crate::model::support_motion::{MOTION_LIMITS, MOTION_NAMES, MOTION_UNITS};
-use crate::results::StepResult;
+use crate::results::{Impact, StepResult};
 use crate::solver::EnergyMethod;
 use crate::Scenario;
 
@@ -150,6 +150,8 @@ pub enum Source {
     DiscretisationError,
     /// The largest spread against the twin run (-1: not checked; the FMU runs no twin).
     SensitivitySpread,
+    /// The impact as the run starts it ([`crate::Simulation::impact`], issue 28).
+    Impact(fn(&Impact) -> f64),
 }
 
 /// One model variable.
@@ -611,8 +613,49 @@ pub fn table() -> Vec<Variable> {
     for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && is_issue_28_parameter(p)) {
         push(parameter(p));
     }
+    // Issue 28: the impact the run starts with (appended after its parameters).
+    for &(name, unit, description, get) in IMPACT_OUTPUTS {
+        push((
+            name.into(),
+            Type::Real,
+            Causality::Output,
+            Variability::Continuous,
+            Some(false),
+            Some(unit),
+            description.into(),
+            None,
+            Source::Impact(get),
+        ));
+    }
     v
 }
+
+/// An entry of [`IMPACT_OUTPUTS`]: name, unit, description, accessor.
+type ImpactRow = (&'static str, &'static str, &'static str, fn(&Impact) -> f64);
+
+/// The impact as the run starts it (issue 28), appended after issue 28's parameters: name, unit,
+/// description, accessor of [`crate::Simulation::impact`]. Both are fixed by the parameters and
+/// the support-motion inputs at the end of initialization (constant over the run).
+const IMPACT_OUTPUTS: &[ImpactRow] = &[
+    (
+        "impact.angular_velocity",
+        "rad/s",
+        "The bridge's angular velocity omega_0 about its hinge at first contact (t = 0), free end moving down: \
+         impact_angular_velocity when given (> 0), else from drop_height h after Eqs. 20-22, omega_0 = sqrt(3 g \
+         alpha_0 / l_u) with alpha_0 = atan(2 h / l_u), l_u = upper.length and g = gravity plus \
+         upper.hinge_heave_acceleration at t = 0 (the paper's 0.567 m drop of its 29 m bridge: 0.1992 rad/s). Constant over the run",
+        |i| i.angular_velocity,
+    ),
+    (
+        "impact.closing_speed",
+        "m/s",
+        "The speed at which the contact point closes the gap at t = 0, positive closing: omega_0 d \
+         (impact.angular_velocity times contact_position) plus the supports' closing speed \
+         (lower.clamp_heave_velocity + lower.clamp_rotation_velocity lower.length - upper.hinge_heave_velocity at \
+         t = 0; 0 with the supports at rest). Constant over the run",
+        |i| i.closing_speed,
+    ),
+];
 
 /// The tips' absolute positions (issue 17), appended after the support-motion inputs.
 const POSITION_OUTPUTS: &[OutputRow] = &[
@@ -647,6 +690,8 @@ const UNITS: &[(&str, [i32; 4], &str, &str)] = &[
     ("m/s2", [0, 1, -2, 0], "Acceleration", "Acceleration"),
     ("m/s", [0, 1, -1, 0], "Velocity", "Velocity"),
     ("N.m", [1, 2, -2, 0], "Moment", "MomentOfForce"),
+    ("N/m", [1, 0, -2, 0], "Stiffness", "TranslationalStiffness"),
+    ("s/m", [0, -1, 1, 0], "InverseVelocity", "InverseVelocity"),
     ("kg", [1, 0, 0, 0], "Mass", "Mass"),
     ("N", [1, 1, -2, 0], "Force", "Force"),
     ("Pa", [1, -1, -2, 0], "Stress", "Stress"),

@@ -362,6 +362,15 @@ impl Fmu2 {
         unsafe { f(self.c, [vr(name)].as_ptr(), 1, &value) }
     }
 
+    pub fn get_integer(&self, name: &str) -> c_int {
+        let f =
+            sym!(self.lib, "fmi2GetInteger", unsafe extern "C" fn(*mut c_void, *const u32, usize, *mut c_int) -> c_int);
+        let mut value: c_int = -1;
+        // SAFETY: one value.
+        assert_eq!(unsafe { f(self.c, [vr(name)].as_ptr(), 1, &mut value) }, OK, "{}", self.log.text());
+        value
+    }
+
     pub fn do_step(&self, t: f64, h: f64) -> c_int {
         let f = sym!(self.lib, "fmi2DoStep", unsafe extern "C" fn(*mut c_void, f64, f64, c_int) -> c_int);
         // SAFETY: a live component.
@@ -490,6 +499,16 @@ impl Fmu3 {
             self.lib,
             "fmi3SetFloat64",
             unsafe extern "C" fn(*mut c_void, *const u32, usize, *const f64, usize) -> c_int
+        );
+        // SAFETY: one value reference and one value.
+        unsafe { f(self.c, [vr(name)].as_ptr(), 1, &value, 1) }
+    }
+
+    pub fn set_integer(&self, name: &str, value: i32) -> c_int {
+        let f = sym!(
+            self.lib,
+            "fmi3SetInt32",
+            unsafe extern "C" fn(*mut c_void, *const u32, usize, *const i32, usize) -> c_int
         );
         // SAFETY: one value reference and one value.
         unsafe { f(self.c, [vr(name)].as_ptr(), 1, &value, 1) }
