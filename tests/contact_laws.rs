@@ -56,7 +56,11 @@ fn a_rigid_bar_on_a_hertz_contact_follows_hertzs_closed_form() {
     let duration = 2.0 * integral * delta_max / v0;
     let w = &summary.contact_windows[0];
     assert!(((w.end - w.start) - duration).abs() <= 1e-3 * duration, "{} s against {duration} s", w.end - w.start);
-    assert!((summary.peaks.contact_force - force).abs() <= 1e-3 * force, "{} N against {force} N", summary.peaks.contact_force);
+    assert!(
+        (summary.peaks.contact_force - force).abs() <= 1e-3 * force,
+        "{} N against {force} N",
+        summary.peaks.contact_force
+    );
     assert!(summary.quality.energy_residual_fraction < 1e-6, "{:?}", summary.quality);
 }
 

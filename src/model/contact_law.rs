@@ -167,7 +167,8 @@ mod tests {
         let law = ContactLaw { stiffness: 3e9, exponent: 1.5, damping: 0.0 };
         let n = 100_000;
         let h = 1e-3 / n as f64;
-        let integral: f64 = (0..n).map(|i| 0.5 * h * (law.elastic(i as f64 * h) + law.elastic((i + 1) as f64 * h))).sum();
+        let integral: f64 =
+            (0..n).map(|i| 0.5 * h * (law.elastic(i as f64 * h) + law.elastic((i + 1) as f64 * h))).sum();
         assert!((integral - law.energy(1e-3)).abs() <= 1e-8 * law.energy(1e-3));
     }
 }

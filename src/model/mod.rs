@@ -1,8 +1,8 @@
 //! The physical model: beams, mesh, assembly, damping and the scenario. No I/O, no unsafe.
 
 pub mod assembly;
-pub mod contact_law;
 pub mod beam;
+pub mod contact_law;
 pub mod damping;
 pub mod discretisation;
 pub mod mesh;

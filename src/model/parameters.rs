@@ -1,8 +1,8 @@
 //! The scenario's parameters as a flat, named table: the one place the FMU's parameter
 //! variables and the CLI's messages take names, units and descriptions from.
 
-use super::discretisation::Method;
 use super::contact_law::LawKind;
+use super::discretisation::Method;
 use super::scenario::{Scenario, SupportKind, MAX_ELEMENTS};
 use super::stress_recovery::StressRecovery;
 use super::time_step::TimeStep;
@@ -244,8 +244,8 @@ pub const PARAMETERS: &[Parameter] = &[
         kind: Kind::Integer,
         get: |s| f64::from(s.contact.law.index()),
         put: |s, v| {
-            s.contact.law = LawKind::from_index(v)
-                .ok_or_else(|| Error::invalid("contact.law", "0 (linear) or 1 (power)", v))?;
+            s.contact.law =
+                LawKind::from_index(v).ok_or_else(|| Error::invalid("contact.law", "0 (linear) or 1 (power)", v))?;
             Ok(())
         },
     },

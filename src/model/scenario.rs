@@ -5,8 +5,8 @@ use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 
-use super::discretisation::{auto_count, auto_real, Method, PAPER_ELEMENTS};
 use super::contact_law::{ContactLaw, LawKind, EXPONENT_RANGE};
+use super::discretisation::{auto_count, auto_real, Method, PAPER_ELEMENTS};
 use super::motion_table::MotionTable;
 use super::stress_recovery::StressRecovery;
 use super::support_motion::SupportMotion;

@@ -5,9 +5,9 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::contact::Stage;
-use crate::model::contact_law::ContactLaw;
 use super::kinematics::{Energies, Excitation, Kinematics, Stepper, SupportAndTips};
 use super::modal::ModalSystem;
+use crate::model::contact_law::ContactLaw;
 use crate::model::system::PROBES;
 use crate::model::{damping, Model, Probe};
 
