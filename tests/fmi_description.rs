@@ -238,6 +238,10 @@ fn accepted(p: &Parameter, value: f64) -> std::result::Result<(), String> {
     if p.name == "gravity" {
         s.impact_angular_velocity = Some(1.0);
     }
+    // A power law needs its rate in N/m^n.
+    if p.name == "contact.law" {
+        s.contact.given_stiffness = Some(1e9);
+    }
     s.validate().expect("the base scenario is valid");
     let outcome = parameters::set(&mut s, p, value).and_then(|()| s.validate());
     match outcome {

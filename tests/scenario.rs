@@ -25,8 +25,14 @@ fn each_invalid_parameter_is_rejected_by_name() {
         "method",
         "lower.yield_stress",
         "upper.yield_stress",
-        // Not given (from drop_height).
+        // Not given (from drop_height), the arrestor beam, the bar's rate, no clearance, the
+        // linear law, no contact damping.
         "impact_angular_velocity",
+        "lower.kind",
+        "contact.stiffness",
+        "contact.clearance",
+        "contact.law",
+        "contact.damping",
     ];
     for p in PARAMETERS {
         let mut bad = vec![-3.0];

@@ -99,6 +99,50 @@ pub fn stepper_benchmark(runs: usize) -> Result<String> {
     }
     out += &converged_benchmark(runs)?;
     out += &motion_benchmark(runs)?;
+    out += &contact_law_benchmark(runs)?;
+    Ok(out)
+}
+
+/// The cost per step of the contact laws (issue 28), side by side in one process, on the paper
+/// scenario (paper method, 3 s): the paper's linear bar (Sherman-Morrison, closed form), the same
+/// bar posed as a power law of exponent 1 (the scalar equation solved each contact step: the
+/// solver's cost alone, the same run), a Hertz law (n = 3/2) and a Hertz law with Hunt-Crossley
+/// damping (each its own run: their steps differ). Medians of `runs`.
+pub fn contact_law_benchmark(runs: usize) -> Result<String> {
+    use crate::model::contact_law::LawKind;
+    let mut out = String::new();
+    let paper = Scenario::paper();
+    let law = |exponent: f64, stiffness: f64, damping: f64| {
+        let mut s = paper.clone();
+        s.contact.law = LawKind::Power;
+        s.contact.exponent = exponent;
+        s.contact.given_stiffness = Some(stiffness);
+        s.contact.damping = damping;
+        s
+    };
+    let bar = paper.contact.stiffness();
+    let as_power = law(1.0, bar, 0.0);
+    // A Hertz law that carries the paper's 475 kN at the bar's compression (17 um): k = F / d^1.5.
+    let hertz = law(1.5, 4.75e5 / (4.75e5 / bar).powf(1.5), 0.0);
+    let damped = law(1.5, hertz.contact.given_stiffness.unwrap_or(bar), 0.2);
+    let (linear, linear_steps) = time_run(|| Simulation::new(&paper), runs)?;
+    let mut rows = vec![("linear bar (Sherman-Morrison)      ", linear, linear_steps)];
+    for (what, s) in [
+        ("power law n = 1 (the same run)     ", &as_power),
+        ("Hertz n = 3/2                      ", &hertz),
+        ("Hertz n = 3/2, Hunt-Crossley c 0.2 ", &damped),
+    ] {
+        let (d, n) = time_run(|| Simulation::new(s), runs)?;
+        rows.push((what, d, n));
+    }
+    let per = |d: Duration, n: u64| d.as_secs_f64() * 1e9 / n as f64;
+    let base = per(linear, linear_steps);
+    let _ = writeln!(out, "contact laws (paper scenario, paper method, 3 s, median of {runs} runs):");
+    for (what, d, n) in rows {
+        let ns = per(d, n);
+        let _ =
+            writeln!(out, "  {what}: {:8.2} ms  {n} steps  {ns:6.0} ns/step  x{:.2}", d.as_secs_f64() * 1e3, ns / base);
+    }
     Ok(out)
 }
 

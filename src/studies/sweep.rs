@@ -105,6 +105,8 @@ fn symbolic_names(field: &Parameter) -> Option<&'static [&'static str]> {
     match field.name {
         "stress_recovery" => Some(&RECOVERY_NAMES),
         "method" => Some(&METHOD_NAMES),
+        "lower.kind" => Some(&SUPPORT_NAMES),
+        "contact.law" => Some(&LAW_NAMES),
         _ => None,
     }
 }
@@ -114,6 +116,10 @@ fn is_stress_recovery(field: &Parameter) -> bool {
 }
 
 const RECOVERY_NAMES: [&str; 3] = ["mean", "left", "right"];
+/// `lower.kind`'s names, by FMU index.
+const SUPPORT_NAMES: [&str; 2] = ["beam", "rigid"];
+/// `contact.law`'s names, by FMU index.
+const LAW_NAMES: [&str; 2] = ["linear", "power"];
 
 const METHOD_NAMES: [&str; 2] = ["converged", "paper"];
 
