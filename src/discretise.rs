@@ -18,8 +18,15 @@ pub fn reference_frequency(scenario: &Scenario) -> Result<f64> {
     coarse.method = Method::Paper;
     set_elements(&mut coarse, [PAPER_ELEMENTS; 3]);
     let model = Model::new(&coarse)?;
-    let modal = ModalSystem::new(&model)?;
+    let modal = ModalSystem::new(&model).map_err(|e| {
+        crate::Error::Other(format!("the automatic cut-off's reference mesh ({}): {e}", describe(&coarse)))
+    })?;
     Ok(modal.resolved_omega_max(&model))
+}
+
+/// A resolved scenario's mesh as the tables print it: `7 + 7/1 elements`.
+pub fn describe(s: &Scenario) -> String {
+    format!("{} + {}/{} elements", s.lower.elements, s.upper.elements_to_contact, s.upper.elements_beyond_contact)
 }
 
 fn set_elements(s: &mut Scenario, [lower, inner, outer]: [u32; 3]) {

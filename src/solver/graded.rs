@@ -141,14 +141,15 @@ pub fn check_grading(beam: &Beam, name: &str) -> Result<()> {
     let (e, h) = g.shortest;
     let (x1, x2) = (beam.mesh.nodes[e].x, beam.mesh.nodes[e + 1].x);
     Err(Error::Other(format!(
-        "{name}: element {} of {} (x = {x1} to {x2} m) is {h:.4e} m long, 1/{ratio:.0} of the longest (element {}, \
-         {:.4} m); the elements of one beam may differ in length by at most {MAX_ELEMENT_RATIO:e} (the natural modes \
-         and the stresses recovered from so short an element lose their digits beyond it): move contact_position, or \
-         change the element counts",
+        "{name}: element {} of {} (x = {x1:.6} to {x2:.6} m) is {h:.4e} m long, 1/{ratio:.0} of the longest (element \
+         {}, {:.4} m); the elements of one beam may differ in length by at most {MAX_ELEMENT_RATIO:e} (the natural \
+         modes and the stresses recovered from so short an element lose their digits beyond it): make it at least \
+         {:.4e} m (move contact_position), or change the element counts",
         e + 1,
         beam.mesh.elements(),
         g.longest.0 + 1,
         g.longest.1,
+        g.longest.1 / MAX_ELEMENT_RATIO,
     )))
 }
 
