@@ -297,7 +297,7 @@ fn graded_modes(beam: &Beam, limit: f64) -> Result<Modes> {
     let eigen = SymmetricEigen::new(reduced);
     let m = eigen.eigenvalues.len();
     let mu_max = eigen.eigenvalues.iter().copied().fold(0.0, f64::max);
-    if !(mu_max > 0.0) {
+    if mu_max <= 0.0 {
         return Err(numerical("the flexibility has no positive eigenvalue".into()));
     }
     // 1/omega^2 above the split comes from the inverse problem; the rest by Rayleigh-Ritz.
@@ -324,7 +324,7 @@ fn graded_modes(beam: &Beam, limit: f64) -> Result<Modes> {
         let local = SymmetricEigen::new(ks);
         let rotated = &phi * &local.eigenvectors;
         for (c, &lambda) in local.eigenvalues.iter().enumerate() {
-            if !(lambda > 0.0) {
+            if lambda.is_nan() || lambda <= 0.0 {
                 return Err(numerical(format!(
                     "a short element's mode has omega^2 = {lambda:e} 1/s^2 (Rayleigh-Ritz with K)"
                 )));
