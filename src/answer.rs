@@ -217,7 +217,16 @@ pub fn run(scenario: &Scenario, recorder: &mut (dyn Recorder + Send), options: O
             }
             jobs.par_iter()
                 .map(|(role, s)| {
-                    let mut sim = Simulation::new(s)?;
+                    // A check rung's mesh the printed one does not share (a short element beyond
+                    // the supported ratio on a coarser rung): say which run it is.
+                    let mut sim = Simulation::new(s).map_err(|e| match e {
+                        crate::Error::InvalidParameter { .. } | crate::Error::Invalid(_) => e,
+                        e => crate::Error::Other(format!(
+                            "the {role} run of the answer ({}): {e}",
+                            crate::discretise::printed(s)
+                                .map_or_else(|_| "?".into(), |r| crate::discretise::describe(&r))
+                        )),
+                    })?;
                     sim.check_step_count(s.duration_ns(), options.max_steps)?;
                     let summary = sim.run(&mut NullRecorder)?;
                     let run = rung_run(role, &sim, &summary);
@@ -371,92 +380,59 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
     let design = Design::assess(resolved, &converged_peaks);
 
     let energy = &summary.quality;
-    let mut reasons = energy.reasons.clone();
+    let mut reasons: Vec<String> = energy.reasons.iter().map(|r| explain_run_reason(r, resolved, &summary)).collect();
     let energy_check = Check::new(energy.energy_residual_fraction, energy.energy_tolerance);
-    let (worst, worst_figure) = {
-        let (i, a) = largest(&discretisation_error);
-        let (j, b) = largest(&first_contact_discretisation_error);
+    let worst_figure = {
+        let (a, b) = (largest(&discretisation_error).1, largest(&first_contact_discretisation_error).1);
         if b > a {
-            (format!("first-contact {}", PEAK_NAMES[j]), b)
+            b
         } else {
-            (PEAK_NAMES[i].to_string(), a)
+            a
         }
     };
     // Late-impact peaks of lightly damped runs: the modes above the cut-off, replaced by their
     // static response, keep ringing in the full model from one impact to the next; the rungs (all
     // truncated) cannot see it (measured: tau_a 13 % above the truncated answer at drop 0.3 m,
     // contact 13 m, damping 0.01). Such a peak is not vouched for; the first-contact ones are.
-    let truncated = printed.modal_cutoff.is_some() && printed.modes[0] < printed.modes[1];
-    let unvouched_late_peaks: Vec<String> = if truncated && resolved.damping_ratio < LIGHT_DAMPING {
-        PEAK_NAMES
-            .iter()
-            .zip(summary.peaks.as_array().into_iter().zip(summary.first_contact_peaks.as_array()))
-            .filter(|(_, (whole, first))| whole > first)
-            .map(|(n, _)| n.to_string())
-            .collect()
+    // (A paper-method run on a graded mesh sets aside only its short elements' own modes, far
+    // above anything that rings between impacts: not a truncation at a cut-off.)
+    let truncated = !paper && printed.modal_cutoff.is_some() && printed.modes[0] < printed.modes[1];
+    let late: Vec<usize> = if truncated && resolved.damping_ratio < LIGHT_DAMPING {
+        let (whole, first) = (summary.peaks.as_array(), summary.first_contact_peaks.as_array());
+        (0..5).filter(|&k| whole[k] > first[k]).collect()
     } else {
         Vec::new()
     };
+    let unvouched_late_peaks: Vec<String> = late.iter().map(|&k| PEAK_NAMES[k].to_string()).collect();
     let mut discretisation = Check::new(worst_figure, tolerance);
-    if !unvouched_late_peaks.is_empty() {
+    if !late.is_empty() {
         discretisation.pass = false;
-        reasons.push(format!(
-            "discretisation: late-impact peaks of a lightly damped run (damping_ratio = {} < {LIGHT_DAMPING}) are not \
-             vouched for by the truncated basis (its modes above the cut-off ring in the full model): {}; the \
-             first-contact peaks are",
-            resolved.damping_ratio,
-            unvouched_late_peaks.join(", ")
-        ));
     }
-    if worst_figure.is_nan() || worst_figure > tolerance {
-        let flagged: Vec<String> = PEAK_NAMES
-            .iter()
-            .zip(discretisation_error.as_array())
-            .filter(|(_, e)| e.is_nan() || *e > tolerance)
-            .map(|(n, e)| format!("{n} {}", percent(e)))
-            .chain(
-                PEAK_NAMES
-                    .iter()
-                    .zip(first_contact_discretisation_error.as_array())
-                    .filter(|(_, e)| e.is_nan() || *e > tolerance)
-                    .map(|(n, e)| format!("first-contact {n} {}", percent(e))),
-            )
-            .collect();
-        reasons.push(if paper {
-            format!(
-                "the paper mesh's peaks differ from the converged answer by more than discretisation_tolerance = {}: {}",
-                percent(tolerance),
-                flagged.join(", ")
-            )
-        } else {
-            format!(
-                "discretisation: peaks not vouched for within discretisation_tolerance = {} (largest: {worst}): {}",
-                percent(tolerance),
-                flagged.join(", ")
-            )
-        });
+    let runs = Runs { resolved, summary: &summary, printed: &printed, check, coarse, twin };
+    let figures_fail = worst_figure.is_nan() || worst_figure > tolerance;
+    for k in 0..5 {
+        let (whole, first) = (discretisation_error.as_array()[k], first_contact_discretisation_error.as_array()[k]);
+        let flagged = |e: f64| e.is_nan() || e > tolerance;
+        if late.contains(&k) {
+            reasons.push(runs.late_peak(k));
+        }
+        if figures_fail && (flagged(whole) || flagged(first)) {
+            reasons.push(if paper { runs.paper_mesh(k, whole, first) } else { runs.discretisation(k, whole, first) });
+        }
     }
     let sensitivity = sensitivity_spread.map(|spread| {
-        let (i, v) = largest(&spread);
-        let check = Check::new(v, tolerance);
-        if !check.pass {
-            reasons.push(format!(
-                "sensitivity: a drop height changed by 1e-9 moves {} by {} (> {}): the whole-run peaks of this run are \
-                 not reproducible; the first-contact peaks are the design quantity",
-                PEAK_NAMES[i],
-                percent(v),
-                percent(tolerance)
-            ));
+        let check = Check::new(largest(&spread).1, tolerance);
+        for (k, v) in spread.as_array().into_iter().enumerate() {
+            if v.is_nan() || v > tolerance {
+                reasons.push(runs.sensitivity(k, v));
+            }
         }
         check
     });
     let yield_check = yield_check(resolved, &converged_peaks);
     if let Some(c) = &yield_check {
         if !c.pass {
-            reasons.push(format!(
-                "yield: the stresses reach {} of the yield stress: the elastic model is out of its range",
-                percent(c.value)
-            ));
+            reasons.push(yield_reason(resolved, &converged_peaks, c.value));
         }
     }
     let checks = Checks {
@@ -492,6 +468,307 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
         quality,
         runs,
     }
+}
+
+/// The paper's symbol of each peak (Table 1's w_din,a, sigma_din,a, tau_din,a, sigma_din,b and the
+/// contact force F_c), in the order of [`PEAK_NAMES`].
+pub const PEAK_SYMBOLS: [&str; 5] = ["w_a", "sigma_a", "tau_a", "sigma_b", "F_c"];
+
+/// A peak as the reasons name it: the paper's symbol and the field, `tau_a (lower_clamp_shear_stress)`.
+pub fn peak_label(k: usize) -> String {
+    format!("{} ({})", PEAK_SYMBOLS[k], PEAK_NAMES[k])
+}
+
+/// A peak's value with its unit, as the tables print it: m, MPa, kN.
+pub fn peak_value(k: usize, value: f64) -> String {
+    match k {
+        0 => format!("{value:.4} m"),
+        4 => format!("{:.1} kN", value * 1e-3),
+        _ => format!("{:.2} MPa", value * 1e-6),
+    }
+}
+
+/// A run's mesh: `56 + 56/1 elements` (arrestor + bridge to/beyond the contact).
+fn mesh(run: &RungRun) -> String {
+    format!("{} elements", counts(run))
+}
+
+/// A run's element counts: `56 + 56/1`.
+fn counts(run: &RungRun) -> String {
+    let [l, i, o] = run.elements;
+    format!("{l} + {i}/{o}")
+}
+
+/// The runs behind an answer, for the reasons' numbers and remedies.
+struct Runs<'a> {
+    resolved: &'a Scenario,
+    summary: &'a Summary,
+    printed: &'a RungRun,
+    check: Option<&'a (Summary, RungRun)>,
+    coarse: Option<&'a (Summary, RungRun)>,
+    twin: Option<&'a (Summary, RungRun)>,
+}
+
+impl Runs<'_> {
+    fn tolerance(&self) -> String {
+        format!("discretisation_tolerance = {}", percent(self.resolved.discretisation_tolerance))
+    }
+
+    /// `--set` options giving every beam's mesh twice the printed counts (the next finer mesh),
+    /// where each fits within the element limit; `None` when none does.
+    fn finer_mesh(&self) -> Option<String> {
+        let names = ["lower.elements", "upper.elements_to_contact", "upper.elements_beyond_contact"];
+        let parts: Vec<String> = names
+            .iter()
+            .zip(self.printed.elements)
+            .filter(|(_, n)| 2 * n <= crate::model::scenario::MAX_ELEMENTS)
+            .map(|(name, n)| format!("--set {name}={}", 2 * n))
+            .collect();
+        (!parts.is_empty()).then(|| parts.join(" "))
+    }
+
+    /// How the discretisation figure `figure` of peak `k` was measured (whole run or first
+    /// contact): the change against the check rung, or the Richardson estimate over three rungs.
+    fn measured(&self, k: usize, first_contact: bool, figure: f64) -> String {
+        let get = |s: &Summary| if first_contact { s.first_contact_peaks } else { s.peaks }.as_array()[k];
+        let Some((check_summary, check_run)) = self.check else {
+            return format!("has no discretisation figure ({})", percent(figure));
+        };
+        let (fine, medium) = (get(self.summary), get(check_summary));
+        if let Some((coarse_summary, coarse_run)) = self.coarse {
+            if let Some(r) = richardson(get(coarse_summary), medium, fine) {
+                if relative(fine, r.estimate) < relative(medium, fine) {
+                    return format!(
+                        "is {} from its Richardson extrapolation {} (observed order {:.1}) over {}, {} and {}",
+                        percent(figure),
+                        peak_value(k, r.estimate),
+                        r.order,
+                        counts(coarse_run),
+                        counts(check_run),
+                        mesh(self.printed)
+                    );
+                }
+            }
+        }
+        format!("changes {} between {} and {}", percent(figure), counts(check_run), mesh(self.printed))
+    }
+
+    /// The discretisation reason of peak `k` (converged method): the peak, the check with the
+    /// rungs it compares, the figures against the tolerance, and what to run or read instead.
+    fn discretisation(&self, k: usize, whole: f64, first: f64) -> String {
+        let limit = self.resolved.discretisation_tolerance;
+        let flagged = |e: f64| e.is_nan() || e > limit;
+        let (value, first_value) = (self.summary.peaks.as_array()[k], self.summary.first_contact_peaks.as_array()[k]);
+        let finer = self.finer_mesh();
+        let run_finer = finer.as_ref().map_or_else(
+            || {
+                format!(
+                    "the mesh is at the largest count ({} elements per segment)",
+                    crate::model::scenario::MAX_ELEMENTS
+                )
+            },
+            |f| format!("run the next finer mesh with `{f}`"),
+        );
+        // A peak the twin moves beyond the tolerance is chaotic: the rungs disagree for that
+        // reason, and a finer mesh would not settle it.
+        let chaotic = |first_contact: bool| {
+            let spread = self.twin_spread(k, first_contact);
+            (spread > limit).then(|| {
+                format!(
+                    "the twin moves it by {} too: the rungs differ because it is chaotic, which no finer mesh settles",
+                    percent(spread)
+                )
+            })
+        };
+        if flagged(whole) {
+            let first_ok = !flagged(first) && chaotic(true).is_none();
+            let (within, read) = if first_ok { (", within it", ", or read the first-contact peak") } else { ("", "") };
+            let remedy = chaotic(false).unwrap_or(run_finer);
+            format!(
+                "discretisation: {} {} {} (first contact: {}, {}{within}), above {}: {remedy}{read}",
+                peak_label(k),
+                peak_value(k, value),
+                self.measured(k, false, whole),
+                peak_value(k, first_value),
+                percent(first),
+                self.tolerance()
+            )
+        } else {
+            let remedy = chaotic(true).unwrap_or(run_finer);
+            format!(
+                "discretisation: first-contact {} {} {} (whole run: {}, {}, within it), above {}: {remedy}",
+                peak_label(k),
+                peak_value(k, first_value),
+                self.measured(k, true, first),
+                peak_value(k, value),
+                percent(whole),
+                self.tolerance()
+            )
+        }
+    }
+
+    /// The twin's spread of peak `k` (whole run or first contact); NaN without a twin.
+    fn twin_spread(&self, k: usize, first_contact: bool) -> f64 {
+        let get = |s: &Summary| if first_contact { s.first_contact_peaks } else { s.peaks }.as_array()[k];
+        self.twin.map_or(f64::NAN, |(t, _)| relative(get(t), get(self.summary)))
+    }
+
+    /// The paper method's line for peak `k`: its value on the paper mesh against the converged
+    /// answer's, and the one remedy, the converged method.
+    fn paper_mesh(&self, k: usize, whole: f64, first: f64) -> String {
+        let (converged, converged_run) = match self.check {
+            Some((c, r)) => (c.peaks.as_array()[k], counts(r)),
+            None => (f64::NAN, "?".into()),
+        };
+        format!(
+            "the paper mesh's peaks differ from the converged answer by more than {}: {} {} on {} against {} on \
+             {converged_run}, {} off (first contact: {} off): read the converged column, or run with `--set \
+             method=converged`",
+            self.tolerance(),
+            peak_label(k),
+            peak_value(k, self.summary.peaks.as_array()[k]),
+            mesh(self.printed),
+            peak_value(k, converged),
+            percent(whole),
+            percent(first),
+        )
+    }
+
+    /// The late peak `k` of a lightly damped truncated run, which no rung can vouch for.
+    fn late_peak(&self, k: usize) -> String {
+        let spread = self.twin_spread(k, true);
+        let read = if spread > self.resolved.discretisation_tolerance {
+            format!("the first-contact peak is no refuge (the twin moves it by {}); ", percent(spread))
+        } else {
+            "read the first-contact peak, or ".to_string()
+        };
+        format!(
+            "discretisation: late-impact peak {} {} comes after the first sustained contact ({}) of a lightly damped \
+             run (damping_ratio = {} < {LIGHT_DAMPING}): the truncated basis cannot vouch for it (modes above its {} \
+             cut-off ring on in the full model); {read}run the full basis, `--set modal_cutoff=1e9` (far slower)",
+            peak_label(k),
+            peak_value(k, self.summary.peaks.as_array()[k]),
+            peak_value(k, self.summary.first_contact_peaks.as_array()[k]),
+            self.resolved.damping_ratio,
+            self.printed.modal_cutoff.map_or("none".into(), |c| format!("{c:.0} rad/s")),
+        )
+    }
+
+    /// The twin's spread `spread` of peak `k`.
+    fn sensitivity(&self, k: usize, spread: f64) -> String {
+        let head = format!(
+            "sensitivity: a drop height changed by 1e-9 moves {} by {} (> {})",
+            peak_label(k),
+            percent(spread),
+            self.tolerance()
+        );
+        let first_value = self.summary.first_contact_peaks.as_array()[k];
+        // The twin's first-contact peak says whether the first impact itself is reproducible.
+        let first_spread = self.twin_spread(k, true);
+        if first_spread <= self.resolved.discretisation_tolerance {
+            let stop = self.summary.first_contact_end.map_or_else(String::new, |end| {
+                format!(", or end the run with it, `--set duration={}`", (end * 1e3).ceil() / 1e3)
+            });
+            let first = match (self.resolved.method, self.check) {
+                (Method::Paper, Some((c, _))) => {
+                    format!("the converged first-contact peak, {}", peak_value(k, c.first_contact_peaks.as_array()[k]))
+                }
+                _ => format!("the first-contact peak, {}", peak_value(k, first_value)),
+            };
+            format!(
+                "{head}: the whole-run peak is chaotic at damping_ratio = {} (later impacts hang on the drop height), \
+                 the first sustained contact is not (the twin moves it by {}): read {first}{stop}",
+                self.resolved.damping_ratio,
+                percent(first_spread)
+            )
+        } else {
+            let h = self.resolved.drop_height;
+            format!(
+                "{head}, and its first-contact peak, {}, by {}: the impact itself is chaotic at damping_ratio = {} and \
+                 no mesh or step makes one run reproducible; read a range over drop heights, `beam-impact sweep --vary \
+                 drop_height={}:{}:5` with this run's settings",
+                peak_value(k, first_value),
+                percent(first_spread),
+                self.resolved.damping_ratio,
+                h * (1.0 - 1e-3),
+                h * (1.0 + 1e-3)
+            )
+        }
+    }
+}
+
+/// A reason of the printed run's own verdict (the energy account, the small-deflection range),
+/// with the peaks it concerns and what to do appended.
+fn explain_run_reason(reason: &str, resolved: &Scenario, summary: &Summary) -> String {
+    if reason.starts_with("energy residual") {
+        let fixed =
+            [resolved.step_free, resolved.step_contact].iter().any(|s| matches!(s, crate::model::TimeStep::Fixed(_)));
+        let remedy = if fixed {
+            "run with the energy-safe automatic steps, `--set step_free=auto --set step_contact=auto`".to_string()
+        } else {
+            format!(
+                "halve the steps, `--set step_free={:e} --set step_contact={:e}`",
+                summary.time_steps.free / 2.0,
+                summary.time_steps.contact / 2.0
+            )
+        };
+        format!("{reason} (the energy check; every peak): {remedy}")
+    } else if reason.starts_with("small deflection") {
+        format!(
+            "{reason}: {} {} is outside the model (every peak with it); the answer needs a smaller impact or a stiffer \
+             arrestor",
+            peak_label(0),
+            peak_value(0, summary.peaks.lower_tip_deflection)
+        )
+    } else {
+        reason.to_string()
+    }
+}
+
+/// The yield reason: the stress that reaches the largest fraction of its yield stress.
+fn yield_reason(s: &Scenario, peaks: &Peaks, utilisation: f64) -> String {
+    let mut worst: Option<(f64, String)> = None;
+    let mut consider = |ratio: f64, text: String| {
+        if worst.as_ref().is_none_or(|(r, _)| ratio > *r) {
+            worst = Some((ratio, text));
+        }
+    };
+    if s.lower.yield_stress > 0.0 {
+        let bending = peaks.lower_clamp_bending_stress;
+        let shear = 3f64.sqrt() * peaks.lower_clamp_shear_stress;
+        let text = if bending >= shear {
+            format!("{} {}", peak_label(1), peak_value(1, bending))
+        } else {
+            format!(
+                "{} {} (sqrt(3) tau_a = {:.2} MPa)",
+                peak_label(2),
+                peak_value(2, peaks.lower_clamp_shear_stress),
+                shear * 1e-6
+            )
+        };
+        consider(
+            bending.max(shear) / s.lower.yield_stress,
+            format!("{text} against lower.yield_stress = {:.2} MPa", s.lower.yield_stress * 1e-6),
+        );
+    }
+    if s.upper.yield_stress > 0.0 {
+        let sigma = peaks.upper_contact_bending_stress;
+        consider(
+            sigma / s.upper.yield_stress,
+            format!(
+                "{} {} against upper.yield_stress = {:.2} MPa",
+                peak_label(3),
+                peak_value(3, sigma),
+                s.upper.yield_stress * 1e-6
+            ),
+        );
+    }
+    format!(
+        "yield: the stresses reach {} of the yield stress ({}): the elastic model is out of its range, and no mesh or \
+         step makes it right; the answer needs a smaller impact or a stronger section",
+        percent(utilisation),
+        worst.map_or_else(String::new, |(_, t)| t)
+    )
 }
 
 /// The yield check, as the largest stress's fraction of its beam's yield stress (limit 1), when a

@@ -5,20 +5,32 @@
 use crate::error::Result;
 use crate::model::discretisation::{Method, DEFAULT_RUNG, LADDER, PAPER_ELEMENTS};
 use crate::model::{Model, Scenario};
+use crate::solver::graded::GRADED_RATIO;
 use crate::solver::ModalSystem;
 
 /// The scenario's reference frequency, rad/s: the highest natural frequency of either beam on the
-/// paper's mesh (7 + 7/7 elements), the scale of the automatic cut-offs.
+/// paper's mesh (7 + 7/7 elements), the scale of the automatic cut-offs. A graded beam's short
+/// elements' own modes (above its [`crate::solver::graded::spurious_limit`]) are not counted: the
+/// cut-offs follow the frequencies of the mesh's longer elements, never those of a sub-millimetre
+/// overhang.
 pub fn reference_frequency(scenario: &Scenario) -> Result<f64> {
     let mut coarse = scenario.clone();
     coarse.method = Method::Paper;
     set_elements(&mut coarse, [PAPER_ELEMENTS; 3]);
     let model = Model::new(&coarse)?;
-    let modal = ModalSystem::new(&model)?;
-    Ok(modal.omega_max(false))
+    let modal = ModalSystem::new(&model).map_err(|e| {
+        crate::Error::Other(format!("the automatic cut-off's reference mesh ({}): {e}", describe(&coarse)))
+    })?;
+    Ok(modal.resolved_omega_max(&model))
+}
+
+/// A resolved scenario's mesh as the tables print it: `7 + 7/1 elements`.
+pub fn describe(s: &Scenario) -> String {
+    format!("{} + {}/{} elements", s.lower.elements, s.upper.elements_to_contact, s.upper.elements_beyond_contact)
 }
 
 fn set_elements(s: &mut Scenario, [lower, inner, outer]: [u32; 3]) {
+    let auto = [s.upper.elements_to_contact == 0, s.upper.elements_beyond_contact == 0];
     if s.lower.elements == 0 {
         s.lower.elements = lower;
     }
@@ -27,6 +39,29 @@ fn set_elements(s: &mut Scenario, [lower, inner, outer]: [u32; 3]) {
     }
     if s.upper.elements_beyond_contact == 0 && !s.contact_at_free_end() {
         s.upper.elements_beyond_contact = outer;
+    }
+    balance_segments(s, auto);
+}
+
+/// Automatic counts on a bridge segment much shorter than the other: where equal counts would
+/// make the elements of one segment more than [`GRADED_RATIO`] times shorter than the other's (a
+/// contact near the free end or the hinge), the shorter segment, if its count is `"auto"`, gets
+/// elements about as long as the other's, at least one: `ceil(its length / the other's element)`.
+/// (A 1 mm overhang then has one element, not 56 of 18 um.) Counts that make no such mesh are
+/// left as they are.
+fn balance_segments(s: &mut Scenario, [inner_auto, outer_auto]: [bool; 2]) {
+    let inner = s.contact_position;
+    let outer = s.upper.length - s.contact_position;
+    let (n_inner, n_outer) = (s.upper.elements_to_contact, s.upper.elements_beyond_contact);
+    if !(inner > 0.0 && outer > 0.0) || n_inner == 0 || n_outer == 0 {
+        return;
+    }
+    let (h_inner, h_outer) = (inner / f64::from(n_inner), outer / f64::from(n_outer));
+    let fit = |length: f64, h: f64| ((length / h).ceil() as u32).max(1);
+    if outer_auto && h_inner > GRADED_RATIO * h_outer {
+        s.upper.elements_beyond_contact = fit(outer, h_inner).min(n_outer);
+    } else if inner_auto && h_outer > GRADED_RATIO * h_inner {
+        s.upper.elements_to_contact = fit(inner, h_outer).min(n_inner);
     }
 }
 
@@ -89,6 +124,7 @@ pub const LIGHT_DAMPING_CUTOFF: f64 = 2.0;
 fn rung(scenario: &Scenario, index: usize, divisor: u32) -> Result<Scenario> {
     let mut s = scenario.clone();
     let r = LADDER[index];
+    let auto = [s.upper.elements_to_contact == 0, s.upper.elements_beyond_contact == 0];
     let at_end = s.contact_at_free_end();
     for count in [&mut s.lower.elements, &mut s.upper.elements_to_contact] {
         *count = if *count == 0 { r.elements } else { count.div_ceil(divisor) };
@@ -102,6 +138,7 @@ fn rung(scenario: &Scenario, index: usize, divisor: u32) -> Result<Scenario> {
     } else {
         beyond.div_ceil(divisor)
     };
+    balance_segments(&mut s, auto);
     if s.modal_cutoff == 0.0 {
         s.validate()?;
         s.modal_cutoff = r.cutoff_factor * light_damping_factor(scenario) * reference_frequency(scenario)?;

@@ -262,14 +262,7 @@ impl Simulation<ModalStepper> {
         let model = Model::new(&resolved)?;
         let full = ModalSystem::new(&model)?;
         let physical = initial_physical_state(&model, &full, &motion)?;
-        let modal = match resolved.method {
-            // A nonlinear contact law is solved on the full basis (the static correction of the
-            // discarded modes is written for the linear bar).
-            Method::Converged if resolved.modal_cutoff > 0.0 && resolved.contact.nonlinear_law().is_none() => {
-                full.truncated(resolved.modal_cutoff)?
-            }
-            _ => full,
-        };
+        let modal = full.for_run(&model)?;
         let stepper = ModalStepper::new(&model, modal.clone());
         Self::with_stepper(model, modal, stepper, &physical, motion)
     }
@@ -999,9 +992,10 @@ impl<S: Stepper> Simulation<S> {
                 "duration",
                 format!(
                     "at most {max_steps} steps of {:e} s (the smaller time step), i.e. <= {} s; this run needs {steps} \
-                     steps (raise the limit with --max-steps, or coarsen the mesh)",
+                     steps ({}; raise the limit with --max-steps, or coarsen the mesh)",
                     seconds(step_ns),
-                    seconds(step_ns.saturating_mul(max_steps))
+                    seconds(step_ns.saturating_mul(max_steps)),
+                    self.plan.reason(&self.model.scenario, &self.modal)
                 ),
                 seconds(duration_ns),
             ));

@@ -139,3 +139,185 @@ fn the_stop_time_is_a_point_on_the_step_grid_not_a_shortened_step() {
     assert_eq!(paper_log.steps.last().unwrap().time_ns, stop_ns);
     assert_eq!(paper.result().time_ns, stop_ns);
 }
+
+/// The `--set` options of each remedy in a reason: every back-quoted `--set K=V ...`.
+fn remedies(line: &str) -> Vec<Vec<String>> {
+    line.split('`')
+        .skip(1)
+        .step_by(2)
+        .filter(|quoted| quoted.starts_with("--set "))
+        .map(|quoted| quoted.split("--set ").map(str::trim).filter(|t| !t.is_empty()).map(String::from).collect())
+        .collect()
+}
+
+/// `scenario` with a remedy's settings applied, as `run --set` applies them.
+fn with_remedy(scenario: &Scenario, remedy: &[String]) -> Scenario {
+    let settings = beam_impact::studies::sweep::parse_settings(remedy).unwrap();
+    let mut s = scenario.clone();
+    beam_impact::studies::sweep::apply_settings(&mut s, &settings).unwrap();
+    s
+}
+
+/// Issue 28 item 7: every line of a verdict fits the CLI's 600-character warning line (longer
+/// ones are cut, and the remedy comes last).
+fn assert_lines_fit(a: &answer::Answer) {
+    for line in &a.quality.reasons {
+        assert!(line.chars().count() <= 600 && !line.contains('\n'), "{} characters: {line}", line.chars().count());
+    }
+}
+
+/// Issue 28 item 7: on an untrusted converged run (the 29 m bridge striking through a 1 mm
+/// overhang: sigma_b at the contact node, physically ~0, halves with every rung), the line says
+/// which peak (symbol and field), which check between which meshes, the figure printed in the
+/// table against the tolerance, and a remedy whose `--set` parses and gives the mesh twice as
+/// fine as the printed one, as it says.
+#[test]
+fn an_untrusted_run_says_which_peak_which_check_how_much_and_what_to_run() {
+    let mut s = short(0.3);
+    s.contact_position = 28.999;
+    let a = answer::run(&s, &mut NullRecorder, Default::default()).unwrap();
+    assert!(!a.quality.trusted);
+    assert_lines_fit(&a);
+    let line = a
+        .quality
+        .reasons
+        .iter()
+        .find(|r| r.starts_with("discretisation: sigma_b (upper_contact_bending_stress) "))
+        .unwrap_or_else(|| panic!("{:?}", a.quality.reasons));
+    let figure = answer::percent(a.discretisation_error.upper_contact_bending_stress);
+    for part in [
+        format!("{:.2} MPa", a.summary.peaks.upper_contact_bending_stress * 1e-6),
+        format!(" {figure} "),
+        "between 28 + 28/1 and 56 + 56/1 elements".into(),
+        "above discretisation_tolerance = 1.00 %".into(),
+        "run the next finer mesh with `--set ".into(),
+    ] {
+        assert!(line.contains(&part), "{part:?} missing from: {line}");
+    }
+    let remedy = remedies(line);
+    assert_eq!(remedy.len(), 1, "{line}");
+    let finer = beam_impact::discretise::printed(&with_remedy(&s, &remedy[0])).unwrap();
+    let printed = a.runs[0].elements;
+    assert_eq!(
+        [finer.lower.elements, finer.upper.elements_to_contact, finer.upper.elements_beyond_contact],
+        printed.map(|n| 2 * n),
+        "{line}"
+    );
+}
+
+/// Issue 28 item 7: the paper method's lines name each peak on the paper mesh against the
+/// converged answer with the figure of the table, and a remedy, `--set method=converged`, that
+/// parses and makes the run converged.
+#[test]
+fn the_paper_mesh_lines_name_the_converged_value_and_a_remedy_that_parses() {
+    let paper = Scenario { duration: 0.3, ..Scenario::paper() };
+    let a = answer::run(&paper, &mut NullRecorder, Default::default()).unwrap();
+    assert_lines_fit(&a);
+    let line = a
+        .quality
+        .reasons
+        .iter()
+        .find(|r| r.contains(": tau_a (lower_clamp_shear_stress) "))
+        .unwrap_or_else(|| panic!("{:?}", a.quality.reasons));
+    assert!(line.starts_with("the paper mesh's peaks differ from the converged answer"), "{line}");
+    for part in [
+        format!("{:.2} MPa on 7 + 7/7 elements", a.summary.peaks.lower_clamp_shear_stress * 1e-6),
+        format!("against {:.2} MPa on 56 + 56/56", a.converged_peaks.lower_clamp_shear_stress * 1e-6),
+        format!("{} off", answer::percent(a.discretisation_error.lower_clamp_shear_stress)),
+    ] {
+        assert!(line.contains(&part), "{part:?} missing from: {line}");
+    }
+    let remedy = remedies(line);
+    assert_eq!(remedy, [["method=converged"]], "{line}");
+    assert_eq!(with_remedy(&paper, &remedy[0]).method, Method::Converged);
+}
+
+/// Issue 28 item 7 (and the wording of issue 29 item 2): undamped, the paper geometry's peaks
+/// are chaotic: the twin (drop height + 1e-9) moves tau_a by several per cent, its first-contact
+/// peak too. The sensitivity line names the peak and the twin's spread against the tolerance and,
+/// since the first contact is itself chaotic, does not send the user to the first-contact peak
+/// or to a finer mesh: the discretisation line of that peak says the rungs differ because it is
+/// chaotic. Where the first contact holds (its twin spread within the tolerance), the line says
+/// to read it, or to end the run with it, with a `--set duration` that parses.
+#[test]
+fn a_chaotic_peak_is_not_sent_to_a_finer_mesh() {
+    let s = Scenario { drop_height: 0.2, damping_ratio: 0.0, duration: 1.5, ..Scenario::default() };
+    let a = answer::run(&s, &mut NullRecorder, Default::default()).unwrap();
+    assert_lines_fit(&a);
+    let spread = a.sensitivity_spread.unwrap();
+    let twin = a.runs.iter().find(|r| r.role == "twin").unwrap();
+    let first_spread = answer::relative(
+        twin.first_contact_peaks.lower_clamp_shear_stress,
+        a.summary.first_contact_peaks.lower_clamp_shear_stress,
+    );
+    assert!(spread.lower_clamp_shear_stress > 0.01 && first_spread > 0.01, "{spread:?} {first_spread}");
+    let sensitivity = a
+        .quality
+        .reasons
+        .iter()
+        .find(|r| {
+            r.starts_with("sensitivity: a drop height changed by 1e-9 moves tau_a (lower_clamp_shear_stress) by ")
+        })
+        .unwrap_or_else(|| panic!("{:?}", a.quality.reasons));
+    for part in [
+        format!("by {} (> discretisation_tolerance = 1.00 %)", answer::percent(spread.lower_clamp_shear_stress)),
+        format!("by {}: the impact itself is chaotic at damping_ratio = 0", answer::percent(first_spread)),
+    ] {
+        assert!(sensitivity.contains(&part), "{part:?} missing from: {sensitivity}");
+    }
+    assert!(!sensitivity.contains("read the first-contact peak"), "{sensitivity}");
+    let discretisation = a
+        .quality
+        .reasons
+        .iter()
+        .find(|r| r.starts_with("discretisation: tau_a (lower_clamp_shear_stress) "))
+        .unwrap_or_else(|| panic!("{:?}", a.quality.reasons));
+    assert!(discretisation.contains("because it is chaotic, which no finer mesh settles"), "{discretisation}");
+    assert!(!discretisation.contains("finer mesh with"), "{discretisation}");
+    // A peak whose first contact holds: read it, or end the run with it.
+    for line in a.quality.reasons.iter().filter(|r| r.contains("the first sustained contact is not")) {
+        let remedy = remedies(line);
+        assert_eq!(remedy.len(), 1, "{line}");
+        let end = with_remedy(&s, &remedy[0]).duration;
+        assert!(
+            end >= a.summary.first_contact_end.unwrap() && end < a.summary.first_contact_end.unwrap() + 1e-3,
+            "{line}"
+        );
+    }
+}
+
+/// Issue 28 item 7: the energy reason names its check and gives the energy-safe automatic steps
+/// for a run on fixed ones (the paper's step pair on an undamped drop, `tests/cli.rs`), a remedy
+/// that parses and makes both steps automatic; the yield reason names the stress and its yield
+/// stress.
+#[test]
+fn the_energy_and_yield_reasons_name_their_check_and_remedy() {
+    let mut s = Scenario { drop_height: 0.2, damping_ratio: 0.0, ..Scenario::paper() };
+    s.method = Method::Paper;
+    let a = answer::run(&s, &mut NullRecorder, answer::Options { sensitivity: false, ..Default::default() }).unwrap();
+    assert_lines_fit(&a);
+    let line = a
+        .quality
+        .reasons
+        .iter()
+        .find(|r| r.starts_with("energy residual"))
+        .unwrap_or_else(|| panic!("{:?}", a.quality.reasons));
+    assert!(line.contains("above energy_tolerance = 1 % (the energy check; every peak)"), "{line}");
+    let remedy = remedies(line);
+    assert_eq!(remedy, [["step_free=auto", "step_contact=auto"]], "{line}");
+    let auto = with_remedy(&s, &remedy[0]);
+    assert_eq!(
+        (auto.step_free, auto.step_contact),
+        (beam_impact::model::TimeStep::Auto, beam_impact::model::TimeStep::Auto)
+    );
+
+    let mut y = short(0.3);
+    y.lower.yield_stress = 200e6;
+    let b = answer::run(&y, &mut NullRecorder, Default::default()).unwrap();
+    let line = b.quality.reasons.iter().find(|r| r.starts_with("yield: ")).unwrap();
+    assert!(
+        line.contains("sigma_a (lower_clamp_bending_stress) ")
+            && line.contains("against lower.yield_stress = 200.00 MPa"),
+        "{line}"
+    );
+}

@@ -49,6 +49,7 @@ mod no_circles;
 mod paper;
 mod reactions;
 mod report_csv;
+mod robust_meshes;
 mod scenario;
 mod stepping;
 mod support_motion;

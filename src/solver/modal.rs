@@ -3,7 +3,8 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::eigen::{natural_modes, Modes};
+use super::eigen::Modes;
+use super::graded::beam_modes;
 use super::secular::coupled_modes;
 use super::static_correction::StaticCorrection;
 use crate::error::Result;
@@ -76,13 +77,16 @@ pub struct ModalReaction {
 
 impl ModalSystem {
     /// Computes the modes of both beams and of the coupled system and the modal damping (the
-    /// time steps are resolved and checked by [`super::StepPlan`]).
+    /// time steps are resolved and checked by [`super::StepPlan`]). Every mode of the mesh is
+    /// kept; [`ModalSystem::for_run`] gives the basis a run steps in.
     pub fn new(model: &Model) -> Result<ModalSystem> {
         let s = &model.scenario;
         // Rigid-body modes by count, from the supports: the clamped arrestor none, the hinged bridge one.
         let (lower_rigid, upper_rigid) = (model.lower.mesh.rigid_modes(), model.upper.mesh.rigid_modes());
-        let lower = natural_modes(&model.lower.stiffness, &model.lower.mass, lower_rigid)?;
-        let upper = natural_modes(&model.upper.stiffness, &model.upper.mass, upper_rigid)?;
+        // A graded beam (elements differing in length by more than 10:1) takes the inverse
+        // problem of [`super::graded`]; every other beam the ordinary solve, as it always did.
+        let lower = beam_modes(&model.lower, "the arrestor (lower)")?;
+        let upper = beam_modes(&model.upper, "the bridge (upper)")?;
         let shapes = model.block_diagonal(&lower.shapes, &upper.shapes);
         let omega: Vec<f64> = lower.omega.iter().chain(upper.omega.iter()).copied().collect();
         let omega = DVector::from_vec(omega);

@@ -17,7 +17,7 @@
 use super::modal::{ModalSystem, STABILITY_LIMIT};
 use crate::error::{Error, Result};
 use crate::model::discretisation::auto_step_factor;
-use crate::model::scenario::{PAPER_STEP_CONTACT, PAPER_STEP_FREE};
+use crate::model::scenario::{MIN_STEP, PAPER_STEP_CONTACT, PAPER_STEP_FREE};
 use crate::model::{Scenario, TimeStep};
 use crate::results::seconds;
 
@@ -77,6 +77,21 @@ pub fn check_stability(
     Ok(())
 }
 
+/// The highest frequency of a stage and what owns it: one of the beams' highest kept mode, or
+/// (in contact) the contact bar coupling them.
+pub fn stage_frequency(modal: &ModalSystem, contact: bool) -> String {
+    let omega_max = modal.omega_max(contact);
+    let (lower, upper) = (modal.lower.omega_max(), modal.upper.omega_max());
+    let owner = if contact && omega_max > 1.01 * lower.max(upper) {
+        format!("the contact bar (k = {:.4e} N/m) coupling the beams", modal.bar_stiffness)
+    } else if lower >= upper {
+        "the arrestor's (lower) highest kept mode".to_string()
+    } else {
+        "the bridge's (upper) highest kept mode".to_string()
+    };
+    format!("omega_max = {omega_max:.4e} rad/s {}, from {owner}", if contact { "in contact" } else { "out of contact" })
+}
+
 impl StepPlan {
     /// Resolves automatic steps ([`automatic_product`]) and checks fixed ones against the
     /// stability limit dt omega_max <= sqrt(12) of their stage (an error that suggests `"auto"`).
@@ -84,7 +99,22 @@ impl StepPlan {
         let product = automatic_product(scenario);
         let resolve = |name: &'static str, step: TimeStep, contact: bool, cap: f64| -> Result<u64> {
             let dt = match step {
-                TimeStep::Auto => automatic_step(modal.omega_max(contact), cap, product),
+                TimeStep::Auto => {
+                    let omega_max = modal.omega_max(contact);
+                    // The automatic step never goes below 1 ns (time is counted in whole
+                    // nanoseconds): a model whose highest kept mode needs less would run unstable
+                    // and end in a non-finite state; refuse it before it starts.
+                    if omega_max * MIN_STEP > STABILITY_LIMIT {
+                        return Err(Error::Other(format!(
+                            "{name} = \"auto\" cannot be stable: {}, and the linear acceleration method needs dt <= \
+                             sqrt(12) / omega_max = {:e} s, below the 1 ns the stepper counts in; soften or coarsen \
+                             the model",
+                            stage_frequency(modal, contact),
+                            STABILITY_LIMIT / omega_max
+                        )));
+                    }
+                    automatic_step(omega_max, cap, product)
+                }
                 TimeStep::Fixed(dt) => {
                     check_stability(modal, name, dt, contact, product)?;
                     dt
@@ -96,6 +126,26 @@ impl StepPlan {
             free_ns: resolve("step_free", scenario.step_free, false, PAPER_STEP_FREE)?,
             contact_ns: resolve("step_contact", scenario.step_contact, true, PAPER_STEP_CONTACT)?,
         })
+    }
+
+    /// Why the smaller of the two steps is what it is, for a refusal of the step count: the
+    /// stage, whether the step is automatic, and the frequency it follows.
+    pub fn reason(&self, scenario: &Scenario, modal: &ModalSystem) -> String {
+        let contact = self.contact_ns < self.free_ns;
+        let step = if contact { scenario.step_contact } else { scenario.step_free };
+        match step {
+            TimeStep::Auto => format!(
+                "the automatic step {} follows omega_max dt <= {} with {}",
+                if contact { "in contact" } else { "out of contact" },
+                automatic_product(scenario),
+                stage_frequency(modal, contact)
+            ),
+            TimeStep::Fixed(_) => format!(
+                "{} is fixed at {:e} s",
+                if contact { "step_contact" } else { "step_free" },
+                seconds(self.step_ns(contact))
+            ),
+        }
     }
 
     /// The step of a stage, ns.

@@ -23,6 +23,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::eigen::Modes;
+use super::graded;
 use super::modal::{block_columns, ModalReaction, ModalSystem};
 use super::secular::coupled_modes;
 pub use super::static_correction::{
@@ -31,19 +32,61 @@ pub use super::static_correction::{
 };
 use crate::error::Result;
 use crate::model::system::PROBES;
-use crate::model::REACTIONS;
+use crate::model::{Method, Model, REACTIONS};
 
 impl ModalSystem {
     /// The system with each beam's modes above `cutoff` (rad/s) discarded and their static
     /// response kept as a [`StaticCorrection`]; rigid-body modes are always kept. A cut-off at or
     /// above every frequency returns the full system unchanged.
     pub fn truncated(&self, cutoff: f64) -> Result<ModalSystem> {
+        self.truncated_where(cutoff, |_, omega| omega <= cutoff)
+    }
+
+    /// The basis a run steps in ([`crate::Simulation::new`]): the modes of a graded beam above its
+    /// [`graded::spurious_limit`] (its short elements' own) replaced by their static response in
+    /// every method, and for the converged method with a cut-off every mode above it too. A model
+    /// with no graded beam gets exactly what it always did: the converged method's truncation at
+    /// its cut-off, or the full basis.
+    pub fn for_run(self, model: &Model) -> Result<ModalSystem> {
+        let s = &model.scenario;
+        // A nonlinear contact law is solved on the full basis (the static correction of the
+        // discarded modes is written for the linear bar).
+        if s.contact.nonlinear_law().is_some() {
+            return Ok(self);
+        }
+        let cutoff = (s.method == Method::Converged && s.modal_cutoff > 0.0).then_some(s.modal_cutoff);
+        let limits = [graded::spurious_limit(&model.lower), graded::spurious_limit(&model.upper)];
+        if limits == [None, None] {
+            return match cutoff {
+                Some(c) => self.truncated(c),
+                None => Ok(self),
+            };
+        }
+        let reported = cutoff.or(limits.iter().flatten().copied().reduce(f64::min)).unwrap_or(f64::INFINITY);
+        let lower_dofs = self.lower_dofs;
+        self.truncated_where(reported, |i, omega| {
+            let limit = if i < lower_dofs { limits[0] } else { limits[1] };
+            omega <= cutoff.unwrap_or(f64::INFINITY) && omega <= limit.unwrap_or(f64::INFINITY)
+        })
+    }
+
+    /// The highest natural frequency a run out of contact follows, rad/s: [`Self::omega_max`]
+    /// without the short elements' own modes of a graded beam (see [`Self::for_run`]).
+    pub fn resolved_omega_max(&self, model: &Model) -> f64 {
+        let limits = [graded::spurious_limit(&model.lower), graded::spurious_limit(&model.upper)];
+        let lower = self.lower.omega.iter().copied().filter(|w| limits[0].is_none_or(|l| *w <= l));
+        let upper = self.upper.omega.iter().copied().filter(|w| limits[1].is_none_or(|l| *w <= l));
+        lower.chain(upper).fold(0.0, f64::max)
+    }
+
+    /// The system with the modal coordinates `keep(i, omega_i)` rejects discarded and their
+    /// static response kept; `cutoff` is the cut-off reported.
+    fn truncated_where(&self, cutoff: f64, keep: impl Fn(usize, f64) -> bool) -> Result<ModalSystem> {
         let n = self.dofs();
-        let keep: Vec<usize> = (0..n).filter(|&i| self.omega2[i].sqrt() <= cutoff).collect();
+        let (keep, discarded): (Vec<usize>, Vec<usize>) = (0..n).partition(|&i| keep(i, self.omega2[i].sqrt()));
         if keep.len() == n {
             return Ok(self.clone());
         }
-        let discarded: Vec<usize> = (0..n).filter(|&i| self.omega2[i].sqrt() > cutoff).collect();
         let loads = [
             &self.gravity,
             &self.upper_tip,
