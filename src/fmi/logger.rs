@@ -71,7 +71,7 @@ pub fn significant(x: f64, digits: usize) -> String {
         return format!("{x}");
     }
     if (1e-4..1e7).contains(&x.abs()) {
-        let magnitude = x.abs().log10().floor() as i32;
+        let magnitude = libm::log10(x.abs()).floor() as i32;
         let decimals = (digits as i32 - 1 - magnitude).max(0) as usize;
         format!("{x:.decimals$}")
     } else {

@@ -61,7 +61,7 @@ impl ContactLaw {
     /// The elastic part k delta^n, N (0 without compression).
     pub fn elastic(&self, delta: f64) -> f64 {
         if delta > 0.0 {
-            self.stiffness * delta.powf(self.exponent)
+            self.stiffness * libm::pow(delta, self.exponent)
         } else {
             0.0
         }
@@ -136,8 +136,8 @@ impl ContactLaw {
     /// so a compression beyond this estimate by a factor 12^(1/(n-1)) is still stable).
     pub fn tangent_stiffness(&self, energy: f64) -> f64 {
         let n = self.exponent;
-        let delta = ((n + 1.0) * energy.max(0.0) / self.stiffness).powf(1.0 / (n + 1.0));
-        (n * self.stiffness * delta.powf(n - 1.0)).max(self.stiffness * 1e-12)
+        let delta = libm::pow((n + 1.0) * energy.max(0.0) / self.stiffness, 1.0 / (n + 1.0));
+        (n * self.stiffness * libm::pow(delta, n - 1.0)).max(self.stiffness * 1e-12)
     }
 }
 

@@ -351,7 +351,7 @@ fn range_text(name: &str) -> Option<String> {
     match name {
         "method" | "stress_recovery" | "lower.kind" | "contact.law" => return None,
         "drop_height" => return Some("0 to upper.length / 2 (500 at most)".into()),
-        "contact_position" => return Some("> 0, below upper.length".into()),
+        "contact_position" => return Some("> 0, up to upper.length (its free end)".into()),
         "step_free" | "step_contact" => return Some("\"auto\", or 1e-9 to 1".into()),
         "modal_cutoff" => return Some("\"auto\", or > 0 up to 1e12".into()),
         // A CLI field (the FMU's stop time is the importer's): Scenario::validate's bound.

@@ -261,7 +261,7 @@ fn contact_rate(s: &Scenario) -> f64 {
         None => s.contact.stiffness(),
         Some(law) => {
             let weight_share = s.upper.mass * s.gravity * s.upper.length / (2.0 * s.contact_position);
-            let static_energy = law.energy(2.0 * (weight_share / law.stiffness).powf(1.0 / law.exponent));
+            let static_energy = law.energy(2.0 * libm::pow(weight_share / law.stiffness, 1.0 / law.exponent));
             law.tangent_stiffness((4.0 * s.impact_energy()).max(static_energy))
         }
     }

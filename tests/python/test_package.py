@@ -130,8 +130,8 @@ def test_a_failing_scenario_is_a_row_with_the_fmu_message(cli_rows, cluster_rows
     failed = cluster_rows[cluster_rows["error"] != ""]
     assert (failed["contact_position"] == 40).all() and len(failed) == 4
     for message, cli_message in zip(failed["error"], cli_rows.loc[failed.index, "error"]):
-        assert "contact_position must be inside the upper beam" in message, message
-        assert "contact_position must be inside the upper beam" in cli_message, cli_message
+        assert "contact_position must be on the upper beam" in message, message
+        assert "contact_position must be on the upper beam" in cli_message, cli_message
     assert failed[PEAKS].isna().all().all()
 
 
