@@ -503,8 +503,17 @@ impl<S: Stepper> Simulation<S> {
             // The time within the run (never past the step's end by round-off).
             let at = (seconds(start.time_ns) + at * dt).min(self.state.result.time);
             match (probe, law) {
-                // A nonlinear law's force at the step's largest compression (its elastic part).
-                (Probe::Gap, Some(law)) => (law.elastic(value), at),
+                // A nonlinear law's force at the step's largest compression (its elastic part),
+                // or at the step's end with its damping, whichever is larger.
+                (Probe::Gap, Some(law)) => {
+                    let end_force = law.force(-end[k], -r1[k]);
+                    let inside = law.elastic(value);
+                    if end_force > inside {
+                        (end_force, self.state.result.time)
+                    } else {
+                        (inside, at)
+                    }
+                }
                 _ => (value * scale.abs(), at),
             }
         })

@@ -23,7 +23,8 @@ from typing import Any, Iterable
 
 #: Integer fields of the scenario (the FMU's Integer parameters).
 INTEGER_FIELDS = frozenset(
-    {"upper.elements_to_contact", "upper.elements_beyond_contact", "lower.elements", "stress_recovery", "method"}
+    {"upper.elements_to_contact", "upper.elements_beyond_contact", "lower.elements", "stress_recovery", "method",
+     "lower.kind", "contact.law"}
 )
 #: Time steps: "auto" is 0.
 TIME_STEP_FIELDS = frozenset({"step_free", "step_contact"})

@@ -185,7 +185,7 @@ def test_an_fmu_over_1_gib_is_refused_before_it_is_read(tmp_path):
     assert beam_impact._native.MAX_FMU_BYTES == 1 << 30
     done = in_child(f"import beam_impact\ntry:\n    beam_impact.simulate({str(sparse)!r})\n"
                     "except ValueError as e:\n    print(e)")
-    assert "the FMU is 1073741825 bytes, larger than the limit of 1073741824 bytes" in done.stdout, done
+    assert "the FMU is 1073741825 bytes, larger than 1073741824 bytes (the limit)" in done.stdout, done
 
 
 def test_python_sweep_with_a_fifo_as_the_fmu_exits_at_once(tmp_path):
