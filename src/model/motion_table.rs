@@ -12,46 +12,26 @@ pub const MAX_ROWS: usize = 10_000_000;
 /// never a line of a file that is not a motion CSV).
 pub const MAX_QUOTED: usize = 200;
 
-/// `cell` as an error quotes it: at most [`MAX_QUOTED`] characters, control characters escaped
-/// (`\u{1b}`), with the count of what was cut.
+/// `cell` as an error quotes it: at most [`MAX_QUOTED`] characters as shown, control characters
+/// escaped (`\u{1b}`, counted as shown), with the count of the cell's characters cut.
 pub fn quote_cell(cell: &str) -> String {
     let mut out = String::new();
-    let mut count = 0;
+    let (mut shown, mut taken) = (0, 0);
     for c in cell.chars() {
-        count += 1;
-        if count > MAX_QUOTED {
-            continue;
+        let piece: String = if c.is_control() { c.escape_default().collect() } else { c.to_string() };
+        let width = piece.chars().count();
+        if shown + width > MAX_QUOTED {
+            break;
         }
-        if c.is_control() {
-            out.extend(c.escape_default());
-        } else {
-            out.push(c);
-        }
+        out.push_str(&piece);
+        shown += width;
+        taken += 1;
     }
-    if count > MAX_QUOTED {
-        out.push_str(&format!("... ({} characters cut)", count - MAX_QUOTED));
+    let total = cell.chars().count();
+    if taken < total {
+        out.push_str(&format!("... ({} characters cut)", total - taken));
     }
     out
-}
-
-/// A parsed, checked support-motion time series.
-#[derive(Clone, Debug, PartialEq)]
-pub struct MotionTable {
-    /// The support-motion columns present, in the file's order (names of [`MOTION_NAMES`]).
-    pub columns: Vec<&'static str>,
-    /// Row times, s, strictly increasing.
-    pub times: Vec<f64>,
-    /// The motion of each row (absent columns zero).
-    pub motions: Vec<SupportMotion>,
-}
-
-/// A row that disagrees with the motion of the row before it.
-#[derive(Clone, Debug, PartialEq)]
-pub struct RowMismatch {
-    /// Row number (1 = the first data row; the header is line 1, so the row is on line row + 1).
-    pub row: usize,
-    /// What disagrees.
-    pub mismatch: MotionMismatch,
 }
 
 /// The error of a first line that is not a motion header (nothing of it quoted).
@@ -292,7 +272,7 @@ mod tests {
         // A cell of a million NUL bytes: cut to 200 characters, each escaped.
         let cell = "\0".repeat(1_000_000);
         let e = MotionTable::parse(&format!("{HEAVE}0,0,0,{cell}\n")).unwrap_err();
-        assert!(e.len() < 2000 && e.contains("\\u{0}") && e.contains("999800 characters cut"), "{}", &e[..200]);
+        assert!(e.len() < 2000 && e.contains("\\u{0}") && e.contains("999960 characters cut"), "{}", &e[..200]);
         assert!(!e.contains('\0'));
         // An escape sequence in a cell reaches no terminal.
         let e = MotionTable::parse(&format!("{HEAVE}0,0,0,\u{1b}[31mred\n")).unwrap_err();
