@@ -34,6 +34,26 @@ pub fn quote_cell(cell: &str) -> String {
     out
 }
 
+/// A parsed, checked support-motion time series.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MotionTable {
+    /// The support-motion columns present, in the file's order (names of [`MOTION_NAMES`]).
+    pub columns: Vec<&'static str>,
+    /// Row times, s, strictly increasing.
+    pub times: Vec<f64>,
+    /// The motion of each row (absent columns zero).
+    pub motions: Vec<SupportMotion>,
+}
+
+/// A row that disagrees with the motion of the row before it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RowMismatch {
+    /// Row number (1 = the first data row; the header is line 1, so the row is on line row + 1).
+    pub row: usize,
+    /// What disagrees.
+    pub mismatch: MotionMismatch,
+}
+
 /// The error of a first line that is not a motion header (nothing of it quoted).
 fn not_a_header(line: usize) -> String {
     format!(
