@@ -105,7 +105,10 @@ impl ContactLaw {
         let mut p = upper;
         for _ in 0..200 {
             let (d, v) = at(p);
-            let h = p - self.force(d, v);
+            // One power per iteration: the force and its slope from the elastic part.
+            let e = self.elastic(d);
+            let force = (e * (1.0 + self.damping * v)).max(0.0);
+            let h = p - force;
             if h > 0.0 {
                 hi = p;
             } else if h < 0.0 {
@@ -114,8 +117,7 @@ impl ContactLaw {
                 return p;
             }
             // dh/dP = 1 + a dF/ddelta + r dF/drate (where the force is positive).
-            let slope = if d > 0.0 && self.force(d, v) > 0.0 {
-                let e = self.elastic(d);
+            let slope = if d > 0.0 && force > 0.0 {
                 1.0 + a * self.exponent * e / d * (1.0 + self.damping * v) + r * e * self.damping
             } else {
                 1.0
