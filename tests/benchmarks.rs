@@ -208,6 +208,12 @@ fn contradictory_impact_and_support_fields_are_refused_by_name() {
         assert!(e.contains(expected), "{text:?}: {e}");
         assert!(!e.contains('\n'), "{e}");
     }
+    // The same contradiction from --set / --vary.
+    use beam_impact::studies::sweep::{apply_settings, parse_settings};
+    let mut s = Scenario::default();
+    let settings = parse_settings(&["lower.kind=rigid".into(), "lower.length=3".into()]).unwrap();
+    let e = apply_settings(&mut s, &settings).unwrap_err().to_string();
+    assert!(e.contains("lower.kind = \"rigid\" has no arrestor beam, but lower.length is set"), "{e}");
 }
 
 /// A run of the new fields replays from its log: `report` rebuilds its summary (the stored

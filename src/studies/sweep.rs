@@ -236,6 +236,21 @@ pub fn apply_settings(scenario: &mut Scenario, settings: &[Setting]) -> Result<(
     // The impact is stated one way: a speed set here replaces the drop height it would otherwise
     // come from, and a drop height set here the speed (both set here: refused by validation).
     let given = |name: &str| settings.iter().any(|s| s.field.name == name);
+    // A rigid support has no arrestor beam: its fields set here are a contradiction (as in a file).
+    if scenario.lower.kind == crate::model::scenario::SupportKind::Rigid {
+        let beam: Vec<&str> = settings
+            .iter()
+            .map(|s| s.field.name)
+            .filter(|n| n.starts_with("lower.") && *n != "lower.kind" && *n != "lower.tip_force")
+            .collect();
+        if !beam.is_empty() {
+            return Err(Error::Other(format!(
+                "lower.kind = \"rigid\" has no arrestor beam, but {} {} set: leave them out",
+                beam.join(", "),
+                if beam.len() == 1 { "is" } else { "are" }
+            )));
+        }
+    }
     match (given("impact_angular_velocity"), given("drop_height")) {
         (true, false) if scenario.impact_angular_velocity.is_some() => scenario.drop_height = 0.0,
         (false, true) => scenario.impact_angular_velocity = None,
