@@ -397,7 +397,7 @@ pub fn table() -> Vec<Variable> {
             Source::Parameter(p),
         )
     };
-    let output = |&(name, unit, description, get): &OutputRow| -> Row {
+    let real_output = |name: &str, unit: &'static str, description: &str, source: Source| -> Row {
         (
             name.into(),
             Type::Real,
@@ -407,8 +407,11 @@ pub fn table() -> Vec<Variable> {
             Some(unit),
             description.into(),
             None,
-            Source::Output(get),
+            source,
         )
+    };
+    let output = |&(name, unit, description, get): &OutputRow| -> Row {
+        real_output(name, unit, description, Source::Output(get))
     };
     for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && !is_appended_parameter(p) && !is_issue_28_parameter(p))
     {
@@ -615,17 +618,7 @@ pub fn table() -> Vec<Variable> {
     }
     // Issue 28: the impact the run starts with (appended after its parameters).
     for &(name, unit, description, get) in IMPACT_OUTPUTS {
-        push((
-            name.into(),
-            Type::Real,
-            Causality::Output,
-            Variability::Continuous,
-            Some(false),
-            Some(unit),
-            description.into(),
-            None,
-            Source::Impact(get),
-        ));
+        push(real_output(name, unit, description, Source::Impact(get)));
     }
     v
 }
