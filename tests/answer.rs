@@ -124,7 +124,7 @@ fn the_stop_time_is_a_point_on_the_step_grid_not_a_shortened_step() {
     assert_eq!(last.time_ns, stop_ns);
     let whole = &log.steps[log.steps.len() - 2];
     assert_eq!(last.step, whole.step + 1, "the stop record is the step being taken");
-    assert!(last.time_ns - whole.time_ns < stopped.step_plan().free_ns.max(stopped.step_plan().contact_ns));
+    assert!(last.time_ns - whole.time_ns < stopped.longest_step_ns());
     let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1e-30);
     for (a, b) in summary.peaks.as_array().into_iter().zip(at.peaks.as_array()) {
         assert!(close(a, b), "peak {a} at the stop time vs {b} at the same communication point");

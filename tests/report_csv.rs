@@ -246,12 +246,12 @@ fn report_csv_is_the_step_channel() {
         let last = *csv.column(&format!("peaks.{name}")).last().unwrap();
         assert!(close(last, json), "peaks.{name}: last row {last} vs --json {json}");
         // The converged method's peaks are the largest |value| over each internal step, so at
-        // least every step's end value, and within 1e-3 of the largest of them: a step spans
-        // omega_max dt = 1 rad of the highest kept mode, whose share of the stress can crest between
-        // two step ends (measured on the clamp shear: 1.4e-4); the stiff bar's force, 1e-2 (it
-        // rises over a few steps at each impact: measured 2.0e-3).
+        // least every step's end value, and within 1e-2 of the largest of them: its exact modal
+        // advance steps 4x the plan's out of contact and up to 128x in contact, over which the
+        // highest kept modes' share of a stress crests between two step ends (measured on the
+        // clamp shear: 3.8e-3; the same peak from steps of the plan's length moves by 5e-5).
         let ends = largest(name);
-        let within = if name == "contact_force" { 1e-2 } else { 1e-3 };
+        let within = 1e-2;
         assert!(ends <= json && json - ends <= within * json, "max |{name}| {ends} vs --json {json}");
     }
     let time = csv.column("time");

@@ -6,7 +6,7 @@
 use std::sync::Arc;
 
 use beam_impact::model::motion_table::MotionTable;
-use beam_impact::model::{Model, Probe, SupportMotion, Track};
+use beam_impact::model::{Method, Model, Probe, SupportMotion, Track};
 use beam_impact::record::{MemoryRecorder, NullRecorder};
 use beam_impact::results::Summary;
 use beam_impact::{Scenario, Simulation};
@@ -39,8 +39,11 @@ fn relative(a: f64, b: f64) -> f64 {
 /// Both supports under one constant vertical acceleration a from t = 0 (the fall before it too)
 /// is the run with gravity g + a (issue 17's equivalence), on the grid (a = 2 and -3 m/s^2). The
 /// two load vectors differ by round-off (g M r + a M r against (g + a) M r, ~1e-16 relative).
-/// Damped runs (0.03, 0.05): every peak, first contact and whole run, to 1e-9 relative (measured
-/// within 5e-13). Undamped runs chatter (hundreds of contact windows a second, each change located
+/// Damped runs (0.03, 0.05): every peak, first contact and whole run, to 1e-9 relative for the
+/// paper's method (measured within 5e-13) and 1e-5 for the converged method (measured 1.7e-6): its
+/// exact advance's step-size control compares the bar force's ramp error with a tolerance, and a
+/// round-off difference there can take a step of another length, which moves a peak within the
+/// control's own accuracy (a wrong support load would move it by percents). Undamped runs chatter (hundreds of contact windows a second, each change located
 /// to the nanosecond) and are chaotic at round-off: a 1e-15 relative change of gravity alone moves
 /// their whole-run peaks by up to 14 % (measured), so there every output of every step of the
 /// first 50 ms is compared to 1e-9 of its scale instead. The support reactions, which include the
@@ -69,7 +72,8 @@ fn compare_with_gravity(scenario: &Scenario, a: f64) {
     if scenario.damping_ratio > 0.0 {
         for (m, f) in [(moving.first_contact_peaks, fixed.first_contact_peaks), (moving.peaks, fixed.peaks)] {
             for (x, y) in m.as_array().into_iter().zip(f.as_array()) {
-                assert!(relative(x, y) <= 1e-9, "{what}: peak {x} vs {y}");
+                let limit = if scenario.method == Method::Paper { 1e-9 } else { 1e-5 };
+                assert!(relative(x, y) <= limit, "{what}: peak {x} vs {y}");
             }
         }
     } else {

@@ -39,7 +39,7 @@ pub const MAGIC: &[u8; 8] = b"BEAMFMU\0";
 
 /// Version of the byte format; bump it when the layout, [`Snapshot`], [`RunState`] or the set of
 /// FMU parameters changes.
-pub const FORMAT_VERSION: u32 = 5;
+pub const FORMAT_VERSION: u32 = 6;
 
 /// Bytes before the payload.
 pub const HEADER: usize = 24;
@@ -306,7 +306,7 @@ mod tests {
         out.insert(format!("{prefix}: {leaf}"));
     }
 
-    /// The payload's layout at FORMAT_VERSION 5 (5: issue 28's FMU parameters, the impact's
+    /// The payload's layout at FORMAT_VERSION 6 (6: the exact modal advance's step level; 5: issue 28's FMU parameters, the impact's
     /// angular velocity, `lower.kind`, `contact.stiffness` and `contact.clearance`; 4: the supports' motion, its start and input, the
     /// inertial potential and the supports' displacements in the results; 3: the method, modal cut-off, discretisation
     /// tolerance, allowables and yield stresses; the discretisation check's run states): every field path of `Snapshot` and its type, the
@@ -320,8 +320,8 @@ mod tests {
     /// list together. (A DVector is nalgebra's `[data, nrows, ncols]`: `[][]` the data, `[]` the
     /// sizes; `null` an absent Option or the static column count.)
     #[test]
-    fn snapshot_fields_are_pinned_at_format_version_5() {
-        const VERSION_5: &[&str] = &[
+    fn snapshot_fields_are_pinned_at_format_version_6() {
+        const VERSION_6: &[&str] = &[
             "checks[].contact_windows[].end: f64",
             "checks[].contact_windows[].start: f64",
             "checks[].dissipation_rate: f64",
@@ -415,6 +415,7 @@ mod tests {
             "checks[].result.upper_support_displacement: f64",
             "checks[].result.upper_tip_deflection: f64",
             "checks[].result.upper_tip_velocity: f64",
+            "checks[].step_level: u64",
             "checks[].upper_strain_at_peak: f64",
             "initialized: bool",
             "parameters.contact.area: f64",
@@ -553,6 +554,7 @@ mod tests {
             "run.result.upper_support_displacement: f64",
             "run.result.upper_tip_deflection: f64",
             "run.result.upper_tip_velocity: f64",
+            "run.step_level: u64",
             "run.upper_strain_at_peak: f64",
             "start_time: f64",
         ];
@@ -563,7 +565,7 @@ mod tests {
         let found: Vec<&str> = found.iter().map(String::as_str).collect();
         assert_eq!(
             (FORMAT_VERSION, found.as_slice()),
-            (5, VERSION_5),
+            (6, VERSION_6),
             "Snapshot's fields changed: bump FORMAT_VERSION and update the pinned list"
         );
     }

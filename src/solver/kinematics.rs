@@ -126,6 +126,21 @@ pub trait Stepper {
     /// `excitation` (gravity included): M a = F - K delta - C delta', with the bar in contact.
     /// Used where the load jumps, so that the next step starts from equilibrium.
     fn equilibrium_acceleration(&mut self, state: &mut Kinematics, stage: Stage, excitation: &Excitation);
+    /// The damping's work over the last step taken, J, where the stepper computes it exactly
+    /// (the exact modal advance); `None`: the simulation books the trapezoid of the dissipation
+    /// rate.
+    fn step_dissipation(&self) -> Option<f64> {
+        None
+    }
+    /// After an exact contact step: how far the bar's force may have strayed from the linear
+    /// ramp the step assumed, N (the step-size control's measure); `None` otherwise.
+    fn force_ramp_error(&self) -> Option<f64> {
+        None
+    }
+    /// True when the stepper's steps may grow beyond the stability-bound plan (exact advance).
+    fn adapts_steps(&self) -> bool {
+        false
+    }
     /// The model's probes (see [`crate::model::Probe`]) applied to a displacement vector (or to
     /// a velocity vector, for rates), in the stepper's coordinates: the beams' relative
     /// deflections (the gap without the supports' offset).

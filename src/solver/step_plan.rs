@@ -49,7 +49,9 @@ pub fn automatic_step(omega_max: f64, cap: f64, product: f64) -> f64 {
 /// omega_max dt of the scenario's automatic steps: [`ENERGY_SAFE_LIMIT`], halved for a lightly
 /// damped converged run ([`crate::model::discretisation::auto_step_factor`]).
 pub fn automatic_product(scenario: &Scenario) -> f64 {
-    ENERGY_SAFE_LIMIT * auto_step_factor(scenario.method, scenario.damping_ratio)
+    let linear_acceleration =
+        scenario.method == crate::model::Method::Paper || scenario.contact.nonlinear_law().is_some();
+    ENERGY_SAFE_LIMIT * auto_step_factor(scenario.method, scenario.damping_ratio, linear_acceleration)
 }
 
 /// Rejects `step` if dt * omega_max > sqrt(12) ([`STABILITY_LIMIT`]) in the given stage; the

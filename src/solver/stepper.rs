@@ -1,10 +1,15 @@
 //! The production stepper: the modified linear acceleration method (Eqs. 7-11) in the beams'
 //! own modal coordinates. Out of contact S, P, Q and R are diagonal; in contact the bar adds
 //! k_c b b^T to K, and S^-1 follows from Sherman-Morrison. Every step costs O(n).
+//!
+//! The converged method's runs with the linear bar advance each mode exactly instead
+//! ([`super::exact`]): the modal forcing linear over the step, the bar's force at the step's end
+//! from one scalar equation (the same rank-one structure), O(n) per step at any step size.
 
 use nalgebra::DVector;
 
 use super::contact::Stage;
+use super::exact::ModeStep;
 use super::kinematics::{Energies, Excitation, Kinematics, Stepper, SupportAndTips};
 use super::modal::ModalSystem;
 use crate::model::system::PROBES;
@@ -48,6 +53,43 @@ pub struct ModalStepper {
     /// Work vectors: z of Eq. (8) and D^-1 f.
     z: DVector<f64>,
     y: DVector<f64>,
+    /// Exact modal advance (the converged method with the linear bar) instead of Eqs. (7)-(11).
+    exact: bool,
+    /// Exact coefficients of the step sizes met (the stages' own, a located contact change's, a
+    /// landing on an output time), with how often each was used.
+    exact_cache: [ExactStage; 12],
+    /// The damping's work over the last exact step, J (None for the linear acceleration method).
+    last_dissipation: Option<f64>,
+    /// The bound on the bar force's departure from its ramp over the last exact contact step, N.
+    last_force_error: Option<f64>,
+}
+
+/// The exact coefficients of every mode for one step size (dt = NaN: none yet).
+#[derive(Clone, Debug)]
+struct ExactStage {
+    dt: f64,
+    modes: Vec<ModeStep>,
+    /// sum b_i^2 Gr_i: the gap's response at the step's end to the end force's ramp, m per (N/s).
+    flexibility: f64,
+    /// Steps taken with them.
+    hits: u64,
+}
+
+impl Default for ExactStage {
+    fn default() -> Self {
+        ExactStage { dt: f64::NAN, modes: Vec::new(), flexibility: 0.0, hits: 0 }
+    }
+}
+
+impl ExactStage {
+    /// The coefficients of step `dt` in place.
+    fn reset(&mut self, s: &ModalSystem, dt: f64) {
+        self.modes.clear();
+        self.modes.extend(s.omega2.iter().zip(s.damping.iter()).map(|(&w2, &c)| ModeStep::new(w2, c, dt)));
+        self.flexibility = self.modes.iter().zip(s.contact.iter()).map(|(m, b)| b * b * m.q[3]).sum();
+        self.dt = dt;
+        self.hits = 0;
+    }
 }
 
 impl ModalStepper {
@@ -83,7 +125,23 @@ impl ModalStepper {
             load_excitation: None,
             z: DVector::zeros(n),
             y: DVector::zeros(n),
+            exact: false,
+            exact_cache: std::array::from_fn(|_| ExactStage::default()),
+            last_dissipation: None,
+            last_force_error: None,
         }
+    }
+
+    /// The same stepper advancing each mode exactly ([`super::exact`]) when `exact` (the
+    /// converged method with the linear bar; a nonlinear law keeps Eqs. (7)-(11)).
+    pub fn with_exact(mut self, exact: bool) -> ModalStepper {
+        self.exact = exact && self.system.law.is_none();
+        self
+    }
+
+    /// True when the stepper advances each mode exactly.
+    pub fn is_exact(&self) -> bool {
+        self.exact
     }
 
     /// The modal system (modes, damping, modal probes).
@@ -144,26 +202,39 @@ impl ModalStepper {
         dt: f64,
         excitation: &Excitation,
     ) -> ([f64; PROBES], Energies) {
+        // The modal load F = Phi^T (F_g + F_ext + sum_j a_j x_j) changes only when the tip forces
+        // or the supports' accelerations do.
+        if !self.load_excitation.is_some_and(|e| e.same_load(excitation)) {
+            let s = &self.system;
+            self.load = s.load(excitation);
+            self.support_load = s.support_load(excitation);
+            self.shift = s.correction.gap_shift(excitation);
+            self.load_excitation = Some(*excitation);
+        }
+        if self.exact {
+            self.exact_step(state, stage, dt, excitation);
+        } else {
+            self.linear_acceleration_step(state, stage, dt, excitation);
+        }
+        if MEASURE {
+            self.measure_state(state, stage, excitation)
+        } else {
+            ([0.0; PROBES], Energies::default())
+        }
+    }
+
+    /// Eqs. (7)-(11) for one step.
+    fn linear_acceleration_step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, excitation: &Excitation) {
         let contact = stage.is_contact();
         let s = &self.system;
-        let truncated = s.is_truncated();
         // S^-1 is recomputed (O(n)) only when the stage's step size changes.
         let slot = &mut self.cache[usize::from(contact)];
         let inv = match slot {
             Some(c) if c.dt == dt => c,
             _ => slot.insert(StageInverse::new(s, contact, dt)),
         };
-        // The modal load F = Phi^T (F_g + F_ext + sum_j a_j x_j) changes only when the tip forces
-        // or the supports' accelerations do.
-        if !self.load_excitation.is_some_and(|e| e.same_load(excitation)) {
-            self.load = s.load(excitation);
-            self.support_load = s.support_load(excitation);
-            self.shift = s.correction.gap_shift(excitation);
-            self.load_excitation = Some(*excitation);
-        }
         // The bar acts on the absolute gap: the beams' relative one plus the supports' offset.
         let gap_offset = excitation.gap_offset;
-        let moves = excitation.moves();
         let n = state.displacement.len();
         let (dt2_3, dt_2, dt2_6) = (dt * dt / 3.0, 0.5 * dt, dt * dt / 6.0);
         // Plain slices of one length: the loops below run without bounds checks.
@@ -228,29 +299,119 @@ impl ModalStepper {
             v[i] += dt_2 * (a[i] + a_next);
             a[i] = a_next;
         }
+    }
+
+    /// One exact step ([`super::exact`]): each mode under a forcing linear over the step, from
+    /// the start's total modal force f0 = a + c v + omega^2 q (the state's own, so a retaken step
+    /// starts alike) to the end's, F - b P+ in contact, where the bar's P+ = k (b^T q+ + s + d)
+    /// solves one scalar equation: b^T q+ is linear in P+ through the ramp's coefficients.
+    /// Books the damping's exact work over the step (the modes' energy balance).
+    fn exact_step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, excitation: &Excitation) {
+        let contact = stage.is_contact();
+        let s = &self.system;
+        // The stages' own steps recur, a located change's or a landing's rarely: on a miss the
+        // least used coefficients give way.
+        let slot = match self.exact_cache.iter().position(|c| c.dt == dt) {
+            Some(j) => j,
+            None => {
+                let j = (0..self.exact_cache.len()).min_by_key(|&j| self.exact_cache[j].hits).unwrap_or(0);
+                self.exact_cache[j].reset(s, dt);
+                j
+            }
+        };
+        self.exact_cache[slot].hits += 1;
+        let coefficients = &self.exact_cache[slot];
+        let n = state.displacement.len();
+        let q = &mut state.displacement.as_mut_slice()[..n];
+        let v = &mut state.velocity.as_mut_slice()[..n];
+        let a = &mut state.acceleration.as_mut_slice()[..n];
+        let modes = &coefficients.modes[..n];
+        let load = &self.load.as_slice()[..n];
+        let omega2 = &s.omega2.as_slice()[..n];
+        let damping = &s.damping.as_slice()[..n];
+        let b = &s.contact.as_slice()[..n];
+        let inv_dt = 1.0 / dt;
+        // The bar's force at the step's end, P+ (0 out of contact): the gap without it, then the
+        // scalar equation P+ = k (g0 - P+ W / dt + s + d).
+        let k = s.bar_stiffness;
+        let offset = self.shift + excitation.gap_offset;
+        // The bar's force and its rate at the step's start (for the step's interpolation error).
+        let (mut start_gap, mut start_rate) = (0.0, 0.0);
+        let force = if contact {
+            let mut gap = 0.0;
+            for i in 0..n {
+                let f0 = a[i] + damping[i] * v[i] + omega2[i] * q[i];
+                let m = &modes[i];
+                gap += b[i] * (m.q[0] * q[i] + m.q[1] * v[i] + m.q[2] * f0 + m.q[3] * (load[i] - f0) * inv_dt);
+                start_gap += b[i] * q[i];
+                start_rate += b[i] * v[i];
+            }
+            k * (gap + offset) / (1.0 + k * coefficients.flexibility * inv_dt)
+        } else {
+            0.0
+        };
+        let mut end_rate = 0.0;
+        let mut dissipated = 0.0;
+        for i in 0..n {
+            let (q0, v0) = (q[i], v[i]);
+            let f0 = a[i] + damping[i] * v0 + omega2[i] * q0;
+            let f1 = load[i] - b[i] * force;
+            let r = (f1 - f0) * inv_dt;
+            let (q1, v1, integral) = modes[i].apply(q0, v0, f0, r);
+            if damping[i] != 0.0 {
+                // The mode's energy balance: c int v^2 = -(E1 - E0) + int v f, with
+                // int v f = f0 (q1 - q0) + r (dt q1 - int q).
+                let energy_change = 0.5 * (v1 * v1 - v0 * v0) + 0.5 * omega2[i] * (q1 * q1 - q0 * q0);
+                dissipated += -energy_change + f0 * (q1 - q0) + r * (dt * q1 - integral);
+            }
+            end_rate += b[i] * v1;
+            q[i] = q1;
+            v[i] = v1;
+            a[i] = f1 - damping[i] * v1 - omega2[i] * q1;
+        }
+        self.last_dissipation = Some(dissipated);
+        // How far the bar's force over the step strays from the linear ramp the step assumed:
+        // the cubic through its values and rates at both ends differs from the chord by at most
+        // 4/27 max(|dt P0' - dP|, |dt P1' - dP|).
+        self.last_force_error = contact.then(|| {
+            let rate = excitation.gap_offset_rate;
+            let (p0, p0_rate, p1_rate) = (k * (start_gap + offset), k * (start_rate + rate), k * (end_rate + rate));
+            let change = force - p0;
+            4.0 / 27.0 * (dt * p0_rate - change).abs().max((dt * p1_rate - change).abs())
+        });
+    }
+
+    /// The probes and energies of the state just reached, as lane-wise sums (vectorised; the
+    /// order of the additions differs from a plain loop only by round-off).
+    fn measure_state(&self, state: &Kinematics, stage: Stage, excitation: &Excitation) -> ([f64; PROBES], Energies) {
+        let s = &self.system;
+        let n = state.displacement.len();
+        let (q, v) = (&state.displacement.as_slice()[..n], &state.velocity.as_slice()[..n]);
+        let (omega2, damping) = (&s.omega2.as_slice()[..n], &s.damping.as_slice()[..n]);
         let mut probes = [0.0; PROBES];
         let mut e = Energies::default();
-        if MEASURE {
-            // The measurements of the new state as lane-wise sums (vectorised; the order of the
-            // additions differs from a plain loop only by round-off).
-            let (q, v) = (&*q, &*v);
-            for (k, p) in probes.iter_mut().enumerate() {
-                *p = dot(&self.probe_columns.column(k).as_slice()[..n], q);
-            }
-            probes[Probe::Gap as usize] += gap_offset;
-            let lower = s.lower_dofs.min(n);
-            let lower_strain = 0.5 * weighted_squares(&omega2[..lower], &q[..lower]);
-            e.upper_strain = 0.5 * weighted_squares(&omega2[lower..], &q[lower..]);
-            e.beam_strain = lower_strain + e.upper_strain;
-            e.kinetic = 0.5 * dot(v, v);
-            e.gravity_potential = -dot(&s.gravity.as_slice()[..n], q);
-            if moves {
-                e.inertial_potential = -dot(&self.support_load.as_slice()[..n], q);
-            }
-            e.dissipation_rate = weighted_squares(damping, v);
-            if truncated {
-                apply_correction(s, &mut probes, &mut e, contact, excitation);
-            }
+        for (k, p) in probes.iter_mut().enumerate() {
+            *p = dot(&self.probe_columns.column(k).as_slice()[..n], q);
+        }
+        probes[Probe::Gap as usize] += excitation.gap_offset;
+        let lower = s.lower_dofs.min(n);
+        let lower_strain = 0.5 * weighted_squares(&omega2[..lower], &q[..lower]);
+        e.upper_strain = 0.5 * weighted_squares(&omega2[lower..], &q[lower..]);
+        e.beam_strain = lower_strain + e.upper_strain;
+        e.kinetic = 0.5 * dot(v, v);
+        e.gravity_potential = -dot(&s.gravity.as_slice()[..n], q);
+        if excitation.moves() {
+            // The support load of the last step's excitation, or this one's (a state measured at
+            // another instant: a step's start, an output time).
+            e.inertial_potential = if self.load_excitation.is_some_and(|l| l.same_load(excitation)) {
+                -dot(&self.support_load.as_slice()[..n], q)
+            } else {
+                -s.support_load(excitation).dot(&state.displacement)
+            };
+        }
+        e.dissipation_rate = weighted_squares(damping, v);
+        if s.is_truncated() {
+            apply_correction(s, &mut probes, &mut e, stage.is_contact(), excitation);
         }
         (probes, e)
     }
@@ -281,6 +442,18 @@ impl Stepper for ModalStepper {
         self.advance::<true>(state, stage, dt, excitation)
     }
 
+    fn step_dissipation(&self) -> Option<f64> {
+        self.last_dissipation
+    }
+
+    fn force_ramp_error(&self) -> Option<f64> {
+        self.last_force_error
+    }
+
+    fn adapts_steps(&self) -> bool {
+        self.exact
+    }
+
     fn equilibrium_acceleration(&mut self, state: &mut Kinematics, stage: Stage, excitation: &Excitation) {
         // In modal coordinates M = I: a = F - diag(omega^2) q - diag(c) v - kappa b (b . q + s + d).
         let s = &self.system;
@@ -298,21 +471,18 @@ impl Stepper for ModalStepper {
     }
 
     fn probes(&self, displacement: &DVector<f64>) -> [f64; PROBES] {
+        let n = displacement.len().min(self.probe_columns.nrows());
         let mut out = [0.0; PROBES];
         for (k, value) in out.iter_mut().enumerate() {
-            *value = self.probe_columns.column(k).dot(displacement);
+            *value = dot(&self.probe_columns.column(k).as_slice()[..n], &displacement.as_slice()[..n]);
         }
         out
     }
 
     fn measure(&self, state: &Kinematics, stage: Stage, excitation: &Excitation) -> ([f64; PROBES], Energies) {
-        let mut probes = self.probes(&state.displacement);
-        probes[Probe::Gap as usize] += excitation.gap_offset;
-        let mut e = self.energies(state, excitation);
-        if self.system.is_truncated() {
-            apply_correction(&self.system, &mut probes, &mut e, stage.is_contact(), excitation);
-        }
-        (probes, e)
+        // The same sums as a measured step's, so that a state measured again (a step's start,
+        // a restored state) gives the very same numbers.
+        self.measure_state(state, stage, excitation)
     }
 
     fn rates(&self, state: &Kinematics, stage: Stage, excitation: &Excitation) -> [f64; PROBES] {
