@@ -198,7 +198,7 @@ impl Default for Options {
 
 /// Runs `scenario` into `recorder` (the printed run) and its checks (unrecorded, in parallel).
 pub fn run(scenario: &Scenario, recorder: &mut (dyn Recorder + Send), options: Options) -> Result<Answer> {
-    run_with(scenario, recorder, options, &ModalCache::new(0, 0))
+    run_with(scenario, recorder, options, &ModalCache::disabled())
 }
 
 /// [`run`] with each rung's modes from `cache` (a sweep's, shared by its rows): the same answer

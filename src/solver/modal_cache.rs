@@ -72,8 +72,7 @@ struct Shared {
 type Slot = Arc<Mutex<Option<Arc<Shared>>>>;
 
 /// A bounded, thread-safe store of modal systems keyed by geometry (see the module
-/// documentation). Cloning a `Simulation` is not needed to share: each run gets its own copy of
-/// the systems, with its own damping.
+/// documentation). Each run gets its own copy of the systems, with its own damping.
 #[derive(Debug)]
 pub struct ModalCache {
     /// Most recently used first.
@@ -109,6 +108,11 @@ impl ModalCache {
     /// `max_entries` 0 keeps nothing.
     pub fn new(max_entries: usize, max_bytes: usize) -> ModalCache {
         ModalCache { entries: Mutex::new(VecDeque::new()), max_entries, max_bytes }
+    }
+
+    /// A cache that keeps nothing: every run computes its own modes ([`crate::answer::run`]).
+    pub fn disabled() -> ModalCache {
+        ModalCache::new(0, 0)
     }
 
     /// Whether the cache keeps anything (`max_entries` > 0).
@@ -276,7 +280,7 @@ mod tests {
             cache.modes(&model(&s)).unwrap();
             assert_eq!(cache.len(), 1);
         }
-        let none = ModalCache::new(0, DEFAULT_BYTES);
+        let none = ModalCache::disabled();
         none.modes(&model(&Scenario::paper())).unwrap();
         assert!(none.is_empty() && !none.is_enabled());
         let small = ModalCache::new(10, 1000);
