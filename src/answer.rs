@@ -25,6 +25,7 @@ use crate::error::Result;
 use crate::model::{Method, Scenario};
 use crate::record::{NullRecorder, Recorder};
 use crate::results::{Peaks, Summary};
+use crate::solver::ModalCache;
 use crate::Simulation;
 
 /// The five peaks by name, in the order of [`Peaks::as_array`].
@@ -197,7 +198,18 @@ impl Default for Options {
 
 /// Runs `scenario` into `recorder` (the printed run) and its checks (unrecorded, in parallel).
 pub fn run(scenario: &Scenario, recorder: &mut (dyn Recorder + Send), options: Options) -> Result<Answer> {
-    let mut printed = Simulation::new(scenario)?;
+    run_with(scenario, recorder, options, &ModalCache::disabled())
+}
+
+/// [`run`] with each rung's modes from `cache` (a sweep's, shared by its rows): the same answer
+/// to the bit.
+pub fn run_with(
+    scenario: &Scenario,
+    recorder: &mut (dyn Recorder + Send),
+    options: Options,
+    cache: &ModalCache,
+) -> Result<Answer> {
+    let mut printed = Simulation::new_cached(scenario, cache)?;
     printed.check_step_count(scenario.duration_ns(), options.max_steps)?;
     let resolved = printed.scenario().clone();
     let check_scenarios = check_scenarios(scenario)?;
@@ -219,7 +231,7 @@ pub fn run(scenario: &Scenario, recorder: &mut (dyn Recorder + Send), options: O
                 .map(|(role, s)| {
                     // A check rung's mesh the printed one does not share (a short element beyond
                     // the supported ratio on a coarser rung): say which run it is.
-                    let mut sim = Simulation::new(s).map_err(|e| match e {
+                    let mut sim = Simulation::new_cached(s, cache).map_err(|e| match e {
                         crate::Error::InvalidParameter { .. } | crate::Error::Invalid(_) => e,
                         e => crate::Error::Other(format!(
                             "the {role} run of the answer ({}): {e}",

@@ -15,8 +15,8 @@ use crate::results::{
 use crate::solver::contact::{self, Stage};
 use crate::solver::initial::{initial_state, Pitching};
 use crate::solver::{
-    DenseStepper, Energies, EnergyMethod, Excitation, Kinematics, ModalStepper, ModalSystem, StepPlan, Stepper,
-    TipForces,
+    DenseStepper, Energies, EnergyMethod, Excitation, Kinematics, ModalCache, ModalStepper, ModalSystem, StepPlan,
+    Stepper, TipForces,
 };
 
 /// Everything that changes during a run: enough to restore it exactly (FMU state, rollback).
@@ -267,11 +267,31 @@ impl Simulation<ModalStepper> {
     /// [`Simulation::new`] with the supports' motion at t = 0 given (an FMU's inputs at the end of
     /// its initialisation); the scenario's motion table, if any, drives the run from there.
     pub fn starting_with(scenario: &Scenario, motion: SupportMotion) -> Result<Self> {
+        Self::starting_with_cache(scenario, motion, None)
+    }
+
+    /// [`Simulation::new`] with the modes taken from `cache` when a run of the same geometry put
+    /// them there (else computed and put there): the same run to the bit, without the eigen
+    /// decompositions (see [`crate::solver::modal_cache`]).
+    pub fn new_cached(scenario: &Scenario, cache: &ModalCache) -> Result<Self> {
+        Self::starting_with_cache(scenario, scenario.motion.at_start(), Some(cache))
+    }
+
+    fn starting_with_cache(scenario: &Scenario, motion: SupportMotion, cache: Option<&ModalCache>) -> Result<Self> {
         let resolved = crate::discretise::printed(scenario)?;
         let model = Model::new(&resolved)?;
-        let full = ModalSystem::new(&model)?;
+        let (full, run) = match cache.filter(|c| c.is_enabled()) {
+            Some(cache) => {
+                let modes = cache.modes(&model)?;
+                (modes.full, modes.run)
+            }
+            None => (ModalSystem::new(&model)?, None),
+        };
         let physical = initial_physical_state(&model, &full, &motion)?;
-        let modal = full.for_run(&model)?;
+        let modal = match run {
+            Some(run) => run,
+            None => full.for_run(&model)?,
+        };
         let exact = model.scenario.method == Method::Converged;
         let stepper = ModalStepper::new(&model, modal.clone()).with_exact(exact);
         Self::with_stepper(model, modal, stepper, &physical, motion)

@@ -16,6 +16,7 @@ use std::process::{Command, Output};
 
 use beam_impact::model::parameters;
 use beam_impact::record::NullRecorder;
+use beam_impact::solver::ModalCache;
 use beam_impact::Scenario;
 
 fn beam_impact() -> Command {
@@ -288,5 +289,137 @@ fn run_with_set_never_logs_over_the_paper_log() {
     // Every name `beam-impact scenario` prints is accepted by --set (its parameters are).
     for p in parameters::PARAMETERS {
         assert!(beam_impact::studies::sweep::field(p.name).is_ok(), "{}", p.name);
+    }
+}
+
+/// The runs of `scenarios`, each an answer with its rungs' modes from one shared cache and the
+/// same answer without a cache: every peak, figure and verdict equal (`==`, to the bit).
+fn assert_cached_answers_are_the_uncached_ones(scenarios: &[(String, Scenario)], cache: &ModalCache) {
+    for (what, s) in scenarios {
+        let fresh = beam_impact::answer::run(s, &mut NullRecorder, Default::default()).unwrap();
+        let cached = beam_impact::answer::run_with(s, &mut NullRecorder, Default::default(), cache).unwrap();
+        let bits = |a: &beam_impact::answer::Answer| -> Vec<u64> {
+            let mut v: Vec<f64> = [a.summary.peaks, a.summary.first_contact_peaks, a.converged_peaks]
+                .iter()
+                .flat_map(|p| p.as_array())
+                .collect();
+            v.extend(a.discretisation_error.as_array());
+            v.extend(a.first_contact_discretisation_error.as_array());
+            v.extend(a.sensitivity_spread.map_or([f64::NAN; 5], |p| p.as_array()));
+            v.extend(a.design.utilisation.as_array());
+            v.push(a.summary.max_energy_residual);
+            v.iter().map(|x| x.to_bits()).collect()
+        };
+        assert_eq!(bits(&cached), bits(&fresh), "{what}: peaks and figures");
+        assert_eq!(cached.quality, fresh.quality, "{what}: checks and verdict");
+        assert_eq!(cached.design, fresh.design, "{what}: design");
+        assert_eq!(cached.runs, fresh.runs, "{what}: rungs");
+        assert_eq!(cached, fresh, "{what}: the whole answer");
+    }
+}
+
+/// Issue 29: answers whose rungs take their modes from a cache shared across scenarios that
+/// differ in every per-run field (drop height, impact speed, damping in both cut-off classes,
+/// Rayleigh terms, steps, duration, tolerances, allowables, yield stresses, tip forces, motion
+/// shift) are the uncached answers to the bit, and one geometry needs two entries per rung (the
+/// automatic cut-off doubles below damping 0.02), not one per run. Another contact position, and
+/// a power-law contact (whose coupled rate follows the impact energy), keep their own modes.
+#[test]
+fn cached_answers_equal_uncached_ones_to_the_bit() {
+    use beam_impact::studies::sweep::{apply_settings, field, Setting};
+    let base = Scenario { duration: 0.3, ..Scenario::default() };
+    let with = |settings: &[(&str, f64)]| -> (String, Scenario) {
+        let mut s = base.clone();
+        let settings: Vec<Setting> =
+            settings.iter().map(|(name, value)| Setting { field: field(name).unwrap(), value: *value }).collect();
+        apply_settings(&mut s, &settings).unwrap();
+        (format!("{:?}", settings.iter().map(|s| (s.field.name, s.value)).collect::<Vec<_>>()), s)
+    };
+    let mut per_run: Vec<(String, Scenario)> = [
+        &[][..],
+        &[("drop_height", 1.3)],
+        &[("impact_angular_velocity", 0.2)],
+        &[("damping_ratio", 0.01)],
+        &[("damping_ratio", 0.01), ("drop_height", 0.9)],
+        &[("damping_ratio", 0.05)],
+        &[("rayleigh_alpha", 0.5), ("rayleigh_beta", 2e-6)],
+        &[("step_free", 2e-5), ("step_contact", 1e-5)],
+        &[("duration", 0.35)],
+        &[("energy_tolerance", 0.02), ("discretisation_tolerance", 0.05)],
+        &[("upper.allowable_bending_stress", 400e6), ("upper.yield_stress", 355e6), ("upper.tip_force", -1000.0)],
+        &[("lower.allowable_bending_stress", 400e6), ("lower.allowable_shear_stress", 200e6)],
+        &[("lower.yield_stress", 355e6), ("lower.tip_force", 500.0)],
+    ]
+    .iter()
+    .map(|settings| with(settings))
+    .collect();
+    // The supports' motion (the vessel example's), at two phases.
+    let csv =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/vessel-motion.csv")).unwrap();
+    let table = std::sync::Arc::new(beam_impact::model::motion_table::MotionTable::parse(&csv).unwrap());
+    for shift in [0.5, 4.5] {
+        let mut s = base.clone();
+        s.motion.file = "vessel-motion.csv".into();
+        s.motion.table = Some(table.clone());
+        s.motion.time_shift = shift;
+        per_run.push((format!("[(\"motion.time_shift\", {shift})]"), s));
+    }
+    // Every per-run field is varied above.
+    for name in beam_impact::solver::modal_cache::PER_RUN_FIELDS {
+        assert!(per_run.iter().any(|(what, _)| what.contains(&format!("\"{name}\""))), "{name} is not varied");
+    }
+    let cache = ModalCache::default();
+    assert_cached_answers_are_the_uncached_ones(&per_run, &cache);
+    assert_eq!(cache.len(), 6, "printed, check and coarse rungs in two cut-off classes");
+    let others = [
+        with(&[("contact_position", 20.0)]),
+        with(&[("contact.law", 1.0), ("contact.exponent", 1.3), ("contact.stiffness", 7.5e7), ("duration", 0.02)]),
+        with(&[
+            ("contact.law", 1.0),
+            ("contact.exponent", 1.3),
+            ("contact.stiffness", 7.5e7),
+            ("duration", 0.02),
+            ("drop_height", 1.3),
+        ]),
+    ];
+    assert_cached_answers_are_the_uncached_ones(&others, &cache);
+    assert!(cache.len() > 6 + 3, "the other geometries have their own entries: {}", cache.len());
+}
+
+/// Issue 29: every row keeps its wall time (`wall_time`, s in the units sidecar), and rows run
+/// grouped by geometry (here the inner axis) are still written in grid order, each the run of
+/// its scenario.
+#[test]
+fn rows_keep_their_wall_time_and_their_order_when_grouped_by_geometry() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("rows.csv");
+    ok(beam_impact()
+        .args(["sweep", "--set", "duration=0.2", "--vary", "drop_height=0.3,0.6", "--vary", "contact_position=13,20"])
+        .args(["--jobs", "2", "--out"])
+        .arg(&csv)
+        .output()
+        .unwrap());
+    let (header, rows) = read_csv(&csv);
+    let error = header.iter().position(|c| c == "error").unwrap();
+    assert_eq!(header[error - 1], "wall_time", "wall_time just before error");
+    let units: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("rows.units.json")).unwrap()).unwrap();
+    assert!(units.to_string().contains(r#"{"name":"wall_time","unit":"s"}"#), "{units}");
+    let grid: Vec<(&str, &str)> =
+        rows.iter().map(|r| (r["drop_height"].as_str(), r["contact_position"].as_str())).collect();
+    assert_eq!(grid, [("0.3", "13"), ("0.3", "20"), ("0.6", "13"), ("0.6", "20")]);
+    for row in &rows {
+        let wall: f64 = row["wall_time"].parse().unwrap();
+        assert!(wall > 0.0 && wall.is_finite(), "{row:?}");
+        let scenario = Scenario {
+            duration: 0.2,
+            drop_height: row["drop_height"].parse().unwrap(),
+            contact_position: row["contact_position"].parse().unwrap(),
+            ..Scenario::default()
+        };
+        let answer = beam_impact::answer::run(&scenario, &mut NullRecorder, Default::default()).unwrap();
+        let mut summary = serde_json::to_value(&answer.summary).unwrap();
+        summary["quality"] = serde_json::to_value(&answer.quality).unwrap();
+        assert_eq!(compare(row, &expected_columns(&summary), &format!("{row:?}")), 0.0, "to the bit");
     }
 }

@@ -5,8 +5,8 @@ step over the whole run) and returns its row; a scenario the FMU refuses, or who
 returns its row with the FMU's message in `error`, and the sweep goes on.
 
 Where the tasks run:
-- `client=None`: Dask's local threaded scheduler, one thread per core, with
-  `dask.diagnostics.ProgressBar`; the FMU is read from its path and unzipped once. The threads run
+- `client=None`: Dask's local threaded scheduler, one thread per core, with a tqdm bar (the
+  estimated time left); the FMU is read from its path and unzipped once. The threads run
   in parallel: the whole run is one `fmi2DoStep` / `fmi3DoStep`, a ctypes call that releases the
   GIL; the FMU keeps no global state, and each run gets its own instance of the shared unzipped
   copy (fmpy's `simulate_fmu` is unsafe across threads when it unzips and deletes an FMU per
@@ -14,17 +14,26 @@ Where the tasks run:
 - a `dask.distributed.Client` (of a `LocalCluster`, or `Client("tcp://host:8786")`), or a
   scheduler address: the FMU file's bytes are read here and scattered once to every worker, which
   unzips them once per process (keyed by their SHA-256), so workers need the `beam_impact`
-  package but no shared file system; `distributed.progress` shows the bar. Workers must run
-  Linux x86-64 (the FMU's binaries are `linux64` / `x86_64-linux`).
-One task per scenario, so the bar advances per finished scenario.
+  package but no shared file system; a tqdm bar follows the tasks as they finish. Workers must
+  run Linux x86-64 (the FMU's binaries are `linux64` / `x86_64-linux`).
+One task per scenario, so the bar advances per finished scenario, and each row keeps its wall time
+(`wall_time`, s: the FMU run, from instantiation to the end).
+
+What the rows share: nothing, unlike `beam-impact sweep`, whose rows of one geometry (the same
+beams, contact and mesh; a different drop height, impact speed or damping) take the modes of
+their rungs from one cache (issue 29). Each row here is its own FMU instance, and an FMU instance
+computes its own modes: the FMU keeps no state between instances (nothing of one instance can
+reach another, in this process or any other), and distributed workers are separate processes.
+The setup repeated per row is about 4 % of a converged row's time (measured on the CLI); for a
+sweep where that matters, run `beam-impact sweep`.
 """
 
 from __future__ import annotations
 
 import os
 import sys
+import time
 import uuid
-from contextlib import nullcontext
 from typing import Any, Iterable
 
 from .fmu import CHECK_COLUMNS, FORMER_NAMES, PEAK_OUTPUTS, FmuFile, _extracted, _path_text, simulate
@@ -41,13 +50,16 @@ def _one_line(text: str) -> str:
 def run_row(point: dict[str, float], fmu: "str | FmuFile", stop_time: float = 3.0,
             check_sensitivity: bool = False) -> dict[str, Any]:
     """One scenario's row: the varied values as the CLI shows them, the peaks, the energy
-    approach and the checks (FMU names, then the former ones), and `error` ("" when fine)."""
+    approach and the checks (FMU names, then the former ones), `wall_time` (s) and `error` (""
+    when fine)."""
     row: dict[str, Any] = {k: display(k, v) for k, v in point.items()}
+    started = time.perf_counter()
     try:
         row.update(simulate(fmu, {**point, "check_sensitivity": check_sensitivity}, stop_time=stop_time))
         row["error"] = ""
     except Exception as e:  # a refused scenario or a failed run is a row, not an aborted sweep
         row["error"] = _one_line(e) or type(e).__name__
+    row["wall_time"] = time.perf_counter() - started
     return row
 
 
@@ -70,7 +82,7 @@ def _columns(fields: Iterable[str], path: str) -> list[str]:
         if f != "duration" and f not in names:
             raise ValueError(f"unknown parameter `{f}`: the FMU has no variable of that name")
     method = [v.name for v in md.modelVariables if v.name.startswith("energy_method.")]
-    return [*fields, *PEAK_OUTPUTS, *method, *CHECK_COLUMNS, "error", *FORMER_NAMES]
+    return [*fields, *PEAK_OUTPUTS, *method, *CHECK_COLUMNS, "wall_time", "error", *FORMER_NAMES]
 
 
 def sweep(
@@ -90,14 +102,15 @@ def sweep(
     `peak.upper.contact_bending_stress` (Pa), `peak.contact.force` (N), `energy_method.<field>` (SI
     units), the checks `quality.discretisation_error`, `quality.sensitivity_spread` (NaN unless
     `check_sensitivity=True`, which runs each scenario's twin as the CLI's sweep does, at twice the
-    stepping cost), `utilisation.<stress peak>`, `design.pass`, `quality.trusted`, and `error` (""
-    when fine; the peaks are NaN then); then the former names of the peaks and checks
-    (`lower_clamp_bending_stress`, `trusted`, ...), duplicates until 0.2.0.
+    stepping cost), `utilisation.<stress peak>`, `design.pass`, `quality.trusted`, `wall_time` (the
+    row's FMU run, s) and `error` ("" when fine; the peaks are NaN then); then the former names of
+    the peaks and checks (`lower_clamp_bending_stress`, `trusted`, ...), duplicates until 0.2.0.
 
     `client`: None for the local threaded scheduler (`num_workers` threads, default one per core),
     a `dask.distributed.Client`, or a scheduler address ("tcp://host:8786").
-    `stop_time`: simulated s per run (a varied `duration` overrides it). `progress`: show a bar
-    (default: when the output is a terminal). The FMU is read only if it is a regular file of at
+    `stop_time`: simulated s per run (a varied `duration` overrides it). `progress`: show a tqdm
+    bar with the estimated time left on standard error, from 2 s into the sweep (default: when
+    standard error is a terminal). Rows share no work (see the module's documentation). The FMU is read only if it is a regular file of at
     most 1 GiB (ValueError at once otherwise: a FIFO, a device, a folder)."""
     import pandas as pd
 
@@ -120,30 +133,57 @@ def sweep(
     return pd.DataFrame(rows, columns=columns)
 
 
+#: Seconds before the bar shows: a sweep shorter than this prints none.
+BAR_DELAY = 2.0
+
+
+def _bar(total: int):
+    """The sweep's tqdm bar on standard error: scenarios done, elapsed and estimated time left."""
+    from tqdm import tqdm
+
+    return tqdm(total=total, unit="scenario", desc="sweep", file=sys.stderr, delay=BAR_DELAY, dynamic_ncols=True)
+
+
 def _run_local(points, path, stop_time, progress, num_workers, check_sensitivity) -> list[dict]:
     import dask
-    from dask.diagnostics import ProgressBar
+    from dask.callbacks import Callback
 
     if progress is None:
         progress = sys.stderr.isatty()
+
+    class _Advance(Callback):
+        """Advances the bar by one per finished scenario task."""
+
+        def __init__(self, bar):
+            super().__init__()
+            self.bar = bar
+
+        def _posttask(self, key, result, dsk, state, worker_id):
+            if str(key).startswith(TASK_PREFIX):
+                self.bar.update(1)
+
     tasks = [dask.delayed(run_row, pure=False)(p, path, stop_time, check_sensitivity, dask_key_name=f"{TASK_PREFIX}-{i}")
              for i, p in enumerate(points)]
-    with ProgressBar(out=sys.stderr) if progress else nullcontext():
+    if not progress:
+        return list(dask.compute(*tasks, scheduler="threads", num_workers=num_workers))
+    with _bar(len(tasks)) as bar, _Advance(bar):
         return list(dask.compute(*tasks, scheduler="threads", num_workers=num_workers))
 
 
 def _run_distributed(client, points, path, stop_time, progress, check_sensitivity) -> list[dict]:
     if progress is None:
-        progress = sys.stdout.isatty()
+        progress = sys.stderr.isatty()
     fmu = client.scatter(FmuFile.read(path), broadcast=True)
     token = uuid.uuid4().hex[:12]  # fresh keys: never another sweep's cached results
     keys = [f"{TASK_PREFIX}-{token}-{i}" for i in range(len(points))]
     futures = client.map(run_row, points, fmu=fmu, stop_time=stop_time, check_sensitivity=check_sensitivity, key=keys,
                          pure=False)
     if progress:
-        from distributed import progress as show
+        from distributed import as_completed
 
-        show(futures)
+        with _bar(len(futures)) as bar:
+            for _ in as_completed(futures):
+                bar.update(1)
     rows = []
     for point, future in zip(points, futures):
         try:

@@ -46,6 +46,9 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
         ProgressStyle::with_template("{bar:40} {pos}/{len} scenarios, {elapsed} ({eta} left)")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
+    // Redrawn every second, so the elapsed time moves while the first rows run (indicatif draws
+    // only on a terminal; without one the last line gives the sweep's wall time).
+    bar.enable_steady_tick(std::time::Duration::from_secs(1));
     let started = Instant::now();
     let tally = sweep
         .write(jobs, &mut csv, json.as_mut().map(|j| j as &mut dyn Write), &mut |n| bar.set_position(n as u64))

@@ -8,7 +8,7 @@ use super::graded::beam_modes;
 use super::secular::coupled_modes;
 use super::static_correction::StaticCorrection;
 use crate::error::Result;
-use crate::model::{damping, Model, REACTIONS};
+use crate::model::{damping, Model, Scenario, REACTIONS};
 
 /// Largest stable step of the linear acceleration method: dt * omega_max <= sqrt(12).
 pub const STABILITY_LIMIT: f64 = 3.464_101_615_137_754_6;
@@ -112,10 +112,7 @@ impl ModalSystem {
             reactions: model.reactions().map(|r| {
                 let displacement = shapes.transpose() * &r.stiffness;
                 let acceleration = shapes.transpose() * &r.mass;
-                let beta = s.rayleigh_beta;
-                let velocity = DVector::from_fn(acceleration.len(), |i, _| {
-                    acceleration[i] * (damping[i] - beta * omega2[i]) + beta * displacement[i]
-                });
+                let velocity = reaction_velocity(&displacement, &acceleration, &damping, &omega2, s.rayleigh_beta);
                 ModalReaction { displacement, velocity, acceleration, load: r.load }
             }),
             lower_dofs: lower.omega.len(),
@@ -132,6 +129,23 @@ impl ModalSystem {
             law: s.contact.nonlinear_law(),
         };
         Ok(system)
+    }
+
+    /// The system with the damping of `scenario` (its damping ratio and Rayleigh terms): the modal
+    /// coefficients and the reactions' damping rows, the only parts that depend on it, computed
+    /// per coordinate as [`ModalSystem::new`] computes them, so a system built for another damping
+    /// (and truncated or not) becomes, to the bit, the one built for this damping
+    /// ([`super::modal_cache::ModalCache`] shares the rest between runs).
+    pub fn with_damping(mut self, scenario: &Scenario) -> ModalSystem {
+        let omega: Vec<f64> = self.lower.omega.iter().chain(self.upper.omega.iter()).copied().collect();
+        let s = scenario;
+        self.damping =
+            damping::modal_coefficients(&DVector::from_vec(omega), s.damping_ratio, s.rayleigh_alpha, s.rayleigh_beta);
+        for r in &mut self.reactions {
+            r.velocity =
+                reaction_velocity(&r.displacement, &r.acceleration, &self.damping, &self.omega2, s.rayleigh_beta);
+        }
+        self
     }
 
     /// Number of modal coordinates (= physical DOFs).
@@ -182,6 +196,20 @@ impl ModalSystem {
     pub fn is_truncated(&self) -> bool {
         self.dofs() < self.full_dofs
     }
+}
+
+/// A support reaction's damping row (see [`ModalReaction::velocity`]): per coordinate
+/// a_i (c_i - beta omega_i^2) + beta d_i.
+fn reaction_velocity(
+    displacement: &DVector<f64>,
+    acceleration: &DVector<f64>,
+    damping: &DVector<f64>,
+    omega2: &DVector<f64>,
+    beta: f64,
+) -> DVector<f64> {
+    DVector::from_fn(acceleration.len(), |i, _| {
+        acceleration[i] * (damping[i] - beta * omega2[i]) + beta * displacement[i]
+    })
 }
 
 /// [lower 0; 0 upper] for blocks of any shape.

@@ -97,7 +97,7 @@ def cluster_rows(cluster):
 def test_local_cluster_sweep_equals_the_cli_sweep(cli_rows, cluster_rows):
     py, cli = cluster_rows, cli_rows
     assert list(py.columns) == ["drop_height", "damping_ratio", "contact_position", *PEAKS, *METHOD, *CHECKS,
-                                *VERDICTS, "error", *FORMER]
+                                *VERDICTS, "wall_time", "error", *FORMER]
     for former, name in FORMER.items():
         assert former in cli.columns and name in cli.columns, former
         assert py[former].equals(py[name]) and cli[former].equals(cli[name]), former
@@ -137,7 +137,11 @@ def test_a_failing_scenario_is_a_row_with_the_fmu_message(cli_rows, cluster_rows
 
 def test_the_local_scheduler_gives_the_cluster_numbers(cluster_rows):
     local = beam_impact.sweep(parse_vary(VARY), fmu=fmu_path(), progress=False, check_sensitivity=True)
-    pd.testing.assert_frame_equal(local, cluster_rows, check_exact=True)
+    # Every column but the rows' wall times, which are each run's own.
+    pd.testing.assert_frame_equal(local.drop(columns="wall_time"), cluster_rows.drop(columns="wall_time"),
+                                  check_exact=True)
+    for rows in (local, cluster_rows):
+        assert (rows["wall_time"] > 0).all() and np.isfinite(rows["wall_time"]).all()
 
 
 def test_spec_syntax_gives_the_cli_grid(tmp_path):
@@ -331,6 +335,8 @@ def test_python_m_beam_impact_sweep(tmp_path):
     assert rows["drop_height"].tolist() == [0.5, -1.0]
     assert rows["lower_tip_deflection"].iloc[0] > 0.1 and math.isnan(rows["lower_tip_deflection"].iloc[1])
     assert "drop_height must be >= 0 m, got -1" in rows["error"].iloc[1]
+    # Issue 29: each row keeps its wall time, the failed one too.
+    assert (rows["wall_time"] > 0).all(), rows["wall_time"].tolist()
     bad = subprocess.run([sys.executable, "-m", "beam_impact", "sweep", "--fmu", fmu_path(), "--vary", "nonsense=1",
                           "--out", str(out)], capture_output=True, text=True)
     assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "nonsense" in bad.stderr, bad.stderr
@@ -350,3 +356,15 @@ def test_the_readmes_local_cluster_script_runs_as_written(tmp_path):
     assert run.returncode == 0, run.stderr[-2000:]
     table = pd.read_csv(tmp_path / "sweep.csv")
     assert list(table["drop_height"]) == [0.3, 0.6, 0.9] and table["lower_clamp_bending_stress"].gt(0).all()
+
+
+def test_the_local_sweep_shows_a_bar_with_the_time_left(monkeypatch, capsys):
+    """Issue 29: `progress=True` draws a tqdm bar on standard error (here from the start: the
+    2 s delay set to 0) with the scenarios done, the elapsed and the estimated time left."""
+    import beam_impact.dask_sweep as dask_sweep
+
+    monkeypatch.setattr(dask_sweep, "BAR_DELAY", 0.0)
+    table = beam_impact.sweep({"drop_height": [0.3, 0.6], "duration": [0.05]}, fmu=fmu_path(), progress=True)
+    bar = capsys.readouterr().err
+    assert "sweep" in bar and "2/2" in bar and "<00:00" in bar, bar  # tqdm: [elapsed<left, rate]
+    assert (table["error"] == "").all() and (table["wall_time"] > 0).all()

@@ -1,0 +1,290 @@
+//! The modes a geometry fixes, computed once and shared by the runs of a sweep.
+//!
+//! A run's setup assembles the model and decomposes it into modes ([`ModalSystem::new`], a
+//! symmetric eigenproblem per beam, then [`ModalSystem::for_run`]'s truncation and static
+//! correction). Runs that differ only in their initial conditions, damping, steps or checks (a
+//! sweep over drop height, impact speed or damping ratio) share all of it but the damping, which
+//! [`ModalSystem::with_damping`] sets per run. A [`ModalCache`] keeps those systems, keyed by the
+//! exact bits of everything they can depend on, so that a cached run is the uncached one to the
+//! bit (`tests/sweep.rs` holds every peak, figure and verdict of a few rows to `==`).
+//!
+//! The key is the resolved scenario with the [`PER_RUN_FIELDS`] reset, written out in full
+//! (serde's shortest round-trip decimals: one text per f64 bit pattern) and compared whole, not
+//! by a hash, plus the contact's rate in the coupled modes (which for a nonlinear law follows
+//! the impact energy). A field missing from [`PER_RUN_FIELDS`] only costs sharing; a field
+//! wrongly in it would share modes that differ, and the tests vary each of them.
+//!
+//! Measured (issue 29, the default scenario, perf): the setup is about 4 % of a run's time, the
+//! eigen decompositions most of it; stepping is the rest.
+
+use std::collections::VecDeque;
+use std::sync::{Arc, Mutex, MutexGuard};
+
+use super::modal::ModalSystem;
+use crate::error::Result;
+use crate::model::{Model, Scenario};
+
+/// The scenario fields no part of a [`ModalSystem`] depends on except its damping (which
+/// [`ModalSystem::with_damping`] sets per run), by their dotted names: a sweep over them shares
+/// the modes of each rung (the sweep runs rows that differ in other fields apart, see
+/// `studies::sweep`). `motion.file` and the motion table go with `motion.time_shift`.
+pub const PER_RUN_FIELDS: [&str; 18] = [
+    "drop_height",
+    "impact_angular_velocity",
+    "damping_ratio",
+    "rayleigh_alpha",
+    "rayleigh_beta",
+    "step_free",
+    "step_contact",
+    "duration",
+    "energy_tolerance",
+    "discretisation_tolerance",
+    "upper.allowable_bending_stress",
+    "upper.yield_stress",
+    "upper.tip_force",
+    "lower.allowable_bending_stress",
+    "lower.allowable_shear_stress",
+    "lower.yield_stress",
+    "lower.tip_force",
+    "motion.time_shift",
+];
+
+/// Entries a cache holds by default: the three rungs of a converged answer, in both of the
+/// automatic cut-off's damping classes, for five geometries.
+pub const DEFAULT_ENTRIES: usize = 30;
+
+/// Bytes of matrices a cache holds by default (an entry of the default rung is about 3 MB; of the
+/// finest meshes, 256 elements per segment, about 80 MB).
+pub const DEFAULT_BYTES: usize = 512 << 20;
+
+/// What a geometry's rung fixes: the full modal system (the initial state's basis) and the basis
+/// a run steps in, both with the damping of the run that computed them.
+#[derive(Debug)]
+struct Shared {
+    full: ModalSystem,
+    /// `None` when [`ModalSystem::for_run`] failed: each run then computes it again and meets
+    /// its own error, in its own order.
+    run: Option<ModalSystem>,
+    bytes: usize,
+}
+
+/// One key's slot: filled by the first run that needs it, while later ones wait on its lock.
+type Slot = Arc<Mutex<Option<Arc<Shared>>>>;
+
+/// A bounded, thread-safe store of modal systems keyed by geometry (see the module
+/// documentation). Each run gets its own copy of the systems, with its own damping.
+#[derive(Debug)]
+pub struct ModalCache {
+    /// Most recently used first.
+    entries: Mutex<VecDeque<(Key, Slot)>>,
+    max_entries: usize,
+    max_bytes: usize,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+struct Key {
+    scenario: String,
+    bar_stiffness: u64,
+}
+
+impl Default for ModalCache {
+    fn default() -> Self {
+        ModalCache::new(DEFAULT_ENTRIES, DEFAULT_BYTES)
+    }
+}
+
+/// The modes of one run, from a cache: the full system and the basis it steps in.
+pub struct RunModes {
+    /// The full modal system (every mode of the mesh), with the run's damping.
+    pub full: ModalSystem,
+    /// The basis the run steps in, with the run's damping; `None`: compute it from `full` (its
+    /// error is the run's).
+    pub run: Option<ModalSystem>,
+}
+
+impl ModalCache {
+    /// A cache of at most `max_entries` rungs and about `max_bytes` of matrices (the least
+    /// recently used leave first; a system larger than `max_bytes` is computed but not kept).
+    /// `max_entries` 0 keeps nothing.
+    pub fn new(max_entries: usize, max_bytes: usize) -> ModalCache {
+        ModalCache { entries: Mutex::new(VecDeque::new()), max_entries, max_bytes }
+    }
+
+    /// A cache that keeps nothing: every run computes its own modes ([`crate::answer::run`]).
+    pub fn disabled() -> ModalCache {
+        ModalCache::new(0, 0)
+    }
+
+    /// Whether the cache keeps anything (`max_entries` > 0).
+    pub fn is_enabled(&self) -> bool {
+        self.max_entries > 0
+    }
+
+    /// Rungs held now.
+    pub fn len(&self) -> usize {
+        lock(&self.entries).len()
+    }
+
+    /// Whether no rung is held.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The modes of `model` (built by [`Model::new`] from a resolved scenario) with its damping:
+    /// [`ModalSystem::new`] and [`ModalSystem::for_run`] of the model, from the cache when a run
+    /// of the same geometry computed them, else computed here and kept. Errors of
+    /// [`ModalSystem::new`] are returned, never kept.
+    pub fn modes(&self, model: &Model) -> Result<RunModes> {
+        let shared = match self.slot(model) {
+            None => Arc::new(compute(model)?),
+            Some(slot) => {
+                let mut filled = lock(&slot);
+                match &*filled {
+                    Some(shared) => shared.clone(),
+                    None => {
+                        let shared = Arc::new(compute(model)?);
+                        *filled = Some(shared.clone());
+                        drop(filled);
+                        self.trim();
+                        shared
+                    }
+                }
+            }
+        };
+        let s = &model.scenario;
+        Ok(RunModes { full: shared.full.clone().with_damping(s), run: shared.run.clone().map(|m| m.with_damping(s)) })
+    }
+
+    /// The slot of `model`'s key, made most recent (a new, empty one when missing); `None` when the
+    /// cache keeps nothing or the key cannot be written.
+    fn slot(&self, model: &Model) -> Option<Slot> {
+        if !self.is_enabled() {
+            return None;
+        }
+        let key = key(model)?;
+        let mut entries = lock(&self.entries);
+        let slot = match entries.iter().position(|(k, _)| *k == key) {
+            Some(i) => entries.remove(i).map(|(_, slot)| slot)?,
+            None => Arc::new(Mutex::new(None)),
+        };
+        entries.push_front((key, slot.clone()));
+        Some(slot)
+    }
+
+    /// Drops the least recently used filled slots beyond the limits (slots being filled stay).
+    fn trim(&self) {
+        let mut entries = lock(&self.entries);
+        let size = |slot: &Slot| slot.try_lock().ok().and_then(|s| s.as_ref().map(|s| s.bytes)).unwrap_or(0);
+        let mut bytes: usize = entries.iter().map(|(_, slot)| size(slot)).sum();
+        while entries.len() > self.max_entries || (bytes > self.max_bytes && !entries.is_empty()) {
+            let Some((_, slot)) = entries.pop_back() else { break };
+            bytes -= size(&slot).min(bytes);
+        }
+    }
+}
+
+/// A lock whose holder panicked is still good: the slots hold either nothing or a whole system.
+fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
+    mutex.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
+fn compute(model: &Model) -> Result<Shared> {
+    let full = ModalSystem::new(model)?;
+    let run = full.clone().for_run(model).ok();
+    let bytes = approximate_bytes(&full) + run.as_ref().map_or(0, approximate_bytes);
+    Ok(Shared { full, run, bytes })
+}
+
+/// The matrices' and vectors' bytes of a system.
+fn approximate_bytes(m: &ModalSystem) -> usize {
+    let matrices = m.lower.shapes.len() + m.upper.shapes.len() + m.coupled.shapes.len() + m.probes.len();
+    let vectors = 12 * m.dofs() + m.lower.omega.len() + m.upper.omega.len() + m.coupled.omega.len();
+    8 * (matrices + vectors)
+}
+
+/// The key of `model`: its scenario without the [`PER_RUN_FIELDS`], written out in full, and the
+/// contact's rate. `None` if it cannot be written (then nothing is shared).
+fn key(model: &Model) -> Option<Key> {
+    let mut s = model.scenario.clone();
+    let d = Scenario::default();
+    s.drop_height = d.drop_height;
+    s.impact_angular_velocity = d.impact_angular_velocity;
+    s.damping_ratio = d.damping_ratio;
+    s.rayleigh_alpha = d.rayleigh_alpha;
+    s.rayleigh_beta = d.rayleigh_beta;
+    s.step_free = d.step_free;
+    s.step_contact = d.step_contact;
+    s.duration = d.duration;
+    s.energy_tolerance = d.energy_tolerance;
+    s.discretisation_tolerance = d.discretisation_tolerance;
+    s.upper.allowable_bending_stress = d.upper.allowable_bending_stress;
+    s.upper.yield_stress = d.upper.yield_stress;
+    s.upper.tip_force = d.upper.tip_force;
+    s.lower.allowable_bending_stress = d.lower.allowable_bending_stress;
+    s.lower.allowable_shear_stress = d.lower.allowable_shear_stress;
+    s.lower.yield_stress = d.lower.yield_stress;
+    s.lower.tip_force = d.lower.tip_force;
+    s.motion = d.motion;
+    let scenario = serde_json::to_string(&s).ok()?;
+    Some(Key { scenario, bar_stiffness: model.bar_stiffness.to_bits() })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn model(s: &Scenario) -> Model {
+        Model::new(&crate::discretise::printed(s).unwrap()).unwrap()
+    }
+
+    /// Debug prints every f64 as its shortest round-trip decimal (and -0 as -0.0): equal text,
+    /// equal bits.
+    fn bits(m: &ModalSystem) -> String {
+        format!("{m:?}")
+    }
+
+    /// A cached system is the fresh one to the bit, whatever the per-run fields of the run that
+    /// computed it; a different geometry gets its own entry.
+    #[test]
+    fn cached_modes_equal_fresh_ones_to_the_bit() {
+        let cache = ModalCache::default();
+        let base = Scenario::default();
+        let mut variants = vec![base.clone()];
+        for (h, zeta, beta) in [(1.7, 0.05, 0.0), (0.2, 0.03, 1e-5)] {
+            let mut s = base.clone();
+            s.drop_height = h;
+            s.damping_ratio = zeta;
+            s.rayleigh_beta = beta;
+            variants.push(s);
+        }
+        let mut other = base.clone();
+        other.contact_position = 20.0;
+        variants.push(other);
+        for s in &variants {
+            let m = model(s);
+            let cached = cache.modes(&m).unwrap();
+            let full = ModalSystem::new(&m).unwrap();
+            let run = full.clone().for_run(&m).unwrap();
+            assert_eq!(bits(&cached.full), bits(&full), "full, {}", s.drop_height);
+            assert_eq!(bits(cached.run.as_ref().unwrap()), bits(&run), "run, {}", s.drop_height);
+        }
+        assert_eq!(cache.len(), 2, "one entry per geometry");
+    }
+
+    /// The cache stays within its entries, and one of no entries keeps nothing.
+    #[test]
+    fn the_cache_is_bounded() {
+        let cache = ModalCache::new(1, DEFAULT_BYTES);
+        for position in [10.0, 13.0, 20.0] {
+            let s = Scenario { contact_position: position, ..Scenario::paper() };
+            cache.modes(&model(&s)).unwrap();
+            assert_eq!(cache.len(), 1);
+        }
+        let none = ModalCache::disabled();
+        none.modes(&model(&Scenario::paper())).unwrap();
+        assert!(none.is_empty() && !none.is_enabled());
+        let small = ModalCache::new(10, 1000);
+        small.modes(&model(&Scenario::paper())).unwrap();
+        assert!(small.is_empty(), "a system above the byte limit is not kept");
+    }
+}
