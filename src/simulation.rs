@@ -347,12 +347,9 @@ struct StepEnd {
 /// The exact advance's largest step, as a power of two of the plan's.
 pub const MAX_STEP_LEVEL: u32 = 7;
 
-/// The exact advance's step out of contact, as a power of two of the plan's: nothing there
-/// limits the step but the peaks found inside it (the cubic through each output's values and
-/// rates at the step's ends) and the contact found at its end. Measured on the paper scenario and
-/// the reference fixture's damped scenarios: at 4x every peak within 0.01 % of 1x; at 16x the
-/// clamp shear's peak (reached between contacts, in the arrestor's high modes) moves by 0.5 %.
-pub const FREE_STEP_LEVEL: u32 = 2;
+/// The exact advance's tolerance on a peak output's miss inside a step out of contact, as a
+/// fraction of its largest value so far (see `free_step_level`).
+pub const FREE_PEAK_TOLERANCE: f64 = 1e-4;
 
 /// The exact advance's tolerance on the bar force's departure from the step's linear ramp, as a
 /// fraction of the largest contact force so far. Measured on the paper scenario: at 1e-5 every
@@ -599,7 +596,7 @@ impl<S: Stepper> Simulation<S> {
     }
 
     /// The next internal step in `stage`, ns: the plan's, or with the exact advance the plan's
-    /// times 2^level out of contact ([`FREE_STEP_LEVEL`]) and in contact (the level the force's
+    /// times 2^level: out of contact as the modes' amplitudes allow, in contact as the force's
     /// smoothness allows: see `adapt_step`).
     pub fn next_step_ns(&self, stage: Stage) -> u64 {
         let base = self.plan.step_ns(stage.is_contact());
@@ -613,8 +610,7 @@ impl<S: Stepper> Simulation<S> {
         let automatic = if stage.is_contact() { s.step_contact } else { s.step_free } == TimeStep::Auto;
         match (self.stepper.adapts_steps() && automatic, stage.is_contact()) {
             (false, _) => 0,
-            (true, true) => self.state.step_level,
-            (true, false) => FREE_STEP_LEVEL,
+            (true, _) => self.state.step_level,
         }
     }
 
@@ -633,8 +629,17 @@ impl<S: Stepper> Simulation<S> {
     /// strayed from the step's ramp by more than [`FORCE_RAMP_TOLERANCE`] of the largest force so
     /// far, up one when by less than a sixteenth of it (a doubled step's error grows ~4-8x), back
     /// to the plan's step at every contact change.
-    fn adapt_step(&mut self, stage: Stage, next: Stage, step_ns: u64) {
-        if !self.stepper.adapts_steps() || self.model.scenario.step_contact != TimeStep::Auto {
+    fn adapt_step(&mut self, stage: Stage, next: Stage, step_ns: u64, probes: &[f64; PROBES]) {
+        if !self.stepper.adapts_steps() {
+            return;
+        }
+        if !next.is_contact() {
+            if self.model.scenario.step_free == TimeStep::Auto {
+                self.state.step_level = self.free_step_level(probes);
+            }
+            return;
+        }
+        if self.model.scenario.step_contact != TimeStep::Auto {
             return;
         }
         let level = &mut self.state.step_level;
@@ -654,6 +659,36 @@ impl<S: Stepper> Simulation<S> {
         } else if error < tolerance / 16.0 && *level < MAX_STEP_LEVEL {
             *level += 1;
         }
+    }
+
+    /// The exact advance's level out of contact: the longest step over which the cubic through
+    /// each peak output's values and rates at the step's ends (the peaks inside a step) can miss
+    /// by at most [`FREE_PEAK_TOLERANCE`] of its largest value so far, and the gap's by at most
+    /// half the gap (so that no touch hides inside a step): a Hermite cubic misses by at most
+    /// h^4 / 384 max|p^(4)|, bounded by the modes' amplitudes.
+    fn free_step_level(&self, probes: &[f64; PROBES]) -> u32 {
+        let Some(fourth) = self.stepper.free_fourth_derivatives(&self.state.kinematics) else { return 0 };
+        let s = &self.model.scenario;
+        let peaks = &self.state.result.peaks;
+        let limits = [
+            (Probe::LowerTipDeflection, FREE_PEAK_TOLERANCE * peaks.lower_tip_deflection),
+            (Probe::ClampMoment, FREE_PEAK_TOLERANCE * peaks.lower_clamp_bending_stress * s.lower.section_modulus),
+            (Probe::ClampShear, FREE_PEAK_TOLERANCE * peaks.lower_clamp_shear_stress * s.lower.shear_area),
+            (
+                Probe::UpperContactMoment,
+                FREE_PEAK_TOLERANCE * peaks.upper_contact_bending_stress * s.upper.section_modulus,
+            ),
+            (Probe::Gap, 0.5 * probes[Probe::Gap as usize]),
+        ];
+        let base = seconds(self.plan.free_ns);
+        (0..=MAX_STEP_LEVEL)
+            .rev()
+            .find(|&level| {
+                let h = base * f64::from(1u32 << level);
+                let factor = h.powi(4) / 384.0;
+                limits.iter().all(|&(probe, limit)| factor * fourth[probe as usize] <= limit)
+            })
+            .unwrap_or(0)
     }
 
     /// Stage of the next step, by Eq. (6) on the current state.
@@ -741,7 +776,7 @@ impl<S: Stepper> Simulation<S> {
             }
         }
         let next = contact::stage(self.state.gap);
-        self.adapt_step(stage, next, step_ns);
+        self.adapt_step(stage, next, step_ns, &probes);
         let windows = &mut self.state.contact_windows;
         if next == stage {
             return Ok(None);
@@ -777,9 +812,16 @@ impl<S: Stepper> Simulation<S> {
             simulation.stepper.measure(&simulation.state.kinematics, stage, &excitation).0[Probe::Gap as usize]
                 - threshold
         };
+        // The exact advance's steps are long: its first two guesses straddle the root of the
+        // gap's cubic through its values and rates at the step's ends, which is within a few
+        // nanoseconds of the change (each retake costs the modes' coefficients for a new step).
+        let mut hints = self.cubic_root_ns(stage, step_ns, gap_end, threshold).into_iter().flatten();
         let mut bisect = false;
         while hi - lo > 1 {
-            let guess = if bisect || f_lo == f_hi {
+            let hint = hints.next().filter(|&h| h > lo && h < hi);
+            let guess = if let Some(h) = hint {
+                h
+            } else if bisect || f_lo == f_hi {
                 lo + (hi - lo) / 2
             } else {
                 let t = f_lo / (f_lo - f_hi);
@@ -802,6 +844,50 @@ impl<S: Stepper> Simulation<S> {
             retake(self, hi);
         }
         hi
+    }
+
+    /// For the exact advance: the whole nanoseconds on both sides of where the cubic through the
+    /// gap's values and rates at the step's ends crosses `threshold` (`None` for other steppers
+    /// or when the cubic does not cross).
+    fn cubic_root_ns(&self, stage: Stage, step_ns: u64, gap_end: f64, threshold: f64) -> Option<[u64; 2]> {
+        if !self.stepper.adapts_steps() || step_ns < 4 {
+            return None;
+        }
+        let start_ns = self.state.result.time_ns;
+        let (e0, e1) = (self.excitation_at(start_ns), self.excitation_at(start_ns + step_ns));
+        let gap = Probe::Gap as usize;
+        let h = seconds(step_ns);
+        let d0 = self.stepper.rates(&self.backup, stage, &e0)[gap] * h;
+        let d1 = self.stepper.rates(&self.state.kinematics, stage, &e1)[gap] * h;
+        let (p0, p1) = (self.state.gap - threshold, gap_end - threshold);
+        let c2 = 3.0 * (p1 - p0) - 2.0 * d0 - d1;
+        let c3 = 2.0 * (p0 - p1) + d0 + d1;
+        let value = |x: f64| p0 + x * (d0 + x * (c2 + x * c3));
+        // The first crossing: scan the cubic finely, then bisect the first bracket.
+        let n = 64;
+        let (mut a, mut b) = (0.0, 0.0);
+        let mut found = false;
+        for k in 1..=n {
+            let x = k as f64 / n as f64;
+            if (value(x) > 0.0) != (p0 > 0.0) {
+                (a, b) = ((k - 1) as f64 / n as f64, x);
+                found = true;
+                break;
+            }
+        }
+        if !found {
+            return None;
+        }
+        for _ in 0..60 {
+            let m = 0.5 * (a + b);
+            if (value(m) > 0.0) == (p0 > 0.0) {
+                a = m;
+            } else {
+                b = m;
+            }
+        }
+        let at = (b * step_ns as f64).ceil() as u64;
+        Some([at.clamp(1, step_ns - 1), at.saturating_sub(1).clamp(1, step_ns - 1)])
     }
 
     /// Steps until `target_ns`, landing on it exactly (the last step is shortened: the stop time

@@ -141,6 +141,12 @@ pub trait Stepper {
     fn adapts_steps(&self) -> bool {
         false
     }
+    /// Out of contact, a bound on each probe's fourth time derivative over the coming free
+    /// motion (the exact advance: the step-size control's measure of what a cubic through a
+    /// step's ends can miss); `None` for other steppers.
+    fn free_fourth_derivatives(&self, _state: &Kinematics) -> Option<[f64; PROBES]> {
+        None
+    }
     /// The model's probes (see [`crate::model::Probe`]) applied to a displacement vector (or to
     /// a velocity vector, for rates), in the stepper's coordinates: the beams' relative
     /// deflections (the gap without the supports' offset).

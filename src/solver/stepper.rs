@@ -57,11 +57,14 @@ pub struct ModalStepper {
     exact: bool,
     /// Exact coefficients of the step sizes met (the stages' own, a located contact change's, a
     /// landing on an output time), with how often each was used.
-    exact_cache: [ExactStage; 12],
+    exact_cache: [ExactStage; 32],
     /// The damping's work over the last exact step, J (None for the linear acceleration method).
     last_dissipation: Option<f64>,
     /// The bound on the bar force's departure from its ramp over the last exact contact step, N.
     last_force_error: Option<f64>,
+    /// |probe row| omega_i^4 per coordinate and probe (the exact advance's bound on the fourth
+    /// derivative of each probe out of contact, per unit of modal amplitude).
+    fourth_derivative: nalgebra::DMatrix<f64>,
 }
 
 /// The exact coefficients of every mode for one step size (dt = NaN: none yet).
@@ -129,6 +132,7 @@ impl ModalStepper {
             exact_cache: std::array::from_fn(|_| ExactStage::default()),
             last_dissipation: None,
             last_force_error: None,
+            fourth_derivative: nalgebra::DMatrix::zeros(0, 0),
         }
     }
 
@@ -136,6 +140,12 @@ impl ModalStepper {
     /// converged method with the linear bar; a nonlinear law keeps Eqs. (7)-(11)).
     pub fn with_exact(mut self, exact: bool) -> ModalStepper {
         self.exact = exact && self.system.law.is_none();
+        if self.exact {
+            let s = &self.system;
+            self.fourth_derivative = nalgebra::DMatrix::from_fn(s.dofs(), PROBES, |i, k| {
+                self.probe_columns[(i, k)].abs() * s.omega2[i].powi(2)
+            });
+        }
         self
     }
 
@@ -452,6 +462,33 @@ impl Stepper for ModalStepper {
 
     fn adapts_steps(&self) -> bool {
         self.exact
+    }
+
+    fn free_fourth_derivatives(&self, state: &Kinematics) -> Option<[f64; PROBES]> {
+        if !self.exact {
+            return None;
+        }
+        // Out of contact each elastic mode swings about its static deflection F_i / omega_i^2
+        // with amplitude A_i = sqrt(d^2 + (v / omega)^2); its share of a probe's fourth derivative
+        // is at most |P_ki| omega_i^4 A_i (the rigid mode's motion is a quadratic: none).
+        let s = &self.system;
+        let n = state.displacement.len().min(self.fourth_derivative.nrows());
+        let (q, v) = (state.displacement.as_slice(), state.velocity.as_slice());
+        let amplitude: Vec<f64> = (0..n)
+            .map(|i| {
+                let w2 = s.omega2[i];
+                if w2 <= 0.0 {
+                    return 0.0;
+                }
+                let d = q[i] - self.load[i] / w2;
+                (d * d + v[i] * v[i] / w2).sqrt()
+            })
+            .collect();
+        let mut out = [0.0; PROBES];
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = dot(&self.fourth_derivative.column(k).as_slice()[..n], &amplitude);
+        }
+        Some(out)
     }
 
     fn equilibrium_acceleration(&mut self, state: &mut Kinematics, stage: Stage, excitation: &Excitation) {

@@ -243,5 +243,46 @@ pub fn converged_benchmark(runs: usize) -> Result<String> {
         ms(cpu),
         ratio(cpu)
     );
+    out += &sweep_projection()?;
+    Ok(out)
+}
+
+/// The README's 1000-scenario grid (drop 0.1:2:100 x damping 0.005:0.05:10, 3 s each, converged
+/// answers with their checks) projected from a sample run as `beam-impact sweep` runs it (every
+/// core, the rows sharing their modes): the ten damping ratios at three drop heights (0.1, 1.05,
+/// 2 m), so that the sample's mix of lightly damped (slower) and damped rows is the grid's.
+pub fn sweep_projection() -> Result<String> {
+    use crate::studies::sweep::{field, linspace, Axis, Sweep};
+    let axes = vec![
+        Axis { field: field("drop_height")?, values: vec![0.1, 1.05, 2.0] },
+        Axis { field: field("damping_ratio")?, values: linspace(0.005, 0.05, 10) },
+    ];
+    let sweep = Sweep::new(Scenario::default(), axes, crate::model::scenario::MAX_STEPS)?;
+    let jobs = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let (start, cpu) = (Instant::now(), cpu_time::ProcessTime::now());
+    let mut failed = 0;
+    sweep.run(jobs, &mut |_| {}, &mut |row| {
+        failed += usize::from(row.outcome.is_err());
+        Ok(())
+    })?;
+    let (wall, cpu) = (start.elapsed().as_secs_f64(), cpu.elapsed().as_secs_f64());
+    let scale = 1000.0 / sweep.len() as f64;
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "the README's 1000-scenario grid (drop 0.1:2:100 x damping 0.005:0.05:10, 3 s), projected from {} rows \
+         (drop 0.1 / 1.05 / 2 m x every damping ratio) on {jobs} threads:",
+        sweep.len()
+    );
+    let _ = writeln!(
+        out,
+        "  sample {:.2} s wall, {:.2} s CPU ({:.0} ms CPU a row{}): projected {:.0} s wall, {:.0} s CPU",
+        wall,
+        cpu,
+        cpu / sweep.len() as f64 * 1e3,
+        if failed > 0 { format!(", {failed} rows failed") } else { String::new() },
+        wall * scale,
+        cpu * scale
+    );
     Ok(out)
 }
