@@ -352,10 +352,18 @@ pub const MAX_STEP_LEVEL: u32 = 7;
 pub const FREE_PEAK_TOLERANCE: f64 = 1e-4;
 
 /// The exact advance's tolerance on the bar force's departure from the step's linear ramp, as a
-/// fraction of the largest contact force so far. Measured on the paper scenario: at 1e-5 every
-/// peak equals the plan's own steps' (1x) to 5 significant digits in 23 668 steps (127 184 at 1x);
-/// at 1e-4 within 4e-6 in 21 333; at 1e-3 the clamp shear moves by 0.07 %.
-pub const FORCE_RAMP_TOLERANCE: f64 = 1e-5;
+/// fraction of the largest contact force so far. Measured on the paper scenario (with the
+/// out-of-contact control): 10 638 steps at 1e-4 (12 999 at 1e-5, 127 180 at the plan's steps),
+/// every peak within 4e-6 of 1e-5's; at 1e-3 the clamp shear moves by 0.07 %. On the reference
+/// fixture (`tests/converged_references.rs`) the damped scenarios' errors against the references
+/// are those of 1e-5 to 0.01 % (worst 0.22 %) for 30 % fewer steps.
+pub const FORCE_RAMP_TOLERANCE: f64 = 1e-4;
+
+/// [`FORCE_RAMP_TOLERANCE`] below [`crate::model::discretisation::LIGHT_DAMPING`]: the later
+/// impacts of a lightly damped run hang on the bounces before them, and at 1e-4 the fixture's drop
+/// 1 m, contact 16 m, damping 0.01 reaches a whole-run sigma_a 1.46 % below its reference (0.36 %
+/// at 1e-5) without a later peak to flag.
+pub const LIGHT_DAMPING_FORCE_RAMP_TOLERANCE: f64 = 1e-5;
 
 impl<S: Stepper> Simulation<S> {
     fn with_stepper(
@@ -653,7 +661,12 @@ impl<S: Stepper> Simulation<S> {
             return;
         }
         let scale = self.state.result.peaks.contact_force.max(self.state.result.contact_force.abs());
-        let tolerance = FORCE_RAMP_TOLERANCE * scale;
+        let fraction = if self.model.scenario.damping_ratio < crate::model::discretisation::LIGHT_DAMPING {
+            LIGHT_DAMPING_FORCE_RAMP_TOLERANCE
+        } else {
+            FORCE_RAMP_TOLERANCE
+        };
+        let tolerance = fraction * scale;
         if error > tolerance {
             *level = level.saturating_sub(1);
         } else if error < tolerance / 16.0 && *level < MAX_STEP_LEVEL {
