@@ -299,7 +299,7 @@ fn count(name: &str, row: &Value, s: &Scenario, a: &Answer, counts: &mut Counts)
             let error = answer::relative(value, reference);
             let off = error > tolerance;
             all_within &= !off;
-            let vouched = figure <= tolerance && !late && !(spread > tolerance);
+            let vouched = figure <= tolerance && !late && (spread.is_nan() || spread <= tolerance);
             if off && vouched {
                 peak_false_green += 1;
             }

@@ -69,12 +69,15 @@ fn references<'a>(row: &'a Value, kind: &str) -> Vec<(&'a str, f64, bool)> {
         .collect()
 }
 
+/// Each fixture row run (its name, row, scenario and answer), and the names of the rows waiting.
+type Answers = (Vec<(String, Value, Scenario, Answer)>, Vec<String>);
+
 /// The converged answer of every fixture scenario that has its references (the lightly damped ones
 /// wait for their 112-element run: without it their references are not known to be converged,
 /// their late peaks moving by percents between meshes), run once for the tests below; and the
 /// names of those waiting.
-fn answers() -> &'static (Vec<(String, Value, Scenario, Answer)>, Vec<String>) {
-    static ANSWERS: OnceLock<(Vec<(String, Value, Scenario, Answer)>, Vec<String>)> = OnceLock::new();
+fn answers() -> &'static Answers {
+    static ANSWERS: OnceLock<Answers> = OnceLock::new();
     ANSWERS.get_or_init(|| {
         let doc = fixture();
         let mut waiting = Vec::new();

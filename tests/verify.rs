@@ -61,10 +61,10 @@ fn paper_scenario_flags_shear_and_bridge_stress_as_mesh_dependent() {
     // F_c too (issue 29): the paper mesh's contact force is 4.9 % from the 4x mesh's (measured).
     assert!(!p.contact_force.converged && p.contact_force.base_mesh_change > 0.02, "{p:#?}");
     assert!(!v.converged);
-    // Both not-converged peaks fail on the mesh, not on the step: halving the steps moves
-    // every peak by less than 0.1 %.
+    // The not-converged peaks fail on the mesh, not on the step: halving the steps moves every
+    // peak by less than 0.2 % (F_c the most, 0.11 %).
     for peak in p.as_array() {
-        assert!(peak.step_change < 1e-3, "{peak:?}");
+        assert!(peak.step_change < 2e-3, "{peak:?}");
     }
     assert!(p.lower_clamp_shear_stress.mesh_change > 0.05, "{p:#?}");
     // The paper mesh's sigma_b is well below the fine meshes', whatever the 2x-4x margin.
