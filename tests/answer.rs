@@ -73,15 +73,22 @@ fn stresses_above_the_yield_stress_are_not_trusted() {
 
 /// The figure: the change against the next rung, or the Richardson estimate of the printed value's
 /// own error where three rungs converge at a sane order (never more than the change).
+/// The figure is the grid convergence index of the printed value at the formal order 2 with the
+/// safety factor 1.25 (Roache): 1.25 x |fine - medium| / |fine| / 3, an estimate of the printed
+/// value's own error, not the change (3x it at order 2). Exact arithmetic on small integers.
 #[test]
-fn discretisation_figure_is_the_change_or_the_richardson_error() {
-    // Second order: 100, 104, 105 -> estimate 105 + 1/3; error of 105: (1/3) / (105 + 1/3).
-    let f = discretisation_figure(105.0, 104.0, Some(100.0));
-    assert!((f - (1.0 / 3.0) / (105.0 + 1.0 / 3.0)).abs() < 1e-12, "{f}");
-    // Oscillating: the plain change.
-    assert_eq!(discretisation_figure(105.0, 104.0, Some(106.0)), 1.0 / 105.0);
-    assert_eq!(discretisation_figure(105.0, 104.0, None), 1.0 / 105.0);
-    assert_eq!(discretisation_figure(105.0, 105.0, Some(100.0)), 0.0);
+fn discretisation_figure_is_the_grid_convergence_index_at_order_two() {
+    // 104 -> 105: change 1/105; figure 1.25 / 3 of it.
+    let f = discretisation_figure(105.0, 104.0);
+    assert!((f - 1.25 / 3.0 / 105.0).abs() < 1e-15, "{f}");
+    // On an exactly second-order sequence v(h) = 105 + 1/3 - (4/3) h^2 (104 at h = 1, 105 at
+    // h = 1/2) the printed value's error is (1/3) / (105 + 1/3): the figure is 1.25 times it, up to
+    // the ratio of the denominators.
+    let error = (1.0 / 3.0) / (105.0 + 1.0 / 3.0);
+    assert!(f > error && f < 1.3 * error, "{f} vs {error}");
+    assert_eq!(discretisation_figure(105.0, 105.0), 0.0);
+    assert_eq!(discretisation_figure(0.0, 0.0), 0.0);
+    assert!(discretisation_figure(0.0, 1.0).is_infinite(), "a peak that vanishes on the printed rung only");
 }
 
 /// The default run is judged against two coarser rungs and a twin; a paper-method run against the
@@ -283,6 +290,49 @@ fn a_chaotic_peak_is_not_sent_to_a_finer_mesh() {
             end >= a.summary.first_contact_end.unwrap() && end < a.summary.first_contact_end.unwrap() + 1e-3,
             "{line}"
         );
+    }
+}
+
+/// Issue 29 item 2: the twin judges the first-contact peaks too. Undamped, on the paper geometry
+/// over 10 s, the first sustained contact is itself chaotic: a drop height changed by 1e-9 moves
+/// first-contact tau_a by 3.2 % and sigma_b by 5.2 % (measured in the issue; the discretisation
+/// figure was the only flag, while the text called those peaks "the design quantity"). Each
+/// first-contact peak the twin moves beyond the tolerance fails the sensitivity check with a line
+/// naming it and its spread, none sends the reader to the first-contact peak as a refuge, and no
+/// line calls anything "the design quantity".
+#[test]
+fn a_first_contact_peak_the_twin_moves_is_flagged_as_chaotic() {
+    let s = Scenario { damping_ratio: 0.0, duration: 10.0, ..Scenario::default() };
+    let a = answer::run(&s, &mut NullRecorder, Default::default()).unwrap();
+    assert_lines_fit(&a);
+    let first = a.first_contact_sensitivity_spread.unwrap().as_array();
+    let whole = a.sensitivity_spread.unwrap().as_array();
+    let tolerance = s.discretisation_tolerance;
+    // tau_a and sigma_b: the issue's 3.2 % and 5.2 %, at least twice the tolerance.
+    assert!(first[2] > 2.0 * tolerance && first[3] > 2.0 * tolerance, "{first:?}");
+    let sensitivity = a.quality.checks.sensitivity.unwrap();
+    assert!(!sensitivity.pass && sensitivity.value >= first[3], "{sensitivity:?}");
+    assert!(!a.quality.trusted);
+    for k in (0..5).filter(|&k| first[k] > tolerance) {
+        let label = answer::peak_label(k);
+        let line = a
+            .quality
+            .reasons
+            .iter()
+            .find(|r| r.starts_with("sensitivity: ") && r.contains(&label))
+            .unwrap_or_else(|| panic!("no sensitivity line for {label}: {:?}", a.quality.reasons));
+        assert!(line.contains(&answer::percent(first[k])), "{line}");
+        if whole[k] <= tolerance {
+            assert!(line.contains(&format!("moves first-contact {label}")), "{line}");
+        }
+        assert!(line.contains("drop_height=") && !line.contains("read the first-contact peak"), "{line}");
+    }
+    for line in &a.quality.reasons {
+        assert!(!line.contains("design quantity"), "{line}");
+        if line.contains("read the first-contact peak") {
+            let k = (0..5).find(|&k| line.contains(&answer::peak_label(k))).unwrap();
+            assert!(first[k] <= tolerance, "a chaotic first-contact peak offered as a refuge: {line}");
+        }
     }
 }
 

@@ -11,7 +11,9 @@
 //! tolerance, a late-impact peak of a lightly damped run, or the run's sensitivity check failed:
 //! not trusted).
 
-use beam_impact::answer::{self, PEAK_NAMES};
+use std::sync::OnceLock;
+
+use beam_impact::answer::{self, Answer, PEAK_NAMES};
 use beam_impact::model::{Method, TimeStep};
 use beam_impact::record::NullRecorder;
 use beam_impact::results::Peaks;
@@ -67,22 +69,38 @@ fn references<'a>(row: &'a Value, kind: &str) -> Vec<(&'a str, f64, bool)> {
         .collect()
 }
 
+/// Each fixture row run (its name, row, scenario and answer), and the names of the rows waiting.
+type Answers = (Vec<(String, Value, Scenario, Answer)>, Vec<String>);
+
+/// The converged answer of every fixture scenario that has its references (the lightly damped ones
+/// wait for their 112-element run: without it their references are not known to be converged,
+/// their late peaks moving by percents between meshes), run once for the tests below; and the
+/// names of those waiting.
+fn answers() -> &'static Answers {
+    static ANSWERS: OnceLock<Answers> = OnceLock::new();
+    ANSWERS.get_or_init(|| {
+        let doc = fixture();
+        let mut waiting = Vec::new();
+        let mut rows = Vec::new();
+        for (name, row) in doc.as_object().unwrap() {
+            let s = scenario(&row["scenario"]);
+            if row.get("112").is_none() && s.damping_ratio < answer::LIGHT_DAMPING {
+                waiting.push(name.clone());
+                continue;
+            }
+            let a = answer::run(&s, &mut NullRecorder, Default::default()).unwrap();
+            rows.push((name.clone(), row.clone(), s, a));
+        }
+        (rows, waiting)
+    })
+}
+
 #[test]
 fn converged_answers_are_within_one_percent_of_the_references_or_flagged() {
-    let doc = fixture();
+    let (rows, unfiltered) = answers();
     let mut checked = 0;
     let mut worst: (f64, String) = (0.0, String::new());
-    let mut unfiltered = Vec::new();
-    for (name, row) in doc.as_object().unwrap() {
-        let s = scenario(&row["scenario"]);
-        // Without the 112-element run the lightly damped references are not known to be converged
-        // themselves (their late peaks move by percents between meshes and are chaotic): those
-        // scenarios wait for it (`make_converged_references.py` makes both).
-        if row.get("112").is_none() && s.damping_ratio < answer::LIGHT_DAMPING {
-            unfiltered.push(name.clone());
-            continue;
-        }
-        let a = answer::run(&s, &mut NullRecorder, Default::default()).unwrap();
+    for (name, row, s, a) in rows {
         let tolerance = s.discretisation_tolerance;
         let unreproducible = !a.quality.checks.sensitivity.unwrap().pass;
         for (kind, values, figures) in [
@@ -112,6 +130,65 @@ fn converged_answers_are_within_one_percent_of_the_references_or_flagged() {
     eprintln!(
         "{checked} peaks checked; largest unflagged error: {}; waiting for 112 elements: {unfiltered:?}",
         worst.1
+    );
+}
+
+/// Issue 29 item 2: the verdicts are calibrated on the fixture. No false green: no trusted run has
+/// a peak more than `discretisation_tolerance` (1 %) from its reference. At most 5 % false alarms:
+/// runs not trusted whose every peak (whole-run and first-contact) has a reference within the
+/// tolerance of it, apart from the flags that do not come from a figure: a lightly damped run's
+/// late-impact peaks (not vouched for whatever the rungs say, the truncated rungs being blind to
+/// the modes that ring between impacts) and the twin's (a chaotic peak is not reproducible, however
+/// close one run lands). Measured with `examples/calibration.rs` on this fixture: while the figure
+/// was the change against the check rung, 2 of the 19 runs were false alarms by this count (tau_a
+/// changing 1.30 % between the rungs, 0.36 % from its reference; 4 counting the late-impact
+/// flags); with the calibrated figure, 0: the runs whose every peak has a reference now have
+/// figures of at most 0.60 % (tau_a, 0.33 % from its reference), so the stepping may move the
+/// peaks by 0.5 % without turning one. The 2 lightly damped runs flagged for their late peaks
+/// alone remain. No false green before or after.
+#[test]
+fn the_fixture_verdicts_have_no_false_green_and_at_most_five_percent_false_alarms() {
+    let (rows, _) = answers();
+    let (mut false_greens, mut false_alarms, mut late_only) = (Vec::new(), Vec::new(), Vec::new());
+    for (name, row, s, a) in rows {
+        let tolerance = s.discretisation_tolerance;
+        let (mut known, mut within) = (true, true);
+        for (kind, values) in [("peaks", &a.converged_peaks), ("first_contact_peaks", &a.converged_first_contact_peaks)]
+        {
+            let refs = references(row, kind);
+            known &= refs.len() == PEAK_NAMES.len();
+            for (peak_name, reference, _) in refs {
+                let error = (peak(values, peak_name) - reference).abs() / reference.abs();
+                if error > tolerance {
+                    within = false;
+                    if a.quality.trusted {
+                        false_greens.push(format!("{name} {kind}.{peak_name}: {error:e} off, trusted"));
+                    }
+                }
+            }
+        }
+        if a.quality.trusted || !(known && within) {
+            continue;
+        }
+        let twin = a.quality.checks.sensitivity.is_some_and(|c| !c.pass);
+        if !a.unvouched_late_peaks.is_empty() || twin {
+            late_only.push(name.clone());
+        } else {
+            false_alarms.push(format!("{name}: {:?}", a.quality.reasons));
+        }
+    }
+    eprintln!(
+        "{} runs: false greens {}, false alarms {}, not trusted for late-impact or twin flags alone {late_only:?}",
+        rows.len(),
+        false_greens.len(),
+        false_alarms.len()
+    );
+    assert!(false_greens.is_empty(), "false greens: {false_greens:#?}");
+    assert!(
+        20 * false_alarms.len() <= rows.len(),
+        "{} false alarms of {} runs: {false_alarms:#?}",
+        false_alarms.len(),
+        rows.len()
     );
 }
 

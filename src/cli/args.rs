@@ -105,8 +105,9 @@ pub enum Command {
         #[arg(long, default_value_t = 5)]
         runs: usize,
     },
-    /// Convergence of the four Table 1 peaks: the scenario at half its steps and at 2x and 4x its
-    /// elements; each peak's changes, a Richardson estimate and a verdict.
+    /// Convergence of the four Table 1 peaks and the contact force: the scenario at half its steps
+    /// and at 2x and 4x its elements with 2x and 4x its modal cut-off; each peak's changes, a
+    /// Richardson estimate and a verdict.
     Verify {
         /// Scenario file (default: the paper scenario; with --set and no file, the default
         /// scenario, as `run --set`).

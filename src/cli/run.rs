@@ -196,12 +196,13 @@ pub fn run(args: &RunArgs) -> Result<bool> {
 }
 
 /// The `discretisation` block of `--json` and of the log's `answer.json`: each peak's figure, the
-/// twin's spread, the late peaks not vouched for, and the runs (rungs) behind the answer.
+/// twin's spreads (whole run and first contact), the late peaks not vouched for, and the runs (rungs) behind the answer.
 pub fn discretisation_json(answer: &beam_impact::answer::Answer) -> serde_json::Value {
     serde_json::json!({
         "peaks": answer.discretisation_error,
         "first_contact_peaks": answer.first_contact_discretisation_error,
         "sensitivity_spread": answer.sensitivity_spread,
+        "first_contact_sensitivity_spread": answer.first_contact_sensitivity_spread,
         "unvouched_late_peaks": answer.unvouched_late_peaks,
         "runs": answer.runs,
     })

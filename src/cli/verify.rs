@@ -1,4 +1,4 @@
-//! `beam-impact verify`: the convergence study of the Table 1 peaks, with a bar per run.
+//! `beam-impact verify`: the convergence study of the Table 1 peaks and F_c, with a bar per run.
 
 use std::io::Write;
 use std::path::Path;

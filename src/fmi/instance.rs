@@ -1195,12 +1195,16 @@ impl Instance {
         })
     }
 
-    /// The largest spread of the running peaks against the twin's (see [`crate::answer`]); -1
-    /// when not checked (`check_sensitivity` off, or after a state without the twin).
+    /// The largest spread of the running peaks, whole-run and first-contact, against the twin's
+    /// (see [`crate::answer`]); -1 when not checked (`check_sensitivity` off, or after a state
+    /// without the twin).
     fn sensitivity_spread(&self) -> f64 {
         let (Some(simulation), Some((_, Some(twin)))) = (&self.simulation, self.split_checks()) else { return -1.0 };
-        let (a, b) = (simulation.output().peaks.as_array(), twin.output().peaks.as_array());
-        (0..5).map(|k| crate::answer::relative(b[k], a[k])).fold(0.0, f64::max)
+        let spread = |a: [f64; 5], b: [f64; 5]| (0..5).map(|k| crate::answer::relative(b[k], a[k])).fold(0.0, f64::max);
+        let whole = spread(simulation.output().peaks.as_array(), twin.output().peaks.as_array());
+        let first =
+            spread(simulation.state().first_contact.peaks.as_array(), twin.state().first_contact.peaks.as_array());
+        whole.max(first)
     }
 
     /// The largest discretisation figure of the running peaks so far (whole-run and first-contact)
@@ -1219,8 +1223,7 @@ impl Instance {
         (0..10)
             .map(|k| match (paper, runs.as_slice()) {
                 (true, [converged, ..]) => crate::answer::relative(printed[k], converged[k]),
-                (false, [check, coarse]) => crate::answer::discretisation_figure(printed[k], check[k], Some(coarse[k])),
-                (false, [check]) => crate::answer::discretisation_figure(printed[k], check[k], None),
+                (false, [check, ..]) => crate::answer::discretisation_figure(printed[k], check[k]),
                 _ => -1.0,
             })
             .fold(-1.0, f64::max)
