@@ -413,7 +413,25 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
             }
         };
     let discretisation_error = figures(|s| s.peaks);
-    let first_contact_discretisation_error = figures(|s| s.first_contact_peaks);
+    let mut first_contact_discretisation_error = figures(|s| s.first_contact_peaks);
+    if let (false, Some((c, _))) = (paper, check) {
+        // The first sustained contact's end is itself mesh-sensitive when the damping is light (a
+        // bounce inside it splits the window on one rung and not on another): drop 2 m, contact
+        // 16 m, damping 0.01, the 28-element rung's first contact ends before its largest
+        // deflection (0.8546 m in it, 0.9115 m over the run) while the printed run's holds its
+        // maximum (0.9114 m). Where the printed first-contact peak is the whole run's and the
+        // check rung's is not, the windows differ: the peak is judged by its whole-run figure.
+        let (fine_first, fine_whole) = (summary.first_contact_peaks.as_array(), summary.peaks.as_array());
+        let (medium_first, medium_whole) = (c.first_contact_peaks.as_array(), c.peaks.as_array());
+        let whole = discretisation_error.as_array();
+        let mut first = first_contact_discretisation_error.as_array();
+        for k in 0..5 {
+            if fine_first[k] == fine_whole[k] && medium_first[k] < medium_whole[k] {
+                first[k] = whole[k];
+            }
+        }
+        first_contact_discretisation_error = per_peak(|k| first[k]);
+    }
     let spread = |get: fn(&Summary) -> Peaks| {
         twin.map(|(t, _)| {
             let (a, b) = (get(&summary).as_array(), get(t).as_array());
