@@ -244,6 +244,7 @@ pub fn converged_benchmark(runs: usize) -> Result<String> {
         ratio(cpu)
     );
     out += &sweep_projection()?;
+    out += &fixture_verdicts()?;
     Ok(out)
 }
 
@@ -283,6 +284,86 @@ pub fn sweep_projection() -> Result<String> {
         if failed > 0 { format!(", {failed} rows failed") } else { String::new() },
         wall * scale,
         cpu * scale
+    );
+    Ok(out)
+}
+
+/// The verdicts on the reference fixture (`tests/fixtures/converged_references.json`: 19
+/// scenarios with 56/112-element full-basis references, the rule of
+/// `tests/converged_references.rs`): false greens (a peak further than `discretisation_tolerance`
+/// from its reference in a trusted run) and false alarms (a run not trusted, by its figures, whose
+/// every peak has a reference within its tolerance; a lightly damped run flagged only for its
+/// late-impact peaks or by its twin is counted apart, those flags being wanted).
+pub fn fixture_verdicts() -> Result<String> {
+    use crate::answer::PEAK_NAMES;
+    use serde_json::Value;
+    let doc: Value = serde_json::from_str(include_str!("../../tests/fixtures/converged_references.json"))
+        .map_err(|e| crate::Error::Other(format!("the reference fixture: {e}")))?;
+    let rows = doc.as_object().map(|o| o.iter().collect::<Vec<_>>()).unwrap_or_default();
+    let names = |row: &Value, key: &str, kind: &str| -> Vec<String> {
+        row.get(key)
+            .and_then(|a| a.get(kind))
+            .and_then(Value::as_array)
+            .map_or(Vec::new(), |a| a.iter().filter_map(|v| v.as_str().map(String::from)).collect())
+    };
+    let start = Instant::now();
+    let (mut runs, mut trusted, mut false_greens, mut false_alarms, mut wanted) = (0, 0, 0, 0, 0);
+    for (_, row) in rows {
+        let settings = &row["scenario"];
+        let mut s = Scenario::default();
+        for (field, value) in [
+            (&mut s.drop_height, settings.get("drop_height")),
+            (&mut s.contact_position, settings.get("contact_position")),
+            (&mut s.damping_ratio, settings.get("damping_ratio")),
+        ] {
+            if let Some(v) = value.and_then(Value::as_f64) {
+                *field = v;
+            }
+        }
+        if row.get("112").is_none() && s.damping_ratio < crate::model::discretisation::LIGHT_DAMPING {
+            continue;
+        }
+        let a = crate::answer::run(&s, &mut NullRecorder, Default::default())?;
+        runs += 1;
+        trusted += usize::from(a.quality.trusted);
+        let (mut known, mut within) = (true, true);
+        for (kind, values) in [("peaks", a.converged_peaks), ("first_contact_peaks", a.converged_first_contact_peaks)] {
+            let (agree, agree_224) = (names(row, "agree", kind), names(row, "agree_224", kind));
+            for (k, name) in PEAK_NAMES.iter().enumerate() {
+                let reference = match row.get("112") {
+                    Some(fine) if agree.iter().any(|n| n == name) => fine[kind][name].as_f64(),
+                    Some(_) if agree_224.iter().any(|n| n == name) => row["224"][kind][name].as_f64(),
+                    Some(_) => None,
+                    None => row["56"][kind][name].as_f64(),
+                };
+                let Some(reference) = reference else {
+                    known = false;
+                    continue;
+                };
+                let error = (values.as_array()[k] - reference).abs() / reference.abs();
+                if error > s.discretisation_tolerance {
+                    within = false;
+                    false_greens += usize::from(a.quality.trusted);
+                }
+            }
+        }
+        if !a.quality.trusted && known && within {
+            let twin = a.quality.checks.sensitivity.is_some_and(|c| !c.pass);
+            if !a.unvouched_late_peaks.is_empty() || twin {
+                wanted += 1;
+            } else {
+                false_alarms += 1;
+            }
+        }
+    }
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "verdicts on the reference fixture ({runs} scenarios, {:.1} s): {trusted} trusted; false greens {false_greens}, \
+         false alarms {false_alarms} ({:.1} % of the runs); {wanted} not trusted for late-impact or twin flags alone \
+         (lightly damped, wanted)",
+        start.elapsed().as_secs_f64(),
+        100.0 * false_alarms as f64 / runs.max(1) as f64
     );
     Ok(out)
 }
