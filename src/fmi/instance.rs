@@ -1212,21 +1212,17 @@ impl Instance {
     /// after a state without the check runs).
     fn discretisation_error(&self) -> f64 {
         let (Some(simulation), Some((checks, _))) = (&self.simulation, self.split_checks()) else { return -1.0 };
-        // The whole-run peaks and the first-contact ones, as the CLI's check judges both.
-        let both = |s: &Simulation| {
-            let (whole, first) = (s.output().peaks.as_array(), s.state().first_contact.peaks.as_array());
-            std::array::from_fn::<f64, 10, _>(|k| if k < 5 { whole[k] } else { first[k - 5] })
-        };
-        let printed = both(simulation);
-        let runs: Vec<[f64; 10]> = checks.iter().map(both).collect();
+        let Some(check) = checks.first() else { return -1.0 };
         let paper = self.scenario.method == crate::model::Method::Paper;
-        (0..10)
-            .map(|k| match (paper, runs.as_slice()) {
-                (true, [converged, ..]) => crate::answer::relative(printed[k], converged[k]),
-                (false, [check, ..]) => crate::answer::discretisation_figure(printed[k], check[k]),
-                _ => -1.0,
-            })
-            .fold(-1.0, f64::max)
+        let peaks = |s: &Simulation| (s.output().peaks, s.state().first_contact.peaks);
+        let ((fine_whole, fine_first), (medium_whole, medium_first)) = (peaks(simulation), peaks(check));
+        let (whole, first) = crate::answer::peak_figures(
+            paper,
+            self.scenario.damping_ratio,
+            [&fine_whole, &fine_first],
+            [&medium_whole, &medium_first],
+        );
+        whole.as_array().into_iter().chain(first.as_array()).fold(-1.0, f64::max)
     }
 
     /// The yield check of the running peaks (`None` without a yield stress).
