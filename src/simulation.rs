@@ -701,7 +701,7 @@ impl<S: Stepper> Simulation<S> {
             .rev()
             .find(|&level| {
                 let h = base * f64::from(1u32 << level);
-                let factor = h.powi(4) / 384.0;
+                let factor = (h * h) * (h * h) / 384.0;
                 limits.iter().all(|&(probe, limit)| factor * fourth[probe as usize] <= limit)
             })
             .unwrap_or(0)

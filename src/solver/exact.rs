@@ -74,6 +74,7 @@ impl ModeStep {
         let mut out = ModeStep::default();
         let scale = libm::sqrt(omega2.abs()).max(damping.abs()) * h;
         let mut term = 1.0; // h^k / k!
+        let mut bound = 1.0; // scale^(k+1) / (k+1)!
         for k in 0..64 {
             let forcing = |j: usize| match (j, k) {
                 (2, 0) | (3, 1) => 1.0,
@@ -90,7 +91,9 @@ impl ModeStep {
             term *= h / (k as f64 + 1.0);
             // The next terms are of order scale^(k+1) / (k+1)! of the first (the derivatives
             // grow by omega or c per order); the forcing's terms are in once k >= 3.
-            if k >= 3 && scale.powi(k as i32 + 1) / factorial(k + 1) < 1e-17 {
+            // (A running product, not powi: every platform's binary must stop at the same term.)
+            bound *= scale / (k as f64 + 1.0);
+            if k >= 3 && bound < 1e-17 {
                 break;
             }
         }
@@ -103,10 +106,6 @@ impl ModeStep {
         let dot = |c: &[f64; 4]| c[0] * q0 + c[1] * v0 + c[2] * f0 + c[3] * r;
         (dot(&self.q), dot(&self.v), dot(&self.integral))
     }
-}
-
-fn factorial(n: usize) -> f64 {
-    (1..=n).map(|k| k as f64).product()
 }
 
 #[cfg(test)]

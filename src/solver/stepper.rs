@@ -143,7 +143,7 @@ impl ModalStepper {
         if self.exact {
             let s = &self.system;
             self.fourth_derivative = nalgebra::DMatrix::from_fn(s.dofs(), PROBES, |i, k| {
-                self.probe_columns[(i, k)].abs() * s.omega2[i].powi(2)
+                self.probe_columns[(i, k)].abs() * (s.omega2[i] * s.omega2[i])
             });
         }
         self
