@@ -682,7 +682,7 @@ impl<S: Stepper> Simulation<S> {
     /// by at most [`FREE_PEAK_TOLERANCE`] of its largest value so far, and the gap's by at most
     /// half the gap (so that no touch hides inside a step): a Hermite cubic misses by at most
     /// h^4 / 384 max|p^(4)|, bounded by the modes' amplitudes.
-    fn free_step_level(&self, probes: &[f64; PROBES]) -> u32 {
+    fn free_step_level(&mut self, probes: &[f64; PROBES]) -> u32 {
         let Some(fourth) = self.stepper.free_fourth_derivatives(&self.state.kinematics) else { return 0 };
         let s = &self.model.scenario;
         let peaks = &self.state.result.peaks;
@@ -876,8 +876,7 @@ impl<S: Stepper> Simulation<S> {
         let d0 = self.stepper.rates(&self.backup, stage, &e0)[gap] * h;
         let d1 = self.stepper.rates(&self.state.kinematics, stage, &e1)[gap] * h;
         let (p0, p1) = (self.state.gap - threshold, gap_end - threshold);
-        let c2 = 3.0 * (p1 - p0) - 2.0 * d0 - d1;
-        let c3 = 2.0 * (p0 - p1) + d0 + d1;
+        let (c2, c3) = crate::solver::step_extrema::cubic_coefficients(p0, p1, d0, d1);
         let value = |x: f64| p0 + x * (d0 + x * (c2 + x * c3));
         // The first crossing: scan the cubic finely, then bisect the first bracket.
         let n = 64;
@@ -1084,9 +1083,8 @@ impl<S: Stepper> Simulation<S> {
     /// dissipation are booked up to the point as the step books them; the peaks stay those of
     /// the whole internal steps taken so far.
     fn interpolate(&mut self, before: &RunState, at_ns: u64, stage: Stage) -> StepResult {
-        let (start, end) = (&before.result, &self.state.result);
-        let dt = seconds(end.time_ns - start.time_ns);
-        let tau = seconds(at_ns - start.time_ns);
+        let dt = seconds(self.state.result.time_ns - before.result.time_ns);
+        let tau = seconds(at_ns - before.result.time_ns);
         let kinematics = if self.stepper.adapts_steps() {
             // The exact advance's steps are long (up to 2^MAX_STEP_LEVEL of the plan's) and its
             // modes turn many times within one: the point's state is the exact advance to it.

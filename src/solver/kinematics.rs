@@ -144,7 +144,7 @@ pub trait Stepper {
     /// Out of contact, a bound on each probe's fourth time derivative over the coming free
     /// motion (the exact advance: the step-size control's measure of what a cubic through a
     /// step's ends can miss); `None` for other steppers.
-    fn free_fourth_derivatives(&self, _state: &Kinematics) -> Option<[f64; PROBES]> {
+    fn free_fourth_derivatives(&mut self, _state: &Kinematics) -> Option<[f64; PROBES]> {
         None
     }
     /// The model's probes (see [`crate::model::Probe`]) applied to a displacement vector (or to

@@ -3,13 +3,17 @@
 //! output is a linear functional of it, so each output is a cubic too: fixed by its values and
 //! rates at the step's ends (Hermite), its maximum found where its derivative vanishes.
 
+/// The Hermite cubic p(s) = p0 + d0 s + c2 s^2 + c3 s^3 on s in [0, 1] through p(0) = `p0`,
+/// p(1) = `p1`, p'(0) = `d0`, p'(1) = `d1`: (c2, c3) = (3(p1 - p0) - 2 d0 - d1, 2(p0 - p1) + d0 + d1).
+pub fn cubic_coefficients(p0: f64, p1: f64, d0: f64, d1: f64) -> (f64, f64) {
+    (3.0 * (p1 - p0) - 2.0 * d0 - d1, 2.0 * (p0 - p1) + d0 + d1)
+}
+
 /// max |p(s)| over s in [0, `until`] (0 < until <= 1, a fraction of the step) of the cubic with
 /// p(0) = `p0`, p(1) = `p1`, p'(0) = `d0`, p'(1) = `d1` (rates times the step length), and the
 /// fraction of the step where it is reached.
 pub fn cubic_extremum(p0: f64, p1: f64, d0: f64, d1: f64, until: f64) -> (f64, f64) {
-    // p(s) = p0 + d0 s + c2 s^2 + c3 s^3 with c2 = 3(p1 - p0) - 2 d0 - d1, c3 = 2(p0 - p1) + d0 + d1.
-    let c2 = 3.0 * (p1 - p0) - 2.0 * d0 - d1;
-    let c3 = 2.0 * (p0 - p1) + d0 + d1;
+    let (c2, c3) = cubic_coefficients(p0, p1, d0, d1);
     let value = |s: f64| p0 + s * (d0 + s * (c2 + s * c3));
     let mut best = (value(0.0).abs(), 0.0);
     let mut consider = |s: f64| {

@@ -464,29 +464,30 @@ impl Stepper for ModalStepper {
         self.exact
     }
 
-    fn free_fourth_derivatives(&self, state: &Kinematics) -> Option<[f64; PROBES]> {
+    fn free_fourth_derivatives(&mut self, state: &Kinematics) -> Option<[f64; PROBES]> {
         if !self.exact {
             return None;
         }
         // Out of contact each elastic mode swings about its static deflection F_i / omega_i^2
         // with amplitude A_i = sqrt(d^2 + (v / omega)^2); its share of a probe's fourth derivative
-        // is at most |P_ki| omega_i^4 A_i (the rigid mode's motion is a quadratic: none).
+        // is at most |P_ki| omega_i^4 A_i (the rigid mode's motion is a quadratic: none). The
+        // amplitudes go to the step's work vector (free between steps): no allocation per step.
         let s = &self.system;
         let n = state.displacement.len().min(self.fourth_derivative.nrows());
         let (q, v) = (state.displacement.as_slice(), state.velocity.as_slice());
-        let amplitude: Vec<f64> = (0..n)
-            .map(|i| {
-                let w2 = s.omega2[i];
-                if w2 <= 0.0 {
-                    return 0.0;
-                }
+        let amplitude = &mut self.y.as_mut_slice()[..n];
+        for (i, a) in amplitude.iter_mut().enumerate() {
+            let w2 = s.omega2[i];
+            *a = if w2 <= 0.0 {
+                0.0
+            } else {
                 let d = q[i] - self.load[i] / w2;
                 (d * d + v[i] * v[i] / w2).sqrt()
-            })
-            .collect();
+            };
+        }
         let mut out = [0.0; PROBES];
         for (k, o) in out.iter_mut().enumerate() {
-            *o = dot(&self.fourth_derivative.column(k).as_slice()[..n], &amplitude);
+            *o = dot(&self.fourth_derivative.column(k).as_slice()[..n], amplitude);
         }
         Some(out)
     }
