@@ -25,7 +25,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::Result;
 use crate::model::{Method, Scenario};
 use crate::record::{NullRecorder, Recorder};
-use crate::results::{Peaks, Summary};
+use crate::results::{EnvelopePeak, Peaks, StressEnvelope, Summary};
 use crate::solver::ModalCache;
 use crate::Simulation;
 
@@ -89,17 +89,38 @@ pub struct DesignUtilisation {
     pub lower_clamp_shear_stress: f64,
     /// sigma_b / upper.allowable_bending_stress.
     pub upper_contact_bending_stress: f64,
+    /// The bridge's bending stress envelope's worst utilisation (each station against its
+    /// section's allowable; issue 30).
+    #[serde(default)]
+    pub upper_bending_stress: Option<f64>,
+    /// The bridge's shear envelope's worst utilisation (NaN: no shear area or allowable given).
+    #[serde(default)]
+    pub upper_shear_stress: Option<f64>,
+    /// The arrestor's bending envelope's worst utilisation.
+    #[serde(default)]
+    pub lower_bending_stress: Option<f64>,
+    /// The arrestor's shear envelope's worst utilisation.
+    #[serde(default)]
+    pub lower_shear_stress: Option<f64>,
 }
 
 impl Design {
     /// The design check of `peaks` (Pa) against the scenario's allowables.
-    pub fn assess(scenario: &Scenario, peaks: &Peaks) -> Design {
+    /// The envelope's worst utilisation of each beam counts too (a beam without an envelope,
+    /// such as a rigid support's, or a stress without an allowable: NaN, not counted).
+    pub fn assess(scenario: &Scenario, peaks: &Peaks, envelope: &StressEnvelope) -> Design {
+        let worst = envelope.peaks().map(|p| p.and_then(|p| p.utilisation));
         let utilisation = DesignUtilisation {
             lower_clamp_bending_stress: peaks.lower_clamp_bending_stress / scenario.lower.allowable_bending_stress,
             lower_clamp_shear_stress: peaks.lower_clamp_shear_stress / scenario.lower.allowable_shear_stress,
             upper_contact_bending_stress: peaks.upper_contact_bending_stress / scenario.upper.allowable_bending_stress,
+            upper_bending_stress: worst[0],
+            upper_shear_stress: worst[1],
+            lower_bending_stress: worst[2],
+            lower_shear_stress: worst[3],
         };
-        let pass = utilisation.as_array().iter().all(|u| *u <= 1.0);
+        let pass = utilisation.as_array().iter().all(|u| *u <= 1.0)
+            && utilisation.envelope().iter().flatten().all(|u| *u <= 1.0);
         Design { pass, utilisation }
     }
 }
@@ -108,6 +129,11 @@ impl DesignUtilisation {
     /// The three utilisations in the order of [`DesignUtilisation::NAMES`].
     pub fn as_array(&self) -> [f64; 3] {
         [self.lower_clamp_bending_stress, self.lower_clamp_shear_stress, self.upper_contact_bending_stress]
+    }
+
+    /// The envelopes' worst utilisations in the order of [`crate::results::ENVELOPE_PEAK_NAMES`].
+    pub fn envelope(&self) -> [Option<f64>; 4] {
+        [self.upper_bending_stress, self.upper_shear_stress, self.lower_bending_stress, self.lower_shear_stress]
     }
 
     /// The names of the stress peaks, as in [`Peaks`].
@@ -180,6 +206,16 @@ pub struct Answer {
     /// height: paper geometry, 10 s, first-contact tau_a moved 3.2 % and sigma_b 5.2 % (issue 29).
     #[serde(default)]
     pub first_contact_sensitivity_spread: Option<Peaks>,
+    /// Each beam's worst bending and shear stress along it (the converged run's envelope), in
+    /// the order of [`crate::results::ENVELOPE_PEAK_NAMES`].
+    #[serde(default)]
+    pub envelope_peaks: [Option<EnvelopePeak>; 4],
+    /// Their discretisation figures (a fraction, as the peaks'; null without a check or a peak).
+    #[serde(default)]
+    pub envelope_discretisation_error: [Option<f64>; 4],
+    /// Their spreads against the twin (a fraction); null when not checked.
+    #[serde(default)]
+    pub envelope_sensitivity_spread: Option<[Option<f64>; 4]>,
     /// The design check of the converged peaks.
     pub design: Design,
     /// Every check and the verdict.
@@ -468,7 +504,32 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
     };
     let sensitivity_spread = spread(|s| s.peaks);
     let first_contact_sensitivity_spread = spread(|s| s.first_contact_peaks);
-    let design = Design::assess(resolved, &converged_peaks);
+    // The envelopes: the converged run's (the check's for a paper-method run), their figures
+    // against the next coarser rung as the peaks' (the beam's worst against the rung's worst,
+    // wherever along the beam each sits) and their spreads against the twin.
+    let converged_envelope = match (paper, check) {
+        (true, Some((c, _))) => &c.envelope,
+        _ => &summary.envelope,
+    };
+    let envelope_peaks = converged_envelope.peaks();
+    let envelope_values = summary.envelope.peak_values();
+    let both = |a: Option<f64>, b: Option<f64>, f: fn(f64, f64) -> f64| a.zip(b).map(|(a, b)| f(a, b));
+    let envelope_discretisation_error: [Option<f64>; 4] = match check {
+        Some((c, _)) if !paper => {
+            let coarse = c.envelope.peak_values();
+            std::array::from_fn(|k| both(envelope_values[k], coarse[k], discretisation_figure))
+        }
+        Some((c, _)) => {
+            let converged = c.envelope.peak_values();
+            std::array::from_fn(|k| both(envelope_values[k], converged[k], relative))
+        }
+        None => [None; 4],
+    };
+    let envelope_sensitivity_spread = twin.map(|(t, _)| {
+        let twin_values = t.envelope.peak_values();
+        std::array::from_fn(|k| both(twin_values[k], envelope_values[k], relative))
+    });
+    let design = Design::assess(resolved, &converged_peaks, converged_envelope);
 
     let energy = &summary.quality;
     let mut reasons: Vec<String> = energy.reasons.iter().map(|r| explain_run_reason(r, resolved, &summary)).collect();
@@ -542,12 +603,59 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
         .iter()
         .flatten()
         .all(|c| c.pass);
+    // The envelopes' peaks: a figure or spread above the tolerance that could carry the beam's
+    // worst utilisation past 1 makes the run not trusted (the design verdict hangs on it); one
+    // that cannot is said as an advisory (the verdict holds whatever the number's error).
+    let mut advisories = energy.advisories.clone();
+    let mut envelope_trusted = true;
+    let envelope_u = design.utilisation.envelope();
+    for k in 0..4 {
+        let Some(peak) = envelope_peaks[k] else { continue };
+        let figure = envelope_discretisation_error[k].unwrap_or(0.0);
+        let spread = envelope_sensitivity_spread.and_then(|p| p[k]).unwrap_or(0.0);
+        let error = figure.max(spread);
+        if error.is_nan() || error <= tolerance {
+            continue;
+        }
+        let name = crate::results::ENVELOPE_PEAK_NAMES[k];
+        let what = if figure >= spread {
+            format!("discretisation figure {}", percent(figure))
+        } else {
+            format!("twin's spread {}", percent(spread))
+        };
+        let u = envelope_u[k];
+        let line = format!(
+            "{name} (the beam's worst, {:.2} MPa at {:.3} m): its {what} is above the {} tolerance",
+            peak.value * 1e-6,
+            peak.position,
+            percent(tolerance)
+        );
+        match u {
+            Some(u) if u * (1.0 + error) >= 1.0 => {
+                envelope_trusted = false;
+                reasons.push(format!("{line}, and its utilisation {u:.3} could pass 1 within it: refine the mesh"));
+            }
+            // A paper-method run's figure is its mesh's error, said beside the five peaks'.
+            _ if paper => {}
+            None => advisories.push(format!("{line} (no allowable: it decides no verdict)")),
+            Some(u) => advisories
+                .push(format!("{line}; its utilisation {u:.3} stays below 1 within it, so the design verdict holds")),
+        }
+    }
+    let trusted = trusted && envelope_trusted;
+    if summary.envelope.sampled_every > 1 {
+        advisories.push(format!(
+            "the stress envelope was taken every {} steps (a full modal basis of {} coordinates: every step would \
+             cost more than the steps themselves); the paper's three points are resolved every step",
+            summary.envelope.sampled_every, printed.modes[1]
+        ));
+    }
     let quality = AnswerQuality {
         energy_residual_fraction: energy.energy_residual_fraction,
         energy_tolerance: energy.energy_tolerance,
         trusted,
         reasons,
-        advisories: energy.advisories.clone(),
+        advisories,
         checks,
     };
     let mut runs = vec![printed];
@@ -562,6 +670,9 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
         unvouched_late_peaks,
         sensitivity_spread,
         first_contact_sensitivity_spread,
+        envelope_peaks,
+        envelope_discretisation_error,
+        envelope_sensitivity_spread,
         design,
         quality,
         runs,
@@ -1001,14 +1112,52 @@ pub fn table(answer: &Answer) -> String {
             allowables[k].map_or("-".to_string(), |(_, u)| format!("{u:.3}")),
         );
     }
-    let (worst, worst_u) =
-        DesignUtilisation::NAMES
-            .iter()
-            .zip(u)
-            .fold(("", f64::NEG_INFINITY), |best, (n, v)| if v > best.1 { (n, v) } else { best });
+    // The stress envelope: each beam's worst stress along it, where and when, its utilisation.
     let _ = writeln!(
         s,
-        "design: {} (largest utilisation {worst_u:.3}, {}; converged peaks against the allowables)",
+        "stress envelope (each beam's largest stress along it, every node every step):\n{:36} {:>10} {:>10} {:>9} {:>11} {:>11} {:>10} {:>11}",
+        "envelope peak",
+        "value",
+        "at [m]",
+        "time [s]",
+        "discretis.",
+        "sensitivity",
+        "worst u.",
+        "at [m]"
+    );
+    let envelope_labels = ["sigma bridge [MPa]", "tau bridge [MPa]", "sigma arrestor [MPa]", "tau arrestor [MPa]"];
+    let envelope_u = answer.design.utilisation.envelope();
+    for k in 0..4 {
+        let label = envelope_labels[k];
+        let Some(p) = answer.envelope_peaks[k] else {
+            let why = if k == 1 { "none: no upper.shear_area given" } else { "none: no beam" };
+            let _ = writeln!(s, "{label:36} {why}");
+            continue;
+        };
+        let error = answer.envelope_discretisation_error[k].unwrap_or(f64::NAN);
+        let spread = answer.envelope_sensitivity_spread.map(|p| p[k].unwrap_or(f64::NAN));
+        let flag = |v: f64| if v <= tolerance { " " } else { "!" };
+        let _ = writeln!(
+            s,
+            "{label:36} {:>10.4} {:>10.3} {:>9.4} {:>10}{} {:>10}{} {:>10} {:>11}",
+            p.value * 1e-6,
+            p.position,
+            p.time,
+            percent(error),
+            flag(error),
+            spread.map_or("n/a".to_string(), percent),
+            spread.map_or(" ", flag),
+            envelope_u[k].map_or("-".to_string(), |u| format!("{u:.3}")),
+            p.utilisation_position.map_or("-".to_string(), |x| format!("{x:.3}")),
+        );
+    }
+    let names = DesignUtilisation::NAMES.iter().copied().chain(crate::results::ENVELOPE_PEAK_NAMES);
+    let all_u = u.into_iter().chain(envelope_u.map(|u| u.unwrap_or(f64::NEG_INFINITY)));
+    let (worst, worst_u) =
+        names.zip(all_u).fold(("", f64::NEG_INFINITY), |best, (n, v)| if v > best.1 { (n, v) } else { best });
+    let _ = writeln!(
+        s,
+        "design: {} (largest utilisation {worst_u:.3}, {}; converged peaks and envelopes against the allowables)",
         if answer.design.pass { "PASS" } else { "FAIL" },
         crate::vocabulary::quantity_name(worst)
     );

@@ -12,8 +12,9 @@ pub enum Error {
     /// A scenario parameter breaks its rule, e.g. `upper.length must be > 0 m, got -3`.
     #[error("{name} must be {rule}, got {value}")]
     InvalidParameter {
-        /// Dotted parameter name as in the scenario file and the FMU (`upper.length`).
-        name: &'static str,
+        /// Dotted parameter name as in the scenario file and the FMU (`upper.length`;
+        /// `lower.sections[2].second_moment` for a section's field).
+        name: std::borrow::Cow<'static, str>,
         /// The rule, with the unit (`> 0 m`).
         rule: String,
         /// The offending value, as given.
@@ -172,7 +173,11 @@ pub enum Error {
 
 impl Error {
     /// Shorthand for [`Error::InvalidParameter`].
-    pub fn invalid(name: &'static str, rule: impl Into<String>, value: impl std::fmt::Display) -> Self {
-        Error::InvalidParameter { name, rule: rule.into(), value: value.to_string() }
+    pub fn invalid(
+        name: impl Into<std::borrow::Cow<'static, str>>,
+        rule: impl Into<String>,
+        value: impl std::fmt::Display,
+    ) -> Self {
+        Error::InvalidParameter { name: name.into(), rule: rule.into(), value: value.to_string() }
     }
 }

@@ -358,4 +358,106 @@ pub struct Summary {
     /// The impact's angular velocity and closing speed.
     #[serde(default)]
     pub impact: Impact,
+    /// The stress envelope along each beam (issue 30).
+    #[serde(default)]
+    pub envelope: StressEnvelope,
+}
+
+/// One stress's envelope along a beam: at each station (a node; two at a section change or a
+/// point load's shear jump) its largest |stress| over the run and when.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct StationEnvelope {
+    /// Stations' positions, m from the beam's support (the clamp, the hinge).
+    pub positions: Vec<f64>,
+    /// Largest |stress| at each station, Pa.
+    pub max: Vec<f64>,
+    /// When each was reached, s.
+    pub times: Vec<f64>,
+    /// The allowable stress of the section at each station, Pa (0: none given).
+    pub allowable: Vec<f64>,
+}
+
+/// The peak of an envelope: the largest stress with where and when, and the worst utilisation.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct EnvelopePeak {
+    /// Largest |stress| along the beam, Pa.
+    pub value: f64,
+    /// Its position, m from the support.
+    pub position: f64,
+    /// When, s.
+    pub time: f64,
+    /// The largest stress / allowable along the beam (null: no allowable given).
+    pub utilisation: Option<f64>,
+    /// Where that utilisation is, m (null: no allowable given).
+    pub utilisation_position: Option<f64>,
+}
+
+impl StationEnvelope {
+    /// The envelope's peak and its worst utilisation; None without stations (the bridge
+    /// without a shear area, a rigid support).
+    pub fn peak(&self) -> Option<EnvelopePeak> {
+        let mut peak: Option<EnvelopePeak> = None;
+        for k in 0..self.max.len() {
+            let p = peak.get_or_insert(EnvelopePeak {
+                value: self.max[k],
+                position: self.positions[k],
+                time: self.times[k],
+                utilisation: None,
+                utilisation_position: None,
+            });
+            if self.max[k] > p.value {
+                (p.value, p.position, p.time) = (self.max[k], self.positions[k], self.times[k]);
+            }
+            if self.allowable[k] > 0.0 {
+                let u = self.max[k] / self.allowable[k];
+                if p.utilisation.is_none_or(|w| u > w) {
+                    (p.utilisation, p.utilisation_position) = (Some(u), Some(self.positions[k]));
+                }
+            }
+        }
+        peak
+    }
+}
+
+/// Bending and shear envelopes of one beam.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct BeamEnvelope {
+    /// |M| / W at each bending station.
+    pub bending: StationEnvelope,
+    /// |Q| / A_s at each shear station (empty for a beam without a shear area).
+    pub shear: StationEnvelope,
+}
+
+/// The stress envelope of both beams.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct StressEnvelope {
+    /// The arrestor's, from the clamp.
+    pub lower: BeamEnvelope,
+    /// The bridge's, from the hinge.
+    pub upper: BeamEnvelope,
+    /// The steps the stations were evaluated at: every `sampled_every`-th (1: every step; more
+    /// on a full basis of hundreds of elements, see [`crate::solver::envelope::ENVELOPE_BUDGET`]).
+    #[serde(default = "one")]
+    pub sampled_every: u64,
+}
+
+fn one() -> u64 {
+    1
+}
+
+/// The envelope peaks' names (`summary.peaks`' keys, the FMU's `peak.` outputs), in the order of
+/// [`StressEnvelope::peaks`].
+pub const ENVELOPE_PEAK_NAMES: [&str; 4] =
+    ["upper.bending_stress", "upper.shear_stress", "lower.bending_stress", "lower.shear_stress"];
+
+impl StressEnvelope {
+    /// Each beam's worst bending and shear stress, in the order of [`ENVELOPE_PEAK_NAMES`].
+    pub fn peaks(&self) -> [Option<EnvelopePeak>; 4] {
+        [self.upper.bending.peak(), self.upper.shear.peak(), self.lower.bending.peak(), self.lower.shear.peak()]
+    }
+
+    /// The peaks' values only, in the same order.
+    pub fn peak_values(&self) -> [Option<f64>; 4] {
+        self.peaks().map(|p| p.map(|p| p.value))
+    }
 }

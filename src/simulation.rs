@@ -13,6 +13,7 @@ use crate::results::{
     Summary, TimeSteps,
 };
 use crate::solver::contact::{self, Stage};
+use crate::solver::envelope::StationRows;
 use crate::solver::initial::{initial_state, Pitching};
 use crate::solver::{
     DenseStepper, Energies, EnergyMethod, Excitation, Kinematics, ModalCache, ModalStepper, ModalSystem, StepPlan,
@@ -74,6 +75,13 @@ pub struct RunState {
     /// [`Simulation::next_step_ns`]).
     #[serde(default)]
     pub step_level: u32,
+    /// The stress envelope so far: each station's largest |stress|, Pa, in the order of
+    /// [`crate::model::stations::Stations::all`] (issue 30).
+    #[serde(default)]
+    pub envelope: Vec<f64>,
+    /// When each station's largest stress was reached, s.
+    #[serde(default)]
+    pub envelope_times: Vec<f64>,
 }
 
 impl RunState {
@@ -253,6 +261,8 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     output: StepResult,
     /// The impact as the initial state starts it.
     impact: Impact,
+    /// The stress envelope's stations in modal coordinates.
+    stations: StationRows,
 }
 
 impl Simulation<ModalStepper> {
@@ -404,6 +414,15 @@ impl<S: Stepper> Simulation<S> {
             input_motion: motion,
             inertial_potential: 0.0,
             step_level: 0,
+            envelope: vec![0.0; model.stations.len()],
+            envelope_times: vec![0.0; model.stations.len()],
+        };
+        let stations = if stepper.modal_coordinates() {
+            let divisors: Vec<f64> = model.stations.all().map(|s| s.divisor).collect();
+            let upper = (0..divisors.len()).map(|k| k >= model.stations.lower.len()).collect();
+            StationRows::new(&modal, &divisors, upper)
+        } else {
+            StationRows::default()
         };
         let backup = state.kinematics.clone();
         let output = StepResult::default();
@@ -425,14 +444,38 @@ impl<S: Stepper> Simulation<S> {
             step_end: None,
             output,
             impact,
+            stations,
         };
         simulation.evaluate_initial();
         Ok(simulation)
     }
 
+    /// Raises the stress envelope by the current state (in `stage` under `excitation`, at `time` s).
+    fn observe_envelope(&mut self, stage: Stage, excitation: &Excitation, time: f64, step: u64) {
+        if self.stations.is_empty() || !step.is_multiple_of(self.stations.stride) {
+            return;
+        }
+        // The discarded modes' load coefficients, as the stepper's measurements take them.
+        let q = self.state.kinematics.displacement.as_slice();
+        let loads = self.modal.is_truncated().then(|| {
+            let b = self.modal.probes.row(Probe::Gap as usize);
+            let gap = (0..q.len().min(b.len())).map(|i| b[i] * q[i]).sum::<f64>() + excitation.gap_offset;
+            self.modal.correction.evaluate(gap, stage.is_contact(), excitation).loads
+        });
+        let state = &mut self.state;
+        self.stations.observe(
+            state.kinematics.displacement.as_slice(),
+            loads.as_ref(),
+            time,
+            &mut state.envelope,
+            &mut state.envelope_times,
+        );
+    }
+
     fn evaluate_initial(&mut self) {
         let excitation = self.excitation_at(0);
         let (probes, energies) = self.stepper.measure(&self.state.kinematics, Stage::Free, &excitation);
+        self.observe_envelope(Stage::Free, &excitation, 0.0, 0);
         let mut result = self.outputs(&probes, Stage::Free, 0, 0.0);
         self.set_support_and_tips(&mut result, &self.state.kinematics, &excitation);
         self.state.inertial_potential = energies.inertial_potential;
@@ -512,7 +555,8 @@ impl<S: Stepper> Simulation<S> {
             upper_tip_deflection: probes[Probe::UpperTipDeflection as usize],
             lower_clamp_bending_stress: probes[Probe::ClampMoment as usize] / s.lower.section_modulus,
             lower_clamp_shear_stress: probes[Probe::ClampShear as usize] / s.lower.shear_area,
-            upper_contact_bending_stress: probes[Probe::UpperContactMoment as usize] / s.upper.section_modulus,
+            upper_contact_bending_stress: probes[Probe::UpperContactMoment as usize]
+                / self.model.contact_section_modulus,
             contact_force: force,
             contact_stress: force / s.contact.area,
             ..StepResult::default()
@@ -578,7 +622,7 @@ impl<S: Stepper> Simulation<S> {
             (Probe::LowerTipDeflection, 1.0),
             (Probe::ClampMoment, 1.0 / s.lower.section_modulus),
             (Probe::ClampShear, 1.0 / s.lower.shear_area),
-            (Probe::UpperContactMoment, 1.0 / s.upper.section_modulus),
+            (Probe::UpperContactMoment, 1.0 / self.model.contact_section_modulus),
             (Probe::Gap, bar),
         ];
         let law = self.modal.law.filter(|_| stage.is_contact());
@@ -692,7 +736,7 @@ impl<S: Stepper> Simulation<S> {
             (Probe::ClampShear, FREE_PEAK_TOLERANCE * peaks.lower_clamp_shear_stress * s.lower.shear_area),
             (
                 Probe::UpperContactMoment,
-                FREE_PEAK_TOLERANCE * peaks.upper_contact_bending_stress * s.upper.section_modulus,
+                FREE_PEAK_TOLERANCE * peaks.upper_contact_bending_stress * self.model.contact_section_modulus,
             ),
             (Probe::Gap, 0.5 * probes[Probe::Gap as usize]),
         ];
@@ -748,6 +792,7 @@ impl<S: Stepper> Simulation<S> {
             });
         }
         self.state.gap = probes[Probe::Gap as usize];
+        self.observe_envelope(stage, &excitation, seconds(previous.time_ns + step_ns), previous.step + 1);
         let rate = self.gap_rate(&self.state.kinematics, stage, &excitation);
         energies.dissipation_rate += self.contact_dissipation_rate(self.state.gap, rate, stage);
         let mut result = self.outputs(&probes, stage, previous.time_ns + step_ns, rate);
@@ -1331,6 +1376,29 @@ impl<S: Stepper> Simulation<S> {
     /// [`RunState::validate`]; a refused state leaves the simulation as it was.
     pub fn restore(&mut self, state: RunState) -> Result<()> {
         state.validate(self.modal.dofs(), self.longest_step_ns())?;
+        // The stress envelope: one value per station of this model, each a finite |stress|
+        // reached at a time within the run.
+        let stations = self.model.stations.len();
+        for (field, values) in [("envelope", &state.envelope), ("envelope_times", &state.envelope_times)] {
+            if values.len() != stations {
+                return Err(Error::StateInvalid {
+                    field: field.to_string(),
+                    detail: format!("has {} values, this model has {stations} stress stations", values.len()),
+                });
+            }
+            if let Some(k) = values.iter().position(|v| !(v.is_finite() && *v >= 0.0)) {
+                return Err(Error::StateInvalid {
+                    field: format!("{field}[{k}]"),
+                    detail: format!("= {} is not a finite value >= 0", values[k]),
+                });
+            }
+        }
+        if let Some(k) = state.envelope_times.iter().position(|t| *t > state.result.time) {
+            return Err(Error::StateInvalid {
+                field: format!("envelope_times[{k}]"),
+                detail: format!("= {} s is after the state's time {} s", state.envelope_times[k], state.result.time),
+            });
+        }
         let previous = std::mem::replace(&mut self.state, state);
         let previous_output = self.output;
         self.step_end = None;
@@ -1407,7 +1475,50 @@ impl<S: Stepper> Simulation<S> {
             first_contact_end: s.first_contact.end(),
             time_steps: TimeSteps { free: seconds(self.plan.free_ns), contact: seconds(self.plan.contact_ns) },
             impact: self.impact,
+            envelope: self.envelope(),
         }
+    }
+
+    /// The stress envelope so far (issue 30).
+    pub fn envelope(&self) -> crate::results::StressEnvelope {
+        use crate::model::stations::Station;
+        use crate::results::{BeamEnvelope, StationEnvelope};
+        let st = &self.model.stations;
+        let (max, times) = (&self.state.envelope, &self.state.envelope_times);
+        let mut offset = 0;
+        let mut take = |stations: &[Station]| {
+            let range = offset..offset + stations.len();
+            offset += stations.len();
+            StationEnvelope {
+                positions: stations.iter().map(|s| s.x).collect(),
+                max: max.get(range.clone()).map_or_else(Vec::new, <[f64]>::to_vec),
+                times: times.get(range).map_or_else(Vec::new, <[f64]>::to_vec),
+                allowable: stations.iter().map(|s| s.allowable).collect(),
+            }
+        };
+        let mut lower = BeamEnvelope { bending: take(&st.lower.bending), shear: take(&st.lower.shear) };
+        let mut upper = BeamEnvelope { bending: take(&st.upper.bending), shear: take(&st.upper.shear) };
+        // The paper's three points are stations too, the same functionals: their peaks, resolved
+        // within the steps by the probes' cubic, raise them.
+        let (peaks, times) = (&self.state.result.peaks, &self.state.peak_times);
+        let raise = |e: &mut StationEnvelope, k: usize, value: f64, time: f64| {
+            if k < e.max.len() && value > e.max[k] {
+                (e.max[k], e.times[k]) = (value, time);
+            }
+        };
+        if !st.lower.bending.is_empty() {
+            raise(&mut lower.bending, 0, peaks.lower_clamp_bending_stress, times.lower_clamp_bending_stress);
+        }
+        if !st.lower.shear.is_empty() {
+            raise(&mut lower.shear, 0, peaks.lower_clamp_shear_stress, times.lower_clamp_shear_stress);
+        }
+        let contact = self.model.contact_node;
+        let at_contact: Vec<usize> =
+            st.upper.bending.iter().enumerate().filter(|(_, s)| s.node == contact).map(|(k, _)| k).collect();
+        if let [k] = at_contact[..] {
+            raise(&mut upper.bending, k, peaks.upper_contact_bending_stress, times.upper_contact_bending_stress);
+        }
+        crate::results::StressEnvelope { lower, upper, sampled_every: self.stations.stride }
     }
 
     /// The impact's angular velocity and closing speed at t = 0.

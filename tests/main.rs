@@ -51,6 +51,7 @@ mod reactions;
 mod report_csv;
 mod robust_meshes;
 mod scenario;
+mod stepped_beams;
 mod stepping;
 mod support_motion;
 mod sweep;

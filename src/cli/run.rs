@@ -166,6 +166,7 @@ pub fn run(args: &RunArgs) -> Result<bool> {
         summary_json["converged_peaks"] = serde_json::json!(answer.converged_peaks);
         summary_json["converged_first_contact_peaks"] = serde_json::json!(answer.converged_first_contact_peaks);
         summary_json["quality"] = serde_json::json!(answer.quality);
+        envelope_json(&mut summary_json, &answer);
         let doc = serde_json::json!({
             "scenario": resolved,
             "scenario_as_given": scenario,
@@ -195,6 +196,20 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     Ok(answer.quality.trusted)
 }
 
+/// Each beam's worst stress along it (issue 30) in `summary.peaks` beside the paper's five
+/// (`upper.bending_stress`, `upper.shear_stress`, `lower.bending_stress`, `lower.shear_stress`;
+/// null without a shear area), their positions (m from the hinge or the clamp) in
+/// `summary.peak_positions` and their times in `summary.peak_times`.
+pub fn envelope_json(summary: &mut serde_json::Value, answer: &beam_impact::answer::Answer) {
+    let mut positions = serde_json::Map::new();
+    for (name, peak) in beam_impact::results::ENVELOPE_PEAK_NAMES.iter().zip(answer.envelope_peaks) {
+        summary["peaks"][*name] = serde_json::json!(peak.map(|p| p.value));
+        summary["peak_times"][*name] = serde_json::json!(peak.map(|p| p.time));
+        positions.insert(name.to_string(), serde_json::json!(peak.map(|p| p.position)));
+    }
+    summary["peak_positions"] = serde_json::Value::Object(positions);
+}
+
 /// The `discretisation` block of `--json` and of the log's `answer.json`: each peak's figure, the
 /// twin's spreads (whole run and first contact), the late peaks not vouched for, and the runs (rungs) behind the answer.
 pub fn discretisation_json(answer: &beam_impact::answer::Answer) -> serde_json::Value {
@@ -204,14 +219,26 @@ pub fn discretisation_json(answer: &beam_impact::answer::Answer) -> serde_json::
         "sensitivity_spread": answer.sensitivity_spread,
         "first_contact_sensitivity_spread": answer.first_contact_sensitivity_spread,
         "unvouched_late_peaks": answer.unvouched_late_peaks,
+        "envelope_peaks": envelope_figures(&answer.envelope_discretisation_error),
+        "envelope_sensitivity_spread": answer.envelope_sensitivity_spread.as_ref().map(envelope_figures),
         "runs": answer.runs,
     })
+}
+
+/// The envelope peaks' figures by name (null where not defined).
+fn envelope_figures(values: &[Option<f64>; 4]) -> serde_json::Value {
+    let mut map = serde_json::Map::new();
+    for (name, v) in beam_impact::results::ENVELOPE_PEAK_NAMES.iter().zip(values) {
+        map.insert(name.to_string(), serde_json::json!(v));
+    }
+    serde_json::Value::Object(map)
 }
 
 /// The SI units of the `--json` fields (by name; nested names with dots).
 pub fn json_units() -> serde_json::Value {
     serde_json::json!({
         "time, times, contact windows, time_steps, first_contact_end": "s",
+        "peak_positions, envelope positions": "m from the beam's support (the hinge, the clamp)",
         "lower_tip_deflection, tip_deflection": "m",
         "*_stress (peaks, first_contact_peaks, energy_method)": "Pa",
         "contact_force, energy_method.force": "N",

@@ -411,15 +411,15 @@ impl Instance {
         let mut scratch = self.scenario.clone();
         let defaults = Scenario::default();
         let mut messages = Vec::new();
-        let mut named: Vec<&str> = Vec::new();
+        let mut named: Vec<std::borrow::Cow<'static, str>> = Vec::new();
         while let Err(e) = scratch.validate() {
             messages.push(e.to_string());
             let Error::InvalidParameter { name, .. } = e else { break };
             if named.contains(&name) {
                 break;
             }
-            named.push(name);
-            match find(name) {
+            named.push(name.clone());
+            match find(&name) {
                 Ok(p) => {
                     if (p.put)(&mut scratch, (p.get)(&defaults)).is_err() {
                         break;
@@ -842,8 +842,9 @@ impl Instance {
             }
             Source::EnergyMethod(get) => get(self.computed(&v.name)?.energy_method()),
             Source::Utilisation(k) => {
-                let peaks = self.computed(&v.name)?.output().peaks;
-                crate::answer::Design::assess(&self.scenario, &peaks).utilisation.as_array()[k]
+                let simulation = self.computed(&v.name)?;
+                let (peaks, envelope) = (simulation.output().peaks, simulation.envelope());
+                crate::answer::Design::assess(&self.scenario, &peaks, &envelope).utilisation.as_array()[k]
             }
             Source::DiscretisationError => {
                 self.computed(&v.name)?;
@@ -877,8 +878,9 @@ impl Instance {
         match v.source {
             Source::ContactActive => Ok(self.computed(&v.name)?.output().contact),
             Source::DesignPass => {
-                let peaks = self.computed(&v.name)?.output().peaks;
-                Ok(crate::answer::Design::assess(&self.scenario, &peaks).pass)
+                let simulation = self.computed(&v.name)?;
+                let (peaks, envelope) = (simulation.output().peaks, simulation.envelope());
+                Ok(crate::answer::Design::assess(&self.scenario, &peaks, &envelope).pass)
             }
             Source::Trusted => {
                 let energy = self.computed(&v.name)?.quality().trusted;

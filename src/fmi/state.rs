@@ -39,7 +39,7 @@ pub const MAGIC: &[u8; 8] = b"BEAMFMU\0";
 
 /// Version of the byte format; bump it when the layout, [`Snapshot`], [`RunState`] or the set of
 /// FMU parameters changes.
-pub const FORMAT_VERSION: u32 = 6;
+pub const FORMAT_VERSION: u32 = 7;
 
 /// Bytes before the payload.
 pub const HEADER: usize = 24;
@@ -306,7 +306,7 @@ mod tests {
         out.insert(format!("{prefix}: {leaf}"));
     }
 
-    /// The payload's layout at FORMAT_VERSION 6 (6: the exact modal advance's step level; 5: issue 28's FMU parameters, the impact's
+    /// The payload's layout at FORMAT_VERSION 7 (7: the stress envelope's stations, issue 30; 6: the exact modal advance's step level; 5: issue 28's FMU parameters, the impact's
     /// angular velocity, `lower.kind`, `contact.stiffness` and `contact.clearance`; 4: the supports' motion, its start and input, the
     /// inertial potential and the supports' displacements in the results; 3: the method, modal cut-off, discretisation
     /// tolerance, allowables and yield stresses; the discretisation check's run states): every field path of `Snapshot` and its type, the
@@ -320,11 +320,13 @@ mod tests {
     /// list together. (A DVector is nalgebra's `[data, nrows, ncols]`: `[][]` the data, `[]` the
     /// sizes; `null` an absent Option or the static column count.)
     #[test]
-    fn snapshot_fields_are_pinned_at_format_version_6() {
-        const VERSION_6: &[&str] = &[
+    fn snapshot_fields_are_pinned_at_format_version_7() {
+        const VERSION_7: &[&str] = &[
             "checks[].contact_windows[].end: f64",
             "checks[].contact_windows[].start: f64",
             "checks[].dissipation_rate: f64",
+            "checks[].envelope[]: f64",
+            "checks[].envelope_times[]: f64",
             "checks[].first_contact.ended: bool",
             "checks[].first_contact.last_contact: f64",
             "checks[].first_contact.peaks.contact_force: f64",
@@ -464,6 +466,8 @@ mod tests {
             "run.contact_windows[].end: f64",
             "run.contact_windows[].start: f64",
             "run.dissipation_rate: f64",
+            "run.envelope[]: f64",
+            "run.envelope_times[]: f64",
             "run.first_contact.ended: bool",
             "run.first_contact.last_contact: f64",
             "run.first_contact.peaks.contact_force: f64",
@@ -565,7 +569,7 @@ mod tests {
         let found: Vec<&str> = found.iter().map(String::as_str).collect();
         assert_eq!(
             (FORMAT_VERSION, found.as_slice()),
-            (6, VERSION_6),
+            (7, VERSION_7),
             "Snapshot's fields changed: bump FORMAT_VERSION and update the pinned list"
         );
     }

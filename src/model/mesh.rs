@@ -46,6 +46,23 @@ impl Support {
     }
 }
 
+/// Node positions from `start` to `end` with about `elements` elements and a node at each of
+/// `breaks` (strictly inside): each interval between breaks takes its share of the elements by
+/// length, at least one, equally spaced within it.
+fn spread(start: f64, end: f64, elements: usize, breaks: &[f64]) -> Vec<f64> {
+    let mut points = vec![start];
+    points.extend(breaks.iter().copied().filter(|&b| b > start && b < end));
+    points.push(end);
+    let total = end - start;
+    let mut x = vec![start];
+    for pair in points.windows(2) {
+        let (a, b) = (pair[0], pair[1]);
+        let n = ((elements as f64 * (b - a) / total).round() as usize).max(1);
+        x.extend((1..=n).map(|i| if i == n { b } else { a + (b - a) * i as f64 / n as f64 }));
+    }
+    x
+}
+
 impl Mesh {
     /// A beam from node positions `x` (ascending, first = support), numbering free DOFs node by node.
     pub fn new(x: &[f64], support: Support) -> Mesh {
@@ -75,6 +92,15 @@ impl Mesh {
         Mesh::new(&x, Support::Clamped)
     }
 
+    /// A clamped-free beam of about `elements` elements with a node at every section change
+    /// `breaks` (ascending, inside the beam; none: [`Self::cantilever`], bit for bit).
+    pub fn cantilever_sections(length: f64, elements: usize, breaks: &[f64]) -> Mesh {
+        if breaks.is_empty() {
+            return Mesh::cantilever(length, elements);
+        }
+        Mesh::new(&spread(0.0, length, elements, breaks), Support::Clamped)
+    }
+
     /// A rigid support of `length` m: one element, no free DOF.
     pub fn rigid(length: f64) -> Mesh {
         Mesh::new(&[0.0, length], Support::Rigid)
@@ -86,6 +112,29 @@ impl Mesh {
         let mut x: Vec<f64> = (0..=inner).map(|i| contact_position * i as f64 / inner as f64).collect();
         x.extend((1..=outer).map(|i| contact_position + (length - contact_position) * i as f64 / outer as f64));
         Mesh::new(&x, Support::Hinged)
+    }
+
+    /// [`Self::hinged_free`] with a node at every section change `breaks` as well (ascending,
+    /// inside the beam; none: [`Self::hinged_free`], bit for bit). The contact node is the node
+    /// at `contact_position`.
+    pub fn hinged_free_sections(
+        length: f64,
+        contact_position: f64,
+        inner: usize,
+        outer: usize,
+        breaks: &[f64],
+    ) -> (Mesh, usize) {
+        if breaks.is_empty() {
+            return (Mesh::hinged_free(length, contact_position, inner, outer), inner);
+        }
+        let before: Vec<f64> = breaks.iter().copied().filter(|&b| b < contact_position).collect();
+        let after: Vec<f64> = breaks.iter().copied().filter(|&b| b > contact_position).collect();
+        let mut x = spread(0.0, contact_position, inner, &before);
+        let contact = x.len() - 1;
+        if outer > 0 {
+            x.extend(spread(contact_position, length, outer, &after).into_iter().skip(1));
+        }
+        (Mesh::new(&x, Support::Hinged), contact)
     }
 
     /// Number of elements.

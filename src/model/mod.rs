@@ -9,6 +9,8 @@ pub mod mesh;
 pub mod motion_table;
 pub mod parameters;
 pub mod scenario;
+pub mod section;
+pub mod stations;
 pub mod stress_recovery;
 pub mod support_motion;
 pub mod system;

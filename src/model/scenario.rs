@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 use super::contact_law::{ContactLaw, LawKind, EXPONENT_RANGE};
 use super::discretisation::{auto_count, auto_real, Method, PAPER_ELEMENTS};
 use super::motion_table::MotionTable;
+use super::section::{self, SectionSpec};
 use super::stress_recovery::StressRecovery;
 use super::support_motion::SupportMotion;
 use super::time_step::TimeStep;
@@ -41,6 +42,18 @@ pub struct UpperBeam {
     pub yield_stress: f64,
     /// Constant vertical force at the free end, N, up positive (the FMU overrides it as an input).
     pub tip_force: f64,
+    /// Shear area A_s,b, m^2, for the bridge's shear stress Q/A_s, or 0 (the default; the paper
+    /// gives none): no shear stress for the bridge.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub shear_area: f64,
+    /// Allowable shear stress of the bridge, Pa, or 0 (the default): none checked.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub allowable_shear_stress: f64,
+    /// The bridge's sections from the hinge (`[[upper.sections]]`, issue 30); none: the uniform
+    /// beam of the fields above. With sections, `length` and `mass` follow from them and
+    /// `second_moment`, `section_modulus` and `shear_area` are the first section's.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub sections: Vec<SectionSpec>,
 }
 
 impl Default for UpperBeam {
@@ -56,6 +69,9 @@ impl Default for UpperBeam {
             allowable_bending_stress: PAPER_ALLOWABLE_BENDING,
             yield_stress: 0.0,
             tip_force: 0.0,
+            shear_area: 0.0,
+            allowable_shear_stress: 0.0,
+            sections: Vec::new(),
         }
     }
 }
@@ -131,6 +147,11 @@ pub struct LowerBeam {
     pub yield_stress: f64,
     /// Constant vertical force at the free end, N, up positive (the FMU overrides it as an input).
     pub tip_force: f64,
+    /// The arrestor's sections from the clamp (`[[lower.sections]]`, issue 30); none: the uniform
+    /// beam of the fields above. With sections, `length` and `mass` follow from them and
+    /// `second_moment`, `section_modulus` and `shear_area` are the first section's (at the clamp).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub sections: Vec<SectionSpec>,
 }
 
 impl Default for LowerBeam {
@@ -149,6 +170,7 @@ impl Default for LowerBeam {
             allowable_shear_stress: PAPER_ALLOWABLE_SHEAR,
             yield_stress: 0.0,
             tip_force: 0.0,
+            sections: Vec::new(),
         }
     }
 }
@@ -469,6 +491,47 @@ impl Scenario {
         if scenario.impact_angular_velocity.is_some() && !has_key(text, &["drop_height"]) {
             scenario.drop_height = 0.0;
         }
+        // A beam of sections: what its uniform fields say follows from them unless given (then
+        // they must agree, which validation checks).
+        for beam in ["upper", "lower"] {
+            let given = |key: &str| has_key(text, &[beam, key]);
+            let (length, mass, first) = match beam {
+                "upper" if !scenario.upper.sections.is_empty() => {
+                    let (l, m) = section::totals(&scenario.upper.sections);
+                    (l, m, scenario.upper.sections[0].clone())
+                }
+                "lower" if !scenario.lower.sections.is_empty() => {
+                    let (l, m) = section::totals(&scenario.lower.sections);
+                    (l, m, scenario.lower.sections[0].clone())
+                }
+                _ => continue,
+            };
+            let fields: [(&str, f64); 5] = [
+                ("length", length),
+                ("mass", mass),
+                ("second_moment", first.second_moment),
+                ("section_modulus", first.section_modulus),
+                ("shear_area", first.shear_area),
+            ];
+            for (key, value) in fields {
+                if given(key) {
+                    continue;
+                }
+                let target = match (beam, key) {
+                    ("upper", "length") => &mut scenario.upper.length,
+                    ("upper", "mass") => &mut scenario.upper.mass,
+                    ("upper", "second_moment") => &mut scenario.upper.second_moment,
+                    ("upper", "section_modulus") => &mut scenario.upper.section_modulus,
+                    ("upper", _) => &mut scenario.upper.shear_area,
+                    (_, "length") => &mut scenario.lower.length,
+                    (_, "mass") => &mut scenario.lower.mass,
+                    (_, "second_moment") => &mut scenario.lower.second_moment,
+                    (_, "section_modulus") => &mut scenario.lower.section_modulus,
+                    _ => &mut scenario.lower.shear_area,
+                };
+                *target = value;
+            }
+        }
         // What one field states, another may not state too.
         let bar = ["area", "length", "elastic_modulus"].map(|k| format!("contact.{k}"));
         let given_bar: Vec<&str> = bar.iter().map(String::as_str).filter(|k| has_key(text, &split(k))).collect();
@@ -656,6 +719,38 @@ impl Scenario {
         check(optional_stress("upper.yield_stress", u.yield_stress));
         check(tip_force("upper.tip_force", u.tip_force));
 
+        if u.shear_area != 0.0 {
+            check(size("upper.shear_area", "m^2 (0: none)", u.shear_area, 1e-12, 1e3));
+        }
+        if u.allowable_shear_stress != 0.0 {
+            check(stress("upper.allowable_shear_stress", u.allowable_shear_stress));
+        }
+        for (beam, sections, fields) in [
+            ("upper", &u.sections, [u.length, u.mass, u.second_moment, u.section_modulus, u.shear_area]),
+            ("lower", &l.sections, [l.length, l.mass, l.second_moment, l.section_modulus, l.shear_area]),
+        ] {
+            let errors_before = errors.len();
+            errors.extend(section::validation_errors(beam, sections));
+            if sections.is_empty() || errors.len() > errors_before {
+                continue;
+            }
+            let (length, mass) = section::totals(sections);
+            let first = &sections[0];
+            let implied = [length, mass, first.second_moment, first.section_modulus, first.shear_area];
+            let names = ["length", "mass", "second_moment", "section_modulus", "shear_area"];
+            let units = ["m", "kg", "m^4", "m^3", "m^2"];
+            for k in 0..5 {
+                let name = format!("{beam}.{}", names[k]);
+                if let Err(e) = section::agrees(name, units[k], fields[k], implied[k]) {
+                    errors.push(e);
+                }
+            }
+        }
+        let mut check = |result: Result<()>| {
+            if let Err(e) = result {
+                errors.push(e);
+            }
+        };
         check(size("lower.length", "m", l.length, 0.01, 1e3));
         check(size("lower.mass", "kg", l.mass, 1e-3, 1e9));
         check(within("lower.tip_mass", "kg", l.tip_mass, 0.0, 1e9));
@@ -721,10 +816,54 @@ impl Scenario {
     /// The energy the impact brings, J: m_u g h for a drop (the paper's energy balance), or the
     /// bridge's kinetic energy about its hinge, m_u l_u^2 omega_0^2 / 6, for a stated speed.
     pub fn impact_energy(&self) -> f64 {
+        if !self.upper.sections.is_empty() {
+            // J omega^2 / 2 about the hinge, J = int mu x^2 dx.
+            let (_, _, second) = section::mass_moments(&self.upper_segments());
+            return match self.impact_angular_velocity {
+                Some(omega) => 0.5 * second * omega * omega,
+                None => self.upper.mass * self.gravity * self.drop_height,
+            };
+        }
         match self.impact_angular_velocity {
             Some(omega) => self.upper.mass * self.upper.length * self.upper.length * omega * omega / 6.0,
             None => self.upper.mass * self.gravity * self.drop_height,
         }
+    }
+
+    /// The bridge's segments from the hinge: its sections, or one of its uniform fields.
+    pub fn upper_segments(&self) -> Vec<section::Segment> {
+        let u = &self.upper;
+        section::segments(
+            &section::Uniform {
+                length: u.length,
+                mass: u.mass,
+                elastic_modulus: u.elastic_modulus,
+                second_moment: u.second_moment,
+                section_modulus: u.section_modulus,
+                shear_area: u.shear_area,
+                allowable_bending_stress: u.allowable_bending_stress,
+                allowable_shear_stress: u.allowable_shear_stress,
+            },
+            &u.sections,
+        )
+    }
+
+    /// The arrestor's segments from the clamp: its sections, or one of its uniform fields.
+    pub fn lower_segments(&self) -> Vec<section::Segment> {
+        let l = &self.lower;
+        section::segments(
+            &section::Uniform {
+                length: l.length,
+                mass: l.mass,
+                elastic_modulus: l.elastic_modulus,
+                second_moment: l.second_moment,
+                section_modulus: l.section_modulus,
+                shear_area: l.shear_area,
+                allowable_bending_stress: l.allowable_bending_stress,
+                allowable_shear_stress: l.allowable_shear_stress,
+            },
+            &l.sections,
+        )
     }
 
     /// Duration in integer nanoseconds.

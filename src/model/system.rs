@@ -6,6 +6,8 @@ use nalgebra::{DMatrix, DVector};
 use super::assembly::Beam;
 use super::mesh::Mesh;
 use super::scenario::{Scenario, SupportKind};
+use super::section::Segment;
+use super::stations::{BeamStations, Stations};
 use super::stress_recovery::StressRecovery;
 use crate::error::Result;
 
@@ -63,6 +65,11 @@ pub struct Model {
     pub bar_stiffness: f64,
     /// Probe functionals as rows over the global DOFs, indexed by [`Probe`].
     pub probes: DMatrix<f64>,
+    /// The bridge's section modulus at the contact node, m^3 (`upper.section_modulus` on a
+    /// uniform bridge; at a section change the smaller side's).
+    pub contact_section_modulus: f64,
+    /// Where the stress envelope is taken along each beam (issue 30).
+    pub stations: Stations,
 }
 
 impl Model {
@@ -84,25 +91,38 @@ impl Model {
             }
         }
         let s = scenario;
+        let lower_segments = s.lower_segments();
+        let upper_segments = s.upper_segments();
+        let breaks = |segments: &[Segment]| -> Vec<f64> { segments.iter().skip(1).map(|g| g.start).collect() };
         let lower = match s.lower.kind {
-            SupportKind::Beam => Beam::assemble(
+            SupportKind::Beam if s.lower.sections.is_empty() => Beam::assemble(
                 Mesh::cantilever(s.lower.length, s.lower.elements as usize),
                 s.lower.elastic_modulus * s.lower.second_moment,
                 s.lower.mass,
                 s.lower.tip_mass,
                 s.gravity,
             ),
+            SupportKind::Beam => Beam::assemble_segments(
+                Mesh::cantilever_sections(s.lower.length, s.lower.elements as usize, &breaks(&lower_segments)),
+                &lower_segments,
+                s.lower.tip_mass,
+                s.gravity,
+            ),
             // A rigid point: no free DOF, no mass; every functional of it is empty.
             SupportKind::Rigid => Beam::assemble(Mesh::rigid(s.lower.length), 1.0, 0.0, 0.0, s.gravity),
         };
-        let inner = s.upper.elements_to_contact as usize;
-        let upper = Beam::assemble(
-            Mesh::hinged_free(s.upper.length, s.contact_position, inner, s.upper.elements_beyond_contact as usize),
-            s.upper.elastic_modulus * s.upper.second_moment,
-            s.upper.mass,
-            0.0,
-            s.gravity,
+        let (upper_mesh, inner) = Mesh::hinged_free_sections(
+            s.upper.length,
+            s.contact_position,
+            s.upper.elements_to_contact as usize,
+            s.upper.elements_beyond_contact as usize,
+            &breaks(&upper_segments),
         );
+        let upper = if s.upper.sections.is_empty() {
+            Beam::assemble(upper_mesh, s.upper.elastic_modulus * s.upper.second_moment, s.upper.mass, 0.0, s.gravity)
+        } else {
+            Beam::assemble_segments(upper_mesh, &upper_segments, 0.0, s.gravity)
+        };
         let (nl, nu) = (lower.dofs(), upper.dofs());
         let n = nl + nu;
         let mut probes = DMatrix::zeros(PROBES, n);
@@ -136,7 +156,27 @@ impl Model {
             }
         };
         put(Probe::UpperContactMoment, None, Some(contact_moment));
+        let contact_section_modulus = if s.upper.sections.is_empty() {
+            s.upper.section_modulus
+        } else {
+            let d = s.contact_position;
+            upper_segments
+                .iter()
+                .filter(|g| g.start <= d && d <= g.end)
+                .map(|g| g.section_modulus)
+                .fold(f64::INFINITY, f64::min)
+        };
+        let stations = Stations {
+            lower: if s.lower.kind == SupportKind::Rigid {
+                BeamStations::default()
+            } else {
+                BeamStations::new(&lower, &lower_segments, &[], None)
+            },
+            upper: BeamStations::new(&upper, &upper_segments, &[inner], Some((inner, s.stress_recovery))),
+        };
         Ok(Model {
+            stations,
+            contact_section_modulus,
             scenario: scenario.clone(),
             bar_stiffness: contact_rate(s),
             contact_node: inner,
@@ -244,6 +284,22 @@ impl Model {
             self.probes.row(Probe::UpperTipDeflection as usize).transpose(),
             self.probes.row(Probe::LowerTipDeflection as usize).transpose(),
         )
+    }
+
+    /// Every envelope station's functional as a row over the global DOFs, in the order of
+    /// [`Stations::all`].
+    pub fn station_rows(&self) -> DMatrix<f64> {
+        let (nl, nu) = (self.lower.dofs(), self.upper.dofs());
+        let mut rows = DMatrix::zeros(self.stations.len(), nl + nu);
+        let lower = self.stations.lower.bending.iter().chain(&self.stations.lower.shear);
+        let upper = self.stations.upper.bending.iter().chain(&self.stations.upper.shear);
+        for (r, station) in lower.enumerate() {
+            rows.view_mut((r, 0), (1, nl)).copy_from(&station.functional.transpose());
+        }
+        for (r, station) in upper.enumerate() {
+            rows.view_mut((self.stations.lower.len() + r, nl), (1, nu)).copy_from(&station.functional.transpose());
+        }
+        rows
     }
 
     /// Positions of the bridge's nodes and of the arrestor's nodes, m, from each beam's support.

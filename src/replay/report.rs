@@ -562,6 +562,7 @@ pub fn summary_from_log(data: &LogData, simulation: &Simulation) -> Result<Summa
             TimeSteps { free: seconds(plan.free_ns), contact: seconds(plan.contact_ns) }
         },
         impact: simulation.impact(),
+        envelope: Default::default(),
     })
 }
 

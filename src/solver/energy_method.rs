@@ -84,10 +84,24 @@ impl EnergyMethod {
         // The support's spring: the arrestor's flexion (Eq. 29), or for a rigid support the
         // contact element alone.
         let rigid = s.lower.kind == crate::model::scenario::SupportKind::Rigid;
-        let k_f =
-            if rigid { s.contact.stiffness() } else { 3.0 * l.elastic_modulus * l.second_moment / l.length.powi(3) };
+        // A stepped arrestor's flexion: the unit-load integral over its sections.
+        let k_f = if rigid {
+            s.contact.stiffness()
+        } else if l.sections.is_empty() {
+            3.0 * l.elastic_modulus * l.second_moment / l.length.powi(3)
+        } else {
+            1.0 / crate::model::section::tip_flexibility(&s.lower_segments())
+        };
         let weight = s.upper.mass * s.gravity;
-        let (lu, d, h) = (s.upper.length, s.contact_position, s.drop_height);
+        let (d, h) = (s.contact_position, s.drop_height);
+        // The weight's lever W l_u / 2 about the hinge: twice the centre of gravity's distance
+        // for a bridge of sections (its deceleration below stays the uniform bar's estimate).
+        let lu = if s.upper.sections.is_empty() {
+            s.upper.length
+        } else {
+            let (m, first, _) = crate::model::section::mass_moments(&s.upper_segments());
+            2.0 * first / m
+        };
         // The arrestor's strain energy 1/2 k_f w^2 takes the impact's energy E_0 and the bridge's
         // weight's further work W l_u w / (2 d): for a drop E_0 = W h (the paper's form below);
         // for a stated speed E_0 is the bridge's kinetic energy (and W may be 0).
@@ -100,7 +114,7 @@ impl EnergyMethod {
         };
         let force = k_f * w;
         let strain_energy = 0.5 * force * w;
-        let bridge = DeceleratedBridge::new(s.upper.mass, lu, s.gravity, d, force);
+        let bridge = DeceleratedBridge::new(s.upper.mass, s.upper.length, s.gravity, d, force);
         let u = &s.upper;
         let bridge_contact_moment = bridge.moment(d);
         let bridge_strain_energy = 0.5 * bridge.moment_squared_integral() / (u.elastic_modulus * u.second_moment);

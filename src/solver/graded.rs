@@ -123,8 +123,9 @@ pub fn spurious_limit(beam: &Beam) -> Option<f64> {
         return None;
     }
     let h = (mesh.tip().x - mesh.nodes[0].x) / mesh.elements() as f64;
-    let s = &beam.section;
-    Some((ELEMENT_EIGENVALUE_BOUND * s.bending_stiffness / s.mass_per_length).sqrt() / (h * h))
+    // A beam of sections: its stiffest section per mass sets the highest wave speed.
+    let stiffest = beam.sections.iter().map(|s| s.bending_stiffness / s.mass_per_length).fold(0.0, f64::max);
+    Some((ELEMENT_EIGENVALUE_BOUND * stiffest).sqrt() / (h * h))
 }
 
 /// Refuses a beam whose elements differ in length by more than [`MAX_ELEMENT_RATIO`], with a
@@ -200,6 +201,32 @@ fn influence(response: Kind, x: f64, load: Kind, a: f64) -> f64 {
     }
 }
 
+/// [`influence`] / EI on a beam whose EI changes from element to element: the unit-load integral
+/// of m_r m_l / EI(xi) from the support to min(x, a), with the unit moments m = p - xi for a
+/// force at p and m = 1 for a couple, element by element (x measured from node 0).
+fn stepped_influence(beam: &Beam, response: Kind, x: f64, load: Kind, a: f64) -> f64 {
+    let mesh = &beam.mesh;
+    let x0 = mesh.nodes[0].x;
+    let upto = x.min(a);
+    // The moment of a unit load as c0 + c1 xi: a force at p gives p - xi, a couple 1.
+    let linear = |kind: Kind, p: f64| match kind {
+        Kind::Deflection => (p, -1.0),
+        Kind::Rotation => (1.0, 0.0),
+    };
+    let ((r0, r1), (l0, l1)) = (linear(response, x), linear(load, a));
+    // The product's antiderivative: r0 l0 xi + (r0 l1 + r1 l0) xi^2 / 2 + r1 l1 xi^3 / 3.
+    let antiderivative = |xi: f64| r0 * l0 * xi + (r0 * l1 + r1 * l0) * xi * xi / 2.0 + r1 * l1 * xi * xi * xi / 3.0;
+    let mut sum = 0.0;
+    for e in 0..mesh.elements() {
+        let (s, t) = (mesh.nodes[e].x - x0, (mesh.nodes[e + 1].x - x0).min(upto));
+        if s >= upto {
+            break;
+        }
+        sum += (antiderivative(t) - antiderivative(s)) / beam.sections[e].bending_stiffness;
+    }
+    sum
+}
+
 /// The flexibility of the beam held at its support: a cantilever from node 0, with a hinge's
 /// rotation held as well (its row and column are zero). Exact at the nodes for Hermite elements,
 /// so it is the inverse of the stiffness matrix of a clamped beam.
@@ -216,11 +243,12 @@ pub fn flexibility(beam: &Beam) -> DMatrix<f64> {
             dofs.push((i, Kind::Rotation, x));
         }
     }
-    let ei = beam.section.bending_stiffness;
+    let ei = beam.sections[0].bending_stiffness;
+    let uniform = beam.sections.iter().all(|s| s.bending_stiffness == ei);
     let mut g = DMatrix::zeros(mesh.dofs, mesh.dofs);
     for &(i, ki, x) in &dofs {
         for &(j, kj, a) in &dofs {
-            g[(i, j)] = influence(ki, x, kj, a) / ei;
+            g[(i, j)] = if uniform { influence(ki, x, kj, a) / ei } else { stepped_influence(beam, ki, x, kj, a) };
         }
     }
     g

@@ -42,9 +42,38 @@ impl Pitching {
         Pitching { initial_angle, angular_acceleration, fall_time, angular_velocity }
     }
 
+    /// The pitching of a bridge whose mass is not uniform along it (sections, issue 30): mass
+    /// `mass`, first and second moments `first` (int mu x dx) and `second` (int mu x^2 dx) about
+    /// the hinge. Eq. (17) becomes epsilon = g S / J, Eq. (20) alpha = atan(h / x_g) with the
+    /// centre of gravity at x_g = S / m, and Eqs. (21)-(22) t_0 = sqrt(2 alpha / epsilon),
+    /// omega = epsilon t_0: the uniform bar's (S = m l / 2, J = m l^2 / 3) in general form.
+    pub fn distributed(drop_height: f64, moments: (f64, f64, f64), gravity: f64) -> Pitching {
+        let (mass, first, second) = moments;
+        let initial_angle = libm::atan(drop_height / (first / mass));
+        let angular_acceleration = gravity * first / second;
+        let fall_time = (2.0 * initial_angle / angular_acceleration).sqrt();
+        Pitching { initial_angle, angular_acceleration, fall_time, angular_velocity: angular_acceleration * fall_time }
+    }
+
+    /// [`Self::at_speed`] for a bridge of sections (see [`Self::distributed`]).
+    pub fn distributed_at_speed(angular_velocity: f64, moments: (f64, f64, f64), gravity: f64) -> Pitching {
+        let (_, first, second) = moments;
+        let angular_acceleration = gravity * first / second;
+        let fall_time = angular_velocity / angular_acceleration;
+        let initial_angle = 0.5 * angular_acceleration * fall_time * fall_time;
+        Pitching { initial_angle, angular_acceleration, fall_time, angular_velocity }
+    }
+
     /// The pitching of scenario `s` under `gravity` (g plus the hinge's acceleration): from its
     /// impact speed when stated, else from its drop height.
     pub fn of(s: &crate::model::Scenario, gravity: f64) -> Pitching {
+        if !s.upper.sections.is_empty() {
+            let moments = crate::model::section::mass_moments(&s.upper_segments());
+            return match s.impact_angular_velocity {
+                Some(omega) => Pitching::distributed_at_speed(omega, moments, gravity),
+                None => Pitching::distributed(s.drop_height, moments, gravity),
+            };
+        }
         match s.impact_angular_velocity {
             Some(omega) => Pitching::at_speed(omega, s.upper.length, gravity),
             None => Pitching::new(s.drop_height, s.upper.length, gravity),

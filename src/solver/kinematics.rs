@@ -177,4 +177,10 @@ pub trait Stepper {
     fn energies(&self, state: &Kinematics, excitation: &Excitation) -> Energies;
     /// The stepper's state from physical kinematics.
     fn own_coordinates(&self, physical: &Kinematics) -> Kinematics;
+
+    /// True when the state's coordinates are the modal system's (the stress envelope is
+    /// evaluated from them); the dense oracle's are physical.
+    fn modal_coordinates(&self) -> bool {
+        false
+    }
 }

@@ -6,6 +6,7 @@ pub mod contact;
 pub mod dense;
 pub mod eigen;
 pub mod energy_method;
+pub mod envelope;
 pub mod exact;
 pub mod graded;
 pub mod initial;

@@ -42,6 +42,9 @@ pub struct ModalSystem {
     pub support_reactions: [[f64; 3]; REACTIONS],
     /// Probe functionals in modal coordinates (probes Phi).
     pub probes: DMatrix<f64>,
+    /// The stress envelope's station functionals in modal coordinates (rows in the order of
+    /// [`crate::model::stations::Stations::all`]; issue 30).
+    pub stations: DMatrix<f64>,
     /// Number of arrestor modes (the first block of coordinates).
     pub lower_dofs: usize,
     /// Contact bar stiffness, N/m.
@@ -109,6 +112,7 @@ impl ModalSystem {
             support_loads: model.support_loads().map(|x| shapes.transpose() * x),
             support_reactions: model.support_reaction_inertia(),
             probes: &model.probes * &shapes,
+            stations: model.station_rows() * &shapes,
             reactions: model.reactions().map(|r| {
                 let displacement = shapes.transpose() * &r.stiffness;
                 let acceleration = shapes.transpose() * &r.mass;

@@ -37,6 +37,8 @@ pub struct StaticCorrection {
     pub probes: [[f64; LOADS]; PROBES],
     /// k_s^T R x_a for each support reaction's stiffness row k_s.
     pub reactions: [[f64; LOADS]; REACTIONS],
+    /// s_k^T R x_a for each stress envelope station s_k (issue 30).
+    pub stations: Vec<[f64; LOADS]>,
     /// The physical contact bar's stiffness k_c, N/m (the stepper's is k_eff).
     pub bar_stiffness: f64,
 }

@@ -464,6 +464,10 @@ impl Stepper for ModalStepper {
         self.exact
     }
 
+    fn modal_coordinates(&self) -> bool {
+        true
+    }
+
     fn free_fourth_derivatives(&mut self, state: &Kinematics) -> Option<[f64; PROBES]> {
         if !self.exact {
             return None;

@@ -96,7 +96,11 @@ impl ModalSystem {
             &self.support_loads[1],
             &self.support_loads[2],
         ];
-        let mut correction = StaticCorrection { bar_stiffness: self.bar_stiffness, ..StaticCorrection::default() };
+        let mut correction = StaticCorrection {
+            bar_stiffness: self.bar_stiffness,
+            stations: vec![[0.0; LOADS]; self.stations.nrows()],
+            ..StaticCorrection::default()
+        };
         for &i in &discarded {
             let w = 1.0 / self.omega2[i];
             let x: [f64; LOADS] = std::array::from_fn(|a| loads[a][i]);
@@ -109,6 +113,9 @@ impl ModalSystem {
                 }
                 for k in 0..PROBES {
                     correction.probes[k][a] += w * self.probes[(k, i)] * x[a];
+                }
+                for (k, row) in correction.stations.iter_mut().enumerate() {
+                    row[a] += w * self.stations[(k, i)] * x[a];
                 }
                 for (s, reaction) in self.reactions.iter().enumerate() {
                     correction.reactions[s][a] += w * reaction.displacement[i] * x[a];
@@ -142,6 +149,7 @@ impl ModalSystem {
             support_loads: std::array::from_fn(|j| pick(&self.support_loads[j])),
             support_reactions: self.support_reactions,
             probes: DMatrix::from_fn(PROBES, keep.len(), |k, j| self.probes[(k, keep[j])]),
+            stations: DMatrix::from_fn(self.stations.nrows(), keep.len(), |k, j| self.stations[(k, keep[j])]),
             reactions: std::array::from_fn(|s| {
                 let r = &self.reactions[s];
                 ModalReaction {
@@ -173,6 +181,9 @@ fn add_into(into: &mut StaticCorrection, from: &StaticCorrection) {
         }
         for s in 0..REACTIONS {
             into.reactions[s][a] += from.reactions[s][a];
+        }
+        for (row, from_row) in into.stations.iter_mut().zip(&from.stations) {
+            row[a] += from_row[a];
         }
     }
     if from.bar_stiffness > 0.0 {

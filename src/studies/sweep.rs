@@ -38,7 +38,7 @@ use crate::error::{Error, Result};
 use crate::model::parameters::{self, Kind, Parameter};
 use crate::model::Scenario;
 use crate::record::NullRecorder;
-use crate::results::Peaks;
+use crate::results::{Peaks, ENVELOPE_PEAK_NAMES};
 use crate::solver::modal_cache::PER_RUN_FIELDS;
 use crate::solver::{EnergyMethod, ModalCache};
 
@@ -463,6 +463,9 @@ pub struct RowResults {
     pub utilisation: crate::answer::DesignUtilisation,
     /// Whether every utilisation is <= 1.
     pub design_pass: bool,
+    /// Each beam's worst stress along it (issue 30), in the order of
+    /// [`crate::results::ENVELOPE_PEAK_NAMES`].
+    pub envelope_peaks: [Option<crate::results::EnvelopePeak>; 4],
     /// The run's verdict: every check that ran passes (`quality.trusted` of `run --json`).
     pub trusted: bool,
 }
@@ -481,6 +484,7 @@ impl From<&crate::answer::Answer> for RowResults {
             yield_utilisation: c.yield_stress.map_or(f64::NAN, |c| c.value),
             utilisation: a.design.utilisation,
             design_pass: a.design.pass,
+            envelope_peaks: a.envelope_peaks,
             trusted: a.quality.trusted,
         }
     }
@@ -522,6 +526,9 @@ pub fn column_units(axes: &[Axis]) -> Vec<(String, &'static str)> {
     let mut c: Vec<(String, &'static str)> = axes.iter().map(|a| (a.field.name.to_string(), a.field.unit)).collect();
     c.extend(PEAK_QUANTITIES.iter().zip(PEAK_UNITS).map(|(n, u)| (format!("peak.{n}"), u)));
     c.extend(PEAK_QUANTITIES.iter().map(|n| (format!("peak_time.{n}"), "s")));
+    c.extend(ENVELOPE_PEAK_NAMES.iter().map(|n| (format!("peak.{n}"), "Pa")));
+    c.extend(ENVELOPE_PEAK_NAMES.iter().map(|n| (format!("peak_position.{n}"), "m")));
+    c.extend(ENVELOPE_PEAK_NAMES.iter().map(|n| (format!("utilisation.{n}"), "1")));
     c.extend(ENERGY_METHOD_FIELDS.iter().zip(ENERGY_METHOD_UNITS).map(|((n, _), u)| (format!("energy_method.{n}"), u)));
     c.push(("max_energy_residual".into(), "J"));
     c.extend(CHECK_COLUMNS.iter().map(|(n, u)| (n.to_string(), *u)));
@@ -555,6 +562,10 @@ fn cells(axes: &[Axis], row: &Row) -> Vec<Cell> {
         Ok(r) => {
             c.extend(r.peaks.as_array().map(Cell::Number));
             c.extend(r.peak_times.as_array().map(Cell::Number));
+            let given = |v: Option<f64>| v.map_or(Cell::Empty, Cell::Number);
+            c.extend(r.envelope_peaks.map(|p| given(p.map(|p| p.value))));
+            c.extend(r.envelope_peaks.map(|p| given(p.map(|p| p.position))));
+            c.extend(r.utilisation.envelope().map(given));
             c.extend(ENERGY_METHOD_FIELDS.iter().map(|(_, get)| Cell::Number(get(&r.energy_method))));
             c.push(Cell::Number(r.max_energy_residual));
             let optional = |v: f64| if v.is_nan() { Cell::Empty } else { Cell::Number(v) };
@@ -565,7 +576,12 @@ fn cells(axes: &[Axis], row: &Row) -> Vec<Cell> {
         }
         Err(message) => {
             c.extend(
-                (0..2 * PEAK_NAMES.len() + ENERGY_METHOD_FIELDS.len() + 2 + CHECK_COLUMNS.len()).map(|_| Cell::Empty),
+                (0..2 * PEAK_NAMES.len()
+                    + 3 * ENVELOPE_PEAK_NAMES.len()
+                    + ENERGY_METHOD_FIELDS.len()
+                    + 2
+                    + CHECK_COLUMNS.len())
+                    .map(|_| Cell::Empty),
             );
             c.push(Cell::Number(row.wall_time));
             c.push(Cell::Text(one_line(message)));
