@@ -291,6 +291,11 @@ pub fn run_with(
                         )),
                     })?;
                     sim.check_step_count(s.duration_ns(), options.max_steps)?;
+                    // Its envelope serves the beams' worst stresses only (figures, spreads),
+                    // except the converged answer of a paper-method run (its design check).
+                    if *role == "twin" || s.method == Method::Converged {
+                        sim.envelope_worst_only();
+                    }
                     let summary = sim.run(&mut NullRecorder)?;
                     let run = rung_run(role, &sim, &summary);
                     Ok((summary, run))

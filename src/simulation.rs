@@ -419,8 +419,7 @@ impl<S: Stepper> Simulation<S> {
         };
         let stations = if stepper.modal_coordinates() {
             let divisors: Vec<f64> = model.stations.all().map(|s| s.divisor).collect();
-            let upper = (0..divisors.len()).map(|k| k >= model.stations.lower.len()).collect();
-            StationRows::new(&modal, &divisors, upper)
+            StationRows::new(&modal, &divisors, crate::solver::envelope::groups(&model))
         } else {
             StationRows::default()
         };
@@ -1376,6 +1375,7 @@ impl<S: Stepper> Simulation<S> {
     /// [`RunState::validate`]; a refused state leaves the simulation as it was.
     pub fn restore(&mut self, state: RunState) -> Result<()> {
         state.validate(self.modal.dofs(), self.longest_step_ns())?;
+        self.stations.invalidate();
         // The stress envelope: one value per station of this model, each a finite |stress|
         // reached at a time within the run.
         let stations = self.model.stations.len();
@@ -1477,6 +1477,13 @@ impl<S: Stepper> Simulation<S> {
             impact: self.impact,
             envelope: self.envelope(),
         }
+    }
+
+    /// Keeps only each envelope's worst value exact from here on (a check rung's or a twin's
+    /// run: their figures and spreads compare the beams' worst stresses; see
+    /// [`StationRows::worst_only`]): the run takes a fraction of the envelope's work.
+    pub fn envelope_worst_only(&mut self) {
+        self.stations.worst_only = true;
     }
 
     /// The stress envelope so far (issue 30).
