@@ -1479,6 +1479,12 @@ impl<S: Stepper> Simulation<S> {
         }
     }
 
+    /// Takes no stress envelope from here on (its stations' values stay as they are): the
+    /// bench's side-by-side measure of what the envelope costs per step.
+    pub fn without_envelope(&mut self) {
+        self.stations = StationRows::default();
+    }
+
     /// Keeps only each envelope's worst value exact from here on (a check rung's or a twin's
     /// run: their figures and spreads compare the beams' worst stresses; see
     /// [`StationRows::worst_only`]): the run takes a fraction of the envelope's work.

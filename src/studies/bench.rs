@@ -222,6 +222,13 @@ pub fn converged_benchmark(runs: usize) -> Result<String> {
     crate::answer::run(&converged, &mut NullRecorder, Default::default())?;
     let paper = time(&|| run(&paper_mesh))?;
     let printed = time(&|| run(&converged))?;
+    // The stress envelope's cost: the printed rung without it, side by side.
+    let steps = Simulation::new(&converged)?.run(&mut NullRecorder)?.steps.max(1);
+    let bare = time(&|| {
+        let mut simulation = Simulation::new(&converged)?;
+        simulation.without_envelope();
+        simulation.run(&mut NullRecorder).map(|_| ())
+    })?;
     let mut checks = crate::answer::check_scenarios(&converged)?;
     checks.push(crate::answer::twin_scenario(&converged));
     let check_runs = time(&|| checks.iter().try_for_each(run))?;
@@ -233,6 +240,14 @@ pub fn converged_benchmark(runs: usize) -> Result<String> {
     let _ = writeln!(out, "converged answer vs the paper method (paper scenario, 3 s, median of {runs} runs):");
     let _ = writeln!(out, "  paper method, 7 + 7/7, auto steps   : {:8.1} ms  x1.00", ms(paper));
     let _ = writeln!(out, "  converged, printed rung alone       : {:8.1} ms  x{:.2}", ms(printed), ratio(printed));
+    let _ = writeln!(
+        out,
+        "  the same without the stress envelope: {:8.1} ms  x{:.2}: the envelope {:.0} ns per step of {steps} ({:.2}x the rung)",
+        ms(bare),
+        ratio(bare),
+        (printed.as_secs_f64() - bare.as_secs_f64()) / steps as f64 * 1e9,
+        printed.as_secs_f64() / bare.as_secs_f64()
+    );
     let _ = writeln!(
         out,
         "  its checks alone (2 rungs + twin)   : {:8.1} ms  x{:.2} (one after another)",
