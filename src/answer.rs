@@ -609,7 +609,7 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
         .flatten()
         .all(|c| c.pass);
     // The envelopes' peaks: a figure or spread above the tolerance that could carry the beam's
-    // worst utilisation past 1 makes the run not trusted (the design verdict hangs on it); one
+    // worst utilisation across 1 makes the run not trusted (the design verdict hangs on it); one
     // that cannot is said as an advisory (the verdict holds whatever the number's error).
     let mut advisories = energy.advisories.clone();
     let mut envelope_trusted = true;
@@ -635,10 +635,14 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
             peak.position,
             percent(tolerance)
         );
+        // The verdict flips within the figure: a pass that could fail, or a failure that could pass.
+        let flips = |u: f64| if u < 1.0 { u * (1.0 + error) >= 1.0 } else { u * (1.0 - error) < 1.0 };
         match u {
-            Some(u) if u * (1.0 + error) >= 1.0 => {
+            Some(u) if flips(u) => {
                 envelope_trusted = false;
-                reasons.push(format!("{line}, and its utilisation {u:.3} could pass 1 within it: refine the mesh"));
+                reasons.push(format!(
+                    "{line}, and its utilisation {u:.3} could be on the other side of 1 within it: refine the mesh"
+                ));
             }
             // A paper-method run's figure is its mesh's error, said beside the five peaks'.
             _ if paper => {}
