@@ -855,6 +855,13 @@ impl Instance {
                 self.sensitivity_spread()
             }
             Source::Impact(get) => get(&self.computed(&v.name)?.impact()),
+            // A beam without such a stress (the bridge without a shear area, a rigid support) or
+            // without an allowable: 0, as the descriptions say.
+            Source::EnvelopePeak(k) => self.computed(&v.name)?.envelope().peaks()[k].map_or(0.0, |p| p.value),
+            Source::EnvelopePosition(k) => self.computed(&v.name)?.envelope().peaks()[k].map_or(0.0, |p| p.position),
+            Source::EnvelopeUtilisation(k) => {
+                self.computed(&v.name)?.envelope().peaks()[k].and_then(|p| p.utilisation).unwrap_or(0.0)
+            }
             Source::LogPath
             | Source::ContactActive
             | Source::DesignPass
