@@ -369,9 +369,15 @@ type Row = (String, Type, Causality, Variability, Option<bool>, Option<&'static 
 /// An entry of [`OUTPUTS`] and [`APPENDED_OUTPUTS`]: name, unit, description, accessor.
 type OutputRow = (&'static str, &'static str, &'static str, Out);
 
-/// Every variable of the FMU, in value-reference order.
+/// Every variable of the FMU, in value-reference order, with the paper scenario's start values.
 pub fn table() -> Vec<Variable> {
-    let defaults = Scenario::default();
+    table_for(&Scenario::default())
+}
+
+/// Every variable of the FMU, in value-reference order, with the start values of `defaults`: the
+/// scenario an instance starts from (the paper's, or the one packed into the FMU's resources,
+/// issue 30). Names, value references, types and ranges are the same for every scenario.
+pub fn table_for(defaults: &Scenario) -> Vec<Variable> {
     let mut v: Vec<Variable> = Vec::new();
     let mut push = |(name, ty, causality, variability, exact, unit, description, start, source): Row| {
         let vr = v.len() as u32;
@@ -396,7 +402,7 @@ pub fn table() -> Vec<Variable> {
     // The two parameter blocks (first release, appended) and the two output blocks (first
     // release, appended) differ only in which entries they take.
     let parameter = |p: &'static Parameter| -> Row {
-        let value = (p.get)(&defaults);
+        let value = (p.get)(defaults);
         let (ty, start) = match p.kind {
             Kind::Real => (Type::Real, format_real(value)),
             Kind::Integer => (Type::Integer, format!("{}", value as i64)),
@@ -448,9 +454,10 @@ pub fn table() -> Vec<Variable> {
         Some("BeamImpact.mcap".into()),
         Source::LogPath,
     ));
-    for (name, tip, what) in
-        [("upper.tip_force", Tip::Upper, "bridge's free end"), ("lower.tip_force", Tip::Lower, "arrestor's free end")]
-    {
+    for (name, tip, what, start) in [
+        ("upper.tip_force", Tip::Upper, "bridge's free end", defaults.upper.tip_force),
+        ("lower.tip_force", Tip::Lower, "arrestor's free end", defaults.lower.tip_force),
+    ] {
         push((
             name.into(),
             Type::Real,
@@ -459,7 +466,7 @@ pub fn table() -> Vec<Variable> {
             Some(true),
             Some("N"),
             format!("Vertical external force at the {what}, up positive, held over each step"),
-            Some("0.0".into()),
+            Some(format_real(start)),
             Source::Input(tip),
         ));
     }
@@ -669,7 +676,7 @@ enum EnvelopeField {
 /// support, stress, formula).
 fn envelope_quantity(k: usize) -> (&'static str, &'static str, &'static str, &'static str) {
     let (beam, support) = if k < 2 { ("bridge", "hinge") } else { ("arrestor", "clamp") };
-    let (stress, formula) = if k % 2 == 0 { ("bending", "|M|/W") } else { ("shear", "|Q|/A_s") };
+    let (stress, formula) = if k.is_multiple_of(2) { ("bending", "|M|/W") } else { ("shear", "|Q|/A_s") };
     (beam, support, stress, formula)
 }
 
