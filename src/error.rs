@@ -181,3 +181,29 @@ impl Error {
         Error::InvalidParameter { name: name.into(), rule: rule.into(), value: value.to_string() }
     }
 }
+
+/// An error as one line of bounded length: a value quoted from a hostile input (a 4 MiB string in
+/// a scenario) must not become a megabyte of standard error or of an FMU's log. Lines longer than
+/// 600 characters keep their first 400 and last 150, with the count cut between.
+pub fn bounded_line(message: &str) -> String {
+    // Control characters (a terminal's escape sequences from a hostile file) are shown, not sent.
+    let line: String = message
+        .chars()
+        .map(|c| {
+            if c == '\n' || c == '\r' || c == '\t' {
+                ' '
+            } else if c.is_control() {
+                '\u{FFFD}'
+            } else {
+                c
+            }
+        })
+        .collect();
+    let chars: Vec<char> = line.chars().collect();
+    if chars.len() <= 600 {
+        return line;
+    }
+    let head: String = chars[..400].iter().collect();
+    let tail: String = chars[chars.len() - 150..].iter().collect();
+    format!("{head} [... {} characters cut ...] {tail}", chars.len() - 550)
+}

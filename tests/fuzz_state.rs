@@ -9,7 +9,7 @@
 
 use crate::fuzz_support;
 
-use beam_impact::fmi::state::{parameters_of, scenario_with, Snapshot, HEADER};
+use beam_impact::fmi::state::{parameters_of, scenario_of, Sections, Snapshot, HEADER};
 use beam_impact::record::NullRecorder;
 use beam_impact::{Scenario, Simulation};
 use fuzz_support::{corpus_files, iterations, mutate, Rng};
@@ -27,6 +27,7 @@ fn real_states() -> Vec<Vec<u8>> {
             parameters: parameters_of(&scenario),
             run: sim.state().clone(),
             checks: vec![sim.state().clone()],
+            sections: Sections::default(),
         };
         out.push(snapshot.to_bytes().unwrap());
     }
@@ -57,7 +58,7 @@ fn check(name: &str, bytes: &[u8], models: &mut Vec<(Scenario, Simulation)>) -> 
             return false;
         }
     };
-    let Ok(scenario) = scenario_with(&Scenario::default(), &snapshot.parameters) else { return false };
+    let Ok(scenario) = scenario_of(&Scenario::default(), &snapshot) else { return false };
     let small =
         scenario.upper.elements_to_contact.max(scenario.upper.elements_beyond_contact).max(scenario.lower.elements)
             <= 32;

@@ -31,6 +31,7 @@ mod fmi_misuse;
 mod fmi_motion;
 mod fmi_pack;
 mod fmi_quality;
+mod fmi_sections;
 mod fmi_state_restore;
 mod fuzz_log_reader;
 mod fuzz_motion_table;

@@ -1,10 +1,10 @@
 //! Any bytes as the payload of a serialized FMU state behind a correct header (length and
 //! CRC-32, as `src/fmi/state.rs` lays them out): reaches the MessagePack decoder, then what a
-//! restore does with a state that decodes (scenario limits, `RunState::validate`, 1 ms of steps),
-//! for models of at most 32 elements a segment.
+//! restore does with a state that decodes (its sections and parameters within the scenario limits,
+//! `RunState::validate`, 1 ms of steps), for models of at most 32 elements a segment.
 #![no_main]
 
-use beam_impact::fmi::state::{scenario_with, Snapshot, FORMAT_VERSION, HEADER, MAGIC};
+use beam_impact::fmi::state::{scenario_of, Snapshot, FORMAT_VERSION, HEADER, MAGIC};
 use beam_impact::record::NullRecorder;
 use beam_impact::{Scenario, Simulation};
 use libfuzzer_sys::fuzz_target;
@@ -32,7 +32,7 @@ fuzz_target!(|data: &[u8]| {
             return;
         }
     };
-    let Ok(scenario) = scenario_with(&Scenario::default(), &snapshot.parameters) else { return };
+    let Ok(scenario) = scenario_of(&Scenario::default(), &snapshot) else { return };
     let largest =
         scenario.upper.elements_to_contact.max(scenario.upper.elements_beyond_contact).max(scenario.lower.elements);
     if largest > 32 {

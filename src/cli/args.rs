@@ -81,6 +81,12 @@ pub enum Command {
         /// cross-building it).
         #[arg(long, value_name = "FILE.dylib")]
         darwin_library: Option<PathBuf>,
+        /// A scenario file to pack as both FMUs' starting scenario, `resources/scenario.toml`
+        /// (beams of sections included, which no FMU parameter can state): its values become the
+        /// start values of the model descriptions, and the importer's parameters override its
+        /// uniform fields. Without it the FMUs start from the paper scenario.
+        #[arg(long, value_name = "FILE.toml")]
+        scenario: Option<PathBuf>,
     },
     /// Read an MCAP log: print its summary and write Figures 6-9 (SVG and PNG), and Figures 10-12
     /// (natural modes) of its scenario.

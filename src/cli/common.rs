@@ -9,31 +9,8 @@ use beam_impact::record::output::{
 };
 use beam_impact::{Error, Result, Scenario};
 
-/// An error as one line of bounded length: a value quoted from a hostile input (a 4 MiB string in
-/// a scenario) must not become a megabyte of standard error. Lines longer than 600 characters
-/// keep their first 400 and last 150, with the count cut between.
-pub fn bounded_line(message: &str) -> String {
-    // Control characters (a terminal's escape sequences from a hostile file) are shown, not sent.
-    let line: String = message
-        .chars()
-        .map(|c| {
-            if c == '\n' || c == '\r' || c == '\t' {
-                ' '
-            } else if c.is_control() {
-                '\u{FFFD}'
-            } else {
-                c
-            }
-        })
-        .collect();
-    let chars: Vec<char> = line.chars().collect();
-    if chars.len() <= 600 {
-        return line;
-    }
-    let head: String = chars[..400].iter().collect();
-    let tail: String = chars[chars.len() - 150..].iter().collect();
-    format!("{head} [... {} characters cut ...] {tail}", chars.len() - 550)
-}
+/// An error as one line of bounded length (shared with the FMU's logger messages).
+pub use beam_impact::error::bounded_line;
 
 /// Reads and validates a scenario file (missing fields take their defaults); `-` is the standard
 /// input. A FIFO or socket is refused rather than waited on.

@@ -37,8 +37,16 @@ pub fn execute(command: Command) -> Result<Outcome> {
         }
         Command::Damping { file, set, figures } => done(damping::damping(file.as_deref(), &set, figures.as_deref())),
         Command::Modes { file, set, out } => done(modes::modes(file.as_deref(), &set, &out)),
-        Command::Pack { out, library, no_zigbuild, platforms, windows_library, darwin_library } => {
-            done(pack::pack(&pack::Request { out, library, no_zigbuild, platforms, windows_library, darwin_library }))
+        Command::Pack { out, library, no_zigbuild, platforms, windows_library, darwin_library, scenario } => {
+            done(pack::pack(&pack::Request {
+                out,
+                library,
+                no_zigbuild,
+                platforms,
+                windows_library,
+                darwin_library,
+                scenario,
+            }))
         }
         Command::Report { file, out, csv } => done(report::report(&file, out, csv.as_deref())),
         Command::Bench { runs } => done(bench::bench(runs)),

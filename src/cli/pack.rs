@@ -23,6 +23,8 @@ pub struct Request {
     pub windows_library: Option<PathBuf>,
     /// The macOS universal2 dylib to pack as it is.
     pub darwin_library: Option<PathBuf>,
+    /// The scenario file to pack as the FMUs' starting scenario (issue 30).
+    pub scenario: Option<PathBuf>,
 }
 
 /// Packs the FMUs for the platforms asked for. Linux: `library`, or else the glibc 2.17 build
@@ -32,7 +34,8 @@ pub struct Request {
 /// builds run here, in the CLI, not in `fmi::pack`: that module is part of the shared library
 /// loaded into every FMU host, which has no business spawning cargo; `fmi::pack` packs the files
 /// it is given. The packed descriptions' `generationTool` names the git commit of the source tree
-/// this executable was built from (also when the binaries are given as files).
+/// this executable was built from (also when the binaries are given as files). With a scenario
+/// file, both FMUs start from it ([`beam_impact::fmi::pack::PackedScenario`], issue 30).
 pub fn pack(request: &Request) -> Result<()> {
     let platforms = Platform::parse_list(&request.platforms)?;
     for (given, option, platform) in [
@@ -48,6 +51,18 @@ pub fn pack(request: &Request) -> Result<()> {
             )));
         }
     }
+    // The scenario is read, validated and checked for an FMU before anything is built.
+    let packed = match &request.scenario {
+        Some(path) => {
+            let scenario = super::common::read_scenario(path)?;
+            let source = match path.file_name() {
+                Some(name) if path.as_os_str() != "-" => name.to_string_lossy().into_owned(),
+                _ => "standard input".to_string(),
+            };
+            Some(beam_impact::fmi::pack::PackedScenario::new(&scenario, &source)?)
+        }
+        None => None,
+    };
     // Every binary given is checked from its metadata (a regular file of at most 1 GiB) before
     // anything is built or read: a huge or sparse file is refused at once (issue 27).
     for path in [&request.library, &request.windows_library, &request.darwin_library].into_iter().flatten() {
@@ -73,7 +88,7 @@ pub fn pack(request: &Request) -> Result<()> {
         binaries.push((platform, path));
     }
     let tool = beam_impact::fmi::description::generation_tool(git_commit().as_deref());
-    for path in beam_impact::fmi::pack::pack_platforms(&binaries, &request.out, &tool)? {
+    for path in beam_impact::fmi::pack::pack_platforms_with(&binaries, &request.out, &tool, packed.as_ref())? {
         emit(&format!("wrote {}\n", path.display()))?;
     }
     Ok(())

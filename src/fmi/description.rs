@@ -5,9 +5,12 @@
 use std::collections::BTreeSet;
 use std::fmt::Write;
 
+use super::resource::SCENARIO_RESOURCE;
 use super::variables::{
-    affects_values, base_units, declared_type, display_unit, format_real, table, Causality, Source, Type, Variable,
+    affects_values, base_units, declared_type, display_unit, format_real, table, table_for, Causality, Source, Type,
+    Variable,
 };
+use crate::Scenario;
 
 /// The `modelIdentifier`: the binary is `BeamImpact.so`.
 pub const MODEL_IDENTIFIER: &str = "BeamImpact";
@@ -35,9 +38,24 @@ const CATEGORIES: &[(&str, &str)] = &[
 /// The instantiation token (FMI 2 `guid`): a GUID-shaped FNV-1a hash of the variable table, so a
 /// description from another build of the table is refused at instantiation.
 pub fn token() -> String {
+    token_for(None)
+}
+
+/// The instantiation token of an FMU that starts from `packed` (its `resources/scenario.toml`,
+/// issue 30; `None`: the paper scenario, [`token`]): the hash of the variable table with that
+/// scenario's start values and, for beams of sections, of the sections, which no variable holds.
+/// A description and a resource scenario that do not belong together are refused at
+/// instantiation.
+pub fn token_for(packed: Option<&Scenario>) -> String {
     let mut hash: u128 = 0x6c62_272e_07bb_0142_62b8_2175_6295_c58d;
-    for v in table() {
-        let line = format!(
+    let mut feed = |line: &str| {
+        for b in line.bytes() {
+            hash ^= u128::from(b);
+            hash = hash.wrapping_mul(0x0000_0000_0100_0000_0000_0000_0000_013b);
+        }
+    };
+    for v in packed.map_or_else(table, table_for) {
+        feed(&format!(
             "{}|{}|{}|{}|{}|{:?}|{:?}\n",
             v.name,
             v.vr,
@@ -46,10 +64,12 @@ pub fn token() -> String {
             v.variability.name(),
             v.unit,
             v.start
-        );
-        for b in line.bytes() {
-            hash ^= u128::from(b);
-            hash = hash.wrapping_mul(0x0000_0000_0100_0000_0000_0000_0000_013b);
+        ));
+    }
+    // Uniform beams (every FMU before issue 30) add nothing: their tokens stay as they were.
+    for (beam, sections) in packed.iter().flat_map(|s| [("upper", &s.upper.sections), ("lower", &s.lower.sections)]) {
+        for (k, section) in sections.iter().enumerate() {
+            feed(&format!("{beam}.sections[{}]|{}\n", k + 1, serde_json::to_string(section).unwrap_or_default()));
         }
     }
     let h = format!("{hash:032x}");
@@ -193,6 +213,27 @@ pub fn generation_tool(commit: Option<&str>) -> String {
     }
 }
 
+/// The model's `description`: the model, and for an FMU packed with a scenario of its own (issue
+/// 30) where that scenario is and what its start values are.
+fn model_description(packed: Option<&Scenario>) -> String {
+    let Some(s) = packed else { return DESCRIPTION.to_string() };
+    let sections = |n: usize, beam: &str| match n {
+        0 => None,
+        1 => Some(format!("1 section for the {beam}")),
+        n => Some(format!("{n} sections for the {beam}")),
+    };
+    let listed: Vec<String> =
+        [sections(s.upper.sections.len(), "bridge"), sections(s.lower.sections.len(), "arrestor")]
+            .into_iter()
+            .flatten()
+            .collect();
+    let beams = if listed.is_empty() { String::new() } else { format!(", with {}", listed.join(" and ")) };
+    format!(
+        "{DESCRIPTION}. Packed with a starting scenario of its own, resources/{SCENARIO_RESOURCE}{beams}: the start \
+         values are that scenario's, and parameters set by the importer override its uniform fields"
+    )
+}
+
 /// The FMI 2.0 modelDescription.xml (as committed: no commit in `generationTool`).
 pub fn fmi2() -> String {
     fmi2_by(&generation_tool(None))
@@ -200,7 +241,13 @@ pub fn fmi2() -> String {
 
 /// The FMI 2.0 modelDescription.xml with `generation_tool` ([`generation_tool`]).
 pub fn fmi2_by(generation_tool: &str) -> String {
-    let variables = table();
+    fmi2_for(None, generation_tool)
+}
+
+/// The FMI 2.0 modelDescription.xml of an FMU that starts from `packed` (its
+/// `resources/scenario.toml`; `None`: the paper scenario) with `generation_tool`.
+pub fn fmi2_for(packed: Option<&Scenario>, generation_tool: &str) -> String {
+    let variables = packed.map_or_else(table, table_for);
     let mut out = String::new();
     out.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     let _ = writeln!(
@@ -208,8 +255,8 @@ pub fn fmi2_by(generation_tool: &str) -> String {
         "<fmiModelDescription fmiVersion=\"2.0\" modelName=\"{MODEL_IDENTIFIER}\" guid=\"{}\"\n  \
          description=\"{}\"\n  generationTool=\"{}\" generationDateAndTime=\"{GENERATION_DATE_AND_TIME}\"\n  \
          variableNamingConvention=\"structured\" numberOfEventIndicators=\"0\">",
-        token(),
-        esc(DESCRIPTION),
+        token_for(packed),
+        esc(&model_description(packed)),
         esc(generation_tool)
     );
     let _ = writeln!(
@@ -255,7 +302,12 @@ pub fn fmi3() -> String {
 
 /// The FMI 3.0 modelDescription.xml with `generation_tool` ([`generation_tool`]).
 pub fn fmi3_by(generation_tool: &str) -> String {
-    let variables = table();
+    fmi3_for(None, generation_tool)
+}
+
+/// The FMI 3.0 modelDescription.xml of an FMU that starts from `packed` (see [`fmi2_for`]).
+pub fn fmi3_for(packed: Option<&Scenario>, generation_tool: &str) -> String {
+    let variables = packed.map_or_else(table, table_for);
     let mut out = String::new();
     out.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     let _ = writeln!(
@@ -263,8 +315,8 @@ pub fn fmi3_by(generation_tool: &str) -> String {
         "<fmiModelDescription fmiVersion=\"3.0\" modelName=\"{MODEL_IDENTIFIER}\" instantiationToken=\"{}\"\n  \
          description=\"{}\"\n  generationTool=\"{}\" generationDateAndTime=\"{GENERATION_DATE_AND_TIME}\"\n  \
          variableNamingConvention=\"structured\">",
-        token(),
-        esc(DESCRIPTION),
+        token_for(packed),
+        esc(&model_description(packed)),
         esc(generation_tool)
     );
     let _ = writeln!(

@@ -8,7 +8,6 @@
 use std::ffi::{c_char, c_int, c_uint, c_void};
 
 use super::boundary::{out, slice, slice_mut, string, utf8_string};
-use super::description;
 use super::instance::{Instance, Version};
 pub use super::logger::Fmi2CallbackLogger;
 use super::logger::{log_with, Logger};
@@ -150,15 +149,17 @@ pub unsafe extern "C" fn fmi2Instantiate(
             Ok(g) => g,
             Err(e) => return fail(&e.to_string()),
         };
-        if guid != description::token() {
-            return fail(&format!(
-                "fmuGUID \"{guid}\" does not match this binary's \"{}\" (modelDescription.xml from another build?)",
-                description::token()
-            ));
-        }
         let location = unsafe { string(fmu_resource_location, "fmuResourceLocation") }.ok();
         let resources = location.as_deref().and_then(resource::parse_uri);
-        let instance = Instance::new(&name, Version::Fmi2, logger, logging_on != 0);
+        // The starting scenario packed into the resources (issue 30), which the GUID covers.
+        let packed = match resources.as_deref().map(resource::read_scenario).transpose() {
+            Ok(packed) => packed.flatten(),
+            Err(message) => return fail(&message),
+        };
+        if let Err(message) = resource::check_token("fmuGUID", &guid, packed.as_ref()) {
+            return fail(&message);
+        }
+        let instance = Instance::starting_from(&name, Version::Fmi2, logger, logging_on != 0, packed);
         instance.log_resources(location.as_deref(), resources);
         Box::into_raw(Box::new(instance))
     }

@@ -8,7 +8,6 @@
 use std::ffi::{c_char, c_int, c_void};
 
 use super::boundary::{out, slice, slice_mut, string, utf8_string};
-use super::description;
 use super::instance::{Instance, Version};
 pub use super::logger::Fmi3LogMessageCallback;
 use super::logger::{log_with, Logger};
@@ -167,16 +166,18 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
             Ok(t) => t,
             Err(err) => return refuse(&err.to_string()),
         };
-        if token != description::token() {
-            return refuse(&format!(
-                "instantiationToken \"{token}\" does not match this binary's \"{}\" (modelDescription.xml from another build?)",
-                description::token()
-            ));
-        }
         let location = unsafe { string(resource_path, "resourcePath") }.ok();
         let resources = location.as_deref().and_then(resource::parse_path);
+        // The starting scenario packed into the resources (issue 30), which the token covers.
+        let packed = match resources.as_deref().map(resource::read_scenario).transpose() {
+            Ok(packed) => packed.flatten(),
+            Err(message) => return refuse(&message),
+        };
+        if let Err(message) = resource::check_token("instantiationToken", &token, packed.as_ref()) {
+            return refuse(&message);
+        }
         let logger = Logger::Fmi3 { callback: log_message, environment: instance_environment };
-        let mut instance = Instance::new(&name, Version::Fmi3, logger, logging_on);
+        let mut instance = Instance::starting_from(&name, Version::Fmi3, logger, logging_on, packed);
         instance.set_cosimulation_options(event_mode_used, early_return_allowed);
         instance.log_resources(location.as_deref(), resources);
         Box::into_raw(Box::new(instance))

@@ -11,7 +11,8 @@ use std::time::{SystemTime, UNIX_EPOCH};
 use super::boundary::panic_message;
 use super::description;
 use super::logger::{c_string, log_with, number, significant, Logger};
-use super::state::{parameters_of, scenario_with, Snapshot};
+use super::resource::SCENARIO_RESOURCE;
+use super::state::{parameters_of, scenario_of, sections_of, Snapshot};
 use super::status::{Mask, State, Status};
 use super::variables::{table, Column, Source, Tip, Type, Variable};
 use crate::error::Error;
@@ -70,6 +71,9 @@ pub struct Instance {
     log_events: bool,
     state: State,
     variables: Vec<Variable>,
+    /// The scenario packed into the FMU's resources (`resources/scenario.toml`, issue 30) that the
+    /// instance starts from; `None`: the paper scenario.
+    packed: Option<Scenario>,
     scenario: Scenario,
     log_path: String,
     simulation: Option<Simulation>,
@@ -235,6 +239,20 @@ fn both(a: Option<String>, b: Option<String>) -> Option<String> {
 impl Instance {
     /// A new instance in state Instantiated with the paper scenario.
     pub fn new(name: &str, version: Version, logger: Logger, logging_on: bool) -> Self {
+        Self::starting_from(name, version, logger, logging_on, None)
+    }
+
+    /// A new instance in state Instantiated with `packed`, the scenario of the FMU's
+    /// `resources/scenario.toml` (issue 30), as its starting scenario (`None`: the paper's): the
+    /// parameters and inputs start at its values, and the importer's parameters override them.
+    pub fn starting_from(
+        name: &str,
+        version: Version,
+        logger: Logger,
+        logging_on: bool,
+        packed: Option<Scenario>,
+    ) -> Self {
+        let scenario = packed.clone().unwrap_or_default();
         Instance {
             name: name.to_string(),
             version,
@@ -243,7 +261,8 @@ impl Instance {
             log_events: true,
             state: State::Instantiated,
             variables: table(),
-            scenario: Scenario::default(),
+            packed,
+            scenario,
             log_path: DEFAULT_LOG_PATH.to_string(),
             simulation: None,
             checks: None,
@@ -269,17 +288,29 @@ impl Instance {
         self.early_return_allowed = early_return_allowed;
     }
 
-    /// Logs (category `logEvents`, with logging on) where the importer unpacked the resources:
-    /// the FMU reads none, so the location is only checked and reported.
+    /// Logs (category `logEvents`, with logging on) where the importer unpacked the resources and
+    /// which scenario the instance starts from: the one of `resources/scenario.toml` (issue 30),
+    /// or the paper's when there is none.
     pub fn log_resources(&self, given: Option<&str>, parsed: Option<PathBuf>) {
+        let start = match &self.packed {
+            Some(s) => {
+                let count = |n: usize| if n == 1 { "1 section".to_string() } else { format!("{n} sections") };
+                format!(
+                    "the FMU starts from its packed scenario resources/{SCENARIO_RESOURCE} (bridge: {}, arrestor: {})",
+                    if s.upper.sections.is_empty() { "uniform".to_string() } else { count(s.upper.sections.len()) },
+                    if s.lower.sections.is_empty() { "uniform".to_string() } else { count(s.lower.sections.len()) },
+                )
+            }
+            None => format!("no {SCENARIO_RESOURCE} there: the FMU starts from the paper scenario"),
+        };
         let message = match (given, parsed) {
-            (None, _) => "no resource location given (the FMU reads no resources)".to_string(),
+            (None, _) => "no resource location given (the FMU starts from the paper scenario)".to_string(),
             (Some(given), Some(dir)) => {
-                format!("resource location \"{given}\" is the directory {} (the FMU reads no resources)", dir.display())
+                format!("resource location \"{given}\" is the directory {} ({start})", dir.display())
             }
-            (Some(given), None) => {
-                format!("resource location \"{given}\" is not a local directory (the FMU reads no resources)")
-            }
+            (Some(given), None) => format!(
+                "resource location \"{given}\" is not a local directory (the FMU starts from the paper scenario)"
+            ),
         };
         self.log(Status::Ok, "logEvents", &message);
     }
@@ -406,10 +437,10 @@ impl Instance {
     }
 
     /// Every invalid parameter, each named with [`Scenario::validate`]'s message: validate, set the
-    /// offending parameter back to the paper's value in a scratch copy, repeat.
+    /// offending parameter back to its start value (the starting scenario's) in a scratch copy, repeat.
     fn invalid_parameters(&self) -> Vec<String> {
         let mut scratch = self.scenario.clone();
-        let defaults = Scenario::default();
+        let defaults = self.packed.clone().unwrap_or_default();
         let mut messages = Vec::new();
         let mut named: Vec<std::borrow::Cow<'static, str>> = Vec::new();
         while let Err(e) = scratch.validate() {
@@ -471,9 +502,10 @@ impl Instance {
         if self.log_path.is_empty() {
             return Ok((None, None));
         }
+        let tool = description::generation_tool(None);
         let xml = match self.version {
-            Version::Fmi2 => description::fmi2(),
-            Version::Fmi3 => description::fmi3(),
+            Version::Fmi2 => description::fmi2_for(self.packed.as_ref(), &tool),
+            Version::Fmi3 => description::fmi3_for(self.packed.as_ref(), &tool),
         };
         let attach = |mut recorder: McapRecorder| {
             recorder.attach("modelDescription.xml", "application/xml", xml.as_bytes()).map(|()| recorder)
@@ -765,13 +797,13 @@ impl Instance {
         Ok(self.warn(warning))
     }
 
-    /// `Reset`: back to Instantiated with the paper scenario (completing an open log first; one
-    /// that cannot be completed is a warning).
+    /// `Reset`: back to Instantiated with the starting scenario (the packed one, or the paper's;
+    /// completing an open log first; one that cannot be completed is a warning).
     pub fn reset(&mut self) -> Outcome<Status> {
         let warning = self.finish_log();
         let (name, version, logger, logging_on) = (self.name.clone(), self.version, self.logger, self.logging_on);
         let (event_mode_used, early_return_allowed) = (self.event_mode_used, self.early_return_allowed);
-        *self = Instance::new(&name, version, logger, logging_on);
+        *self = Instance::starting_from(&name, version, logger, logging_on, self.packed.take());
         self.set_cosimulation_options(event_mode_used, early_return_allowed);
         Ok(self.warn(warning))
     }
@@ -855,6 +887,13 @@ impl Instance {
                 self.sensitivity_spread()
             }
             Source::Impact(get) => get(&self.computed(&v.name)?.impact()),
+            // A beam without such a stress (the bridge without a shear area, a rigid support) or
+            // without an allowable: 0, as the descriptions say.
+            Source::EnvelopePeak(k) => self.computed(&v.name)?.envelope().peaks()[k].map_or(0.0, |p| p.value),
+            Source::EnvelopePosition(k) => self.computed(&v.name)?.envelope().peaks()[k].map_or(0.0, |p| p.position),
+            Source::EnvelopeUtilisation(k) => {
+                self.computed(&v.name)?.envelope().peaks()[k].and_then(|p| p.utilisation).unwrap_or(0.0)
+            }
             Source::LogPath
             | Source::ContactActive
             | Source::DesignPass
@@ -1051,6 +1090,7 @@ impl Instance {
             parameters: parameters_of(&self.scenario),
             run,
             checks,
+            sections: sections_of(&self.scenario),
         })
     }
 
@@ -1098,8 +1138,10 @@ impl Instance {
             base.upper.tip_force = snapshot.run.forces.upper;
             base.lower.tip_force = snapshot.run.forces.lower;
         }
-        let scenario = scenario_with(&base, &snapshot.parameters).map_err(|e| e.to_string())?;
-        let same_model = self.simulation.is_some() && parameters_of(&scenario) == parameters_of(&self.scenario);
+        let scenario = scenario_of(&base, snapshot).map_err(|e| e.to_string())?;
+        let same_model = self.simulation.is_some()
+            && parameters_of(&scenario) == parameters_of(&self.scenario)
+            && sections_of(&scenario) == sections_of(&self.scenario);
         if same_model {
             let simulation = self.simulation.as_mut().ok_or("no simulation")?;
             simulation.restore(snapshot.run.clone()).map_err(|e| e.to_string())?;

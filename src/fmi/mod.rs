@@ -7,7 +7,8 @@
 //! - [`logger`]: the importer's logging callbacks (their C types) and the call into them.
 //! - [`fmi2`], [`fmi3`]: the exported C functions; they check arguments and delegate.
 //! - [`state`]: FMU state snapshots and their portable byte format; [`slots`]: the importer's handles to them.
-//! - [`resource`]: resource-location parsing.
+//! - [`resource`]: resource-location parsing and the starting scenario an FMU may carry
+//!   (`resources/scenario.toml`, written by `pack --scenario`).
 //! - [`description`]: the two modelDescription.xml files, generated from the table.
 //! - [`pack`]: writes the two .fmu archives (one binary per platform); [`reference`](mod@reference): the paper
 //!   scenario run through an instance, their reference results; [`documentation`]: their

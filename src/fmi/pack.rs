@@ -2,7 +2,8 @@
 //! with its modelDescription.xml, one binary per platform under the directory its standard names
 //! (FMI 2: `linux64`, `win64`, `darwin64`; FMI 3: `x86_64-linux`, `x86_64-windows`,
 //! `x86_64-darwin`, `aarch64-darwin`), `documentation/` (the repository's `fmu/documentation/`,
-//! its `index.html` completed by [`super::documentation`]) and the reference results in `extra/`.
+//! its `index.html` completed by [`super::documentation`]), the reference results in `extra/`
+//! and, packed with a scenario of its own (issue 30), `resources/scenario.toml`.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -12,8 +13,10 @@ use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, ZipWriter};
 
 use super::description::{self, MODEL_IDENTIFIER};
-use super::reference::{reference_run, reference_run_with, REFERENCE_CSV};
+use super::reference::{reference_run_from, REFERENCE_CSV};
+use super::resource::{self, SCENARIO_RESOURCE};
 use crate::error::{Error, Result};
+use crate::Scenario;
 
 /// The documentation directory: `fmu/documentation/` of the repository this crate was built from,
 /// or of the working directory if that one is gone.
@@ -597,6 +600,48 @@ fn binary_entries(platform: Platform, path: &Path) -> Result<(Vec<Entry>, Vec<En
     Ok((vec![entry(platform.fmi2_dir(), bytes)], fmi3, what))
 }
 
+/// A scenario packed as the FMU's starting scenario (`pack --scenario FILE.toml`, issue 30): the
+/// scenario, the name of the file it came from and the text of `resources/scenario.toml`.
+#[derive(Clone, Debug)]
+pub struct PackedScenario {
+    /// The scenario, as the FMU reads it back.
+    pub scenario: Scenario,
+    /// The file it came from, as the documentation names it (its file name).
+    pub source: String,
+    /// `resources/scenario.toml`: a comment line naming the source, then the scenario with every
+    /// field ([`Scenario::to_toml`]).
+    pub text: String,
+}
+
+impl PackedScenario {
+    /// The starting scenario of an FMU from `scenario` (read and validated from the file `source`):
+    /// refused with one line where the FMU could not take it as it is (a support motion from a
+    /// file: an FMU's motion is its inputs) or would not read it back to the same scenario.
+    pub fn new(scenario: &Scenario, source: &str) -> Result<PackedScenario> {
+        let refuse = |why: String| Error::Other(format!("--scenario {source} cannot be packed: {why}"));
+        if !scenario.motion.is_unset() {
+            return Err(refuse(
+                "its [motion] is for the CLI; an FMU takes the supports' motion as its inputs (upper.hinge_heave, \
+                 lower.clamp_heave, lower.clamp_rotation and their rates): leave [motion] out"
+                    .into(),
+            ));
+        }
+        // The file's name as a comment: no line break or control character may end the comment.
+        let shown = crate::error::bounded_line(source);
+        let text = format!(
+            "# The starting scenario of this FMU (issue 30), packed by {} from {shown}.\n# Read at \
+             instantiation; parameters set by the importer override its uniform fields.\n{}",
+            description::generation_tool(None),
+            scenario.to_toml()
+        );
+        let back = resource::scenario_from_bytes(text.as_bytes()).map_err(refuse)?;
+        if back != *scenario {
+            return Err(refuse("it does not read back to the same scenario from its TOML".into()));
+        }
+        Ok(PackedScenario { scenario: back, source: source.to_string(), text })
+    }
+}
+
 /// Packs the binaries (one per platform, each checked for its platform: [`check_library`],
 /// [`check_dll`], [`check_universal_dylib`]) into both FMUs under `out_root`, with
 /// `generation_tool` in their descriptions ([`description::generation_tool`]), the completed
@@ -605,6 +650,18 @@ pub fn pack_platforms(
     binaries: &[(Platform, PathBuf)],
     out_root: &Path,
     generation_tool: &str,
+) -> Result<Vec<PathBuf>> {
+    pack_platforms_with(binaries, out_root, generation_tool, None)
+}
+
+/// [`pack_platforms`] with a starting scenario of the FMUs' own (issue 30; `None`: the paper
+/// scenario): packed as `resources/scenario.toml`, its values the descriptions' start values (and
+/// their token its), the reference results and the documentation its.
+pub fn pack_platforms_with(
+    binaries: &[(Platform, PathBuf)],
+    out_root: &Path,
+    generation_tool: &str,
+    packed: Option<&PackedScenario>,
 ) -> Result<Vec<PathBuf>> {
     if binaries.is_empty() {
         return Err(Error::Other("no binary to pack".into()));
@@ -647,9 +704,14 @@ pub fn pack_platforms(
         .ok_or_else(|| {
             Error::Other(format!("{} has no index.html (the FMU's main documentation page)", dir.display()))
         })?;
-    // The reference results and the documentation come from runs of this build's model.
-    let reference = reference_run().map_err(Error::Other)?;
-    let paper = reference_run_with(&[("method", 1)]).map_err(Error::Other)?;
+    // The reference results and the documentation come from runs of this build's model: its
+    // starting scenario's, and for Table 1 the paper's with its method (an FMU of the paper's).
+    let scenario = packed.map(|p| &p.scenario);
+    let reference = reference_run_from(scenario, &[]).map_err(Error::Other)?;
+    let paper = match packed {
+        None => Some(reference_run_from(None, &[("method", 1)]).map_err(Error::Other)?),
+        Some(_) => None,
+    };
     let figures = super::documentation::figures(&reference).map_err(Error::Other)?;
     let mut shared: Vec<Entry> = Vec::new();
     for (name, path) in docs.iter().filter(|(name, _)| name != "index.html") {
@@ -660,9 +722,23 @@ pub fn pack_platforms(
         shared.push(Entry { name: format!("documentation/{name}"), data: svg.into_bytes(), executable: false });
     }
     shared.push(Entry { name: REFERENCE_CSV.into(), data: reference.csv().into_bytes(), executable: false });
+    if let Some(packed) = packed {
+        shared.push(Entry {
+            name: format!("resources/{SCENARIO_RESOURCE}"),
+            data: packed.text.clone().into_bytes(),
+            executable: false,
+        });
+    }
     let page = |fmi3: bool| -> Result<Entry> {
-        let html = super::documentation::index_html(&template, &listed(fmi3), generation_tool, &reference, &paper)
-            .map_err(Error::Other)?;
+        let html = super::documentation::index_html(
+            &template,
+            &listed(fmi3),
+            generation_tool,
+            &reference,
+            paper.as_ref(),
+            packed,
+        )
+        .map_err(Error::Other)?;
         Ok(Entry { name: "documentation/index.html".into(), data: html.into_bytes(), executable: false })
     };
     let assemble = |xml: String, binaries: Vec<Entry>, page: Entry| -> Vec<Entry> {
@@ -677,8 +753,8 @@ pub fn pack_platforms(
         }));
         entries
     };
-    let fmi2_entries = assemble(description::fmi2_by(generation_tool), fmi2_binaries, page(false)?);
-    let fmi3_entries = assemble(description::fmi3_by(generation_tool), fmi3_binaries, page(true)?);
+    let fmi2_entries = assemble(description::fmi2_for(scenario, generation_tool), fmi2_binaries, page(false)?);
+    let fmi3_entries = assemble(description::fmi3_for(scenario, generation_tool), fmi3_binaries, page(true)?);
     // Created only once everything is checked (a refused library leaves no folder).
     crate::record::output::create_output_dir(out_root, "cannot create directory")?;
     let fmi2 = out_root.join("fmi2").join(format!("{MODEL_IDENTIFIER}.fmu"));

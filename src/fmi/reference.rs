@@ -1,8 +1,8 @@
-//! The FMU's reference results: the paper scenario (every parameter at its start value, the
-//! DefaultExperiment's 0 to 3 s) run through an [`Instance`], the very code behind the C
-//! functions, with one communication point per millisecond. `beam-impact pack` puts them into the
-//! FMU as `extra/` CSV and draws the documentation's figures and Table 1 from them, so what the
-//! FMU documents is what it computes.
+//! The FMU's reference results: its starting scenario (the paper's, or the one packed into its
+//! resources, issue 30; every parameter at its start value, the DefaultExperiment's 0 to 3 s) run
+//! through an [`Instance`], the very code behind the C functions, with one communication point
+//! per millisecond. `beam-impact pack` puts them into the FMU as `extra/` CSV and draws the
+//! documentation's figures and Table 1 from them, so what the FMU documents is what it computes.
 
 use std::fmt::Write;
 
@@ -10,6 +10,7 @@ use super::description::DEFAULT_EXPERIMENT;
 use super::instance::{Instance, Version};
 use super::logger::Logger;
 use super::variables::{format_real, table, Causality, Type, Variable};
+use crate::Scenario;
 
 /// Where the reference results go inside the FMU: `extra/` in reverse-domain form (FMI 3.0
 /// section 2.5), the file named after the model like the Reference FMUs' `<model>_ref.csv`.
@@ -65,8 +66,14 @@ pub fn reference_run() -> Result<ReferenceRun, String> {
 
 /// [`reference_run`] with Integer parameters set first (`("method", 1)`: the paper's method).
 pub fn reference_run_with(integers: &[(&str, i32)]) -> Result<ReferenceRun, String> {
+    reference_run_from(None, integers)
+}
+
+/// [`reference_run_with`] of an FMU that starts from `packed` (its `resources/scenario.toml`,
+/// issue 30; `None`: the paper scenario): every parameter at that scenario's start value.
+pub fn reference_run_from(packed: Option<&Scenario>, integers: &[(&str, i32)]) -> Result<ReferenceRun, String> {
     let logger = Logger::Fmi3 { callback: None, environment: std::ptr::null_mut() };
-    let mut instance = Instance::new("reference", Version::Fmi3, logger, false);
+    let mut instance = Instance::starting_from("reference", Version::Fmi3, logger, false, packed.cloned());
     let variables = table();
     let outputs: Vec<Variable> = variables.iter().filter(|v| v.causality == Causality::Output).cloned().collect();
     let vr =

@@ -5,8 +5,83 @@
 //! `file://localhost/C:/a/b`: the slash before the drive letter is dropped) or a share
 //! (`file://server/share/a`: `\\server\share\a`), and FMI 3's path may end in `\`. The
 //! parsing is plain string logic, tested for both platforms on either ([`parse_uri_for`]).
+//!
+//! The one resource the FMU reads is its starting scenario, `scenario.toml` ([`read_scenario`],
+//! issue 30): what `beam-impact pack --scenario FILE.toml` packs, so that beams of sections (which
+//! no scalar parameter can state, FMI 2 having no arrays) reach the FMU. Without it the FMU
+//! starts from the paper scenario, as every FMU before it.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+
+use crate::error::{bounded_line, Error};
+use crate::Scenario;
+
+/// The starting scenario's file name in the FMU's `resources/`.
+pub const SCENARIO_RESOURCE: &str = "scenario.toml";
+
+/// Largest `resources/scenario.toml` the FMU reads, bytes, checked from the file's size before
+/// it is read and again while reading: `pack` writes a few kB (32 sections on each beam, the
+/// most a scenario has, take about 20 kB); a file of 1 MiB is no scenario of this model.
+pub const MAX_SCENARIO_RESOURCE_BYTES: u64 = 1 << 20;
+
+/// The FMU's starting scenario from the bytes of `resources/scenario.toml`: at most
+/// [`MAX_SCENARIO_RESOURCE_BYTES`], UTF-8, a scenario file that validates, and nothing an FMU
+/// takes otherwise (the supports' motion is its inputs, not a file). An error is one line of
+/// bounded length, starting with `resources/scenario.toml:`.
+pub fn scenario_from_bytes(bytes: &[u8]) -> Result<Scenario, String> {
+    let fail = |detail: String| bounded_line(&format!("resources/{SCENARIO_RESOURCE}: {detail}"));
+    if bytes.len() as u64 > MAX_SCENARIO_RESOURCE_BYTES {
+        return Err(fail(format!(
+            "{} bytes, larger than {MAX_SCENARIO_RESOURCE_BYTES} bytes (the limit; beam-impact pack --scenario \
+             writes a few kB)",
+            bytes.len()
+        )));
+    }
+    let text = std::str::from_utf8(bytes).map_err(|e| fail(format!("not UTF-8 text ({e})")))?;
+    let scenario = Scenario::from_toml(text, &format!("resources/{SCENARIO_RESOURCE}")).map_err(|e| match e {
+        // The parser's errors name the file already; validation's name the field.
+        Error::Scenario { .. } => bounded_line(&e.to_string()),
+        e => fail(e.to_string()),
+    })?;
+    if !scenario.motion.is_unset() {
+        return Err(fail(
+            "[motion] is not for an FMU: the supports' motion is its inputs (upper.hinge_heave, \
+             lower.clamp_heave, lower.clamp_rotation and their rates), set by the importer"
+                .to_string(),
+        ));
+    }
+    Ok(scenario)
+}
+
+/// The FMU's starting scenario from its resource directory `dir`: `None` when the directory holds
+/// no `scenario.toml` (the paper scenario, as every FMU without one); the scenario of
+/// [`scenario_from_bytes`] otherwise. The file must be a regular one (not a link, a FIFO or a
+/// device) of at most [`MAX_SCENARIO_RESOURCE_BYTES`], refused from its size before it is read
+/// and bounded while read. An error is one line of bounded length.
+pub fn read_scenario(dir: &Path) -> Result<Option<Scenario>, String> {
+    use std::io::Read;
+    let path = dir.join(SCENARIO_RESOURCE);
+    let file = match crate::record::output::open_regular_input(&path, "cannot read the FMU's starting scenario") {
+        Ok(file) => file,
+        Err(Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(bounded_line(&e.to_string())),
+    };
+    let fail =
+        |e: std::io::Error| bounded_line(&format!("cannot read the FMU's starting scenario {}: {e}", path.display()));
+    let size = file.metadata().map_err(fail)?.len();
+    let mut bytes = Vec::with_capacity(usize::try_from(size.min(MAX_SCENARIO_RESOURCE_BYTES)).unwrap_or(0));
+    // One byte more than the limit: a file that grew since its size was read is refused too.
+    let limit = if size > MAX_SCENARIO_RESOURCE_BYTES { 0 } else { MAX_SCENARIO_RESOURCE_BYTES + 1 };
+    file.take(limit).read_to_end(&mut bytes).map_err(fail)?;
+    if size > MAX_SCENARIO_RESOURCE_BYTES || bytes.len() as u64 > MAX_SCENARIO_RESOURCE_BYTES {
+        return Err(bounded_line(&format!(
+            "resources/{SCENARIO_RESOURCE}: {} bytes, larger than {MAX_SCENARIO_RESOURCE_BYTES} bytes (the limit; \
+             beam-impact pack --scenario writes a few kB)",
+            size.max(bytes.len() as u64)
+        )));
+    }
+    scenario_from_bytes(&bytes).map(Some)
+}
 
 /// Parses an FMI 2 `fmuResourceLocation` into a directory path. Returns `None` for schemes other
 /// than `file` or a remote host (the FMU does not need its resources, so this is not an error).
@@ -59,6 +134,28 @@ pub fn parse_uri_for(uri: &str, windows: bool) -> Option<String> {
 pub fn parse_path(path: &str) -> Option<PathBuf> {
     let separators: &[char] = if cfg!(windows) { &['/', '\\'] } else { &['/'] };
     (!path.is_empty()).then(|| PathBuf::from(path.trim_end_matches(separators)).join(""))
+}
+
+/// Checks the token an importer gives (`what`: `fmuGUID` or `instantiationToken`) against the one
+/// of this binary with the starting scenario `packed` ([`super::description::token_for`]); the
+/// error says which of the two does not fit.
+pub fn check_token(what: &str, given: &str, packed: Option<&Scenario>) -> Result<(), String> {
+    let expected = super::description::token_for(packed);
+    if given == expected {
+        return Ok(());
+    }
+    let given = bounded_line(given);
+    Err(match packed {
+        None => format!(
+            "{what} \"{given}\" does not match this binary's \"{expected}\" (modelDescription.xml from another build, \
+             or of an FMU packed with a scenario whose resources/{SCENARIO_RESOURCE} is missing?)"
+        ),
+        Some(_) => format!(
+            "{what} \"{given}\" does not match \"{expected}\", this binary's with the starting scenario of \
+             resources/{SCENARIO_RESOURCE} (modelDescription.xml from another build, or a {SCENARIO_RESOURCE} \
+             changed or added by hand? `beam-impact pack --scenario FILE.toml` writes both)"
+        ),
+    })
 }
 
 /// Decodes `%XX` escapes; `None` on a malformed escape or invalid UTF-8.

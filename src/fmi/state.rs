@@ -31,6 +31,7 @@ use serde::{Deserialize, Serialize};
 use super::variables::is_fmu_parameter;
 use crate::error::{Error, Result};
 use crate::model::parameters::{self, PARAMETERS};
+use crate::model::section::SectionSpec;
 use crate::simulation::RunState;
 use crate::Scenario;
 
@@ -63,6 +64,34 @@ pub struct Snapshot {
     /// The states of the discretisation check's runs (empty: not checked), in the order of
     /// [`crate::answer::check_scenarios`].
     pub checks: Vec<RunState>,
+    /// The beams' sections (issue 30; empty: a uniform beam), which no FMU parameter holds: an
+    /// FMU packed with a scenario of sections restores them with its parameters.
+    pub sections: Sections,
+}
+
+/// Each beam's sections from its support, as in the scenario (`[[upper.sections]]`,
+/// `[[lower.sections]]`).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Sections {
+    /// The bridge's, from the hinge.
+    pub upper: Vec<SectionSpec>,
+    /// The arrestor's, from the clamp.
+    pub lower: Vec<SectionSpec>,
+}
+
+/// The sections of a scenario's beams.
+pub fn sections_of(scenario: &Scenario) -> Sections {
+    Sections { upper: scenario.upper.sections.clone(), lower: scenario.lower.sections.clone() }
+}
+
+/// The scenario a snapshot runs: `base` (the restoring instance's scenario: its `duration` and tip
+/// forces) with the snapshot's sections and then every FMU parameter of it ([`scenario_with`],
+/// which checks the result against the scenario limits).
+pub fn scenario_of(base: &Scenario, snapshot: &Snapshot) -> Result<Scenario> {
+    let mut base = base.clone();
+    base.upper.sections.clone_from(&snapshot.sections.upper);
+    base.lower.sections.clone_from(&snapshot.sections.lower);
+    scenario_with(&base, &snapshot.parameters)
 }
 
 /// Every FMU parameter's value by name (the scenario fields the FMU exposes, so not the CLI's
@@ -168,6 +197,7 @@ mod tests {
             parameters: parameters_of(&Scenario::default()),
             run: state_at(ns),
             checks: vec![state_at(ns)],
+            sections: Sections::default(),
         }
     }
 
@@ -306,7 +336,8 @@ mod tests {
         out.insert(format!("{prefix}: {leaf}"));
     }
 
-    /// The payload's layout at FORMAT_VERSION 7 (7: the stress envelope's stations, issue 30; 6: the exact modal advance's step level; 5: issue 28's FMU parameters, the impact's
+    /// The payload's layout at FORMAT_VERSION 7 (7: the stress envelope's stations, the bridge's
+    /// shear area and allowable shear stress, the beams' sections, issue 30; 6: the exact modal advance's step level; 5: issue 28's FMU parameters, the impact's
     /// angular velocity, `lower.kind`, `contact.stiffness` and `contact.clearance`; 4: the supports' motion, its start and input, the
     /// inertial potential and the supports' displacements in the results; 3: the method, modal cut-off, discretisation
     /// tolerance, allowables and yield stresses; the discretisation check's run states): every field path of `Snapshot` and its type, the
@@ -455,6 +486,7 @@ mod tests {
             "parameters.step_free: f64",
             "parameters.stress_recovery: f64",
             "parameters.upper.allowable_bending_stress: f64",
+            "parameters.upper.allowable_shear_stress: f64",
             "parameters.upper.elastic_modulus: f64",
             "parameters.upper.elements_beyond_contact: f64",
             "parameters.upper.elements_to_contact: f64",
@@ -462,6 +494,7 @@ mod tests {
             "parameters.upper.mass: f64",
             "parameters.upper.second_moment: f64",
             "parameters.upper.section_modulus: f64",
+            "parameters.upper.shear_area: f64",
             "parameters.upper.yield_stress: f64",
             "run.contact_windows[].end: f64",
             "run.contact_windows[].start: f64",
@@ -560,10 +593,38 @@ mod tests {
             "run.result.upper_tip_velocity: f64",
             "run.step_level: u64",
             "run.upper_strain_at_peak: f64",
+            "sections.lower[].allowable_bending_stress: f64",
+            "sections.lower[].allowable_shear_stress: f64",
+            "sections.lower[].length: f64",
+            "sections.lower[].mass_per_length: f64",
+            "sections.lower[].second_moment: f64",
+            "sections.lower[].section_modulus: f64",
+            "sections.lower[].section_modulus_bottom: f64",
+            "sections.lower[].shear_area: f64",
+            "sections.upper[].allowable_bending_stress: f64",
+            "sections.upper[].allowable_shear_stress: f64",
+            "sections.upper[].length: f64",
+            "sections.upper[].mass_per_length: f64",
+            "sections.upper[].second_moment: f64",
+            "sections.upper[].section_modulus: f64",
+            "sections.upper[].section_modulus_bottom: f64",
+            "sections.upper[].shear_area: f64",
             "start_time: f64",
         ];
-        let snapshot = snapshot_at(50_000_000);
+        let mut snapshot = snapshot_at(50_000_000);
         assert!(!snapshot.run.contact_windows.is_empty(), "the pinned paths need a contact window");
+        // A section with every optional field, so that each field's path is pinned.
+        let section = SectionSpec {
+            length: 4.0,
+            second_moment: 0.003,
+            section_modulus: 0.018,
+            section_modulus_bottom: Some(0.02),
+            shear_area: 0.0145,
+            mass_per_length: 980.0,
+            allowable_bending_stress: Some(533e6),
+            allowable_shear_stress: Some(355e6),
+        };
+        snapshot.sections = Sections { upper: vec![section.clone()], lower: vec![section] };
         let mut found = std::collections::BTreeSet::new();
         paths(&serde_json::to_value(&snapshot).unwrap(), "", &mut found);
         let found: Vec<&str> = found.iter().map(String::as_str).collect();

@@ -4,7 +4,7 @@
 
 use crate::model::parameters::{Kind, Parameter, PARAMETERS};
 use crate::model::support_motion::{MOTION_LIMITS, MOTION_NAMES, MOTION_UNITS};
-use crate::results::{Impact, StepResult};
+use crate::results::{Impact, StepResult, ENVELOPE_PEAK_NAMES};
 use crate::solver::EnergyMethod;
 use crate::Scenario;
 
@@ -152,6 +152,14 @@ pub enum Source {
     SensitivitySpread,
     /// The impact as the run starts it ([`crate::Simulation::impact`], issue 28).
     Impact(fn(&Impact) -> f64),
+    /// A beam's worst stress along it so far (issue 30), in the order of
+    /// [`crate::results::ENVELOPE_PEAK_NAMES`]: its value, Pa (0 where the beam has none).
+    EnvelopePeak(usize),
+    /// ... its position, m from the beam's support (0 where the beam has none).
+    EnvelopePosition(usize),
+    /// ... and the beam's worst utilisation along it, each station against its section's
+    /// allowable (0 where the beam has no such stress or no allowable).
+    EnvelopeUtilisation(usize),
 }
 
 /// One model variable.
@@ -335,6 +343,7 @@ pub fn is_appended_parameter(p: &Parameter) -> bool {
     let index = |name: &str| PARAMETERS.iter().position(|q| q.name == name);
     matches!((index(p.name), index("energy_tolerance")), (Some(i), Some(first)) if i >= first)
         && !is_issue_28_parameter(p)
+        && !is_issue_30_parameter(p)
 }
 
 /// Whether a parameter came with issue 28 (every parameter from `impact_angular_velocity` on in
@@ -342,6 +351,14 @@ pub fn is_appended_parameter(p: &Parameter) -> bool {
 pub fn is_issue_28_parameter(p: &Parameter) -> bool {
     let index = |name: &str| PARAMETERS.iter().position(|q| q.name == name);
     matches!((index(p.name), index("impact_angular_velocity")), (Some(i), Some(first)) if i >= first)
+        && !is_issue_30_parameter(p)
+}
+
+/// Whether a parameter came with issue 30 (every parameter from `upper.shear_area` on in
+/// [`PARAMETERS`]): its value reference follows the impact's outputs, the end of the table before it.
+pub fn is_issue_30_parameter(p: &Parameter) -> bool {
+    let index = |name: &str| PARAMETERS.iter().position(|q| q.name == name);
+    matches!((index(p.name), index("upper.shear_area")), (Some(i), Some(first)) if i >= first)
 }
 
 /// A variable as [`table`] lists it, before its value reference and declared range: name,
@@ -352,9 +369,15 @@ type Row = (String, Type, Causality, Variability, Option<bool>, Option<&'static 
 /// An entry of [`OUTPUTS`] and [`APPENDED_OUTPUTS`]: name, unit, description, accessor.
 type OutputRow = (&'static str, &'static str, &'static str, Out);
 
-/// Every variable of the FMU, in value-reference order.
+/// Every variable of the FMU, in value-reference order, with the paper scenario's start values.
 pub fn table() -> Vec<Variable> {
-    let defaults = Scenario::default();
+    table_for(&Scenario::default())
+}
+
+/// Every variable of the FMU, in value-reference order, with the start values of `defaults`: the
+/// scenario an instance starts from (the paper's, or the one packed into the FMU's resources,
+/// issue 30). Names, value references, types and ranges are the same for every scenario.
+pub fn table_for(defaults: &Scenario) -> Vec<Variable> {
     let mut v: Vec<Variable> = Vec::new();
     let mut push = |(name, ty, causality, variability, exact, unit, description, start, source): Row| {
         let vr = v.len() as u32;
@@ -379,7 +402,7 @@ pub fn table() -> Vec<Variable> {
     // The two parameter blocks (first release, appended) and the two output blocks (first
     // release, appended) differ only in which entries they take.
     let parameter = |p: &'static Parameter| -> Row {
-        let value = (p.get)(&defaults);
+        let value = (p.get)(defaults);
         let (ty, start) = match p.kind {
             Kind::Real => (Type::Real, format_real(value)),
             Kind::Integer => (Type::Integer, format!("{}", value as i64)),
@@ -413,8 +436,8 @@ pub fn table() -> Vec<Variable> {
     let output = |&(name, unit, description, get): &OutputRow| -> Row {
         real_output(name, unit, description, Source::Output(get))
     };
-    for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && !is_appended_parameter(p) && !is_issue_28_parameter(p))
-    {
+    let later = |p: &Parameter| is_appended_parameter(p) || is_issue_28_parameter(p) || is_issue_30_parameter(p);
+    for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && !later(p)) {
         push(parameter(p));
     }
     push((
@@ -431,9 +454,10 @@ pub fn table() -> Vec<Variable> {
         Some("BeamImpact.mcap".into()),
         Source::LogPath,
     ));
-    for (name, tip, what) in
-        [("upper.tip_force", Tip::Upper, "bridge's free end"), ("lower.tip_force", Tip::Lower, "arrestor's free end")]
-    {
+    for (name, tip, what, start) in [
+        ("upper.tip_force", Tip::Upper, "bridge's free end", defaults.upper.tip_force),
+        ("lower.tip_force", Tip::Lower, "arrestor's free end", defaults.lower.tip_force),
+    ] {
         push((
             name.into(),
             Type::Real,
@@ -442,7 +466,7 @@ pub fn table() -> Vec<Variable> {
             Some(true),
             Some("N"),
             format!("Vertical external force at the {what}, up positive, held over each step"),
-            Some("0.0".into()),
+            Some(format_real(start)),
             Source::Input(tip),
         ));
     }
@@ -620,7 +644,82 @@ pub fn table() -> Vec<Variable> {
     for &(name, unit, description, get) in IMPACT_OUTPUTS {
         push(real_output(name, unit, description, Source::Impact(get)));
     }
+    // Issue 30: the bridge's shear area and allowable shear stress (appended), then each beam's
+    // worst stress along it, its position and its utilisation.
+    for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && is_issue_30_parameter(p)) {
+        push(parameter(p));
+    }
+    for (k, name) in ENVELOPE_PEAK_NAMES.iter().enumerate() {
+        let description = format!("{}{}", envelope_description(k, EnvelopeField::Peak), missing_envelope(k));
+        push(real_output(&format!("peak.{name}"), "Pa", &description, Source::EnvelopePeak(k)));
+    }
+    for (k, name) in ENVELOPE_PEAK_NAMES.iter().enumerate() {
+        let description = format!("{}{}", envelope_description(k, EnvelopeField::Position), missing_envelope(k));
+        push(real_output(&format!("peak_position.{name}"), "m", &description, Source::EnvelopePosition(k)));
+    }
+    for (k, name) in ENVELOPE_PEAK_NAMES.iter().enumerate() {
+        let description = format!("{}{}", envelope_description(k, EnvelopeField::Utilisation), missing_utilisation(k));
+        push(real_output(&format!("utilisation.{name}"), "1", &description, Source::EnvelopeUtilisation(k)));
+    }
     v
+}
+
+/// Which output of an envelope peak a description is for.
+#[derive(Clone, Copy)]
+enum EnvelopeField {
+    Peak,
+    Position,
+    Utilisation,
+}
+
+/// The beam and stress of envelope peak `k` ([`ENVELOPE_PEAK_NAMES`]' order): (beam, its
+/// support, stress, formula).
+fn envelope_quantity(k: usize) -> (&'static str, &'static str, &'static str, &'static str) {
+    let (beam, support) = if k < 2 { ("bridge", "hinge") } else { ("arrestor", "clamp") };
+    let (stress, formula) = if k.is_multiple_of(2) { ("bending", "|M|/W") } else { ("shear", "|Q|/A_s") };
+    (beam, support, stress, formula)
+}
+
+/// The description of one of the envelope outputs (issue 30).
+fn envelope_description(k: usize, field: EnvelopeField) -> String {
+    let (beam, support, stress, formula) = envelope_quantity(k);
+    let name = ENVELOPE_PEAK_NAMES[k];
+    match field {
+        EnvelopeField::Peak => format!(
+            "Running peak of the {beam}'s {stress} stress {formula} along its whole length: the largest over every \
+             station (each node; both sides of a section change or a point load) since t = 0, the stress envelope's \
+             peak (the CLI's summary.peaks.{name})"
+        ),
+        EnvelopeField::Position => format!(
+            "Where peak.{name} is along the {beam}, m from its {support} (the CLI's summary.peak_positions.{name})"
+        ),
+        EnvelopeField::Utilisation => format!(
+            "Design check: the {beam}'s worst {stress} utilisation along it so far, each station's running peak over \
+             the allowable {stress} stress of its own section (fails above 1; design.pass counts it)"
+        ),
+    }
+}
+
+/// What an envelope output gives where the beam has no such stress (the bridge always has its
+/// bending stress).
+fn missing_envelope(k: usize) -> &'static str {
+    match k {
+        0 => "",
+        1 => "; 0 when the bridge has no shear area (upper.shear_area = 0, the default: no shear stress computed)",
+        _ => "; 0 with a rigid support (lower.kind = 1: no arrestor beam)",
+    }
+}
+
+/// What a utilisation output gives where it is not checked (the bridge's bending stress always is).
+fn missing_utilisation(k: usize) -> &'static str {
+    match k {
+        0 => "",
+        1 => {
+            "; 0 when not checked: the bridge has no shear area (upper.shear_area = 0) or no allowable shear stress \
+             (upper.allowable_shear_stress = 0 and no section gives its own)"
+        }
+        _ => "; 0 with a rigid support (lower.kind = 1: no arrestor beam)",
+    }
 }
 
 /// An entry of [`IMPACT_OUTPUTS`]: name, unit, description, accessor.

@@ -256,6 +256,18 @@ pub const PARAMETERS: &[Parameter] = &[
         "Hunt and Crossley's damping c: F = k delta^n (1 + c delta'), for either law; 0: none",
         contact.damping
     ),
+    real!(
+        "upper.shear_area",
+        "m2",
+        "Bridge shear area for Q/A_s; 0: none given (the paper gives none): no shear stress for the bridge",
+        upper.shear_area
+    ),
+    real!(
+        "upper.allowable_shear_stress",
+        "Pa",
+        "Bridge allowable shear stress; 0: none given (the bridge's shear is not checked)",
+        upper.allowable_shear_stress
+    ),
 ];
 
 /// Looks a parameter up by name.
@@ -280,7 +292,9 @@ pub fn set(scenario: &mut Scenario, parameter: &Parameter, value: f64) -> Result
 /// the declared bound is the widest one and the rest is checked at initialization:
 /// `drop_height` is at most half of `upper.length` (500 m at its largest),
 /// `contact_position` is below `upper.length` (a bound FMI cannot express: no `max`). The step
-/// sizes' range 0..1 s holds a gap: 0 is "automatic", otherwise at least 1e-9 s.
+/// sizes' range 0..1 s holds a gap: 0 is "automatic", otherwise at least 1e-9 s; so do the
+/// bridge's shear area and allowable shear stress (issue 30): 0 is "none given", otherwise at
+/// least 1e-12 m^2 and 1e-3 Pa.
 pub const RANGES: &[(&str, Option<f64>, Option<f64>)] = &[
     ("drop_height", Some(0.0), Some(500.0)),
     ("contact_position", Some(SMALLEST_POSITIVE), None),
@@ -325,6 +339,8 @@ pub const RANGES: &[(&str, Option<f64>, Option<f64>)] = &[
     ("contact.law", Some(0.0), Some(1.0)),
     ("contact.exponent", Some(1.0), Some(3.0)),
     ("contact.damping", Some(0.0), Some(1e3)),
+    ("upper.shear_area", Some(0.0), Some(1e3)),
+    ("upper.allowable_shear_stress", Some(0.0), Some(1e12)),
 ];
 
 /// The smallest positive f64: a lower bound "> 0" in the FMU's `min` (FMI has no exclusive bound).
@@ -353,6 +369,8 @@ fn range_text(name: &str) -> Option<String> {
         "drop_height" => return Some("0 to upper.length / 2 (500 at most)".into()),
         "contact_position" => return Some("> 0, up to upper.length (its free end)".into()),
         "step_free" | "step_contact" => return Some("\"auto\", or 1e-9 to 1".into()),
+        "upper.shear_area" => return Some("0 (none), or 1e-12 to 1000".into()),
+        "upper.allowable_shear_stress" => return Some("0 (none), or 1e-3 to 1e12".into()),
         "modal_cutoff" => return Some("\"auto\", or > 0 up to 1e12".into()),
         // A CLI field (the FMU's stop time is the importer's): Scenario::validate's bound.
         "duration" => return Some("> 0, at most 1e6".into()),
@@ -378,7 +396,9 @@ fn annotation(p: &Parameter) -> String {
 }
 
 /// Fields of a section that a scenario leaves out unless given, with an example value.
-const OPTIONAL_FIELDS: [(&str, &str); 6] = [
+const OPTIONAL_FIELDS: [(&str, &str); 8] = [
+    ("upper.shear_area", "0.012"),
+    ("upper.allowable_shear_stress", "355e6"),
     ("lower.kind", "\"rigid\""),
     ("contact.stiffness", "2.8e10"),
     ("contact.clearance", "0.001"),

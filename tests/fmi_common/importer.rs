@@ -219,6 +219,17 @@ impl Fmu2 {
         logging_on: bool,
         instance_name: &str,
     ) -> (Option<Fmu2>, Box<Log>) {
+        Self::try_new_in(lib, guid, logging_on, instance_name, "file:///tmp/some%20dir/resources")
+    }
+
+    /// [`Fmu2::try_new_named`] with the resource location (a `file:` URI, as FMI 2 gives it).
+    pub fn try_new_in(
+        lib: &Arc<Library>,
+        guid: Option<&str>,
+        logging_on: bool,
+        instance_name: &str,
+        resource_location: &str,
+    ) -> (Option<Fmu2>, Box<Log>) {
         let log = Box::new(Log::default());
         let callbacks = Box::new(Fmi2Callbacks {
             logger: Some(fmi2_logger),
@@ -231,7 +242,7 @@ impl Fmu2 {
         let (name, guid, resources) = (
             CString::new(instance_name).unwrap(),
             CString::new(token).unwrap(),
-            CString::new("file:///tmp/some%20dir/resources").unwrap(),
+            CString::new(resource_location).unwrap(),
         );
         let instantiate = sym!(
             lib,
@@ -409,10 +420,20 @@ pub struct Fmu3 {
 
 impl Fmu3 {
     pub fn try_new(lib: &Arc<Library>, token: Option<&str>, early_return: bool) -> (Option<Fmu3>, Box<Log>) {
+        Self::try_new_in(lib, token, early_return, "/tmp/x/resources/")
+    }
+
+    /// [`Fmu3::try_new`] with the resource path (a plain path, as FMI 3 gives it).
+    pub fn try_new_in(
+        lib: &Arc<Library>,
+        token: Option<&str>,
+        early_return: bool,
+        resource_path: &str,
+    ) -> (Option<Fmu3>, Box<Log>) {
         let log = Box::new(Log::default());
         let token = token.map(String::from).unwrap_or_else(beam_impact::fmi::description::token);
         let (name, token, resources) =
-            (CString::new("beam3").unwrap(), CString::new(token).unwrap(), CString::new("/tmp/x/resources/").unwrap());
+            (CString::new("beam3").unwrap(), CString::new(token).unwrap(), CString::new(resource_path).unwrap());
         let instantiate = sym!(
             lib,
             "fmi3InstantiateCoSimulation",
@@ -502,6 +523,18 @@ impl Fmu3 {
         );
         // SAFETY: one value reference and one value.
         unsafe { f(self.c, [vr(name)].as_ptr(), 1, &value, 1) }
+    }
+
+    pub fn get_boolean(&self, name: &str) -> bool {
+        let f = sym!(
+            self.lib,
+            "fmi3GetBoolean",
+            unsafe extern "C" fn(*mut c_void, *const u32, usize, *mut bool, usize) -> c_int
+        );
+        let mut value = false;
+        // SAFETY: one value.
+        assert_eq!(unsafe { f(self.c, [vr(name)].as_ptr(), 1, &mut value, 1) }, OK, "{}", self.log.text());
+        value
     }
 
     pub fn set_integer(&self, name: &str, value: i32) -> c_int {

@@ -144,7 +144,7 @@ static void *need(lib_t lib, const char *name) {
 }
 
 /* From modelDescription.xml (FMI 2 guid = FMI 3 instantiationToken; the value references are the same). */
-#define TOKEN "{e2a7371e-ecd5-9996-4c62-82839b43900f}"
+#define TOKEN "{e734c467-4117-c817-3788-9bdb837ae1ce}"
 #define VR_LOG_PATH 27
 #define N_OUTPUTS 8
 #define N_PEAKS 5 /* the first N_PEAKS outputs */
