@@ -161,6 +161,31 @@ impl StationRows {
     }
 }
 
+impl StationRows {
+    /// Every station's signed stress, Pa, at the state `q` under the correction's load
+    /// coefficients `loads` (None: a full basis), into `out` (one value per station, in the order
+    /// of [`crate::model::stations::Stations::all`]): the same sums as [`Self::observe`], without
+    /// the bound that skips stations (a log's per-step stresses, issue 30).
+    pub fn stresses(&self, q: &[f64], loads: Option<&[f64; LOADS]>, out: &mut [f64]) {
+        let n = self.modes.min(q.len());
+        for (k, value) in out.iter_mut().enumerate().take(self.len()) {
+            let row = &self.rows[k * self.modes..k * self.modes + n];
+            let (start, end) = if self.upper[k] { (self.lower_modes.min(n), n) } else { (0, self.lower_modes.min(n)) };
+            let mut sum = dot(&row[start..end], &q[start..end]);
+            if let Some(c) = loads {
+                let coefficients = &self.correction[k];
+                sum += (0..LOADS).map(|a| coefficients[a] * c[a]).sum::<f64>();
+            }
+            *value = sum;
+        }
+    }
+
+    /// Multiply-adds of one [`Self::stresses`] call (stations x modes of their beams, about).
+    pub fn work(&self) -> usize {
+        self.len() * self.modes
+    }
+}
+
 /// sum w_i x_i^2 in four lanes.
 fn weighted_squares(w: &[f64], x: &[f64]) -> f64 {
     let n = w.len().min(x.len());
@@ -225,5 +250,38 @@ mod tests {
         }
         assert_eq!(max, all);
         assert_eq!(times, all_times);
+    }
+
+    /// A log's per-step stresses are the envelope's values: their running largest |value| over
+    /// random states of the paper model (with and without the static correction's loads) is the
+    /// envelope's, to the bit (the same sums in the same order).
+    #[test]
+    fn per_step_stresses_raise_the_same_envelope() {
+        let model = Model::new(&Scenario::paper()).unwrap();
+        let system = ModalSystem::new(&model).unwrap();
+        let divisors: Vec<f64> = model.stations.all().map(|s| s.divisor).collect();
+        let upper: Vec<bool> = (0..divisors.len()).map(|k| k >= model.stations.lower.len()).collect();
+        let rows = StationRows::new(&system, &divisors, upper);
+        let n = system.dofs();
+        let (mut max, mut times) = (vec![0.0; rows.len()], vec![0.0; rows.len()]);
+        let mut running = vec![0.0f64; rows.len()];
+        let mut values = vec![0.0; rows.len()];
+        let mut seed = 777u64;
+        let mut random = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        for step in 0..200 {
+            let q: Vec<f64> = (0..n).map(|i| random() / (1.0 + system.omega2[i].sqrt())).collect();
+            let loads: [f64; LOADS] = std::array::from_fn(|_| 1e3 * random());
+            let loads = (step % 2 == 0).then_some(&loads);
+            rows.observe(&q, loads, step as f64, &mut max, &mut times);
+            rows.stresses(&q, loads, &mut values);
+            for (r, v) in running.iter_mut().zip(&values) {
+                *r = r.max(v.abs());
+            }
+        }
+        assert_eq!(running, max);
+        assert_eq!(rows.work(), rows.len() * n);
     }
 }
