@@ -33,7 +33,7 @@ const SCHEMAS: &[(&str, &str)] = &[
 const OMITTED_FIELDS: &[(&str, &[&str])] = &[
     ("foxglove.SceneUpdate", &["deletions"]),
     ("foxglove.SceneEntity", &["arrows", "cubes", "spheres", "cylinders", "triangles", "texts", "models"]),
-    ("foxglove.LinePrimitive", &["colors", "indices"]),
+    ("foxglove.LinePrimitive", &["indices"]),
 ];
 
 /// Protobuf types generated as (mapped to) existing Rust types of the same wire layout.

@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::model::system::PROBES;
 use crate::model::{Method, Model, Probe, Scenario, SupportMotion, TimeStep};
+use crate::record::stations::{FeedEnd, StationLayout, StationProbe};
 use crate::record::{NullRecorder, Recorder, RunInfo};
 use crate::results::{
     seconds, ContactEvent, ContactWindow, EnergyAccount, FirstContact, Impact, ModeTable, Peaks, Quality, StepResult,
@@ -15,6 +16,7 @@ use crate::results::{
 use crate::solver::contact::{self, Stage};
 use crate::solver::envelope::StationRows;
 use crate::solver::initial::{initial_state, Pitching};
+use crate::solver::static_correction::LOADS;
 use crate::solver::{
     DenseStepper, Energies, EnergyMethod, Excitation, Kinematics, ModalCache, ModalStepper, ModalSystem, StepPlan,
     Stepper, TipForces,
@@ -262,7 +264,11 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     /// The impact as the initial state starts it.
     impact: Impact,
     /// The stress envelope's stations in modal coordinates.
-    stations: StationRows,
+    stations: std::sync::Arc<StationRows>,
+    /// The run's own envelope work: the bounds' anchor, worst-only or every station.
+    envelope_work: crate::solver::envelope::EnvelopeWork,
+    /// The recorder's feed of the stations' per-step loads and the run's envelope (issue 30).
+    feed: FeedEnd,
 }
 
 impl Simulation<ModalStepper> {
@@ -419,9 +425,9 @@ impl<S: Stepper> Simulation<S> {
         };
         let stations = if stepper.modal_coordinates() {
             let divisors: Vec<f64> = model.stations.all().map(|s| s.divisor).collect();
-            StationRows::new(&modal, &divisors, crate::solver::envelope::groups(&model))
+            std::sync::Arc::new(StationRows::new(&modal, &divisors, crate::solver::envelope::groups(&model)))
         } else {
-            StationRows::default()
+            std::sync::Arc::default()
         };
         let backup = state.kinematics.clone();
         let output = StepResult::default();
@@ -444,6 +450,8 @@ impl<S: Stepper> Simulation<S> {
             output,
             impact,
             stations,
+            envelope_work: Default::default(),
+            feed: FeedEnd::default(),
         };
         simulation.evaluate_initial();
         Ok(simulation)
@@ -454,21 +462,45 @@ impl<S: Stepper> Simulation<S> {
         if self.stations.is_empty() || !step.is_multiple_of(self.stations.stride) {
             return;
         }
-        // The discarded modes' load coefficients, as the stepper's measurements take them.
-        let q = self.state.kinematics.displacement.as_slice();
-        let loads = self.modal.is_truncated().then(|| {
-            let b = self.modal.probes.row(Probe::Gap as usize);
-            let gap = (0..q.len().min(b.len())).map(|i| b[i] * q[i]).sum::<f64>() + excitation.gap_offset;
-            self.modal.correction.evaluate(gap, stage.is_contact(), excitation).loads
-        });
+        let loads = self.correction_loads(self.state.kinematics.displacement.as_slice(), stage, excitation);
         let state = &mut self.state;
         self.stations.observe(
+            &mut self.envelope_work,
             state.kinematics.displacement.as_slice(),
             loads.as_ref(),
             time,
             &mut state.envelope,
             &mut state.envelope_times,
         );
+    }
+
+    /// The discarded modes' load coefficients at the state `q` (in `stage` under `excitation`), as
+    /// the stepper's measurements take them; None for a full basis.
+    fn correction_loads(&self, q: &[f64], stage: Stage, excitation: &Excitation) -> Option<[f64; LOADS]> {
+        self.modal.is_truncated().then(|| {
+            let b = self.modal.probes.row(Probe::Gap as usize);
+            let gap = (0..q.len().min(b.len())).map(|i| b[i] * q[i]).sum::<f64>() + excitation.gap_offset;
+            self.modal.correction.evaluate(gap, stage.is_contact(), excitation).loads
+        })
+    }
+
+    /// Sends `result` with its own coordinates `q` to `recorder`, after telling the stations'
+    /// feed (if a recorder holds it) the step's load coefficients, from which with `q` the log's
+    /// per-step stresses follow.
+    fn record(&self, recorder: &mut dyn Recorder, result: &StepResult, q: &[f64]) -> Result<()> {
+        if let Some(feed) = self.feed.listened() {
+            let stage = if result.contact { Stage::Contact } else { Stage::Free };
+            feed.set_loads(self.correction_loads(q, stage, &self.excitation_at(result.time_ns)));
+        }
+        recorder.step(result, q)
+    }
+
+    /// Hands the run's envelope so far to the stations' feed, if a recorder holds it (the log
+    /// attaches the latest when it is finished).
+    fn publish_envelope(&self) {
+        if let Some(feed) = self.feed.listened() {
+            feed.set_envelope(self.envelope());
+        }
     }
 
     fn evaluate_initial(&mut self) {
@@ -962,6 +994,7 @@ impl<S: Stepper> Simulation<S> {
         self.apply_input(recorder)?;
         let advance = self.land_at(target_ns, recorder, stop_at_contact_change)?;
         self.outputs_at_latest_step();
+        self.publish_envelope();
         Ok(advance)
     }
 
@@ -983,7 +1016,7 @@ impl<S: Stepper> Simulation<S> {
         if advance == Advance::Reached && self.output.time_ns > self.state.result.time_ns {
             let record = self.stop_record();
             let displacement = self.displacement_at(self.output.time_ns)?;
-            recorder.step(&record, displacement.as_slice())?;
+            self.record(recorder, &record, displacement.as_slice())?;
         }
         Ok(advance)
     }
@@ -1028,6 +1061,18 @@ impl<S: Stepper> Simulation<S> {
         recorder: &mut dyn Recorder,
         stop_at_contact_change: bool,
     ) -> Result<Advance> {
+        let advance = self.advance_outputs(target_ns, recorder, stop_at_contact_change);
+        self.publish_envelope();
+        advance
+    }
+
+    /// [`Self::advance_outputs_to`]'s steps.
+    fn advance_outputs(
+        &mut self,
+        target_ns: u64,
+        recorder: &mut dyn Recorder,
+        stop_at_contact_change: bool,
+    ) -> Result<Advance> {
         self.apply_input(recorder)?;
         let target_ns = target_ns.max(self.state.output_ns);
         while self.state.result.time_ns < target_ns {
@@ -1045,7 +1090,7 @@ impl<S: Stepper> Simulation<S> {
                     return Ok(Advance::Reached);
                 }
             }
-            recorder.step(&self.state.result, self.state.kinematics.displacement.as_slice())?;
+            self.record(recorder, &self.state.result, self.state.kinematics.displacement.as_slice())?;
             if let Some(e) = &event {
                 recorder.contact_event(e)?;
                 if stop_at_contact_change {
@@ -1077,7 +1122,7 @@ impl<S: Stepper> Simulation<S> {
     ) -> Result<Advance> {
         while self.state.result.time_ns < target_ns {
             let event = self.step(target_ns - self.state.result.time_ns, recorder.wants_details())?;
-            recorder.step(&self.state.result, self.state.kinematics.displacement.as_slice())?;
+            self.record(recorder, &self.state.result, self.state.kinematics.displacement.as_slice())?;
             if let Some(e) = &event {
                 recorder.contact_event(e)?;
                 if stop_at_contact_change {
@@ -1234,13 +1279,23 @@ impl<S: Stepper> Simulation<S> {
     /// Sends the run's description and the initial state (step 0) to `recorder`.
     pub fn start_recording(&self, recorder: &mut dyn Recorder) -> Result<()> {
         let (lower_nodes, upper_nodes) = self.model.node_positions();
+        // The stress stations and their feed (issue 30): a recorder that keeps them holds the feed.
+        let probe = (!self.stations.is_empty()).then(|| StationProbe {
+            layout: StationLayout::of(&self.model.stations, self.stations.stride),
+            rows: std::sync::Arc::clone(&self.stations),
+            feed: self.feed.share(),
+        });
         recorder.start(&RunInfo {
             scenario: &self.model.scenario,
             lower_nodes: &lower_nodes,
             upper_nodes: &upper_nodes,
             nodal_shapes: &self.nodal_shapes,
+            stations: probe.as_ref(),
         })?;
-        recorder.step(&self.state.result, self.state.kinematics.displacement.as_slice())
+        drop(probe);
+        self.record(recorder, &self.state.result, self.state.kinematics.displacement.as_slice())?;
+        self.publish_envelope();
+        Ok(())
     }
 
     /// Runs the scenario's whole duration into `recorder` (start, every step, finish).
@@ -1375,7 +1430,7 @@ impl<S: Stepper> Simulation<S> {
     /// [`RunState::validate`]; a refused state leaves the simulation as it was.
     pub fn restore(&mut self, state: RunState) -> Result<()> {
         state.validate(self.modal.dofs(), self.longest_step_ns())?;
-        self.stations.invalidate();
+        self.envelope_work.invalidate();
         // The stress envelope: one value per station of this model, each a finite |stress|
         // reached at a time within the run.
         let stations = self.model.stations.len();
@@ -1412,6 +1467,7 @@ impl<S: Stepper> Simulation<S> {
             // Leave the simulation as it was: a refused state changes nothing.
             self.state = previous;
             self.output = previous_output;
+            self.publish_envelope();
             return Err(e);
         }
         self.state.input_forces = forces;
@@ -1482,14 +1538,14 @@ impl<S: Stepper> Simulation<S> {
     /// Takes no stress envelope from here on (its stations' values stay as they are): the
     /// bench's side-by-side measure of what the envelope costs per step.
     pub fn without_envelope(&mut self) {
-        self.stations = StationRows::default();
+        self.stations = std::sync::Arc::default();
     }
 
     /// Keeps only each envelope's worst value exact from here on (a check rung's or a twin's
     /// run: their figures and spreads compare the beams' worst stresses; see
     /// [`StationRows::worst_only`]): the run takes a fraction of the envelope's work.
     pub fn envelope_worst_only(&mut self) {
-        self.stations.worst_only = true;
+        self.envelope_work.worst_only = true;
     }
 
     /// The stress envelope so far (issue 30).

@@ -279,8 +279,13 @@ fn report_csv_leaves_out_rolled_back_steps() {
     let options = RecorderOptions { scene_interval_ns: 0, ..RecorderOptions::default() };
     let mut recorder = McapRecorder::with_options(&path, options).unwrap();
     let shapes = nalgebra::DMatrix::<f64>::zeros(2, 2);
-    let info =
-        RunInfo { scenario: &scenario, lower_nodes: &[0.0, 12.0], upper_nodes: &[0.0, 29.0], nodal_shapes: &shapes };
+    let info = RunInfo {
+        scenario: &scenario,
+        lower_nodes: &[0.0, 12.0],
+        upper_nodes: &[0.0, 29.0],
+        nodal_shapes: &shapes,
+        stations: None,
+    };
     recorder.start(&info).unwrap();
     let step = |k: u64, branch: f64| {
         let mut r = StepResult {

@@ -11,6 +11,8 @@ pub const MODES_TOPIC: &str = "/beam/modes";
 pub const CONTACT_TOPIC: &str = "/beam/contact";
 /// Topic of the one-off model message.
 pub const MODEL_TOPIC: &str = "/beam/model";
+/// Topic of the per-step stresses at the stress stations (issue 30).
+pub const STATIONS_TOPIC: &str = "/beam/stations";
 /// Topic of the 3D scene.
 pub const SCENE_TOPIC: &str = "/beam/scene";
 /// Topic of the log lines.
@@ -18,6 +20,10 @@ pub const LOG_TOPIC: &str = "/beam/log";
 /// The attachment holding the CLI's answer with its checks (`quality`, `design`,
 /// `discretisation` as `run --json` writes them), added after the run's last step.
 pub const ANSWER_ATTACHMENT: &str = "answer.json";
+/// The attachment holding the run's stress envelope (issue 30: [`crate::results::StressEnvelope`]
+/// as JSON, each beam's bending and shear stations with their largest |stress|, when, and the
+/// allowable), added when the log is finished: by the CLI and the FMU alike.
+pub const ENVELOPE_ATTACHMENT: &str = "envelope.json";
 /// Name of the scenario's Metadata record.
 pub const SCENARIO_METADATA: &str = "scenario";
 /// Name of the scenario's TOML attachment.

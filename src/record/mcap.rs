@@ -12,7 +12,17 @@
 //! | `/beam/modes` | `beam_impact.ModalCoordinates` | modal coordinates: see [`RecorderOptions::modes_interval_ns`] |
 //! | `/beam/contact` | `beam_impact.ContactEvent` | contact starts and ends |
 //! | `/beam/log` | `foxglove.Log` | the same events as text lines |
-//! | `/beam/scene` | `foxglove.SceneUpdate` | both beams as line strips, every [`RecorderOptions::scene_interval_ns`] |
+//! | `/beam/scene` | `foxglove.SceneUpdate` | both beams, each element coloured by its utilisation, every [`RecorderOptions::scene_interval_ns`] |
+//! | `/beam/stations` | `beam_impact.StationStresses` | the stress at every station of each recorded step (issue 30; the stations in `/beam/model`) |
+//!
+//! **The stress envelope** (issue 30): the run's [`crate::results::StressEnvelope`] is attached as
+//! [`ENVELOPE_ATTACHMENT`] when the log is finished (the CLI's and the FMU's alike: the simulation
+//! hands it over through the stations' feed, see [`super::stations`]); `/beam/stations` holds the
+//! stresses it was raised from at the recorded steps (every step by default; with decimation the
+//! recorded ones; on a basis so large that the envelope is evaluated every k-th step, the recorded
+//! steps among those), so that a log without the attachment (a killed run) rebuilds it. The
+//! stresses are evaluated on the writer thread from the step's modal coordinates and the static
+//! correction's load coefficients.
 //!
 //! The scenario is also an MCAP Metadata record (`scenario`, flattened dotted keys, with
 //! `log_format` = [`LOG_FORMAT`]) and a TOML attachment (`scenario.toml`).
@@ -50,13 +60,14 @@ use std::time::Instant;
 use ::mcap::{Compression, WriteOptions};
 
 pub use super::log_format::{
-    ANSWER_ATTACHMENT, CONTACT_TOPIC, LOG_FORMAT, LOG_FORMAT_KEY, LOG_TOPIC, MODEL_TOPIC, MODES_TOPIC,
-    MOTION_ATTACHMENT, MOTION_MEDIA_TYPE, ROLLBACK_LINE, SCENARIO_ATTACHMENT, SCENARIO_METADATA, SCENE_TOPIC,
-    SIZE_CAP_LINE, STEP_TOPIC,
+    ANSWER_ATTACHMENT, CONTACT_TOPIC, ENVELOPE_ATTACHMENT, LOG_FORMAT, LOG_FORMAT_KEY, LOG_TOPIC, MODEL_TOPIC,
+    MODES_TOPIC, MOTION_ATTACHMENT, MOTION_MEDIA_TYPE, ROLLBACK_LINE, SCENARIO_ATTACHMENT, SCENARIO_METADATA,
+    SCENE_TOPIC, SIZE_CAP_LINE, STATIONS_TOPIC, STEP_TOPIC,
 };
 pub use super::options::{LogCompression, RecorderOptions, RecorderTiming, MAX_LOG_BYTES};
 use super::scene::SceneBuilder;
-use super::schema::{self, ModelMessage};
+use super::schema::{self, ModelMessage, StationGroupMessage};
+use super::stations::{StationFeed, StationGroup};
 use super::writer::{error_chain, Batch, Channels, Item, LogWriter, StartRecord};
 pub use super::writer::{BATCH_STEPS, QUEUE_BATCHES};
 use super::{Recorder, RunInfo};
@@ -94,6 +105,12 @@ pub struct McapRecorder {
     next_scene_ns: u64,
     next_modes_ns: u64,
     has_scene: bool,
+    /// The stations' feed (issue 30), held while the run has stations.
+    feed: Option<Arc<StationFeed>>,
+    /// The stations are evaluated at every this many steps.
+    station_stride: u64,
+    /// The correction's load coefficients of `previous`, from the feed.
+    loads: Option<[f64; crate::solver::static_correction::LOADS]>,
 }
 
 impl std::fmt::Debug for McapRecorder {
@@ -194,6 +211,9 @@ impl McapRecorder {
             next_scene_ns: 0,
             next_modes_ns: 0,
             has_scene: false,
+            feed: None,
+            station_stride: 1,
+            loads: None,
         })
     }
 
@@ -241,7 +261,7 @@ impl McapRecorder {
     /// Queues the modal coordinates of `previous` (held in `self.coordinates`).
     fn push_modes(&mut self, log: bool, scene: bool) {
         let Some(r) = self.previous else { return };
-        self.batch.push_modes(&self.coordinates, r.step, r.time_ns, r.time_ns, log, scene);
+        self.batch.push_modes(&self.coordinates, r.step, r.time_ns, r.time_ns, log, scene, self.loads);
         self.coordinates_sent |= log;
         if log && self.peak.is_some_and(|(step, _)| step == r.step) {
             self.peak = None;
@@ -254,7 +274,7 @@ impl McapRecorder {
         if let Some((step, time_ns)) = self.peak.take() {
             // Written now, stamped now: log times never decrease; the message says its step.
             let log_time_ns = self.previous.map_or(time_ns, |p| p.time_ns.max(time_ns));
-            self.batch.push_modes(&self.peak_coordinates, step, time_ns, log_time_ns, true, false);
+            self.batch.push_modes(&self.peak_coordinates, step, time_ns, log_time_ns, true, false, None);
             if self.previous.is_some_and(|p| p.step == step) {
                 self.coordinates_sent = true;
             }
@@ -266,11 +286,20 @@ impl McapRecorder {
     fn record_pending(&mut self) {
         if let (true, Some(r)) = (self.pending, self.previous) {
             self.push(Item::Step(r));
+            self.push_stations(&r);
             self.pending = false;
         }
         self.push_peak();
         if !self.coordinates_sent && self.options.modal_coordinates {
             self.push_modes(true, false);
+        }
+    }
+
+    /// Queues the stations' stresses of the recorded step `r` (its coordinates in
+    /// `self.coordinates`), if the run has stations evaluated at that step and the log keeps them.
+    fn push_stations(&mut self, r: &StepResult) {
+        if self.feed.is_some() && self.options.station_stresses && r.step.is_multiple_of(self.station_stride) {
+            self.batch.push_stations(&self.coordinates, r.step, r.time_ns, self.loads);
         }
     }
 
@@ -320,6 +349,7 @@ fn add_channels<W: std::io::Write + std::io::Seek>(w: &mut ::mcap::Writer<W>) ->
     let modes_schema = w.add_schema(schema::MODES_SCHEMA, "protobuf", &beam)?;
     let scene_schema = w.add_schema(schema::SCENE_SCHEMA, "protobuf", &schema::scene_update_descriptor())?;
     let log_schema = w.add_schema(schema::LOG_SCHEMA, "protobuf", &schema::log_descriptor())?;
+    let stations_schema = w.add_schema(schema::STATIONS_SCHEMA, "protobuf", &beam)?;
     Ok(Channels {
         model: w.add_channel(model_schema, MODEL_TOPIC, "protobuf", &none)?,
         step: w.add_channel(step_schema, STEP_TOPIC, "protobuf", &none)?,
@@ -327,6 +357,7 @@ fn add_channels<W: std::io::Write + std::io::Seek>(w: &mut ::mcap::Writer<W>) ->
         log: w.add_channel(log_schema, LOG_TOPIC, "protobuf", &none)?,
         scene: w.add_channel(scene_schema, SCENE_TOPIC, "protobuf", &none)?,
         modes: w.add_channel(modes_schema, MODES_TOPIC, "protobuf", &none)?,
+        stations: w.add_channel(stations_schema, STATIONS_TOPIC, "protobuf", &none)?,
     })
 }
 
@@ -359,6 +390,14 @@ impl Recorder for McapRecorder {
     fn start(&mut self, info: &RunInfo<'_>) -> Result<()> {
         let toml = info.scenario.to_toml();
         let shapes = info.nodal_shapes;
+        let group = |g: &StationGroup| {
+            Some(StationGroupMessage {
+                positions: g.positions.clone(),
+                allowable: g.allowable.clone(),
+                nodes: g.nodes.clone(),
+            })
+        };
+        let layout = info.stations.map(|p| &p.layout);
         let model = ModelMessage {
             scenario_toml: toml.clone(),
             lower_nodes: info.lower_nodes.to_vec(),
@@ -366,14 +405,23 @@ impl Recorder for McapRecorder {
             shape_rows: shapes.nrows() as u32,
             shape_cols: shapes.ncols() as u32,
             nodal_shapes: (0..shapes.nrows()).flat_map(|r| (0..shapes.ncols()).map(move |c| shapes[(r, c)])).collect(),
+            lower_bending_stations: layout.and_then(|l| group(&l.lower_bending)),
+            lower_shear_stations: layout.and_then(|l| group(&l.lower_shear)),
+            upper_bending_stations: layout.and_then(|l| group(&l.upper_bending)),
+            upper_shear_stations: layout.and_then(|l| group(&l.upper_shear)),
+            stations_sampled_every: layout.map_or(0, |l| l.sampled_every),
         };
+        self.feed = info.stations.map(|p| Arc::clone(&p.feed));
+        self.station_stride = layout.map_or(1, |l| l.sampled_every.max(1));
+        self.loads = None;
         let mut metadata = flatten_toml(&toml);
         metadata.insert("paper".into(), info.scenario.is_paper().to_string());
         metadata.insert("beam_impact_version".into(), env!("CARGO_PKG_VERSION").into());
         metadata.insert(LOG_FORMAT_KEY.into(), LOG_FORMAT.to_string());
         self.has_scene = self.options.scene_interval_ns > 0;
         let scene = self.has_scene.then(|| SceneBuilder::new(info));
-        self.push(Item::Start(Box::new(StartRecord { model, metadata, scenario_toml: toml, scene })));
+        let stations = info.stations.map(|p| (p.layout.clone(), Arc::clone(&p.rows)));
+        self.push(Item::Start(Box::new(StartRecord { model, metadata, scenario_toml: toml, scene, stations })));
         // The motion table travels with the log, so that it replays without the file (issue 27).
         if let Some(table) = &info.scenario.motion.table {
             self.push(Item::Attach {
@@ -411,8 +459,12 @@ impl Recorder for McapRecorder {
         self.coordinates.extend_from_slice(modal_coordinates);
         self.coordinates_sent = false;
         self.pending = !keep;
+        if let Some(feed) = &self.feed {
+            self.loads = feed.loads();
+        }
         if keep {
             self.push(Item::Step(*result));
+            self.push_stations(result);
         }
         if deflection_peak && self.options.modal_coordinates {
             self.peak = Some((result.step, result.time_ns));
@@ -489,11 +541,22 @@ impl Recorder for McapRecorder {
             return Ok(());
         }
         self.finished = true;
-        // The last step is always recorded, with its modal coordinates.
+        // The last step is always recorded, with its modal coordinates; then the run's envelope.
+        let mut encoded = Ok(());
         if self.capped.get().is_none() {
             self.record_pending();
+            if let Some(envelope) = self.feed.as_ref().and_then(|f| f.envelope()) {
+                match serde_json::to_vec(&envelope) {
+                    Ok(data) => self.push(Item::Attach {
+                        name: ENVELOPE_ATTACHMENT.into(),
+                        media_type: "application/json".into(),
+                        data,
+                    }),
+                    Err(e) => encoded = Err(self.err(format!("cannot encode {ENVELOPE_ATTACHMENT}: {e}"))),
+                }
+            }
         }
-        let sent = self.send();
+        let sent = self.send().and(encoded);
         // Closing the queue ends the writer thread, which then writes the summary and footer.
         self.queue = None;
         let joined = self.join();

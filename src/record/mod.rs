@@ -1,6 +1,7 @@
 //! Writing results: the [`Recorder`] the simulation writes into, the MCAP log ([`mcap`], its
 //! writer thread [`writer`], its names [`log_format`] and [`options`], the messages [`schema`] and
-//! their encoding [`step_encoding`], the Foxglove scene [`scene`]), the guard every output file goes through ([`output`]) and the
+//! their encoding [`step_encoding`], the Foxglove scene [`scene`], the stress stations' layout and
+//! feed [`stations`]), the guard every output file goes through ([`output`]) and the
 //! recording benchmark ([`mod@bench`]). The physics never sees a file format; reading a log back
 //! and drawing it is [`crate::replay`]'s.
 
@@ -22,6 +23,10 @@ pub struct RunInfo<'a> {
     /// Maps the modal coordinates of a step to the nodal deflections of the arrestor's nodes
     /// followed by the bridge's nodes, m: w = shapes * q (rows of supported nodes are zero).
     pub nodal_shapes: &'a DMatrix<f64>,
+    /// The stress stations (issue 30): where they are, how a step's stresses follow from its
+    /// modal coordinates, and the feed of what they do not say ([`stations`]); None for a run
+    /// without them (the dense oracle) and for runs described by hand.
+    pub stations: Option<&'a stations::StationProbe>,
 }
 
 /// Receives every internal step of a run.
@@ -127,5 +132,6 @@ pub mod log_format;
 pub mod options;
 pub mod scene;
 pub mod schema;
+pub mod stations;
 pub mod step_encoding;
 pub mod writer;

@@ -41,7 +41,8 @@ impl std::fmt::Display for LogCompression {
 }
 
 /// How the log is written. The defaults: no compression, chunks up to 256 KiB, a flush every 1000 steps and
-/// at contact events, a scene and modal coordinates every 1 ms of simulated time, every step.
+/// at contact events, a scene and modal coordinates every 1 ms of simulated time, every step with
+/// its stations' stresses.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RecorderOptions {
     /// Target uncompressed chunk size, bytes (64-256 KiB: a killed run loses at most one).
@@ -59,6 +60,9 @@ pub struct RecorderOptions {
     pub modes_interval_ns: u64,
     /// Write `/beam/modes` at all (the scene is drawn either way).
     pub modal_coordinates: bool,
+    /// Write `/beam/stations`, the stress at every station of each recorded step (issue 30; the
+    /// envelope attachment and the scene's utilisation colours stay either way).
+    pub station_stresses: bool,
     /// Record every Nth step (1: every step); see the module's decimation rule.
     pub record_every: u64,
     /// Clock every message's encoding and writing (for the benchmark's breakdown: the clock
@@ -87,6 +91,7 @@ impl Default for RecorderOptions {
             scene_interval_ns: 1_000_000,
             modes_interval_ns: 1_000_000,
             modal_coordinates: true,
+            station_stresses: true,
             record_every: 1,
             timing: false,
             allow_devices: false,

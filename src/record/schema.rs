@@ -12,7 +12,9 @@
 //! - [`StepMessage`] (`beam_impact.Step`, one per internal step),
 //! - [`ContactEventMessage`] (`beam_impact.ContactEvent`, contact starts and ends),
 //! - [`ModelMessage`] (`beam_impact.Model`, once: node positions and the nodal shape matrix),
-//! - [`ModalCoordinatesMessage`] (`beam_impact.ModalCoordinates`, the deflected shapes' coordinates).
+//! - [`ModalCoordinatesMessage`] (`beam_impact.ModalCoordinates`, the deflected shapes' coordinates),
+//! - [`StationStressesMessage`] (`beam_impact.StationStresses`, the stress at every station of a
+//!   recorded step; the stations are [`StationGroupMessage`]s of the model message).
 //!
 //! Foxglove's well-known `foxglove.SceneUpdate` and `foxglove.Log` (`proto/foxglove/`, one file
 //! per message as Foxglove publishes them) are described in full in the schema records; the
@@ -47,6 +49,8 @@ pub const MODEL_SCHEMA: &str = "beam_impact.Model";
 /// Schema name of the modal coordinates (log format 2: step 0, every 1 ms of simulated time,
 /// contact changes, the latest peak of the arrestor's deflection in each 1 ms, the last step).
 pub const MODES_SCHEMA: &str = "beam_impact.ModalCoordinates";
+/// Schema name of the per-step stresses at the stress stations (issue 30).
+pub const STATIONS_SCHEMA: &str = "beam_impact.StationStresses";
 /// Foxglove's 3D scene schema.
 pub const SCENE_SCHEMA: &str = "foxglove.SceneUpdate";
 /// Foxglove's log line schema.
@@ -64,6 +68,10 @@ pub type ContactEventMessage = beam_impact::ContactEvent;
 pub type ModelMessage = beam_impact::Model;
 /// The modal coordinates of the displacement at one step (`beam_impact.ModalCoordinates`).
 pub type ModalCoordinatesMessage = beam_impact::ModalCoordinates;
+/// One stress's stations along one beam (`beam_impact.StationGroup`, in the model message).
+pub type StationGroupMessage = beam_impact::StationGroup;
+/// The stress at every station at one recorded step (`beam_impact.StationStresses`).
+pub type StationStressesMessage = beam_impact::StationStresses;
 /// `foxglove.Vector3` (and `foxglove.Point3`, same layout).
 pub type Vector3Message = foxglove::Vector3;
 /// `foxglove.Quaternion`.
@@ -403,7 +411,20 @@ mod tests {
         );
         assert_eq!(fields(&types[".beam_impact.Peaks"]).len(), 5);
         assert_eq!(fields(&types[".beam_impact.ContactEvent"]).len(), 5);
-        assert_eq!(fields(&types[".beam_impact.Model"]).len(), 6);
+        assert_eq!(fields(&types[".beam_impact.Model"]).len(), 11);
+        assert_eq!(
+            fields(&types[".beam_impact.StationStresses"]),
+            [
+                ("step", 1, Uint64, o),
+                ("time_ns", 2, Uint64, o),
+                ("lower_bending", 3, Float, Label::Repeated),
+                ("lower_shear", 4, Float, Label::Repeated),
+                ("upper_bending", 5, Float, Label::Repeated),
+                ("upper_shear", 6, Float, Label::Repeated)
+            ]
+        );
+        let names: Vec<&str> = fields(&types[".beam_impact.StationGroup"]).iter().map(|f| f.0).collect();
+        assert_eq!(names, ["positions", "allowable", "nodes"]);
     }
 
     #[test]
@@ -463,6 +484,18 @@ mod tests {
         assert_eq!(f32::from_bits(decoded["modal_coordinates"] as u32), 16.5);
         assert_eq!(decoded.len(), 23 - 2 + 6 + 5, "{decoded:?}");
 
+        let stations = StationStressesMessage {
+            step: 9,
+            time_ns: 10,
+            lower_bending: vec![1.5, -2.5],
+            upper_shear: vec![0.25],
+            ..Default::default()
+        };
+        let decoded = decode_by_schema(&types, ".beam_impact.StationStresses", &stations.encode_to_vec());
+        assert_eq!((decoded["step"], decoded["time_ns"]), (9, 10));
+        assert_eq!(f32::from_bits(decoded["lower_bending"] as u32), -2.5);
+        assert_eq!(f32::from_bits(decoded["upper_shear"] as u32), 0.25);
+
         let modes = ModalCoordinatesMessage { step: 7, time_ns: 8, time: 3.5, coordinates: vec![1.0, 4.5] };
         let decoded = decode_by_schema(&types, ".beam_impact.ModalCoordinates", &modes.encode_to_vec());
         assert_eq!(decoded["step"], 7);
@@ -492,6 +525,7 @@ mod tests {
             scale_invariant: true,
             points: vec![Vector3Message { x: 1.0, y: 2.0, z: 3.0 }, Vector3Message { x: 4.0, y: 5.0, z: 6.0 }],
             color: Some(ColorMessage { r: 1.0, g: 0.5, b: 0.25, a: 1.0 }),
+            colors: vec![ColorMessage { r: 0.125, g: 0.5, b: 0.25, a: 1.0 }; 2],
         };
         let update = SceneUpdateMessage {
             entities: vec![SceneEntityMessage {
@@ -512,6 +546,8 @@ mod tests {
         assert_eq!(f64::from_bits(decoded["entities.lines.points.z"]), 6.0);
         assert_eq!(f64::from_bits(decoded["entities.lines.pose.orientation.w"]), 0.5);
         assert_eq!(f64::from_bits(decoded["entities.lines.color.b"]), 0.25);
+        // Per-point colours (the utilisation of each element, issue 30).
+        assert_eq!(f64::from_bits(decoded["entities.lines.colors.r"]), 0.125);
         assert_eq!(decoded["entities.metadata.value"], 1);
 
         let types = messages(&log_descriptor());

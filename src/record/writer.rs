@@ -22,9 +22,14 @@ use prost::Message;
 use super::log_format::{ROLLBACK_LINE, SCENARIO_ATTACHMENT, SCENARIO_METADATA, SIZE_CAP_LINE};
 use super::options::{RecorderOptions, RecorderTiming};
 use super::scene::SceneBuilder;
-use super::schema::{self, ContactEventMessage, LogMessage, ModalCoordinatesMessage, ModelMessage, TimeMessage};
+use super::schema::{
+    self, ContactEventMessage, LogMessage, ModalCoordinatesMessage, ModelMessage, StationStressesMessage, TimeMessage,
+};
+use super::stations::StationLayout;
 use crate::error::{Error, Result};
 use crate::results::{ContactEvent, StepResult};
+use crate::solver::envelope::StationRows;
+use crate::solver::static_correction::LOADS;
 
 /// Steps the solver's thread gathers before it hands a batch to the writer.
 pub const BATCH_STEPS: usize = 256;
@@ -66,6 +71,9 @@ pub(super) struct StartRecord {
     pub metadata: BTreeMap<String, String>,
     pub scenario_toml: String,
     pub scene: Option<SceneBuilder>,
+    /// The stress stations, evaluated here (off the solver's thread) for the recorded steps and
+    /// the scene's colours.
+    pub stations: Option<(StationLayout, std::sync::Arc<StationRows>)>,
 }
 
 /// One thing to write, in order.
@@ -76,7 +84,8 @@ pub(super) enum Item {
     /// The modal coordinates `batch.coordinates[offset..offset + len]` of `step` at `time_ns`:
     /// logged on the modes topic at log time `log_time_ns` (`log`; later than `time_ns` for a
     /// peak's coordinates written at the end of their interval, so log times never decrease)
-    /// and/or drawn as a scene (`scene`).
+    /// and/or drawn as a scene (`scene`, coloured by the stations' utilisation under the
+    /// correction's `loads`).
     Modes {
         step: u64,
         time_ns: u64,
@@ -85,6 +94,16 @@ pub(super) enum Item {
         len: usize,
         log: bool,
         scene: bool,
+        loads: Option<[f64; LOADS]>,
+    },
+    /// The stresses at every station of `step` at `time_ns`, from the modal coordinates
+    /// `batch.coordinates[offset..offset + len]` and the correction's `loads` (`/beam/stations`).
+    Stations {
+        step: u64,
+        time_ns: u64,
+        offset: usize,
+        len: usize,
+        loads: Option<[f64; LOADS]>,
     },
     Contact(ContactEvent),
     Rollback(StepResult),
@@ -110,10 +129,27 @@ impl Batch {
     }
 
     /// Queues the modal coordinates `q` of `step` (see [`Item::Modes`]).
-    pub fn push_modes(&mut self, q: &[f64], step: u64, time_ns: u64, log_time_ns: u64, log: bool, scene: bool) {
+    #[allow(clippy::too_many_arguments)]
+    pub fn push_modes(
+        &mut self,
+        q: &[f64],
+        step: u64,
+        time_ns: u64,
+        log_time_ns: u64,
+        log: bool,
+        scene: bool,
+        loads: Option<[f64; LOADS]>,
+    ) {
         let offset = self.coordinates.len();
         self.coordinates.extend_from_slice(q);
-        self.items.push(Item::Modes { step, time_ns, log_time_ns, offset, len: q.len(), log, scene });
+        self.items.push(Item::Modes { step, time_ns, log_time_ns, offset, len: q.len(), log, scene, loads });
+    }
+
+    /// Queues the stations' stresses of `step` from its modal coordinates `q` (see [`Item::Stations`]).
+    pub fn push_stations(&mut self, q: &[f64], step: u64, time_ns: u64, loads: Option<[f64; LOADS]>) {
+        let offset = self.coordinates.len();
+        self.coordinates.extend_from_slice(q);
+        self.items.push(Item::Stations { step, time_ns, offset, len: q.len(), loads });
     }
 }
 
@@ -126,6 +162,7 @@ pub(super) struct Channels {
     pub log: u16,
     pub scene: u16,
     pub modes: u16,
+    pub stations: u16,
 }
 
 /// The writer thread's state.
@@ -137,13 +174,18 @@ pub(super) struct LogWriter {
     sized: File,
     pub channels: Channels,
     /// Per-channel sequence numbers, indexed like [`LogWriter::sequence_slot`].
-    sequences: [u32; 6],
+    sequences: [u32; 7],
     /// The running peaks of the latest step message: a step whose peaks are the same leaves them
     /// out (log format 2; the reader carries them forward).
     peaks: Option<crate::results::Peaks>,
     modes: ModalCoordinatesMessage,
     buffer: Vec<u8>,
     scene: Option<SceneBuilder>,
+    stations: Option<(StationLayout, std::sync::Arc<StationRows>)>,
+    /// The latest stresses evaluated (every station, signed, Pa) and their step.
+    station_values: Vec<f64>,
+    station_step: Option<u64>,
+    station_message: StationStressesMessage,
     steps_since_flush: u64,
     timing: RecorderTiming,
     /// Set once when the log reaches its size cap; read by the recorder.
@@ -166,11 +208,15 @@ impl LogWriter {
             writer,
             sized,
             channels,
-            sequences: [0; 6],
+            sequences: [0; 7],
             peaks: None,
             modes: ModalCoordinatesMessage::default(),
             buffer: Vec::with_capacity(4096),
             scene: None,
+            stations: None,
+            station_values: Vec::new(),
+            station_step: None,
+            station_message: StationStressesMessage::default(),
             steps_since_flush: 0,
             timing: RecorderTiming::default(),
             capped,
@@ -202,7 +248,8 @@ impl LogWriter {
             x if x == c.contact => 2,
             x if x == c.log => 3,
             x if x == c.scene => 4,
-            _ => 5,
+            x if x == c.modes => 5,
+            _ => 6,
         }
     }
 
@@ -215,9 +262,13 @@ impl LogWriter {
             match item {
                 Item::Start(start) => self.start(start)?,
                 Item::Step(result) => self.write_step(result)?,
-                &Item::Modes { step, time_ns, log_time_ns, offset, len, log, scene } => {
+                &Item::Modes { step, time_ns, log_time_ns, offset, len, log, scene, loads } => {
                     let q = &batch.coordinates[offset..offset + len];
-                    self.write_modes(step, time_ns, log_time_ns, q, log, scene)?;
+                    self.write_modes(step, time_ns, log_time_ns, q, log, scene.then_some(loads))?;
+                }
+                &Item::Stations { step, time_ns, offset, len, loads } => {
+                    let q = &batch.coordinates[offset..offset + len];
+                    self.write_stations(step, time_ns, q, loads)?;
                 }
                 Item::Contact(event) => self.contact(event)?,
                 Item::Rollback(result) => self.rollback(result)?,
@@ -259,6 +310,9 @@ impl LogWriter {
         result.map_err(|e| self.err(e))?;
         self.attach(SCENARIO_ATTACHMENT, "application/toml", start.scenario_toml.as_bytes())?;
         self.scene = start.scene.clone();
+        self.stations = start.stations.clone();
+        self.station_values = vec![0.0; self.stations.as_ref().map_or(0, |(layout, _)| layout.len())];
+        self.station_step = None;
         Ok(())
     }
 
@@ -291,6 +345,44 @@ impl LogWriter {
         Ok(())
     }
 
+    /// Evaluates every station's stress at `step` from `q` and `loads` into `station_values`
+    /// (once per step: the stations message and the scene of one step share it). False without
+    /// stations.
+    fn evaluate_stations(&mut self, step: u64, q: &[f64], loads: Option<[f64; LOADS]>) -> bool {
+        let Some((_, rows)) = &self.stations else { return false };
+        if self.station_step != Some(step) {
+            let started = self.options.timing.then(Instant::now);
+            rows.stresses(q, loads.as_ref(), &mut self.station_values);
+            lap(started, &mut self.timing.encode);
+            self.station_step = Some(step);
+        }
+        true
+    }
+
+    /// Writes the stresses at every station of `step` (`/beam/stations`).
+    fn write_stations(&mut self, step: u64, time_ns: u64, q: &[f64], loads: Option<[f64; LOADS]>) -> Result<()> {
+        if !self.evaluate_stations(step, q, loads) {
+            return Ok(());
+        }
+        let Some((layout, _)) = &self.stations else { return Ok(()) };
+        let Some(groups) = super::stations::split(layout, &self.station_values) else { return Ok(()) };
+        let started = self.options.timing.then(Instant::now);
+        let m = &mut self.station_message;
+        m.step = step;
+        m.time_ns = time_ns;
+        for (field, values) in
+            [&mut m.lower_bending, &mut m.lower_shear, &mut m.upper_bending, &mut m.upper_shear].into_iter().zip(groups)
+        {
+            field.clear();
+            field.extend(values.iter().map(|&v| v as f32));
+        }
+        encode_into(&mut self.buffer, &self.station_message);
+        lap(started, &mut self.timing.encode);
+        self.write_buffer(self.channels.stations, time_ns)
+    }
+
+    /// Writes the modal coordinates `q` of `step` (`log`) and/or the scene of them (`scene`:
+    /// Some with the correction's loads, from which the stations' utilisation colours follow).
     fn write_modes(
         &mut self,
         step: u64,
@@ -298,7 +390,7 @@ impl LogWriter {
         log_time_ns: u64,
         q: &[f64],
         log: bool,
-        scene: bool,
+        scene: Option<Option<[f64; LOADS]>>,
     ) -> Result<()> {
         if log {
             self.modes.step = step;
@@ -311,10 +403,12 @@ impl LogWriter {
             lap(started, &mut self.timing.encode);
             self.write_buffer(self.channels.modes, log_time_ns)?;
         }
-        if scene {
+        if let (Some(loads), true) = (scene, self.scene.is_some()) {
+            let stresses = self.evaluate_stations(step, q, loads);
             if let Some(builder) = self.scene.as_mut() {
                 let started = self.options.timing.then(Instant::now);
-                encode_into(&mut self.buffer, builder.update(time_ns, q));
+                let stresses = stresses.then_some(self.station_values.as_slice());
+                encode_into(&mut self.buffer, builder.update(time_ns, q, stresses));
                 lap(started, &mut self.timing.encode);
                 self.write_buffer(self.channels.scene, time_ns)?;
             }
@@ -356,8 +450,9 @@ impl LogWriter {
             result.time, result.step
         );
         self.log_line(result.time_ns, schema::LOG_LEVEL_WARNING, text)?;
-        // The next step message carries its peaks in full.
+        // The next step message carries its peaks in full; a step number may come again.
         self.peaks = None;
+        self.station_step = None;
         self.flush()
     }
 

@@ -57,6 +57,8 @@ pub enum Pen {
     Wide,
     /// Thin, drawn on top.
     Thin,
+    /// Thin and dashed, drawn on top: a limit (an allowable stress).
+    Dashed,
 }
 
 impl Pen {
@@ -64,7 +66,7 @@ impl Pen {
     pub fn svg_width(self) -> u32 {
         match self {
             Pen::Wide => 6,
-            Pen::Thin => 2,
+            Pen::Thin | Pen::Dashed => 2,
         }
     }
 
@@ -96,7 +98,7 @@ impl Pen {
                 (-1, 2),
                 (1, 2),
             ],
-            Pen::Thin => &[(0, 0), (1, 0), (0, 1), (1, 1)],
+            Pen::Thin | Pen::Dashed => &[(0, 0), (1, 0), (0, 1), (1, 1)],
         }
     }
 
@@ -106,7 +108,7 @@ impl Pen {
             Output::Svg => self.svg_width(),
             Output::Png => match self {
                 Pen::Wide => 5,
-                Pen::Thin => 2,
+                Pen::Thin | Pen::Dashed => 2,
             },
         }
     }
@@ -159,6 +161,9 @@ pub const BRIDGE: RGBColor = RGBColor(31, 90, 200);
 /// The contact bar's colour.
 pub const BAR: RGBColor = RGBColor(40, 140, 60);
 const SHADE: RGBColor = RGBColor(228, 228, 228);
+
+/// Radius of a marker (a series of marks alone), px.
+const MARKER_RADIUS: i32 = 7;
 
 /// Which file a figure is being drawn into: pens differ (see [`Pen`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -244,7 +249,7 @@ pub fn tick_label(value: f64, decimals: usize) -> String {
 }
 
 /// Number text without trailing zeros, for subtitles (13 -> "13", 0.567 -> "0.567").
-fn number(value: f64) -> String {
+pub(crate) fn number(value: f64) -> String {
     format!("{value}")
 }
 
@@ -394,11 +399,16 @@ pub enum LegendEntry {
     Line(String, RGBColor, Pen),
     /// The shading of contact windows, with its text.
     Shade(String),
+    /// A marker (a series of marks alone): its name and colour.
+    Mark(String, RGBColor),
 }
 
 impl LegendEntry {
     /// The legend entry of a series.
     pub fn of(series: &Series) -> LegendEntry {
+        if series.points.is_empty() && !series.marks.is_empty() {
+            return LegendEntry::Mark(series.name.clone(), series.color);
+        }
         LegendEntry::Line(series.name.clone(), series.color, series.pen)
     }
 }
@@ -456,7 +466,7 @@ where
         .iter()
         .map(|e| {
             let text = match e {
-                LegendEntry::Line(name, ..) | LegendEntry::Shade(name) => name,
+                LegendEntry::Line(name, ..) | LegendEntry::Shade(name) | LegendEntry::Mark(name, _) => name,
             };
             let (w, _) = root.estimate_text_size(text, &label).unwrap_or((8 * text.len() as u32, 16));
             sample + 8 + w as i32 + 28
@@ -485,8 +495,18 @@ where
             match &legend[i] {
                 LegendEntry::Line(name, color, pen) => {
                     let stroke = pen.legend_width(output);
-                    root.draw(&PathElement::new([(x, mid), (x + sample, mid)], color.stroke_width(stroke)))
-                        .map_err(&err)?;
+                    let dashes: &[(i32, i32)] =
+                        if *pen == Pen::Dashed { &[(0, 9), (13, 22), (26, sample)] } else { &[(0, sample)] };
+                    for &(a, b) in dashes {
+                        root.draw(&PathElement::new([(x + a, mid), (x + b, mid)], color.stroke_width(stroke)))
+                            .map_err(&err)?;
+                    }
+                    root.draw(&Text::new(name.clone(), (x + sample + 8, mid), label.clone())).map_err(&err)?;
+                }
+                LegendEntry::Mark(name, color) => {
+                    let centre = (x + sample / 2, mid);
+                    root.draw(&Circle::new(centre, MARKER_RADIUS, color.filled())).map_err(&err)?;
+                    root.draw(&Circle::new(centre, MARKER_RADIUS, BLACK.stroke_width(1))).map_err(&err)?;
                     root.draw(&Text::new(name.clone(), (x + sample + 8, mid), label.clone())).map_err(&err)?;
                 }
                 LegendEntry::Shade(name) => {
@@ -608,10 +628,14 @@ where
     // Wide pens first, so that thin ones are drawn over them.
     let order = (0..curves.len())
         .filter(|&i| panel.series[i].pen == Pen::Wide)
-        .chain((0..curves.len()).filter(|&i| panel.series[i].pen == Pen::Thin));
+        .chain((0..curves.len()).filter(|&i| panel.series[i].pen != Pen::Wide));
     for i in order {
         let (s, points) = (&panel.series[i], &curves[i]);
         match output {
+            Output::Svg if s.pen == Pen::Dashed => {
+                let style = s.color.stroke_width(s.pen.svg_width());
+                chart.draw_series(DashedLineSeries::new(points.iter().copied(), 10, 7, style)).map_err(&err)?;
+            }
             Output::Svg => {
                 let style = s.color.stroke_width(s.pen.svg_width());
                 chart.draw_series(LineSeries::new(points.iter().copied(), style)).map_err(&err)?;
@@ -619,12 +643,25 @@ where
             Output::Png => {
                 for &(ox, oy) in s.pen.png_brush() {
                     let shifted = points.iter().map(|&(x, y)| (x + f64::from(ox) * dx, y + f64::from(oy) * dy));
-                    chart.draw_series(LineSeries::new(shifted, s.color.stroke_width(1))).map_err(&err)?;
+                    let style = s.color.stroke_width(1);
+                    if s.pen == Pen::Dashed {
+                        chart.draw_series(DashedLineSeries::new(shifted, 10, 7, style)).map_err(&err)?;
+                    } else {
+                        chart.draw_series(LineSeries::new(shifted, style)).map_err(&err)?;
+                    }
                 }
             }
         }
         let color = s.color;
-        chart.draw_series(marks[i].iter().map(|&p| Circle::new(p, 3, color.filled()))).map_err(&err)?;
+        if s.points.is_empty() {
+            // Marks alone are markers: larger, ringed.
+            chart.draw_series(marks[i].iter().map(|&p| Circle::new(p, MARKER_RADIUS, color.filled()))).map_err(&err)?;
+            chart
+                .draw_series(marks[i].iter().map(|&p| Circle::new(p, MARKER_RADIUS, BLACK.stroke_width(1))))
+                .map_err(&err)?;
+        } else {
+            chart.draw_series(marks[i].iter().map(|&p| Circle::new(p, 3, color.filled()))).map_err(&err)?;
+        }
     }
     Ok(())
 }

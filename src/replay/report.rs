@@ -23,12 +23,17 @@ use crate::error::{Error, Result};
 use crate::model::motion_table::MotionTable;
 use crate::model::Scenario;
 use crate::record::mcap::{
-    ANSWER_ATTACHMENT, CONTACT_TOPIC, LOG_FORMAT, LOG_FORMAT_KEY, LOG_TOPIC, MODEL_TOPIC, MODES_TOPIC,
-    MOTION_ATTACHMENT, SCENARIO_ATTACHMENT, SCENARIO_METADATA, STEP_TOPIC,
+    ANSWER_ATTACHMENT, CONTACT_TOPIC, ENVELOPE_ATTACHMENT, LOG_FORMAT, LOG_FORMAT_KEY, LOG_TOPIC, MODEL_TOPIC,
+    MODES_TOPIC, MOTION_ATTACHMENT, SCENARIO_ATTACHMENT, SCENARIO_METADATA, STATIONS_TOPIC, STEP_TOPIC,
 };
-use crate::record::schema::{ContactEventMessage, LogMessage, ModalCoordinatesMessage, ModelMessage, StepMessage};
+use crate::record::schema::{
+    ContactEventMessage, LogMessage, ModalCoordinatesMessage, ModelMessage, StationGroupMessage,
+    StationStressesMessage, StepMessage,
+};
+use crate::record::stations::{StationGroup, StationLayout};
 use crate::results::{
-    seconds, ContactEvent, ContactWindow, FirstContact, Peaks, Quality, StepResult, Summary, TimeSteps,
+    seconds, ContactEvent, ContactWindow, FirstContact, Peaks, Quality, StationEnvelope, StepResult, StressEnvelope,
+    Summary, TimeSteps,
 };
 use crate::simulation::Simulation;
 
@@ -62,6 +67,12 @@ pub struct LogData {
     /// The support-motion table the run used (`motion.csv`: its rows as CSV), if the run had one
     /// and the log holds it (CLI runs from issue 27 on).
     pub motion_csv: Option<String>,
+    /// The run's stress envelope as stored when the log was finished (`envelope.json`, issue 30),
+    /// if the log holds it: read by [`replay_envelope`], which checks it.
+    pub envelope_json: Option<String>,
+    /// The stress stations (from the model message) and their stresses at every recorded step
+    /// (`/beam/stations`), issue 30; empty for logs written before them.
+    pub stations: StationRecord,
     /// Messages per topic.
     pub messages: BTreeMap<String, u64>,
     /// Whether log times never decreased, across all channels in file order.
@@ -86,6 +97,66 @@ pub struct LogData {
     /// Every row of modal coordinates and every message's log time, when read with
     /// [`ReadOptions::history`] (empty otherwise).
     pub history: History,
+}
+
+/// The stress stations of a log and the stresses recorded at them (issue 30).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct StationRecord {
+    /// Where the stations are (the model message's groups), if the log says.
+    pub layout: Option<StationLayout>,
+    /// The step of each recorded row (increasing: the rows a rollback superseded are dropped).
+    pub steps: Vec<u64>,
+    /// The time of each row, ns.
+    pub times_ns: Vec<u64>,
+    /// The rows one after the other, signed, Pa, single precision as stored: row k is
+    /// `values[k * width..(k + 1) * width]`, width the layout's station count.
+    pub values: Vec<f32>,
+}
+
+impl StationRecord {
+    /// Stations per row.
+    pub fn width(&self) -> usize {
+        self.layout.as_ref().map_or(0, StationLayout::len)
+    }
+
+    /// Number of rows.
+    pub fn rows(&self) -> usize {
+        self.steps.len()
+    }
+
+    /// Drops the rows of step `step` and later (a rollback to it).
+    fn roll_back(&mut self, step: u64) {
+        let keep = self.steps.partition_point(|&s| s < step);
+        let width = self.width();
+        self.steps.truncate(keep);
+        self.times_ns.truncate(keep);
+        self.values.truncate(keep * width);
+    }
+}
+
+/// The model message's station group, as the layout holds it.
+fn station_group(message: Option<&StationGroupMessage>) -> StationGroup {
+    message.map_or_else(StationGroup::default, |g| StationGroup {
+        positions: g.positions.clone(),
+        allowable: g.allowable.clone(),
+        nodes: g.nodes.clone(),
+    })
+}
+
+/// The stations of a model message (None for a log written before them).
+fn station_layout(m: &ModelMessage) -> Option<StationLayout> {
+    let groups =
+        [&m.lower_bending_stations, &m.lower_shear_stations, &m.upper_bending_stations, &m.upper_shear_stations];
+    if groups.iter().all(|g| g.is_none()) {
+        return None;
+    }
+    Some(StationLayout {
+        lower_bending: station_group(m.lower_bending_stations.as_ref()),
+        lower_shear: station_group(m.lower_shear_stations.as_ref()),
+        upper_bending: station_group(m.upper_bending_stations.as_ref()),
+        upper_shear: station_group(m.upper_shear_stations.as_ref()),
+        sampled_every: m.stations_sampled_every.max(1),
+    })
 }
 
 /// What [`read_log_with`] keeps beyond what `report` needs.
@@ -390,6 +461,7 @@ impl ReadState {
                             if data.peak_deflection_step >= result.step {
                                 data.peak_deflection_coordinates.clear();
                             }
+                            data.stations.roll_back(result.step);
                         }
                         // Format 2 leaves out peaks equal to the previous step's.
                         if self.step.peaks.is_none() {
@@ -428,6 +500,34 @@ impl ReadState {
                             data.peak_deflection_coordinates = m.coordinates;
                         }
                     }
+                    STATIONS_TOPIC => {
+                        data.monotonic &= !decreasing;
+                        let m = StationStressesMessage::decode(bytes).map_err(|e| bad("stations", e))?;
+                        let width = data.stations.width();
+                        let given =
+                            m.lower_bending.len() + m.lower_shear.len() + m.upper_bending.len() + m.upper_shear.len();
+                        let Some(layout) = &data.stations.layout else {
+                            return Err(format!("stations message at {at}: the log's model message has no stations"));
+                        };
+                        let counts = [&m.lower_bending, &m.lower_shear, &m.upper_bending, &m.upper_shear].map(Vec::len);
+                        if counts != layout.groups().map(StationGroup::len) {
+                            return Err(format!(
+                                "stations message at {at} holds {given} stresses ({counts:?}) where the model has {width} \
+                                 stations ({:?})",
+                                layout.groups().map(StationGroup::len)
+                            ));
+                        }
+                        // Rows in step order: a row of an earlier step (a rollback's) replaces the tail.
+                        if data.stations.steps.last().is_some_and(|&last| m.step <= last) {
+                            data.stations.roll_back(m.step);
+                        }
+                        self.keep(4 * given + 16, at, "stations message")?;
+                        data.stations.steps.push(m.step);
+                        data.stations.times_ns.push(m.time_ns);
+                        for values in [&m.lower_bending, &m.lower_shear, &m.upper_bending, &m.upper_shear] {
+                            data.stations.values.extend_from_slice(values);
+                        }
+                    }
                     CONTACT_TOPIC => {
                         self.keep(std::mem::size_of::<ContactEvent>(), at, "contact message")?;
                         data.monotonic &= !decreasing;
@@ -446,9 +546,33 @@ impl ReadState {
                     MODEL_TOPIC => {
                         data.monotonic &= !decreasing;
                         let m = ModelMessage::decode(bytes).map_err(|e| bad("model", e))?;
+                        let layout = station_layout(&m);
+                        let stations = layout.as_ref().map_or(0, |l| 2 * 20 * l.len());
                         let size = 2 * m.scenario_toml.len()
-                            + 8 * (m.lower_nodes.len() + m.upper_nodes.len() + m.nodal_shapes.len());
+                            + 8 * (m.lower_nodes.len() + m.upper_nodes.len() + m.nodal_shapes.len())
+                            + stations;
                         self.keep(size, at, "model message")?;
+                        if let Some(l) = &layout {
+                            if let Some(k) = l.groups().iter().position(|g| !g.is_consistent()) {
+                                return Err(format!(
+                                    "model message at {at}: station group {k} holds {} positions, {} allowables and \
+                                     {} nodes (or a value that is not finite)",
+                                    l.groups()[k].positions.len(),
+                                    l.groups()[k].allowable.len(),
+                                    l.groups()[k].nodes.len()
+                                ));
+                            }
+                        }
+                        // A second model message (a record started again) must describe the same stations.
+                        match (&data.stations.layout, layout) {
+                            (None, layout) => data.stations.layout = layout,
+                            (Some(known), Some(layout)) if *known != layout => {
+                                return Err(format!(
+                                    "model message at {at}: its stations are not those of the log's first model message"
+                                ))
+                            }
+                            _ => {}
+                        }
                         self.model_toml = Some(m.scenario_toml.clone());
                         data.model = Some(m);
                     }
@@ -459,7 +583,8 @@ impl ReadState {
                 let scenario = name == SCENARIO_ATTACHMENT;
                 let answer = name == ANSWER_ATTACHMENT;
                 let motion = name == MOTION_ATTACHMENT;
-                let kept = scenario || answer || motion;
+                let envelope = name == ENVELOPE_ATTACHMENT;
+                let kept = scenario || answer || motion || envelope;
                 let size = name.len() + media_type.len() + 64 + if kept { bytes.len() } else { 0 };
                 self.keep(size, at, "attachment record")?;
                 if scenario {
@@ -470,6 +595,9 @@ impl ReadState {
                 }
                 if motion {
                     data.motion_csv = Some(String::from_utf8_lossy(bytes).into_owned());
+                }
+                if envelope {
+                    data.envelope_json = Some(String::from_utf8_lossy(bytes).into_owned());
                 }
                 data.attachments.push((name.to_string(), media_type.to_string(), bytes.len()));
             }
@@ -562,8 +690,165 @@ pub fn summary_from_log(data: &LogData, simulation: &Simulation) -> Result<Summa
             TimeSteps { free: seconds(plan.free_ns), contact: seconds(plan.contact_ns) }
         },
         impact: simulation.impact(),
-        envelope: Default::default(),
+        envelope: replay_envelope(data, &last.peaks, &peak_times, simulation.scenario().contact_position).0,
     })
+}
+
+/// Where a replayed stress envelope comes from (issue 30).
+#[derive(Clone, Debug, PartialEq)]
+pub enum EnvelopeSource {
+    /// The log's `envelope.json`, stored when the log was finished.
+    Attachment,
+    /// Rebuilt from the stresses of the `/beam/stations` messages (`rows` recorded steps),
+    /// because `why` (no attachment: a killed run; or one that was refused).
+    Rebuilt {
+        /// Recorded steps it was rebuilt from.
+        rows: usize,
+        /// Why the attachment was not used.
+        why: String,
+    },
+    /// Neither: the log holds no stations (written before issue 30) or no stresses at them.
+    Absent {
+        /// Why.
+        why: String,
+    },
+}
+
+impl EnvelopeSource {
+    /// One line for a report.
+    pub fn describe(&self) -> String {
+        match self {
+            EnvelopeSource::Attachment => format!("from the log's {ENVELOPE_ATTACHMENT} (stored with the run)"),
+            EnvelopeSource::Rebuilt { rows, why } => format!(
+                "REBUILT from the stresses of the {rows} recorded steps (/beam/stations, single precision; the \
+                 paper's three points raised by the steps' running peaks): {why}"
+            ),
+            EnvelopeSource::Absent { why } => format!("not in this log: {why}"),
+        }
+    }
+}
+
+/// A stored envelope's problem with the log's stations, if any: every list of each station
+/// envelope one entry per station, every value finite and no stress negative; the stations those
+/// of the model message, when it has them.
+fn envelope_problem(envelope: &StressEnvelope, layout: Option<&StationLayout>) -> Option<String> {
+    let groups = [
+        ("lower.bending", &envelope.lower.bending),
+        ("lower.shear", &envelope.lower.shear),
+        ("upper.bending", &envelope.upper.bending),
+        ("upper.shear", &envelope.upper.shear),
+    ];
+    for (k, (name, e)) in groups.iter().enumerate() {
+        let n = e.positions.len();
+        if e.max.len() != n || e.times.len() != n || e.allowable.len() != n {
+            return Some(format!(
+                "{name} has {n} positions, {} values, {} times and {} allowables",
+                e.max.len(),
+                e.times.len(),
+                e.allowable.len()
+            ));
+        }
+        let values = e.positions.iter().chain(&e.max).chain(&e.times).chain(&e.allowable);
+        if let Some(v) = values.copied().find(|v| !v.is_finite()) {
+            return Some(format!("{name} holds {v}, not a finite value"));
+        }
+        if let Some(v) = e.max.iter().chain(&e.allowable).copied().find(|v| *v < 0.0) {
+            return Some(format!("{name} holds the stress {v} Pa below zero"));
+        }
+        if let Some(layout) = layout {
+            if layout.groups()[k].len() != n {
+                return Some(format!("{name} has {n} stations where the log's model has {}", layout.groups()[k].len()));
+            }
+        }
+    }
+    None
+}
+
+/// The run's stress envelope from a log (issue 30): its `envelope.json` when it holds a sound one,
+/// else rebuilt from the stresses recorded at the stations (the largest |value| of the recorded
+/// steps at each station, raised at the paper's three points by the steps' running peaks
+/// `peaks`, reached at `peak_times`; the bridge's contact point at `contact_position` m), else
+/// empty; with where it came from.
+pub fn replay_envelope(
+    data: &LogData,
+    peaks: &Peaks,
+    peak_times: &Peaks,
+    contact_position: f64,
+) -> (StressEnvelope, EnvelopeSource) {
+    let layout = data.stations.layout.as_ref();
+    let why = match data.envelope_json.as_deref() {
+        None => format!("the log holds no {ENVELOPE_ATTACHMENT} (a run killed before its log was finished?)"),
+        Some(text) => match serde_json::from_str::<StressEnvelope>(text) {
+            Err(e) => {
+                // The parser's message may quote the file: one line, bounded.
+                let text = e.to_string();
+                let cut: String = text.chars().map(|c| if c.is_control() { ' ' } else { c }).take(160).collect();
+                let more = if cut.len() < text.len() { "..." } else { "" };
+                format!("the stored {ENVELOPE_ATTACHMENT} does not parse: {cut}{more}")
+            }
+            Ok(envelope) => match envelope_problem(&envelope, layout) {
+                None => return (envelope, EnvelopeSource::Attachment),
+                Some(problem) => format!("the stored {ENVELOPE_ATTACHMENT} is refused: {problem}"),
+            },
+        },
+    };
+    let Some(layout) = layout else {
+        let why = "the log has no stress stations (written before logs carried the envelope)".to_string();
+        return (StressEnvelope::default(), EnvelopeSource::Absent { why });
+    };
+    let record = &data.stations;
+    if record.rows() == 0 {
+        let why = format!("{why}, and it holds no stresses at its stations (/beam/stations)");
+        return (StressEnvelope::default(), EnvelopeSource::Absent { why });
+    }
+    let width = layout.len();
+    let (mut max, mut times) = (vec![0.0f64; width], vec![0.0f64; width]);
+    for (row, values) in record.values.chunks_exact(width.max(1)).enumerate() {
+        for (k, &v) in values.iter().enumerate() {
+            let v = f64::from(v).abs();
+            if v > max[k] {
+                (max[k], times[k]) = (v, seconds(record.times_ns[row]));
+            }
+        }
+    }
+    let mut offset = 0;
+    let mut take = |g: &StationGroup| {
+        let range = offset..offset + g.len();
+        offset += g.len();
+        StationEnvelope {
+            positions: g.positions.clone(),
+            max: max[range.clone()].to_vec(),
+            times: times[range].to_vec(),
+            allowable: g.allowable.clone(),
+        }
+    };
+    let mut envelope = StressEnvelope {
+        lower: crate::results::BeamEnvelope { bending: take(&layout.lower_bending), shear: take(&layout.lower_shear) },
+        upper: crate::results::BeamEnvelope { bending: take(&layout.upper_bending), shear: take(&layout.upper_shear) },
+        sampled_every: layout.sampled_every,
+    };
+    // The paper's three points, as the run raises them: the clamp's first station of each stress
+    // and the bridge's one bending station at the contact point.
+    let raise = |e: &mut StationEnvelope, k: usize, value: f64, time: f64| {
+        if k < e.max.len() && value.is_finite() && value > e.max[k] {
+            (e.max[k], e.times[k]) = (value, time);
+        }
+    };
+    raise(&mut envelope.lower.bending, 0, peaks.lower_clamp_bending_stress, peak_times.lower_clamp_bending_stress);
+    raise(&mut envelope.lower.shear, 0, peaks.lower_clamp_shear_stress, peak_times.lower_clamp_shear_stress);
+    let tolerance = 1e-9 * contact_position.abs().max(1.0);
+    let at_contact: Vec<usize> = (0..envelope.upper.bending.positions.len())
+        .filter(|&k| (envelope.upper.bending.positions[k] - contact_position).abs() <= tolerance)
+        .collect();
+    if let [k] = at_contact[..] {
+        raise(
+            &mut envelope.upper.bending,
+            k,
+            peaks.upper_contact_bending_stress,
+            peak_times.upper_contact_bending_stress,
+        );
+    }
+    (envelope, EnvelopeSource::Rebuilt { rows: record.rows(), why })
 }
 
 fn summary_text(data: &LogData, scenario: &Scenario, summary: &Summary, out: &mut String) {
@@ -609,6 +894,37 @@ fn summary_text(data: &LogData, scenario: &Scenario, summary: &Summary, out: &mu
         summary.contact_windows.len(),
         data.log_lines.len()
     );
+}
+
+/// The envelope's lines of a report: where it comes from, then each beam's worst bending and
+/// shear stress with where and when, its utilisation, and the paper's point beside it.
+pub fn envelope_text(summary: &Summary, source: &EnvelopeSource) -> String {
+    use std::fmt::Write as _;
+    let mut out = format!("stress envelope: {}\n", source.describe());
+    let e = &summary.envelope;
+    let p = &summary.peaks;
+    let rows = [
+        ("arrestor bending", &e.lower.bending, Some(("s_din,a at the clamp", p.lower_clamp_bending_stress))),
+        ("arrestor shear  ", &e.lower.shear, Some(("t_din,a at the clamp", p.lower_clamp_shear_stress))),
+        ("bridge bending  ", &e.upper.bending, Some(("s_din,b at contact", p.upper_contact_bending_stress))),
+        ("bridge shear    ", &e.upper.shear, None),
+    ];
+    for (name, envelope, paper) in rows {
+        let Some(peak) = envelope.peak() else { continue };
+        let utilisation = match (peak.utilisation, peak.utilisation_position) {
+            (Some(u), Some(x)) => format!("utilisation {u:.3} at x = {x:.3} m"),
+            _ => "no allowable".to_string(),
+        };
+        let beside = paper.map_or(String::new(), |(point, v)| format!("; paper's {point} {:.1} MPa", v * 1e-6));
+        let _ = writeln!(
+            out,
+            "  {name} {:10.1} MPa at x = {:7.3} m, t = {:.5} s; {utilisation}{beside}",
+            peak.value * 1e-6,
+            peak.position,
+            peak.time
+        );
+    }
+    out
 }
 
 /// The run's verdict as the log stores it (the CLI's `answer.json`): trusted or not with the
@@ -700,6 +1016,8 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
     let simulation = Simulation::new(&scenario).map_err(refused)?;
     let summary = summary_from_log(&data, &simulation).map_err(|e| mcap_err(mcap, e))?;
     summary_text(&data, &scenario, &summary, &mut text);
+    let (_, source) = replay_envelope(&data, &summary.peaks, &summary.peak_times, scenario.contact_position);
+    text.push_str(&envelope_text(&summary, &source));
     text.push('\n');
     text.push_str(&crate::compare::comparison(&summary, scenario.is_paper()));
     out.write_all(text.as_bytes()).map_err(io)?;
@@ -711,6 +1029,17 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
         return out.write_all(note.as_bytes()).map_err(io);
     }
     let mut files = super::figures::write_figures(&data.steps, &summary, &scenario, out_dir, !data.complete)?;
+    if !matches!(source, EnvelopeSource::Absent { .. }) {
+        let subtitle = super::figures::scenario_subtitle(&scenario, Some(summary.time_steps));
+        let figure = super::envelope_figure::envelope_figure(
+            &summary.envelope,
+            &summary.peaks,
+            &scenario,
+            &subtitle,
+            &source.describe(),
+        );
+        files.extend(super::envelope_figure::write_envelope_figure(&figure, out_dir)?);
+    }
     files.extend(super::mode_figures::write_mode_figures(simulation.model(), simulation.modal(), out_dir)?);
     let mut listing = String::from("\nfigures:\n");
     for f in files {

@@ -52,11 +52,7 @@ pub struct StationRows {
     /// Per station: its envelope (0 lower bending, 1 lower shear, 2 upper bending, 3 upper
     /// shear), for [`Self::worst_only`].
     groups: Vec<u8>,
-    /// Keep only each envelope's worst value exact (a check rung's or a twin's run, whose
-    /// figures and spreads compare the beams' worst stresses): a station is skipped wherever its
-    /// bound is below its envelope's running worst, not only below its own running largest
-    /// value. The other stations' values are then lower bounds of theirs.
-    pub worst_only: bool,
+
     /// Per station: ||s_i / omega_i|| over the elastic modes of its beam.
     energy_norm: Vec<f64>,
     /// Per station: sum over the loads of |coefficient|, Pa per unit load.
@@ -67,11 +63,31 @@ pub struct StationRows {
     omega2: Vec<f64>,
     /// Evaluated every this many steps (1: every step; see [`ENVELOPE_BUDGET`]).
     pub stride: u64,
-    /// The anchor of the bounds: its modal state, load coefficients and every station's value
-    /// there (empty: none yet, or invalidated by a restored state).
+}
+
+/// A run's own side of the envelope's work (the rows are shared with the recorder's thread): the
+/// anchor of the bounds, its modal state, load coefficients and every station's value there
+/// (empty: none yet, or forgotten for a restored state), and whether only each envelope's worst
+/// is kept exact.
+#[derive(Clone, Debug, Default)]
+pub struct EnvelopeWork {
     anchor_q: Vec<f64>,
     anchor_loads: [f64; LOADS],
     anchor_values: Vec<f64>,
+    /// Keep only each envelope's worst value exact (a check rung's or a twin's run, whose
+    /// figures and spreads compare the beams' worst stresses): a station is skipped wherever its
+    /// bound is below its envelope's running worst, not only below its own running largest
+    /// value. The other stations' values are then lower bounds of theirs.
+    pub worst_only: bool,
+}
+
+impl EnvelopeWork {
+    /// Forgets the anchor (a restored state is not near it): the next observation evaluates
+    /// every station.
+    pub fn invalidate(&mut self) {
+        self.anchor_q.clear();
+        self.anchor_values.clear();
+    }
 }
 
 impl StationRows {
@@ -112,15 +128,11 @@ impl StationRows {
             lower_modes: system.lower_dofs,
             upper,
             groups,
-            worst_only: false,
             energy_norm,
             correction_norm,
             rigid_norm,
             omega2: system.omega2.iter().copied().collect(),
             stride: (count * modes).div_ceil(ENVELOPE_BUDGET.max(ENVELOPE_PER_MODE * modes)).max(1) as u64,
-            anchor_q: Vec::new(),
-            anchor_loads: [0.0; LOADS],
-            anchor_values: Vec::new(),
         }
     }
 
@@ -132,13 +144,6 @@ impl StationRows {
     /// True without stations.
     pub fn is_empty(&self) -> bool {
         self.len() == 0
-    }
-
-    /// Forgets the anchor (a restored state is not near it): the next observation evaluates
-    /// every station.
-    pub fn invalidate(&mut self) {
-        self.anchor_q.clear();
-        self.anchor_values.clear();
     }
 
     /// One station's stress at `q` under `loads`, Pa (signed).
@@ -156,7 +161,15 @@ impl StationRows {
 
     /// Raises each station's running largest |stress| (`max`, with `times`) by the state `q`
     /// at `time` s under the correction's load coefficients `loads` (None: a full basis).
-    pub fn observe(&mut self, q: &[f64], loads: Option<&[f64; LOADS]>, time: f64, max: &mut [f64], times: &mut [f64]) {
+    pub fn observe(
+        &self,
+        work: &mut EnvelopeWork,
+        q: &[f64],
+        loads: Option<&[f64; LOADS]>,
+        time: f64,
+        max: &mut [f64],
+        times: &mut [f64],
+    ) {
         if self.is_empty() {
             return;
         }
@@ -164,7 +177,7 @@ impl StationRows {
         let count = self.len();
         // Each envelope's running worst (only when only the worst is kept exact).
         let mut worst = [0.0f64; 4];
-        if self.worst_only {
+        if work.worst_only {
             for (k, m) in max.iter().enumerate() {
                 let g = usize::from(self.groups[k]);
                 worst[g] = worst[g].max(*m);
@@ -179,14 +192,14 @@ impl StationRows {
                 worst[g] = worst[g].max(max[k]);
             }
         };
-        let anchored = self.anchor_q.len() == q.len() && self.anchor_values.len() == count;
+        let anchored = work.anchor_q.len() == q.len() && work.anchor_values.len() == count;
         if anchored {
             // The distance from the anchor in each beam's energy norm, the rigid modes' largest
             // move and the loads' largest change.
             let lower = self.lower_modes.min(n);
             let (mut distance, mut rigid) = ([0.0f64; 2], 0.0f64);
             for i in 0..n {
-                let d = q[i] - self.anchor_q[i];
+                let d = q[i] - work.anchor_q[i];
                 if self.omega2[i] > 0.0 {
                     distance[usize::from(i >= lower)] += self.omega2[i] * d * d;
                 } else {
@@ -195,18 +208,18 @@ impl StationRows {
             }
             let distance = distance.map(f64::sqrt);
             let load_change = match loads {
-                Some(c) => (0..LOADS).fold(0.0f64, |m, a| m.max((c[a] - self.anchor_loads[a]).abs())),
+                Some(c) => (0..LOADS).fold(0.0f64, |m, a| m.max((c[a] - work.anchor_loads[a]).abs())),
                 None => 0.0,
             };
             let budget = (REANCHOR_FRACTION * count as f64) as usize;
             let mut evaluated = 0;
             let mut skipped_all = true;
             for k in 0..count {
-                let bound = self.anchor_values[k].abs()
+                let bound = work.anchor_values[k].abs()
                     + self.energy_norm[k] * distance[usize::from(self.upper[k])]
                     + self.correction_norm[k] * load_change
                     + self.rigid_norm[k] * rigid;
-                let threshold = if self.worst_only { worst[usize::from(self.groups[k])] } else { max[k] };
+                let threshold = if work.worst_only { worst[usize::from(self.groups[k])] } else { max[k] };
                 // The bound's own arithmetic is loose by round-off only: a margin of 1e-9.
                 if bound * (1.0 + 1e-9) + 1e-300 < threshold {
                     continue;
@@ -224,17 +237,17 @@ impl StationRows {
             }
         }
         // No anchor, or the state has moved too far from it: every station, and a new anchor.
-        let mut values = std::mem::take(&mut self.anchor_values);
+        let mut values = std::mem::take(&mut work.anchor_values);
         values.clear();
         for k in 0..count {
             let value = self.value(k, q, loads);
             raise(k, value, &mut worst, max, times);
             values.push(value);
         }
-        self.anchor_values = values;
-        self.anchor_q.clear();
-        self.anchor_q.extend_from_slice(q);
-        self.anchor_loads = loads.copied().unwrap_or([0.0; LOADS]);
+        work.anchor_values = values;
+        work.anchor_q.clear();
+        work.anchor_q.extend_from_slice(q);
+        work.anchor_loads = loads.copied().unwrap_or([0.0; LOADS]);
     }
 
     /// [`Self::observe`] evaluating every station (the skipping's reference in the tests).
@@ -256,6 +269,23 @@ pub fn groups(model: &crate::model::Model) -> Vec<u8> {
     let st = &model.stations;
     let counts = [st.lower.bending.len(), st.lower.shear.len(), st.upper.bending.len(), st.upper.shear.len()];
     counts.iter().enumerate().flat_map(|(g, &n)| std::iter::repeat_n(g as u8, n)).collect()
+}
+
+impl StationRows {
+    /// Every station's signed stress, Pa, at the state `q` under the correction's load
+    /// coefficients `loads` (None: a full basis), into `out` (one value per station, in the order
+    /// of [`crate::model::stations::Stations::all`]): the same sums as [`Self::observe`], without
+    /// the bound that skips stations (a log's per-step stresses, issue 30).
+    pub fn stresses(&self, q: &[f64], loads: Option<&[f64; LOADS]>, out: &mut [f64]) {
+        for (k, value) in out.iter_mut().enumerate().take(self.len()) {
+            *value = self.value(k, q, loads);
+        }
+    }
+
+    /// Multiply-adds of one [`Self::stresses`] call (stations x modes of their beams, about).
+    pub fn work(&self) -> usize {
+        self.len() * self.modes
+    }
 }
 
 /// sum a_i b_i in four lanes (the compiler vectorises it), as the stepper's products.
@@ -297,8 +327,8 @@ mod tests {
         let phases: Vec<f64> = (0..n).map(|_| 6.0 * random()).collect();
         let amplitudes: Vec<f64> = (0..n).map(|i| random() / (1.0 + system.omega2[i])).collect();
         for worst_only in [false, true] {
-            let mut rows = StationRows::new(&system, &divisors, groups(&model));
-            rows.worst_only = worst_only;
+            let rows = StationRows::new(&system, &divisors, groups(&model));
+            let mut work = EnvelopeWork { worst_only, ..EnvelopeWork::default() };
             let count = rows.len();
             let (mut max, mut times) = (vec![0.0; count], vec![0.0; count]);
             let (mut all, mut all_times) = (vec![0.0; count], vec![0.0; count]);
@@ -308,7 +338,7 @@ mod tests {
                 let q: Vec<f64> = (0..n)
                     .map(|i| jump * amplitudes[i] * (system.omega2[i].sqrt() * t + phases[i]).sin() * (1.0 + t))
                     .collect();
-                rows.observe(&q, None, t, &mut max, &mut times);
+                rows.observe(&mut work, &q, None, t, &mut max, &mut times);
                 rows.observe_all(&q, None, t, &mut all, &mut all_times);
             }
             if worst_only {
@@ -323,5 +353,38 @@ mod tests {
                 assert_eq!(times, all_times);
             }
         }
+    }
+
+    /// A log's per-step stresses are the envelope's values: their running largest |value| over
+    /// random states of the paper model (with and without the static correction's loads) is the
+    /// envelope's, to the bit (the same sums in the same order).
+    #[test]
+    fn per_step_stresses_raise_the_same_envelope() {
+        let model = Model::new(&Scenario::paper()).unwrap();
+        let system = ModalSystem::new(&model).unwrap();
+        let divisors: Vec<f64> = model.stations.all().map(|s| s.divisor).collect();
+        let rows = StationRows::new(&system, &divisors, groups(&model));
+        let mut work = EnvelopeWork::default();
+        let n = system.dofs();
+        let (mut max, mut times) = (vec![0.0; rows.len()], vec![0.0; rows.len()]);
+        let mut running = vec![0.0f64; rows.len()];
+        let mut values = vec![0.0; rows.len()];
+        let mut seed = 777u64;
+        let mut random = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        for step in 0..200 {
+            let q: Vec<f64> = (0..n).map(|i| random() / (1.0 + system.omega2[i].sqrt())).collect();
+            let loads: [f64; LOADS] = std::array::from_fn(|_| 1e3 * random());
+            let loads = (step % 2 == 0).then_some(&loads);
+            rows.observe(&mut work, &q, loads, step as f64, &mut max, &mut times);
+            rows.stresses(&q, loads, &mut values);
+            for (r, v) in running.iter_mut().zip(&values) {
+                *r = r.max(v.abs());
+            }
+        }
+        assert_eq!(running, max);
+        assert_eq!(rows.work(), rows.len() * n);
     }
 }

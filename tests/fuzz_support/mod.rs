@@ -363,7 +363,13 @@ pub fn synthetic_log(path: &Path, scenario: &Scenario, steps: u64, rollbacks: bo
     let mut recorder = McapRecorder::with_options(path, options).unwrap();
     let shapes = nalgebra::DMatrix::<f64>::zeros(2, 2);
     recorder
-        .start(&RunInfo { scenario, lower_nodes: &[0.0, 12.0], upper_nodes: &[0.0, 29.0], nodal_shapes: &shapes })
+        .start(&RunInfo {
+            scenario,
+            lower_nodes: &[0.0, 12.0],
+            upper_nodes: &[0.0, 29.0],
+            nodal_shapes: &shapes,
+            stations: None,
+        })
         .unwrap();
     let step_ns = 25_000u64;
     let result = |k: u64| {
@@ -505,7 +511,13 @@ pub fn odd_series_log(value: &dyn Fn(u64) -> f64, odd_time: bool) -> Vec<u8> {
     let v0 = value(0);
     let shapes = nalgebra::DMatrix::<f64>::from_element(2, 2, v0);
     recorder
-        .start(&RunInfo { scenario: &scenario, lower_nodes: &[v0; 2], upper_nodes: &[v0; 2], nodal_shapes: &shapes })
+        .start(&RunInfo {
+            scenario: &scenario,
+            lower_nodes: &[v0; 2],
+            upper_nodes: &[v0; 2],
+            nodal_shapes: &shapes,
+            stations: None,
+        })
         .unwrap();
     for k in 0..50u64 {
         let v = value(k);
