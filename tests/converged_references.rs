@@ -141,10 +141,12 @@ fn converged_answers_are_within_one_percent_of_the_references_or_flagged() {
 }
 
 /// Issue 30: the stepped beams' examples (a tapered arrestor, a three-section gangway) hold
-/// references too, the full basis at 56 and 112 elements per segment with a node at every section
-/// change: their five peaks and each beam's worst stress along it (the envelope's peaks) are
-/// within 1 % of the references (where 56 and 112 agree within 0.3 %, else the 56-element value)
-/// or flagged: the section changes alone raise no false alarm.
+/// references too, the full basis at 56 elements per segment with a node at every section change
+/// and automatic steps (`run FILE --set method=paper` with the element counts and steps set; a
+/// 112-element run did not finish within the session on the shared machine, so these are the
+/// 56-element values: they check the truncation, the static correction and the steps, not the
+/// mesh): their five peaks and each beam's worst stress along it (the envelope's peaks) are within
+/// 1 % of the references or flagged: the section changes alone raise no false alarm.
 #[test]
 fn stepped_beams_hold_their_references() {
     let (rows, _) = answers();
