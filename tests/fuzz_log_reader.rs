@@ -12,7 +12,9 @@ use crate::fuzz_support;
 use std::path::Path;
 use std::sync::OnceLock;
 
-use beam_impact::replay::report::{read_log_bytes, summary_from_log, LogData, RETAINED_RATIO, RETAINED_SLACK};
+use beam_impact::replay::report::{
+    envelope_of_log, read_log_bytes, summary_from_log, EnvelopeSource, LogData, RETAINED_RATIO, RETAINED_SLACK,
+};
 use beam_impact::results::StepResult;
 use beam_impact::{Scenario, Simulation};
 use fuzz_support::{corpus_files, crafted_logs, edit_chunks, iterations, mutate_log, real_log_bytes, Rng};
@@ -44,6 +46,16 @@ fn check(name: &str, bytes: &[u8]) -> Option<LogData> {
                 Ok(_) => assert!(!log.steps.is_empty()),
                 Err(e) => assert!(!e.to_string().contains('\n')),
             }
+            // The stress envelope (issue 30): stored, rebuilt from the stations' stresses or
+            // absent, with one line saying which; a rebuilt one has a value per station.
+            let kept = log.stations.values.len() * 4;
+            assert!(kept as u64 <= RETAINED_RATIO * bytes.len() as u64 + RETAINED_SLACK, "{name}: {kept} bytes kept");
+            assert_eq!(log.stations.values.len(), log.stations.rows() * log.stations.width(), "{name}");
+            let (envelope, source) = envelope_of_log(&log);
+            assert!(!source.describe().contains('\n'), "{name}: {}", source.describe());
+            if let EnvelopeSource::Rebuilt { .. } = source {
+                assert_eq!(envelope.lower.bending.max.len(), log.stations.layout.as_ref().unwrap().lower_bending.len());
+            }
             Some(log)
         }
     }
@@ -61,16 +73,20 @@ fn seeded_mutations_of_a_real_log_read_without_panic() {
     let real = real_log_bytes();
     let full = check("real", &real).unwrap();
     assert!(full.complete && full.steps.len() > 50);
+    // The real log holds the stations' stresses and the envelope (issue 30): mutations reach them.
+    assert!(full.envelope_json.is_some() && full.stations.rows() == full.steps.len());
     let mut rng = Rng(9);
-    let (mut read, mut damaged) = (0, 0);
+    let (mut read, mut damaged, mut stations) = (0, 0, 0);
     for i in 0..iterations(3000) {
         let bytes = mutate_log(&real, &mut rng);
         if let Some(log) = check(&format!("mutation {i}"), &bytes) {
             read += 1;
             damaged += usize::from(log.damaged);
+            stations += usize::from(log.problem.as_deref().is_some_and(|p| p.contains("stations message")));
         }
     }
     assert!(read > 0 && damaged > 0, "{read} read, {damaged} of them damaged");
+    assert!(stations > 0 || iterations(3000) < 1000, "no mutation stopped at a stations message");
 }
 
 /// A killed writer leaves a prefix of the file: whatever the cut, the steps read are a prefix of

@@ -307,3 +307,66 @@ fn a_changed_metadata_byte_fails_the_data_section_crc() {
     let error = beam_impact::replay::report::read_log(&path).unwrap_err().to_string();
     assert!(error.contains("log format \"3\"") && error.contains("the file is damaged"), "{error}");
 }
+
+/// Issue 30: a stations message that does not decode or does not hold one stress per station of
+/// the model stops the reading there in one line (the steps before it reported); an envelope
+/// attachment that does not parse (bytes, a nesting deeper than any parser's stack) is said in
+/// one line and nothing is drawn from it. Never a panic.
+#[test]
+fn a_malformed_stations_message_or_envelope_attachment_is_one_line() {
+    use beam_impact::record::mcap::{ENVELOPE_ATTACHMENT, STATIONS_TOPIC};
+    use beam_impact::record::schema::StationStressesMessage;
+    use prost::Message;
+    let dir = tempfile::tempdir().unwrap();
+    let real = real_log_bytes();
+    let (code, stdout, _) = report(dir.path(), "real.mcap", &real);
+    assert_eq!(code, 0);
+    assert!(stdout.contains("stress envelope: from the log's envelope.json"), "{stdout}");
+    let garbage = fuzz_support::rewrite_messages(&real, STATIONS_TOPIC, &mut |k, data| {
+        if k == 20 {
+            vec![0xff; 7]
+        } else {
+            data.to_vec()
+        }
+    });
+    let (code, stdout, _) = report(dir.path(), "garbage.mcap", &garbage);
+    assert_eq!(code, 0, "{stdout}");
+    assert!(stdout.contains("DAMAGED: stations message at") && stdout.contains("does not decode"), "{stdout}");
+    let short = fuzz_support::rewrite_messages(&real, STATIONS_TOPIC, &mut |k, data| {
+        if k == 3 {
+            StationStressesMessage { step: 3, lower_bending: vec![1.0], ..Default::default() }.encode_to_vec()
+        } else {
+            data.to_vec()
+        }
+    });
+    let (code, stdout, _) = report(dir.path(), "short.mcap", &short);
+    assert_eq!(code, 0, "{stdout}");
+    assert!(stdout.contains("holds 1 stresses ([1, 0, 0, 0]) where the model has"), "{stdout}");
+    // Attachments a run never writes, on a log without stations.
+    let deep = "[".repeat(100_000);
+    let texts: [&[u8]; 4] = [b"\xff\xfe not json", deep.as_bytes(), b"{\"lower\": 1e999}", b"null"];
+    for (k, text) in texts.into_iter().enumerate() {
+        let path = dir.path().join(format!("attached-{k}.mcap"));
+        let mut recorder =
+            beam_impact::record::mcap::McapRecorder::with_options(&path, fuzz_support::small_chunks()).unwrap();
+        let shapes = nalgebra::DMatrix::<f64>::zeros(2, 2);
+        let scenario = beam_impact::Scenario::default();
+        use beam_impact::record::Recorder;
+        let info = beam_impact::record::RunInfo {
+            scenario: &scenario,
+            lower_nodes: &[0.0, 12.0],
+            upper_nodes: &[0.0, 29.0],
+            nodal_shapes: &shapes,
+            stations: None,
+        };
+        recorder.start(&info).unwrap();
+        recorder.step(&beam_impact::results::StepResult::default(), &[0.0, 0.0]).unwrap();
+        recorder.attach(ENVELOPE_ATTACHMENT, "application/json", text).unwrap();
+        recorder.finish().unwrap();
+        let (code, stdout, _) = report_file(&path, &dir.path().join("figures"));
+        assert_eq!(code, 0, "{stdout}");
+        let line = stdout.lines().find(|l| l.starts_with("stress envelope:")).unwrap();
+        assert!(line.contains("envelope.json does not parse") || line.contains("is refused"), "{line}");
+        assert!(line.len() < 400, "{line}");
+    }
+}

@@ -17,6 +17,7 @@ mod contact_laws;
 mod converged_references;
 mod energy_method;
 mod energy_safety;
+mod envelope_log;
 mod examples;
 mod figures;
 mod fmi_answer;

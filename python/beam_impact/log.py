@@ -18,6 +18,12 @@
     log.answer              the run's verdict and checks as `beam-impact run` stored them (dict), or None
     log.motion_csv          the support-motion table the run used (the log's `motion.csv`), or None
     log.motion              that table as a pandas.DataFrame (`time`, then its columns), or None
+    log.envelope            the stress envelope (issue 30): {"lower": {"bending": DataFrame, "shear": DataFrame},
+                            "upper": {...}, "sampled_every", "source", "note"}, each DataFrame one row per
+                            station (position m, max Pa, time s, allowable Pa, utilisation); None when absent
+    log.stations            the stress stations: DataFrame (column, beam, stress, position, allowable, node)
+    log.station_stresses    the signed stress at every station of each recorded step: DataFrame (step, time,
+                            then one column per station, `lower.bending.0`, ...; Pa), or None when not recorded
 
 The file is read by the Rust reader of `beam-impact report` (the native module
 `beam_impact._native`, built by `pip install ./python`), not by a second reader in Python: every
@@ -34,6 +40,12 @@ log (the attachment `motion.csv`, its rows as the CLI read them), and `motion_cs
 from there, never from the motion file the scenario names (`motion.file`, which may be gone or
 changed). A log written before logs carried the table has `motion_csv` None.
 
+The stress envelope comes from the log's `envelope.json` (stored when the log was finished:
+`envelope["source"] == "attachment"`); a log without it (a killed run) has it rebuilt from the
+stresses recorded at every station (`/beam/stations`, single precision), as `beam-impact report`
+rebuilds it (`"rebuilt"`, and `envelope["note"]` says why); a log written before logs carried the
+envelope has `envelope` None, and `station_stresses` None.
+
 Both log formats load. Format 2 (metadata `log_format` = 2) keeps the modal coordinates on
 `/beam/modes` (every 1 ms, at contact changes, at the arrestor's peak deflection and at the last
 step), leaves a step's `peaks` out when they equal the previous step's (carried forward here) and
@@ -49,6 +61,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 STEP_TOPIC = "/beam/step"
+STATIONS_TOPIC = "/beam/stations"
 CONTACT_TOPIC = "/beam/contact"
 MODEL_TOPIC = "/beam/model"
 MODES_TOPIC = "/beam/modes"
@@ -83,6 +96,8 @@ PEAKS = [
     "contact_force",
 ]
 INTEGER = {"step": np.uint64, "time_ns": np.uint64, "contact": np.bool_}
+#: The stress stations' groups, in the order of the stresses' columns.
+STATION_GROUPS = ["lower.bending", "lower.shear", "upper.bending", "upper.shear"]
 
 
 @dataclass
@@ -120,6 +135,83 @@ class Log:
     #: `time` and the support-motion columns given, one line per row); None when the run's
     #: supports did not move, or the log was written before logs carried the table.
     motion_csv: str | None = None
+    #: The native reader's envelope buffers (see `envelope`), None when the log holds none.
+    envelope_raw: dict | None = None
+    #: Where the envelope comes from: "attachment" (`envelope.json`), "rebuilt" (from the recorded
+    #: stresses), or None (the log holds neither).
+    envelope_source: str | None = None
+    #: One line on where the envelope comes from (why it was rebuilt, or why there is none).
+    envelope_note: str = ""
+    #: The stress stations per group (`lower.bending`, ...: positions, allowable, nodes), None for
+    #: a log written before them.
+    station_layout: dict | None = None
+    #: The step and time (s) of each recorded row of stresses, and the rows (steps x stations, Pa).
+    station_steps: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.uint64))
+    station_times: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    station_values: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+
+    @property
+    def envelope(self):
+        """The run's stress envelope (issue 30), as `beam-impact report` has it: a dict with, per
+        beam (`lower`: the arrestor from its clamp, `upper`: the bridge from its hinge) and stress
+        (`bending`, `shear`), a pandas.DataFrame of one row per station (`position` m, `max` the
+        largest |stress| over the run Pa, `time` s when, `allowable` Pa (0: none given),
+        `utilisation` max / allowable, NaN without an allowable); `sampled_every` (the envelope
+        was evaluated every this many steps); `source` ("attachment" or "rebuilt") and `note`.
+        None when the log holds neither the envelope nor stresses at its stations."""
+        if self.envelope_raw is None:
+            return None
+        import pandas as pd
+
+        out = {"sampled_every": int(self.envelope_raw["sampled_every"]), "source": self.envelope_source, "note": self.envelope_note}
+        for beam in ("lower", "upper"):
+            out[beam] = {}
+            for stress in ("bending", "shear"):
+                raw = self.envelope_raw[beam][stress]
+                columns = {name: np.frombuffer(raw[name], dtype=np.float64) for name in ("position", "max", "time", "allowable")}
+                allowable = columns["allowable"]
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    columns["utilisation"] = np.where(allowable > 0, columns["max"] / np.where(allowable > 0, allowable, 1), np.nan)
+                out[beam][stress] = pd.DataFrame(columns)
+        return out
+
+    @property
+    def stations(self):
+        """The stress stations as a pandas.DataFrame, one row per station in the order of
+        `station_stresses`' columns: `column` (its name there), `beam` (lower, upper), `stress`
+        (bending, shear), `position` (m from the clamp or the hinge), `allowable` (Pa, 0: none),
+        `node` (0 at the support; two stations at one node are its two sides). None for a log
+        written before logs carried them."""
+        if self.station_layout is None:
+            return None
+        import pandas as pd
+
+        rows = []
+        for group in STATION_GROUPS:
+            beam, stress = group.split(".")
+            raw = self.station_layout[group]
+            positions = np.frombuffer(raw["positions"], dtype=np.float64)
+            allowable = np.frombuffer(raw["allowable"], dtype=np.float64)
+            nodes = np.frombuffer(raw["nodes"], dtype=np.uint64)
+            for k in range(len(positions)):
+                rows.append((f"{group}.{k}", beam, stress, positions[k], allowable[k], int(nodes[k])))
+        return pd.DataFrame(rows, columns=["column", "beam", "stress", "position", "allowable", "node"])
+
+    @property
+    def station_stresses(self):
+        """The signed stress at every station of each recorded step (`/beam/stations`: every step,
+        or the recorded ones with `run --record-every N`), as a pandas.DataFrame: `step`, `time`
+        (s), then one column per station (Pa; bending M / W sagging positive, shear Q / A_s; named
+        as in `stations["column"]`). None when the log holds no such rows."""
+        if self.station_layout is None or len(self.station_steps) == 0:
+            return None
+        import pandas as pd
+
+        names = list(self.stations["column"])
+        frame = pd.DataFrame(self.station_values, columns=names)
+        frame.insert(0, "time", self.station_times)
+        frame.insert(0, "step", self.station_steps)
+        return frame
 
     @property
     def motion(self):
@@ -191,6 +283,9 @@ def _from_native(raw: dict) -> Log:
     steps = {**{renamed.get(name, name): steps[name] for name in fields}, **{f: steps[f] for f in renamed}}
     cols = raw["shape_cols"]
     modal_steps = np.frombuffer(raw["modal_steps"], dtype=np.uint64).copy()
+    station_steps = np.frombuffer(raw["station_steps"], dtype=np.uint64).copy()
+    layout = raw["station_layout"]
+    width = 0 if layout is None else sum(len(layout[g]["positions"]) // 8 for g in STATION_GROUPS)
     return Log(
         steps=steps,
         modal_coordinates=np.frombuffer(raw["modal_coordinates"], dtype=np.float64).reshape(len(modal_steps), cols),
@@ -214,6 +309,13 @@ def _from_native(raw: dict) -> Log:
         rollbacks=raw["rollbacks"],
         answer=_answer(raw["answer_json"]),
         motion_csv=raw["motion_csv"],
+        envelope_raw=raw["envelope"],
+        envelope_source=raw["envelope_source"],
+        envelope_note=raw["envelope_note"],
+        station_layout=None if layout is None else dict(layout),
+        station_steps=station_steps,
+        station_times=np.frombuffer(raw["station_times_ns"], dtype=np.uint64) / 1e9,
+        station_values=np.frombuffer(raw["station_values"], dtype=np.float64).reshape(len(station_steps), width),
     )
 
 
@@ -258,6 +360,20 @@ def main(argv: list[str]) -> int:
     for name in ["lower_clamp_bending_stress", "lower_clamp_shear_stress", "upper_contact_bending_stress"]:
         k = int(np.argmax(np.abs(s[name])))
         print(f"largest |{name}| {abs(s[name][k]) / 1e6:.2f} MPa at t = {s['time'][k]:.5f} s")
+    envelope = log.envelope
+    if envelope is None:
+        print(f"stress envelope: {log.envelope_note}")
+    else:
+        print(f"stress envelope ({envelope['source']}):")
+        for beam, name in [("lower", "arrestor"), ("upper", "bridge")]:
+            for stress in ["bending", "shear"]:
+                frame = envelope[beam][stress]
+                if len(frame):
+                    k = int(np.argmax(frame["max"]))
+                    print(
+                        f"  {name} {stress}: {frame['max'][k] / 1e6:.2f} MPa at x = {frame['position'][k]:.3f} m, "
+                        f"t = {frame['time'][k]:.5f} s"
+                    )
     starts = [e["time"] for e in log.events if e["start"]]
     print(f"{len(log.events)} contact events, first contact at t = {starts[0] if starts else float('nan'):.6f} s")
     # The deflected shape at the largest deflection, from the modal coordinates of that step.

@@ -617,8 +617,7 @@ impl ReadState {
 /// the energy approach recomputed from the stored scenario by `simulation`.
 pub fn summary_from_log(data: &LogData, simulation: &Simulation) -> Result<Summary> {
     let last = data.steps.last().ok_or_else(|| Error::Other("the log holds no step message".into()))?;
-    let mut peak_times = Peaks::default();
-    let mut previous: Option<Peaks> = None;
+    let peak_times = peak_times(&data.steps);
     let mut max_residual = 0.0f64;
     let (mut max_strain, mut max_work) = (0.0f64, 0.0f64);
     let mut first_contact = FirstContact::default();
@@ -626,14 +625,6 @@ pub fn summary_from_log(data: &LogData, simulation: &Simulation) -> Result<Summa
         first_contact.observe(r);
         max_strain = max_strain.max(r.energy.strain);
         max_work = max_work.max(r.energy.external_work.abs());
-        let now = r.peaks.as_array();
-        let before = previous.map(|p| p.as_array());
-        for (k, when) in peak_times.as_mut_array().into_iter().enumerate() {
-            if before.is_none_or(|b| b[k] != now[k]) {
-                *when = r.time;
-            }
-        }
-        previous = Some(r.peaks);
         max_residual = max_residual.max(r.energy.residual.abs());
     }
     let mut windows: Vec<ContactWindow> = Vec::new();
@@ -692,6 +683,36 @@ pub fn summary_from_log(data: &LogData, simulation: &Simulation) -> Result<Summa
         impact: simulation.impact(),
         envelope: replay_envelope(data, &last.peaks, &peak_times, simulation.scenario().contact_position).0,
     })
+}
+
+/// When each running peak of `steps` was last raised, s (the step messages' peaks).
+pub fn peak_times(steps: &[StepResult]) -> Peaks {
+    let mut peak_times = Peaks::default();
+    let mut previous: Option<Peaks> = None;
+    for r in steps {
+        let now = r.peaks.as_array();
+        let before = previous.map(|p| p.as_array());
+        for (k, when) in peak_times.as_mut_array().into_iter().enumerate() {
+            if before.is_none_or(|b| b[k] != now[k]) {
+                *when = r.time;
+            }
+        }
+        previous = Some(r.peaks);
+    }
+    peak_times
+}
+
+/// [`replay_envelope`] of a log by itself (no model built): the peaks of its last step message,
+/// their times, and the contact point of its stored scenario (none raised there if the scenario
+/// does not parse). For readers other than `report` (the Python package).
+pub fn envelope_of_log(data: &LogData) -> (StressEnvelope, EnvelopeSource) {
+    let peaks = data.steps.last().map(|r| r.peaks).unwrap_or_default();
+    let contact = data
+        .scenario_toml
+        .as_deref()
+        .and_then(|t| Scenario::from_toml(t, SCENARIO_ATTACHMENT).ok())
+        .map_or(f64::NAN, |s| s.contact_position);
+    replay_envelope(data, &peaks, &peak_times(&data.steps), contact)
 }
 
 /// Where a replayed stress envelope comes from (issue 30).
@@ -793,7 +814,10 @@ pub fn replay_envelope(
         },
     };
     let Some(layout) = layout else {
-        let why = "the log has no stress stations (written before logs carried the envelope)".to_string();
+        let why = match data.envelope_json {
+            None => "the log has no stress stations (written before logs carried the envelope)".to_string(),
+            Some(_) => format!("{why}, and the log has no stress stations to rebuild it from"),
+        };
         return (StressEnvelope::default(), EnvelopeSource::Absent { why });
     };
     let record = &data.stations;

@@ -620,3 +620,39 @@ pub fn compressible_events_log() -> Vec<u8> {
     end(&mut b);
     b
 }
+
+/// The id of the channel on `topic` in `log` (uncompressed: its channel record, at the top level
+/// or in a chunk, is found by its topic string).
+pub fn channel_id(log: &[u8], topic: &str) -> Option<u16> {
+    let mut pattern = (topic.len() as u32).to_le_bytes().to_vec();
+    pattern.extend_from_slice(topic.as_bytes());
+    let at = log.windows(pattern.len()).position(|w| w == pattern.as_slice())?;
+    // The channel record's body: id (u16), schema id (u16), then the topic.
+    Some(u16::from_le_bytes(log.get(at.checked_sub(4)?..at.checked_sub(2)?)?.try_into().ok()?))
+}
+
+/// `log` (our writer's, uncompressed or zstd) with the data of every message on `topic` replaced by
+/// `edit(k, data)` (k counts those messages), behind correct lengths and CRCs.
+pub fn rewrite_messages(log: &[u8], topic: &str, edit: &mut dyn FnMut(usize, &[u8]) -> Vec<u8>) -> Vec<u8> {
+    let channel = channel_id(log, topic).unwrap_or_else(|| panic!("no channel {topic}"));
+    let mut count = 0;
+    edit_chunks(log, &mut |_, records| {
+        let mut out = Vec::with_capacity(records.len());
+        let mut pos = 0;
+        while pos + 9 <= records.len() {
+            let len = u64::from_le_bytes(records[pos + 1..pos + 9].try_into().unwrap()) as usize;
+            let body = &records[pos + 9..pos + 9 + len];
+            if records[pos] == op::MESSAGE && u16::from_le_bytes([body[0], body[1]]) == channel {
+                let mut new = body[..22].to_vec();
+                new.extend(edit(count, &body[22..]));
+                count += 1;
+                out.extend(record(op::MESSAGE, &new));
+            } else {
+                out.extend_from_slice(&records[pos..pos + 9 + len]);
+            }
+            pos += 9 + len;
+        }
+        out.extend_from_slice(&records[pos..]);
+        out
+    })
+}

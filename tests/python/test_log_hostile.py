@@ -532,6 +532,14 @@ def test_mutations_of_real_logs_load_or_raise_log_error(tmp_path, format_2_log):
                 assert all(len(column) == n for column in log.steps.values())
                 assert log.modal_coordinates.shape == (len(log.modal_steps), log.nodal_shapes.shape[1])
                 assert log.complete == (log.problem == "") and "\n" not in log.problem
+                # The stress envelope (issue 30): stored, rebuilt from the stations or None; the
+                # stations' rows fit their layout.
+                envelope = log.envelope
+                assert "\n" not in log.envelope_note
+                if envelope is not None:
+                    assert envelope["source"] in ("attachment", "rebuilt")
+                if log.station_layout is not None:
+                    assert log.station_values.shape == (len(log.station_steps), len(log.stations))
             except LogError as e:
                 assert_one_line(e)
                 outcome = "LogError"

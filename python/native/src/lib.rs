@@ -19,7 +19,7 @@ use beam_impact::model::support_motion::MOTION_NAMES;
 use beam_impact::record::output::{
     check_distinct, check_size, open_output, open_regular_input, partial_for, shown, OutputFile,
 };
-use beam_impact::replay::report::{read_log_with, LogData, ReadOptions};
+use beam_impact::replay::report::{envelope_of_log, read_log_with, EnvelopeSource, LogData, ReadOptions};
 use beam_impact::results::StepResult;
 use beam_impact::studies::sweep;
 use beam_impact::{Error, Scenario, Simulation};
@@ -132,7 +132,65 @@ fn to_python<'py>(py: Python<'py>, data: &LogData) -> PyResult<Bound<'py, PyDict
     out.set_item("log_format", data.log_format)?;
     out.set_item("answer_json", data.answer_json.clone())?;
     out.set_item("motion_csv", data.motion_csv.clone())?;
+    stations_to_python(py, data, &out)?;
     Ok(out)
+}
+
+/// The stress envelope (issue 30: the log's `envelope.json` when sound, else rebuilt from the
+/// recorded stresses, as `report` does; per beam and stress its stations' buffers, None when the
+/// log holds neither), where it came from, and the stations with their recorded stresses.
+fn stations_to_python<'py>(py: Python<'py>, data: &LogData, out: &Bound<'py, PyDict>) -> PyResult<()> {
+    let (envelope, source) = envelope_of_log(data);
+    let origin = match source {
+        EnvelopeSource::Attachment => Some("attachment"),
+        EnvelopeSource::Rebuilt { .. } => Some("rebuilt"),
+        EnvelopeSource::Absent { .. } => None,
+    };
+    let envelope = match origin {
+        None => None,
+        Some(_) => {
+            let beams = PyDict::new(py);
+            for (name, beam) in [("lower", &envelope.lower), ("upper", &envelope.upper)] {
+                let stresses = PyDict::new(py);
+                for (stress, e) in [("bending", &beam.bending), ("shear", &beam.shear)] {
+                    let group = PyDict::new(py);
+                    group.set_item("position", f64_bytes(py, e.positions.iter().copied()))?;
+                    group.set_item("max", f64_bytes(py, e.max.iter().copied()))?;
+                    group.set_item("time", f64_bytes(py, e.times.iter().copied()))?;
+                    group.set_item("allowable", f64_bytes(py, e.allowable.iter().copied()))?;
+                    stresses.set_item(stress, group)?;
+                }
+                beams.set_item(name, stresses)?;
+            }
+            beams.set_item("sampled_every", envelope.sampled_every)?;
+            Some(beams)
+        }
+    };
+    out.set_item("envelope", envelope)?;
+    out.set_item("envelope_source", origin)?;
+    out.set_item("envelope_note", source.describe())?;
+    let record = &data.stations;
+    let layout = match &record.layout {
+        None => None,
+        Some(l) => {
+            let groups = PyDict::new(py);
+            let names = ["lower.bending", "lower.shear", "upper.bending", "upper.shear"];
+            for (name, g) in names.iter().zip(l.groups()) {
+                let group = PyDict::new(py);
+                group.set_item("positions", f64_bytes(py, g.positions.iter().copied()))?;
+                group.set_item("allowable", f64_bytes(py, g.allowable.iter().copied()))?;
+                group.set_item("nodes", u64_bytes(py, g.nodes.iter().map(|&n| u64::from(n))))?;
+                groups.set_item(*name, group)?;
+            }
+            groups.set_item("sampled_every", l.sampled_every)?;
+            Some(groups)
+        }
+    };
+    out.set_item("station_layout", layout)?;
+    out.set_item("station_steps", u64_bytes(py, record.steps.iter().copied()))?;
+    out.set_item("station_times_ns", u64_bytes(py, record.times_ns.iter().copied()))?;
+    out.set_item("station_values", f64_bytes(py, record.values.iter().map(|&v| f64::from(v))))?;
+    Ok(())
 }
 
 /// Reads the log at `path` with the Rust reader (every modal coordinate row and log time kept):
