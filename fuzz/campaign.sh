@@ -8,7 +8,7 @@ set -uo pipefail
 cd "$(dirname "$0")"
 SECONDS_PER_TARGET=${1:-600}
 shift || true
-TARGETS=${*:-log_file log_chunk state state_payload scenario}
+TARGETS=${*:-log_file log_chunk state state_payload scenario resource_scenario}
 BIN=target/x86_64-unknown-linux-gnu/release
 mkdir -p logs
 for t in $TARGETS; do

@@ -37,6 +37,7 @@ mod fmi_state_restore;
 mod fuzz_log_reader;
 mod fuzz_motion_table;
 mod fuzz_output_paths;
+mod fuzz_resource_scenario;
 mod fuzz_scenario;
 mod fuzz_state;
 mod hostile_logs;
