@@ -5,7 +5,9 @@
 use std::collections::BTreeSet;
 use std::fmt::Write;
 
-use super::resource::SCENARIO_RESOURCE;
+/// The starting scenario's file name in the FMU's `resources/` (issue 30).
+pub const SCENARIO_RESOURCE: &str = "scenario.toml";
+
 use super::variables::{
     affects_values, base_units, declared_type, display_unit, format_real, table, table_for, Causality, Source, Type,
     Variable,

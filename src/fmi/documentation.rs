@@ -6,7 +6,7 @@
 
 use std::fmt::Write;
 
-use super::pack::PackedScenario;
+use super::packed_scenario::PackedScenario;
 use super::reference::{ReferenceRun, REFERENCE_CSV, REFERENCE_STEP};
 use super::resource::SCENARIO_RESOURCE;
 use super::variables::{format_real, table, table_for, Type, Variable, SMALLEST_POSITIVE};

@@ -22,6 +22,7 @@ pub mod fmi3;
 pub mod instance;
 pub mod logger;
 pub mod pack;
+pub mod packed_scenario;
 pub mod reference;
 pub mod resource;
 pub mod slots;

@@ -13,10 +13,10 @@ use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, ZipWriter};
 
 use super::description::{self, MODEL_IDENTIFIER};
+pub use super::packed_scenario::PackedScenario;
 use super::reference::{reference_run_from, REFERENCE_CSV};
-use super::resource::{self, SCENARIO_RESOURCE};
+use super::resource::SCENARIO_RESOURCE;
 use crate::error::{Error, Result};
-use crate::Scenario;
 
 /// The documentation directory: `fmu/documentation/` of the repository this crate was built from,
 /// or of the working directory if that one is gone.
@@ -598,48 +598,6 @@ fn binary_entries(platform: Platform, path: &Path) -> Result<(Vec<Entry>, Vec<En
             .collect(),
     };
     Ok((vec![entry(platform.fmi2_dir(), bytes)], fmi3, what))
-}
-
-/// A scenario packed as the FMU's starting scenario (`pack --scenario FILE.toml`, issue 30): the
-/// scenario, the name of the file it came from and the text of `resources/scenario.toml`.
-#[derive(Clone, Debug)]
-pub struct PackedScenario {
-    /// The scenario, as the FMU reads it back.
-    pub scenario: Scenario,
-    /// The file it came from, as the documentation names it (its file name).
-    pub source: String,
-    /// `resources/scenario.toml`: a comment line naming the source, then the scenario with every
-    /// field ([`Scenario::to_toml`]).
-    pub text: String,
-}
-
-impl PackedScenario {
-    /// The starting scenario of an FMU from `scenario` (read and validated from the file `source`):
-    /// refused with one line where the FMU could not take it as it is (a support motion from a
-    /// file: an FMU's motion is its inputs) or would not read it back to the same scenario.
-    pub fn new(scenario: &Scenario, source: &str) -> Result<PackedScenario> {
-        let refuse = |why: String| Error::Other(format!("--scenario {source} cannot be packed: {why}"));
-        if !scenario.motion.is_unset() {
-            return Err(refuse(
-                "its [motion] is for the CLI; an FMU takes the supports' motion as its inputs (upper.hinge_heave, \
-                 lower.clamp_heave, lower.clamp_rotation and their rates): leave [motion] out"
-                    .into(),
-            ));
-        }
-        // The file's name as a comment: no line break or control character may end the comment.
-        let shown = crate::error::bounded_line(source);
-        let text = format!(
-            "# The starting scenario of this FMU (issue 30), packed by {} from {shown}.\n# Read at \
-             instantiation; parameters set by the importer override its uniform fields.\n{}",
-            description::generation_tool(None),
-            scenario.to_toml()
-        );
-        let back = resource::scenario_from_bytes(text.as_bytes()).map_err(refuse)?;
-        if back != *scenario {
-            return Err(refuse("it does not read back to the same scenario from its TOML".into()));
-        }
-        Ok(PackedScenario { scenario: back, source: source.to_string(), text })
-    }
 }
 
 /// Packs the binaries (one per platform, each checked for its platform: [`check_library`],

@@ -16,8 +16,7 @@ use std::path::{Path, PathBuf};
 use crate::error::{bounded_line, Error};
 use crate::Scenario;
 
-/// The starting scenario's file name in the FMU's `resources/`.
-pub const SCENARIO_RESOURCE: &str = "scenario.toml";
+pub use super::description::SCENARIO_RESOURCE;
 
 /// Largest `resources/scenario.toml` the FMU reads, bytes, checked from the file's size before
 /// it is read and again while reading: `pack` writes a few kB (32 sections on each beam, the
