@@ -729,3 +729,77 @@ fn the_required_exports_are_the_sources_fmi_functions() {
     listed.sort();
     assert_eq!(listed, source);
 }
+
+/// Issue 30: `pack --scenario` packs the scenario file (sections included) as both FMUs'
+/// `resources/scenario.toml`, which reads back to the file's scenario, with a description whose
+/// start values and token are its; a scenario the FMU cannot take as it is (a `[motion]` file: an
+/// FMU's supports move by its inputs) or one that does not validate is refused in one line, exit
+/// 2, no FMU written.
+#[test]
+fn cli_pack_with_a_scenario_packs_it_as_the_fmus_starting_scenario() {
+    let examples = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let gangway = examples.join("three-section-gangway.toml");
+    let scenario =
+        beam_impact::Scenario::from_toml(&std::fs::read_to_string(&gangway).unwrap(), "three-section-gangway.toml")
+            .unwrap();
+    let bin = tempfile::tempdir().unwrap();
+    let target = tempfile::tempdir().unwrap();
+    let out = tempfile::tempdir().unwrap();
+    let args = ["--no-zigbuild", "--scenario", gangway.to_str().unwrap(), "--out", out.path().to_str().unwrap()];
+    let (ok, _, stderr) = cli_pack(&args, bin.path(), target.path());
+    assert!(ok, "{stderr}");
+    for (fmu, xml) in [
+        ("fmi2/BeamImpact.fmu", description::fmi2_for(Some(&scenario), "")),
+        ("fmi3/BeamImpact.fmu", description::fmi3_for(Some(&scenario), "")),
+    ] {
+        let fmu = out.path().join(fmu);
+        let text = String::from_utf8(read(&fmu, "resources/scenario.toml")).unwrap();
+        assert!(text.starts_with("# The starting scenario of this FMU (issue 30), packed by beam-impact "), "{text}");
+        assert!(text.contains(" from three-section-gangway.toml.\n"), "{text}");
+        assert_eq!(beam_impact::fmi::resource::scenario_from_bytes(text.as_bytes()).unwrap(), scenario);
+        let packed = String::from_utf8(read(&fmu, "modelDescription.xml")).unwrap();
+        let token = description::token_for(Some(&scenario));
+        assert!(packed.contains(&token) && token != description::token(), "{fmu:?}");
+        // The same description but for its generation tool (the CLI names its git commit).
+        let tool = |x: &str| x.lines().filter(|l| !l.contains("generationTool=")).collect::<Vec<_>>().join("\n");
+        assert_eq!(tool(&packed), tool(&xml), "{fmu:?}");
+        let page = String::from_utf8(read(&fmu, "documentation/index.html")).unwrap();
+        assert!(page.contains("packed from <code>three-section-gangway.toml</code>"), "the page names the scenario");
+        assert!(page.contains("The bridge's sections from its hinge:") && page.contains("The arrestor: uniform."));
+        assert!(page.contains("<h2>This FMU's reference run</h2>") && !page.contains("Table 1 (FEM)</th>"));
+    }
+
+    for (file, text, reason) in [
+        ("vessel.toml", None, "cannot be packed: its [motion] is for the CLI"),
+        (
+            "bad.toml",
+            Some(
+                "[[lower.sections]]\nlength = -4.0\nsecond_moment = 0.002\nsection_modulus = 0.01\nshear_area = 0.01\n\
+                 mass_per_length = 800.0\n",
+            ),
+            "lower.sections[1].length must be between",
+        ),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let path = match text {
+            None => examples.join(file),
+            Some(text) => {
+                std::fs::write(dir.path().join(file), text).unwrap();
+                dir.path().join(file)
+            }
+        };
+        let refused = dir.path().join("fmu");
+        let args = ["--no-zigbuild", "--scenario", path.to_str().unwrap(), "--out", refused.to_str().unwrap()];
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_beam-impact"))
+            .arg("pack")
+            .args(args)
+            .env("PATH", bin.path())
+            .env("CARGO_TARGET_DIR", target.path())
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{file}: {stderr}");
+        assert!(stderr.contains(reason) && stderr.lines().count() == 1, "{file}: {stderr}");
+        assert!(!refused.exists(), "{file}: an FMU folder was written");
+    }
+}
