@@ -196,6 +196,10 @@ fn an_fmu_packed_with_the_tapered_arrestor_gives_the_clis_peaks_and_envelope_pea
     }
     assert_eq!(fmu2.get_boolean("design.pass"), expected.design.pass);
     assert_eq!(fmu3.get_boolean("design.pass"), expected.design.pass);
+    // Reset goes back to the packed scenario, not the paper's.
+    assert_eq!(fmu3.set("lower.tip_mass", 1000.0), ERROR, "a parameter after initialization");
+    assert_eq!(fmu3.call0("fmi3Reset"), OK);
+    assert_eq!((fmu3.get("lower.length"), fmu3.get("drop_height")), (12.0, 0.8));
 }
 
 /// Every way a resource scenario cannot be the FMU's: the instantiation fails (a null instance)
