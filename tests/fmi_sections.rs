@@ -364,3 +364,24 @@ fn a_packed_fmus_state_carries_its_sections() {
         assert_eq!(after, expected, "{what}");
     }
 }
+
+/// Each beam's worst stress, its position and its utilisation have one name in the sweep's
+/// columns and the FMU's outputs (`peak.upper.bending_stress`, ...), in the same unit; so do the
+/// paper's peaks and utilisations (the vocabulary of `src/vocabulary.rs`).
+#[test]
+fn every_sweep_peak_and_utilisation_column_is_an_fmu_output_of_its_unit() {
+    let variables = table();
+    let former: Vec<String> =
+        beam_impact::vocabulary::sweep_former_names().into_iter().map(|(former, _)| former).collect();
+    let mut checked = 0;
+    for (name, unit) in beam_impact::studies::sweep::column_units(&[]) {
+        let named = ["peak.", "peak_position.", "utilisation."].iter().any(|p| name.starts_with(p));
+        if !named || former.contains(&name) {
+            continue;
+        }
+        let v = variables.iter().find(|v| v.name == name).unwrap_or_else(|| panic!("{name} is not an FMU variable"));
+        assert_eq!((v.unit, v.causality), (Some(unit), Causality::Output), "{name}");
+        checked += 1;
+    }
+    assert_eq!(checked, 5 + 3 * ENVELOPE_PEAK_NAMES.len() + 3);
+}
