@@ -323,6 +323,10 @@ fn without_the_resource_the_fmu_starts_from_the_paper_scenario() {
     );
     assert_eq!(fmu.call0("fmi2EnterInitializationMode"), OK);
     assert_eq!(fmu.get("lower.length"), Scenario::default().lower.length);
+    // A resource location that is a file, not a folder: no resources either.
+    let file = empty.path().join("not-a-folder");
+    std::fs::write(&file, "x").unwrap();
+    assert!(Fmu3::try_new_in(&lib, None, false, &path3(&file)).0.is_some());
     let (refused, log) = Fmu2::try_new_in(&lib, Some(&token_of(&tapered())), true, "plain", &uri(empty.path()));
     assert!(refused.is_none());
     assert!(log.text().contains("whose resources/scenario.toml is missing?"), "{}", log.text());

@@ -62,7 +62,12 @@ pub fn read_scenario(dir: &Path) -> Result<Option<Scenario>, String> {
     let path = dir.join(SCENARIO_RESOURCE);
     let file = match crate::record::output::open_regular_input(&path, "cannot read the FMU's starting scenario") {
         Ok(file) => file,
-        Err(Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        // No such file, or a resource location that is no folder: no starting scenario, as before.
+        Err(Error::Io { source, .. })
+            if matches!(source.kind(), std::io::ErrorKind::NotFound | std::io::ErrorKind::NotADirectory) =>
+        {
+            return Ok(None)
+        }
         Err(e) => return Err(bounded_line(&e.to_string())),
     };
     let fail =
