@@ -252,4 +252,50 @@ mod tests {
         assert_eq!(utilisation_color(f64::NAN), r);
         assert_eq!(utilisation_color(-1.0), g);
     }
+
+    /// Each element takes the colour of the larger utilisation at its end stations; neighbours
+    /// of one colour are one strip; a beam without allowables keeps its own colour and says so.
+    #[test]
+    fn elements_are_coloured_by_their_utilisation_in_strips_of_one_colour() {
+        use super::super::stations::{StationLayout, StationProbe};
+        let group = |x: [f64; 3], allowable: f64| StationGroup {
+            positions: x.to_vec(),
+            allowable: vec![allowable; 3],
+            nodes: vec![0, 1, 2],
+        };
+        let layout = StationLayout {
+            lower_bending: group([0.0, 6.0, 12.0], 1e8),
+            upper_bending: group([0.0, 13.0, 29.0], 0.0),
+            sampled_every: 1,
+            ..StationLayout::default()
+        };
+        let probe = StationProbe { layout, rows: Default::default(), feed: Default::default() };
+        let scenario = crate::Scenario::default();
+        let shapes = nalgebra::DMatrix::from_element(6, 1, 0.5);
+        let info = RunInfo {
+            scenario: &scenario,
+            lower_nodes: &[0.0, 6.0, 12.0],
+            upper_nodes: &[0.0, 13.0, 29.0],
+            nodal_shapes: &shapes,
+            stations: Some(&probe),
+        };
+        let mut builder = SceneBuilder::new(&info);
+        let update = builder.update(7, &[2.0], Some(&[-1e8, 2e7, 0.0, 5e8, 5e8, 5e8])).clone();
+        let (arrestor, bridge) = (&update.entities[0], &update.entities[1]);
+        assert_eq!(arrestor.lines.len(), 2);
+        assert_eq!(arrestor.lines[0].color, Some(utilisation_color(1.0)));
+        assert_eq!(arrestor.lines[1].color, Some(utilisation_color(0.2)));
+        assert_eq!(arrestor.lines[0].points.len(), 2);
+        assert!(arrestor.lines.iter().flat_map(|l| &l.points).all(|p| p.z == 1.0));
+        let value = |e: &SceneEntityMessage, key: &str| e.metadata.iter().find(|m| m.key == key).unwrap().value.clone();
+        assert_eq!(value(arrestor, "utilisation"), "1.000 (largest, element at x = 3.000 m)");
+        assert_eq!(value(arrestor, "colour"), UTILISATION_SCALE);
+        assert_eq!(bridge.lines.len(), 1);
+        assert_eq!(bridge.lines[0].color, Some(BRIDGE_COLOR));
+        assert_eq!(bridge.lines[0].points.len(), 3);
+        assert_eq!(value(bridge, "utilisation"), "no allowable given");
+        let update = builder.update(8, &[2.0], Some(&[-1e8, 1e8, 3e8, 0.0, 0.0, 0.0]));
+        assert_eq!(update.entities[0].lines.len(), 1, "both elements at 1 or above: one red strip");
+        assert_eq!(update.entities[0].lines[0].points.len(), 3);
+    }
 }
