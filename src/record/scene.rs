@@ -32,9 +32,9 @@ pub const BRIDGE_ID: &str = "bridge";
 pub const FRAME: &str = "world";
 
 /// The arrestor's own colour (elements without an allowable, logs without stations).
-pub const ARRESTOR_COLOR: ColorMessage = ColorMessage { r: 0.95, g: 0.5, b: 0.1, a: 1.0 };
+const ARRESTOR_COLOR: ColorMessage = ColorMessage { r: 0.95, g: 0.5, b: 0.1, a: 1.0 };
 /// The bridge's own colour.
-pub const BRIDGE_COLOR: ColorMessage = ColorMessage { r: 0.2, g: 0.45, b: 0.95, a: 1.0 };
+const BRIDGE_COLOR: ColorMessage = ColorMessage { r: 0.2, g: 0.45, b: 0.95, a: 1.0 };
 
 /// The key of each beam's entity metadata that gives its largest utilisation at that instant
 /// (`0.772 at x = 3.000 m`, the element's middle), and the colour scale in words (elements
