@@ -1543,7 +1543,8 @@ impl<S: Stepper> Simulation<S> {
 
     /// Keeps only each envelope's worst value exact from here on (a check rung's or a twin's
     /// run: their figures and spreads compare the beams' worst stresses; see
-    /// [`crate::solver::envelope::EnvelopeWork::worst_only`]): the run takes a fraction of the envelope's work.
+    /// [`crate::solver::envelope::EnvelopeWork::worst_only`]): the run takes a fraction of the
+    /// envelope's work.
     pub fn envelope_worst_only(&mut self) {
         self.envelope_work.worst_only = true;
     }

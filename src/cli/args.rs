@@ -166,6 +166,11 @@ pub struct RunArgs {
     /// drawn, `report` then cannot give the bridge's strain energy at the peak deflection.
     #[arg(long)]
     pub no_modal_coordinates: bool,
+    /// Leave the stress at every station of each recorded step (topic /beam/stations) out of the
+    /// MCAP log; the envelope is still attached when the log is finished (a killed run's log then
+    /// cannot rebuild it) and the 3D scene still coloured by utilisation.
+    #[arg(long)]
+    pub no_station_stresses: bool,
     /// Chunk compression of the MCAP log: none (the default: recording keeps pace with the
     /// solver), lz4 (~20 % smaller, about 2x the writer's work) or zstd (~35 % smaller, slower).
     #[arg(long, value_name = "none|lz4|zstd", default_value = "none")]

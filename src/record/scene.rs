@@ -14,8 +14,8 @@
 //! colour (a colour per point would blend neighbours and triple the message). An element none of
 //! whose stations has an allowable keeps the beam's own colour (the arrestor orange, the bridge
 //! blue), as does every element of a log written without stations (one line strip per beam).
-//! Each beam's entity carries the scale and its largest utilisation at that instant, with where,
-//! as metadata (Foxglove shows it on selecting the beam).
+//! Each beam's entity carries its largest utilisation at that instant, with where, as metadata
+//! whose key states the scale ([`UTILISATION_KEY`]; Foxglove shows it on selecting the beam).
 
 use super::schema::{
     ColorMessage, KeyValueMessage, LinePrimitiveMessage, PoseMessage, QuaternionMessage, SceneEntityMessage,
@@ -32,13 +32,14 @@ pub const BRIDGE_ID: &str = "bridge";
 pub const FRAME: &str = "world";
 
 /// The arrestor's own colour (elements without an allowable, logs without stations).
-pub const ARRESTOR_COLOR: ColorMessage = ColorMessage { r: 0.95, g: 0.5, b: 0.1, a: 1.0 };
+const ARRESTOR_COLOR: ColorMessage = ColorMessage { r: 0.95, g: 0.5, b: 0.1, a: 1.0 };
 /// The bridge's own colour.
-pub const BRIDGE_COLOR: ColorMessage = ColorMessage { r: 0.2, g: 0.45, b: 0.95, a: 1.0 };
+const BRIDGE_COLOR: ColorMessage = ColorMessage { r: 0.2, g: 0.45, b: 0.95, a: 1.0 };
 
-/// The colour scale in words, as each beam's entity metadata states it (key `colour`; elements
+/// The key of each beam's entity metadata that gives its largest utilisation at that instant
+/// (`0.772 at x = 3.000 m`, the element's middle), and the colour scale in words (elements
 /// without an allowable keep the beam's own colour).
-pub const UTILISATION_SCALE: &str = "|stress| / allowable at the element's ends: green 0, yellow 0.5, red 1 or more";
+pub const UTILISATION_KEY: &str = "utilisation (colours: green 0, yellow 0.5, red 1 or more)";
 
 /// Steps of the colour scale between 0 and 1: an element's colour is that of its utilisation
 /// rounded to the nearest 1/20 (0.05).
@@ -161,7 +162,7 @@ impl SceneBuilder {
             ]
         });
         let metadata = || match elements {
-            Some(_) => vec![key_value("colour", UTILISATION_SCALE), key_value("utilisation", "")],
+            Some(_) => vec![key_value(UTILISATION_KEY, "")],
             None => Vec::new(),
         };
         let update = SceneUpdateMessage {
@@ -226,9 +227,9 @@ impl SceneBuilder {
                 }
             }
             entity.lines = lines;
-            if let Some(entry) = entity.metadata.iter_mut().find(|m| m.key == "utilisation") {
+            if let Some(entry) = entity.metadata.first_mut() {
                 entry.value = match worst {
-                    Some((u, x)) => format!("{u:.3} (largest, element at x = {x:.3} m)"),
+                    Some((u, x)) => format!("{u:.3} at x = {x:.3} m"),
                     None => "no allowable given".to_string(),
                 };
             }
@@ -251,5 +252,50 @@ mod tests {
         assert_eq!(utilisation_color(3.0), r);
         assert_eq!(utilisation_color(f64::NAN), r);
         assert_eq!(utilisation_color(-1.0), g);
+    }
+
+    /// Each element takes the colour of the larger utilisation at its end stations; neighbours
+    /// of one colour are one strip; a beam without allowables keeps its own colour and says so.
+    #[test]
+    fn elements_are_coloured_by_their_utilisation_in_strips_of_one_colour() {
+        use super::super::stations::{StationLayout, StationProbe};
+        let group = |x: [f64; 3], allowable: f64| StationGroup {
+            positions: x.to_vec(),
+            allowable: vec![allowable; 3],
+            nodes: vec![0, 1, 2],
+        };
+        let layout = StationLayout {
+            lower_bending: group([0.0, 6.0, 12.0], 1e8),
+            upper_bending: group([0.0, 13.0, 29.0], 0.0),
+            sampled_every: 1,
+            ..StationLayout::default()
+        };
+        let probe = StationProbe { layout, rows: Default::default(), feed: Default::default() };
+        let scenario = crate::Scenario::default();
+        let shapes = nalgebra::DMatrix::from_element(6, 1, 0.5);
+        let info = RunInfo {
+            scenario: &scenario,
+            lower_nodes: &[0.0, 6.0, 12.0],
+            upper_nodes: &[0.0, 13.0, 29.0],
+            nodal_shapes: &shapes,
+            stations: Some(&probe),
+        };
+        let mut builder = SceneBuilder::new(&info);
+        let update = builder.update(7, &[2.0], Some(&[-1e8, 2e7, 0.0, 5e8, 5e8, 5e8])).clone();
+        let (arrestor, bridge) = (&update.entities[0], &update.entities[1]);
+        assert_eq!(arrestor.lines.len(), 2);
+        assert_eq!(arrestor.lines[0].color, Some(utilisation_color(1.0)));
+        assert_eq!(arrestor.lines[1].color, Some(utilisation_color(0.2)));
+        assert_eq!(arrestor.lines[0].points.len(), 2);
+        assert!(arrestor.lines.iter().flat_map(|l| &l.points).all(|p| p.z == 1.0));
+        let value = |e: &SceneEntityMessage, key: &str| e.metadata.iter().find(|m| m.key == key).unwrap().value.clone();
+        assert_eq!(value(arrestor, UTILISATION_KEY), "1.000 at x = 3.000 m");
+        assert_eq!(bridge.lines.len(), 1);
+        assert_eq!(bridge.lines[0].color, Some(BRIDGE_COLOR));
+        assert_eq!(bridge.lines[0].points.len(), 3);
+        assert_eq!(value(bridge, UTILISATION_KEY), "no allowable given");
+        let update = builder.update(8, &[2.0], Some(&[-1e8, 1e8, 3e8, 0.0, 0.0, 0.0]));
+        assert_eq!(update.entities[0].lines.len(), 1, "both elements at 1 or above: one red strip");
+        assert_eq!(update.entities[0].lines[0].points.len(), 3);
     }
 }
