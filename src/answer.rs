@@ -83,11 +83,12 @@ pub struct Design {
 /// The utilisation of each stress peak.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct DesignUtilisation {
-    /// sigma_a / lower.allowable_bending_stress.
+    /// sigma_a / the clamp section's allowable bending stress (`lower.allowable_bending_stress`
+    /// on a uniform arrestor; [`Scenario::paper_allowables`]).
     pub lower_clamp_bending_stress: f64,
-    /// tau_a / lower.allowable_shear_stress.
+    /// tau_a / the clamp section's allowable shear stress.
     pub lower_clamp_shear_stress: f64,
-    /// sigma_b / upper.allowable_bending_stress.
+    /// sigma_b / the contact section's allowable bending stress.
     pub upper_contact_bending_stress: f64,
     /// The bridge's bending stress envelope's worst utilisation (each station against its
     /// section's allowable; issue 30).
@@ -110,10 +111,11 @@ impl Design {
     /// such as a rigid support's, or a stress without an allowable: NaN, not counted).
     pub fn assess(scenario: &Scenario, peaks: &Peaks, envelope: &StressEnvelope) -> Design {
         let worst = envelope.peaks().map(|p| p.and_then(|p| p.utilisation));
+        let allowable = scenario.paper_allowables();
         let utilisation = DesignUtilisation {
-            lower_clamp_bending_stress: peaks.lower_clamp_bending_stress / scenario.lower.allowable_bending_stress,
-            lower_clamp_shear_stress: peaks.lower_clamp_shear_stress / scenario.lower.allowable_shear_stress,
-            upper_contact_bending_stress: peaks.upper_contact_bending_stress / scenario.upper.allowable_bending_stress,
+            lower_clamp_bending_stress: peaks.lower_clamp_bending_stress / allowable[0],
+            lower_clamp_shear_stress: peaks.lower_clamp_shear_stress / allowable[1],
+            upper_contact_bending_stress: peaks.upper_contact_bending_stress / allowable[2],
             upper_bending_stress: worst[0],
             upper_shear_stress: worst[1],
             lower_bending_stress: worst[2],
@@ -1088,13 +1090,8 @@ pub fn table(answer: &Answer) -> String {
         std::array::from_fn::<f64, 5, _>(|k| if first[k] > whole[k] { first[k] } else { whole[k] })
     });
     let u = answer.design.utilisation.as_array();
-    let allowables = [
-        None,
-        Some((r.lower.allowable_bending_stress, u[0])),
-        Some((r.lower.allowable_shear_stress, u[1])),
-        Some((r.upper.allowable_bending_stress, u[2])),
-        None,
-    ];
+    let a = r.paper_allowables();
+    let allowables = [None, Some((a[0], u[0])), Some((a[1], u[1])), Some((a[2], u[2])), None];
     let labels = [
         ("w_din,a arrestor end deflection [m]", 1.0),
         ("sigma_din,a clamp bending [MPa]", 1e-6),

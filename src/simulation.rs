@@ -261,6 +261,9 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     /// The outputs at `state.output_ns` (interpolated inside the next internal step when the
     /// communication point falls inside one).
     output: StepResult,
+    /// When each of the outputs' running peaks was reached (the state's `peak_times`, or
+    /// within the next internal step where the point inside it raised a peak).
+    output_peak_times: Peaks,
     /// The impact as the initial state starts it.
     impact: Impact,
     /// The stress envelope's stations in modal coordinates.
@@ -448,6 +451,7 @@ impl<S: Stepper> Simulation<S> {
             backup,
             step_end: None,
             output,
+            output_peak_times: Peaks::default(),
             impact,
             stations,
             envelope_work: Default::default(),
@@ -520,6 +524,7 @@ impl<S: Stepper> Simulation<S> {
         self.state.result = result;
         self.update_peaks(energies.upper_strain, None);
         self.output = self.state.result;
+        self.output_peak_times = self.state.peak_times;
     }
 
     /// The supports' motion at `at_ns` (at or after the current motion's start), continued with
@@ -1084,7 +1089,7 @@ impl<S: Stepper> Simulation<S> {
             if let Some(saved) = saved {
                 if self.state.result.time_ns > target_ns {
                     // The point falls inside this step: interpolate, and leave the step untaken.
-                    self.output = self.interpolate(&saved, target_ns, stage);
+                    (self.output, self.output_peak_times) = self.interpolate(&saved, target_ns, stage);
                     self.state = saved;
                     self.state.output_ns = target_ns;
                     return Ok(Advance::Reached);
@@ -1111,6 +1116,7 @@ impl<S: Stepper> Simulation<S> {
         self.state.result = result;
         self.state.output_ns = result.time_ns;
         self.output = result;
+        self.output_peak_times = self.state.peak_times;
     }
 
     /// Takes internal steps until `target_ns`, the last one shortened to land on it.
@@ -1171,7 +1177,7 @@ impl<S: Stepper> Simulation<S> {
     /// advance: its own advance to the point). Work and
     /// dissipation are booked up to the point as the step books them; the peaks stay those of
     /// the whole internal steps taken so far.
-    fn interpolate(&mut self, before: &RunState, at_ns: u64, stage: Stage) -> StepResult {
+    fn interpolate(&mut self, before: &RunState, at_ns: u64, stage: Stage) -> (StepResult, Peaks) {
         let dt = seconds(self.state.result.time_ns - before.result.time_ns);
         let tau = seconds(at_ns - before.result.time_ns);
         let kinematics = if self.stepper.adapts_steps() {
@@ -1207,24 +1213,35 @@ impl<S: Stepper> Simulation<S> {
         result.time = seconds(at_ns);
         result.step_size = dt;
         result.peaks = start.peaks;
+        let mut times = before.peak_times;
         if self.polynomial_peaks() {
             // The running peaks up to the point: the largest |value| over the step's first part too,
             // so that a peak output is never below an output at a communication point.
             let end_excitation = self.excitation_at(end.time_ns);
             let (end, _) = self.stepper.measure(&self.state.kinematics, stage, &end_excitation);
             let (extremes, _) = self.step_extremes(start, &end, stage, tau / dt);
-            result.peaks.raise(&extremes.map(|(v, _)| v));
             // The exact advance's point is its own value, not the cubic's: a peak is never below
             // an output.
-            result.peaks.raise(&[
-                result.lower_tip_deflection.abs(),
-                result.lower_clamp_bending_stress.abs(),
-                result.lower_clamp_shear_stress.abs(),
-                result.upper_contact_bending_stress.abs(),
-                result.contact_force.abs(),
-            ]);
+            let at = seconds(at_ns);
+            let own = [
+                result.lower_tip_deflection,
+                result.lower_clamp_bending_stress,
+                result.lower_clamp_shear_stress,
+                result.upper_contact_bending_stress,
+                result.contact_force,
+            ];
+            let peaks = result.peaks.as_mut_array();
+            let when = times.as_mut_array();
+            for k in 0..5 {
+                for (value, time) in [extremes[k], (own[k].abs(), at)] {
+                    if value > *peaks[k] {
+                        // Never past the point by the cubic's round-off.
+                        (*peaks[k], *when[k]) = (value, time.min(at));
+                    }
+                }
+            }
         }
-        result
+        (result, times)
     }
 
     /// The energy account at `reached` after `before`'s latest step (a whole step's end, or a
@@ -1455,7 +1472,7 @@ impl<S: Stepper> Simulation<S> {
             });
         }
         let previous = std::mem::replace(&mut self.state, state);
-        let previous_output = self.output;
+        let previous_output = (self.output, self.output_peak_times);
         self.step_end = None;
         // The outputs at a communication point inside a step are recomputed from that step.
         let (at, forces, motion) = (self.state.output_ns, self.state.input_forces, self.state.input_motion);
@@ -1463,10 +1480,11 @@ impl<S: Stepper> Simulation<S> {
         self.state.input_motion = self.motion_at(self.state.result.time_ns);
         self.state.output_ns = self.state.result.time_ns;
         self.output = self.state.result;
+        self.output_peak_times = self.state.peak_times;
         if let Err(e) = self.advance_outputs_to(at, &mut NullRecorder, false) {
             // Leave the simulation as it was: a refused state changes nothing.
             self.state = previous;
-            self.output = previous_output;
+            (self.output, self.output_peak_times) = previous_output;
             self.publish_envelope();
             return Err(e);
         }
@@ -1519,7 +1537,7 @@ impl<S: Stepper> Simulation<S> {
             steps: last.step,
             time: last.time,
             peaks: last.peaks,
-            peak_times: s.peak_times,
+            peak_times: self.last_peaks().1,
             upper_strain_at_peak_deflection: s.upper_strain_at_peak,
             contact_windows: s.contact_windows.clone(),
             final_energy_residual: last.energy.residual,
@@ -1549,6 +1567,16 @@ impl<S: Stepper> Simulation<S> {
         self.envelope_work.worst_only = true;
     }
 
+    /// The running peaks and their times at the run's last record: a stop point inside the next
+    /// internal step (see `finish_at`), else the latest internal step.
+    fn last_peaks(&self) -> (Peaks, Peaks) {
+        if self.output.time_ns > self.state.result.time_ns {
+            (self.output.peaks, self.output_peak_times)
+        } else {
+            (self.state.result.peaks, self.state.peak_times)
+        }
+    }
+
     /// The stress envelope so far (issue 30).
     pub fn envelope(&self) -> crate::results::StressEnvelope {
         use crate::model::stations::Station;
@@ -1569,8 +1597,9 @@ impl<S: Stepper> Simulation<S> {
         let mut lower = BeamEnvelope { bending: take(&st.lower.bending), shear: take(&st.lower.shear) };
         let mut upper = BeamEnvelope { bending: take(&st.upper.bending), shear: take(&st.upper.shear) };
         // The paper's three points are stations too, the same functionals: their peaks, resolved
-        // within the steps by the probes' cubic, raise them.
-        let (peaks, times) = (&self.state.result.peaks, &self.state.peak_times);
+        // within the steps by the probes' cubic (up to the outputs' point), raise them.
+        let (peaks, times) = self.last_peaks();
+        let (peaks, times) = (&peaks, &times);
         let raise = |e: &mut StationEnvelope, k: usize, value: f64, time: f64| {
             if k < e.max.len() && value > e.max[k] {
                 (e.max[k], e.times[k]) = (value, time);

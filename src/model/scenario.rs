@@ -866,6 +866,20 @@ impl Scenario {
         )
     }
 
+    /// The allowables the paper's three stresses are checked against, Pa: sigma_a and tau_a
+    /// by the arrestor's first section (the clamp's), sigma_b by the bridge's section at the
+    /// contact point ([`section::bending_check_at`]); a uniform beam's own allowables.
+    pub fn paper_allowables(&self) -> [f64; 3] {
+        let lower = self.lower_segments();
+        let (_, contact) = section::bending_check_at(&self.upper_segments(), self.contact_position);
+        let clamp = lower.first();
+        [
+            clamp.map_or(self.lower.allowable_bending_stress, |g| g.allowable_bending_stress),
+            clamp.map_or(self.lower.allowable_shear_stress, |g| g.allowable_shear_stress),
+            contact,
+        ]
+    }
+
     /// Duration in integer nanoseconds.
     pub fn duration_ns(&self) -> u64 {
         (self.duration * 1e9).round() as u64

@@ -118,6 +118,20 @@ pub fn segments(uniform: &Uniform, sections: &[SectionSpec]) -> Vec<Segment> {
         .collect()
 }
 
+/// The section modulus, m^3, and the allowable bending stress, Pa, that the bending stress at
+/// `position` m is checked with: on one segment its own; at a change between two, the smaller
+/// modulus (the stress is |M| / W there) with the allowable that makes |M| / W / allowable the
+/// worse side's utilisation, min_i(W_i allowable_i) / W.
+pub fn bending_check_at(segments: &[Segment], position: f64) -> (f64, f64) {
+    let touching = || segments.iter().filter(|g| g.start <= position && position <= g.end);
+    if let [one] = touching().collect::<Vec<_>>()[..] {
+        return (one.section_modulus, one.allowable_bending_stress);
+    }
+    let modulus = touching().map(|g| g.section_modulus).fold(f64::INFINITY, f64::min);
+    let capacity = touching().map(|g| g.section_modulus * g.allowable_bending_stress).fold(f64::INFINITY, f64::min);
+    (modulus, capacity / modulus)
+}
+
 /// The segments' mass, kg, first moment S = int mu x dx, kg m, and second moment
 /// J = int mu x^2 dx, kg m^2, about the support (the rigid pitching's, Eqs. 17-22).
 pub fn mass_moments(segments: &[Segment]) -> (f64, f64, f64) {

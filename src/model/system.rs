@@ -6,7 +6,7 @@ use nalgebra::{DMatrix, DVector};
 use super::assembly::Beam;
 use super::mesh::Mesh;
 use super::scenario::{Scenario, SupportKind};
-use super::section::Segment;
+use super::section::{self, Segment};
 use super::stations::{BeamStations, Stations};
 use super::stress_recovery::StressRecovery;
 use crate::error::Result;
@@ -159,12 +159,7 @@ impl Model {
         let contact_section_modulus = if s.upper.sections.is_empty() {
             s.upper.section_modulus
         } else {
-            let d = s.contact_position;
-            upper_segments
-                .iter()
-                .filter(|g| g.start <= d && d <= g.end)
-                .map(|g| g.section_modulus)
-                .fold(f64::INFINITY, f64::min)
+            section::bending_check_at(&upper_segments, s.contact_position).0
         };
         let stations = Stations {
             lower: if s.lower.kind == SupportKind::Rigid {
