@@ -428,7 +428,11 @@ impl<S: Stepper> Simulation<S> {
         };
         let stations = if stepper.modal_coordinates() {
             let divisors: Vec<f64> = model.stations.all().map(|s| s.divisor).collect();
-            std::sync::Arc::new(StationRows::new(&modal, &divisors, crate::solver::envelope::groups(&model)))
+            let allowables = model.stations.all().map(|s| s.allowable).collect();
+            std::sync::Arc::new(
+                StationRows::new(&modal, &divisors, crate::solver::envelope::groups(&model))
+                    .with_allowables(allowables),
+            )
         } else {
             std::sync::Arc::default()
         };

@@ -304,5 +304,22 @@ fn the_fmus_log_carries_the_envelope_of_the_run_it_ended_with() {
     let killed = read_log_bytes(&without_envelope(&bytes), &path).unwrap();
     let (rebuilt, source) = envelope_of_log(&killed);
     assert!(matches!(source, EnvelopeSource::Rebuilt { .. }), "{source:?}");
-    assert_close(&rebuilt, &expected, 1e-6, "the FMU's log rebuilt");
+    // The run ended at 0.1 s inside an internal step, which the FMU's log does not hold (it
+    // records internal steps): the run's envelope has the paper's three points raised by the
+    // peak outputs at 0.1 s (the step's first part), the log's rebuild by its last step's. At those
+    // three stations the rebuild is at most the run's; everywhere else the same.
+    let contact =
+        expected.upper.bending.positions.iter().position(|x| *x == Scenario::default().contact_position).unwrap();
+    let (mut rebuilt_rest, mut expected_rest) = (rebuilt.clone(), expected.clone());
+    for e in [&mut rebuilt_rest, &mut expected_rest] {
+        (e.lower.bending.max[0], e.lower.shear.max[0], e.upper.bending.max[contact]) = (0.0, 0.0, 0.0);
+    }
+    assert_close(&rebuilt_rest, &expected_rest, 1e-6, "the FMU's log rebuilt");
+    for (r, e) in [
+        (rebuilt.lower.bending.max[0], expected.lower.bending.max[0]),
+        (rebuilt.lower.shear.max[0], expected.lower.shear.max[0]),
+        (rebuilt.upper.bending.max[contact], expected.upper.bending.max[contact]),
+    ] {
+        assert!(r <= e * (1.0 + 1e-12) && r > 0.9 * e, "a paper point rebuilt {r} against the run's {e}");
+    }
 }

@@ -17,6 +17,13 @@
 //! than a [`REANCHOR_FRACTION`] of them must be evaluated, all are, and that state is the new
 //! anchor. The envelope is the same with or without the skipping: only stations that cannot rise
 //! are skipped.
+//!
+//! The per-station bound is not even computed for most stations: at the anchor each station's
+//! headroom h_k = threshold_k - |value_k| is split between the two ways its value can move, the
+//! modes (E_k d + R_k r <= E_k (d + rho r), rho the beam's largest R_k / E_k) and the loads
+//! (C_k dc), and h_k / (2 E_k) and h_k / (2 C_k) are sorted into octave buckets; a step looks only
+//! at the stations whose share is below its distance or its load change (any other station's
+//! bound is below its threshold). The bound of a station looked at takes its load term exactly.
 
 use super::modal::ModalSystem;
 
@@ -61,6 +68,9 @@ pub struct StationRows {
     rigid_norm: Vec<f64>,
     /// omega_i^2 of the modes (for each beam's strain energy).
     omega2: Vec<f64>,
+    /// Per station: the allowable stress there, Pa (0: none; empty: none anywhere), so that a
+    /// worst-only run keeps each envelope's worst utilisation exact too.
+    allowable: Vec<f64>,
     /// Evaluated every this many steps (1: every step; see [`ENVELOPE_BUDGET`]).
     pub stride: u64,
 }
@@ -74,11 +84,88 @@ pub struct EnvelopeWork {
     anchor_q: Vec<f64>,
     anchor_loads: [f64; LOADS],
     anchor_values: Vec<f64>,
+    /// Per station: its modal part s_k . q_a at the anchor (the load term is taken exactly).
+    anchor_modal: Vec<f64>,
+    /// Per beam: its stations by their modes' share of the headroom, and by the loads' share.
+    by_modes: [Buckets; 2],
+    by_loads: [Buckets; 2],
+    /// Per beam: the largest R_k / E_k of its stations (the rigid move's weight).
+    rigid_ratio: [f64; 2],
+    /// Per station: the observation it was last looked at (a station in both screens is looked
+    /// at once), and the observation count.
+    seen: Vec<u32>,
+    observation: u32,
+    /// Each envelope's running worst |stress| and worst utilisation (of stations with an
+    /// allowable).
+    worst: [f64; 4],
+    worst_utilisation: [f64; 4],
     /// Keep only each envelope's worst value exact (a check rung's or a twin's run, whose
     /// figures and spreads compare the beams' worst stresses): a station is skipped wherever its
     /// bound is below its envelope's running worst, not only below its own running largest
     /// value. The other stations' values are then lower bounds of theirs.
     pub worst_only: bool,
+}
+
+/// Octave buckets of a share lambda: bucket 0 holds stations always looked at (lambda <= 0),
+/// buckets 1..BUCKETS-2 one octave each from the smallest positive lambda, bucket BUCKETS-2
+/// everything above, bucket BUCKETS-1 the stations that cannot move this way (lambda infinite).
+const BUCKETS: usize = 31;
+
+/// Stations sorted into octave buckets of their share lambda.
+#[derive(Clone, Debug, Default)]
+struct Buckets {
+    order: Vec<u32>,
+    /// Where bucket j starts in `order` (`starts[BUCKETS]` its length).
+    starts: [u32; BUCKETS + 1],
+    /// The smallest positive lambda: bucket 1's lower edge.
+    base: f64,
+}
+
+impl Buckets {
+    /// Sorts `(station, lambda)` into the buckets.
+    fn fill(&mut self, members: &[(u32, f64)]) {
+        self.base = members.iter().map(|m| m.1).filter(|l| *l > 0.0 && l.is_finite()).fold(f64::INFINITY, f64::min);
+        if !self.base.is_finite() {
+            self.base = 1.0;
+        }
+        let base = self.base;
+        let bucket = |l: f64| -> usize {
+            if l <= 0.0 || l.is_nan() {
+                0
+            } else if l.is_infinite() {
+                BUCKETS - 1
+            } else {
+                // The octave above base: the exponent of l / base (>= 1 up to round-off).
+                let octave = ((l / base).max(1.0).to_bits() >> 52) as usize - 1023;
+                (1 + octave).min(BUCKETS - 2)
+            }
+        };
+        let mut counts = [0u32; BUCKETS + 1];
+        for (_, l) in members {
+            counts[bucket(*l) + 1] += 1;
+        }
+        for j in 1..=BUCKETS {
+            counts[j] += counts[j - 1];
+        }
+        self.starts = counts;
+        self.order.clear();
+        self.order.resize(members.len(), 0);
+        let mut next = counts;
+        for (k, l) in members {
+            let b = bucket(*l);
+            self.order[next[b] as usize] = *k;
+            next[b] += 1;
+        }
+    }
+
+    /// The stations whose lambda may be at or below `reach` (bucket j >= 1 holds lambdas from
+    /// base 2^(j-1) up, to the bucketing's round-off: 1e-12 here).
+    fn below(&self, reach: f64) -> &[u32] {
+        let edge = |j: usize| self.base * (1u64 << (j - 1)) as f64 * (1.0 - 1e-12);
+        let last = (1..BUCKETS - 1).find(|&j| edge(j) > reach).unwrap_or(BUCKETS - 1);
+        // Bucket 0 starts at 0: the prefix of `order`.
+        &self.order[..self.starts[last] as usize]
+    }
 }
 
 impl EnvelopeWork {
@@ -132,8 +219,17 @@ impl StationRows {
             correction_norm,
             rigid_norm,
             omega2: system.omega2.iter().copied().collect(),
+            allowable: Vec::new(),
             stride: (count * modes).div_ceil(ENVELOPE_BUDGET.max(ENVELOPE_PER_MODE * modes)).max(1) as u64,
         }
+    }
+
+    /// The stations' allowable stresses, Pa (0: none), in station order: a worst-only run then
+    /// keeps each envelope's worst utilisation exact as well as its worst stress.
+    pub fn with_allowables(mut self, allowable: Vec<f64>) -> StationRows {
+        debug_assert_eq!(allowable.len(), self.len());
+        self.allowable = allowable;
+        self
     }
 
     /// Number of stations.
@@ -175,23 +271,6 @@ impl StationRows {
         }
         let n = self.modes.min(q.len());
         let count = self.len();
-        // Each envelope's running worst (only when only the worst is kept exact).
-        let mut worst = [0.0f64; 4];
-        if work.worst_only {
-            for (k, m) in max.iter().enumerate() {
-                let g = usize::from(self.groups[k]);
-                worst[g] = worst[g].max(*m);
-            }
-        }
-        let groups = &self.groups;
-        let raise = |k: usize, value: f64, worst: &mut [f64; 4], max: &mut [f64], times: &mut [f64]| {
-            if value.abs() > max[k] {
-                max[k] = value.abs();
-                times[k] = time;
-                let g = usize::from(groups[k]);
-                worst[g] = worst[g].max(max[k]);
-            }
-        };
         let anchored = work.anchor_q.len() == q.len() && work.anchor_values.len() == count;
         if anchored {
             // The distance from the anchor in each beam's energy norm, the rigid modes' largest
@@ -213,41 +292,145 @@ impl StationRows {
             };
             let budget = (REANCHOR_FRACTION * count as f64) as usize;
             let mut evaluated = 0;
-            let mut skipped_all = true;
-            for k in 0..count {
-                let bound = work.anchor_values[k].abs()
-                    + self.energy_norm[k] * distance[usize::from(self.upper[k])]
-                    + self.correction_norm[k] * load_change
-                    + self.rigid_norm[k] * rigid;
-                let threshold = if work.worst_only { worst[usize::from(self.groups[k])] } else { max[k] };
-                // The bound's own arithmetic is loose by round-off only: a margin of 1e-9.
-                if bound * (1.0 + 1e-9) + 1e-300 < threshold {
-                    continue;
+            let mut complete = true;
+            work.observation = work.observation.wrapping_add(1);
+            'beams: for beam in 0..2 {
+                let moved = distance[beam] + work.rigid_ratio[beam] * rigid;
+                let (modes, loaded) = (work.by_modes[beam].below(moved), work.by_loads[beam].below(load_change));
+                let (modes, loaded) = (modes.len(), loaded.len());
+                for index in 0..modes + loaded {
+                    let k = if index < modes {
+                        work.by_modes[beam].order[index]
+                    } else {
+                        work.by_loads[beam].order[index - modes]
+                    } as usize;
+                    if work.seen[k] == work.observation {
+                        continue;
+                    }
+                    work.seen[k] = work.observation;
+                    let load_term = match loads {
+                        Some(c) => {
+                            let coefficients = &self.correction[k];
+                            (0..LOADS).map(|a| coefficients[a] * c[a]).sum::<f64>()
+                        }
+                        None => 0.0,
+                    };
+                    let bound = (work.anchor_modal[k] + load_term).abs()
+                        + self.energy_norm[k] * distance[beam]
+                        + self.rigid_norm[k] * rigid;
+                    // The bound's own arithmetic is loose by round-off only: a margin of 1e-9.
+                    // At the threshold the station cannot exceed it (a station at rest at its
+                    // largest value, 0 before the impact, stays skipped).
+                    if bound * (1.0 + 1e-9) <= self.threshold(work, k, max) {
+                        continue;
+                    }
+                    evaluated += 1;
+                    if evaluated > budget {
+                        complete = false;
+                        break 'beams;
+                    }
+                    let value = self.value(k, q, loads);
+                    self.raise(work, k, value, time, max, times);
                 }
-                evaluated += 1;
-                if evaluated > budget {
-                    skipped_all = false;
-                    break;
-                }
-                let value = self.value(k, q, loads);
-                raise(k, value, &mut worst, max, times);
             }
-            if skipped_all {
+            if complete {
                 return;
             }
         }
         // No anchor, or the state has moved too far from it: every station, and a new anchor.
         let mut values = std::mem::take(&mut work.anchor_values);
-        values.clear();
+        let mut modal = std::mem::take(&mut work.anchor_modal);
+        (values.clear(), modal.clear());
         for k in 0..count {
+            let modal_part = self.value(k, q, None);
             let value = self.value(k, q, loads);
-            raise(k, value, &mut worst, max, times);
+            if value.abs() > max[k] {
+                max[k] = value.abs();
+                times[k] = time;
+            }
             values.push(value);
+            modal.push(modal_part);
         }
-        work.anchor_values = values;
+        (work.anchor_values, work.anchor_modal) = (values, modal);
         work.anchor_q.clear();
         work.anchor_q.extend_from_slice(q);
         work.anchor_loads = loads.copied().unwrap_or([0.0; LOADS]);
+        self.anchor(work, max);
+    }
+
+    /// The level station `k`'s bound must stay below for it to be skipped: its own running
+    /// largest value, or (worst only) the lower of its envelope's worst stress and the stress at
+    /// which it would reach its envelope's worst utilisation.
+    fn threshold(&self, work: &EnvelopeWork, k: usize, max: &[f64]) -> f64 {
+        if !work.worst_only {
+            return max[k];
+        }
+        let g = usize::from(self.groups[k]);
+        match self.allowable.get(k) {
+            Some(&a) if a > 0.0 => work.worst[g].min(work.worst_utilisation[g] * a),
+            _ => work.worst[g],
+        }
+    }
+
+    /// Raises station `k`'s running largest |value| and its envelope's worst.
+    fn raise(&self, work: &mut EnvelopeWork, k: usize, value: f64, time: f64, max: &mut [f64], times: &mut [f64]) {
+        if value.abs() > max[k] {
+            max[k] = value.abs();
+            times[k] = time;
+            let g = usize::from(self.groups[k]);
+            work.worst[g] = work.worst[g].max(max[k]);
+            if let Some(&a) = self.allowable.get(k).filter(|a| **a > 0.0) {
+                work.worst_utilisation[g] = work.worst_utilisation[g].max(max[k] / a);
+            }
+        }
+    }
+
+    /// Sets up the screening at a new anchor (its values in `work`): each envelope's worst, and
+    /// every station's lambda sorted into its beam's octave buckets.
+    fn anchor(&self, work: &mut EnvelopeWork, max: &[f64]) {
+        let count = self.len();
+        (work.worst, work.worst_utilisation) = ([0.0; 4], [0.0; 4]);
+        for (k, m) in max.iter().enumerate().take(count) {
+            let g = usize::from(self.groups[k]);
+            work.worst[g] = work.worst[g].max(*m);
+            if let Some(&a) = self.allowable.get(k).filter(|a| **a > 0.0) {
+                work.worst_utilisation[g] = work.worst_utilisation[g].max(*m / a);
+            }
+        }
+        // Each station's headroom (the margin of 1e-9 of the per-station test taken off), half
+        // of it for the modes' move and half for the loads' change.
+        let headroom: Vec<f64> = (0..count)
+            .map(|k| 0.5 * (self.threshold(work, k, max) - work.anchor_values[k].abs() * (1.0 + 1e-9)))
+            .collect();
+        // A station with no such term: that way it cannot move (infinite share), else its share.
+        let share = |h: f64, norm: f64| if norm > 0.0 { h / (norm * (1.0 + 1e-9)) } else { f64::INFINITY };
+        if work.seen.len() != count {
+            work.seen = vec![0; count];
+        }
+        for beam in 0..2 {
+            let in_beam = || (0..count).filter(move |&k| usize::from(self.upper[k]) == beam);
+            let rigid_ratio = in_beam()
+                .filter(|&k| self.energy_norm[k] > 0.0)
+                .map(|k| self.rigid_norm[k] / self.energy_norm[k])
+                .fold(0.0f64, f64::max);
+            // Rounded up so that R_k <= ratio E_k holds after the multiplication's round-off; a
+            // station moved by the rigid modes only is looked at whenever the modes move.
+            work.rigid_ratio[beam] = rigid_ratio * (1.0 + 1e-12);
+            let modes: Vec<(u32, f64)> = in_beam()
+                .map(|k| {
+                    let l = if self.energy_norm[k] == 0.0 && self.rigid_norm[k] > 0.0 {
+                        0.0
+                    } else {
+                        share(headroom[k], self.energy_norm[k])
+                    };
+                    (k as u32, l)
+                })
+                .collect();
+            work.by_modes[beam].fill(&modes);
+            let loaded: Vec<(u32, f64)> =
+                in_beam().map(|k| (k as u32, share(headroom[k], self.correction_norm[k]))).collect();
+            work.by_loads[beam].fill(&loaded);
+        }
     }
 
     /// [`Self::observe`] evaluating every station (the skipping's reference in the tests).
@@ -353,7 +536,7 @@ mod tests {
     /// The skipping never hides a rise: the envelope with the anchored bounds equals the envelope
     /// of every station evaluated at every state, on a smooth trajectory of the paper model's
     /// modes (most steps near their anchor: the skipping path) with jumps (the re-anchoring),
-    /// and with each envelope's worst only, the worst values alike.
+    /// and with each envelope's worst only, the worst values and worst utilisations alike.
     #[test]
     fn skipping_by_the_anchored_bound_changes_no_envelope_value() {
         let model = Model::new(&Scenario::paper()).unwrap();
@@ -367,8 +550,12 @@ mod tests {
         };
         let phases: Vec<f64> = (0..n).map(|_| 6.0 * random()).collect();
         let amplitudes: Vec<f64> = (0..n).map(|i| random() / (1.0 + system.omega2[i])).collect();
+        // Allowables that vary along each beam (and none at some stations), so that a station
+        // below its envelope's worst stress can hold its worst utilisation.
+        let allowables: Vec<f64> =
+            (0..divisors.len()).map(|k| if k % 7 == 3 { 0.0 } else { 1.0 + (k % 5) as f64 }).collect();
         for worst_only in [false, true] {
-            let rows = StationRows::new(&system, &divisors, groups(&model));
+            let rows = StationRows::new(&system, &divisors, groups(&model)).with_allowables(allowables.clone());
             let mut work = EnvelopeWork { worst_only, ..EnvelopeWork::default() };
             let count = rows.len();
             let (mut max, mut times) = (vec![0.0; count], vec![0.0; count]);
@@ -379,8 +566,13 @@ mod tests {
                 let q: Vec<f64> = (0..n)
                     .map(|i| jump * amplitudes[i] * (system.omega2[i].sqrt() * t + phases[i]).sin() * (1.0 + t))
                     .collect();
-                rows.observe(&mut work, &q, None, t, &mut max, &mut times);
-                rows.observe_all(&q, None, t, &mut all, &mut all_times);
+                // The correction's loads (a contact force and inertia loads) vary smoothly over
+                // the second half, with the jumps: the loads' screen and the exact load term.
+                let loads: [f64; LOADS] =
+                    std::array::from_fn(|a| jump * 1e4 * (a as f64 + 1.0) * (300.0 * t + a as f64).sin());
+                let loads = (step >= 1500).then_some(&loads);
+                rows.observe(&mut work, &q, loads, t, &mut max, &mut times);
+                rows.observe_all(&q, loads, t, &mut all, &mut all_times);
             }
             if worst_only {
                 for g in 0..4u8 {
@@ -388,6 +580,11 @@ mod tests {
                         groups(&model).iter().zip(v).filter(|(h, _)| **h == g).map(|(_, v)| *v).fold(0.0, f64::max)
                     };
                     assert_eq!(of(&max), of(&all), "envelope {g}'s worst");
+                    let utilisation = |v: &[f64]| {
+                        let pairs = groups(&model).into_iter().zip(v.iter().zip(&allowables));
+                        pairs.filter(|(h, (_, a))| *h == g && **a > 0.0).map(|(_, (v, a))| v / a).fold(0.0, f64::max)
+                    };
+                    assert_eq!(utilisation(&max), utilisation(&all), "envelope {g}'s worst utilisation");
                 }
             } else {
                 assert_eq!(max, all);
