@@ -294,8 +294,8 @@ impl StationRows {
             let mut evaluated = 0;
             let mut complete = true;
             work.observation = work.observation.wrapping_add(1);
-            'beams: for beam in 0..2 {
-                let moved = distance[beam] + work.rigid_ratio[beam] * rigid;
+            'beams: for (beam, &beam_distance) in distance.iter().enumerate() {
+                let moved = beam_distance + work.rigid_ratio[beam] * rigid;
                 let (modes, loaded) = (work.by_modes[beam].below(moved), work.by_loads[beam].below(load_change));
                 let (modes, loaded) = (modes.len(), loaded.len());
                 for index in 0..modes + loaded {
@@ -316,7 +316,7 @@ impl StationRows {
                         None => 0.0,
                     };
                     let bound = (work.anchor_modal[k] + load_term).abs()
-                        + self.energy_norm[k] * distance[beam]
+                        + self.energy_norm[k] * beam_distance
                         + self.rigid_norm[k] * rigid;
                     // The bound's own arithmetic is loose by round-off only: a margin of 1e-9.
                     // At the threshold the station cannot exceed it (a station at rest at its
@@ -340,7 +340,8 @@ impl StationRows {
         // No anchor, or the state has moved too far from it: every station, and a new anchor.
         let mut values = std::mem::take(&mut work.anchor_values);
         let mut modal = std::mem::take(&mut work.anchor_modal);
-        (values.clear(), modal.clear());
+        values.clear();
+        modal.clear();
         for k in 0..count {
             let modal_part = self.value(k, q, None);
             let value = self.value(k, q, loads);
