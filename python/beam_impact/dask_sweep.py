@@ -1,8 +1,12 @@
-"""`beam_impact.sweep`: a grid of FMU runs as Dask tasks, one row per scenario.
+"""`beam_impact.sweep`: a grid of runs as Dask tasks, one row per scenario.
 
-Each task runs one scenario of the grid (`beam_impact.simulate`, logging off, one communication
-step over the whole run) and returns its row; a scenario the FMU refuses, or whose run fails,
-returns its row with the FMU's message in `error`, and the sweep goes on.
+Each task runs one scenario of the grid and returns its row: by default through the Rust solver
+itself (the native module, `beam_impact.run`'s code as one row of `beam-impact sweep`: no FMU,
+the GIL released while it solves, Ctrl-C stopping the runs between steps); with `engine="fmu"`
+through the FMU (`beam_impact.simulate`, logging off, one communication step over the whole run).
+A scenario refused, or whose run fails, returns its row with the message in `error`, and the
+sweep goes on. What follows says how the FMU route runs; the native one runs the same way
+without the FMU file (nothing to scatter: the workers need the `beam_impact` package only).
 
 Where the tasks run:
 - `client=None`: Dask's local threaded scheduler, one thread per core, with a tqdm bar (the
@@ -145,11 +149,11 @@ def sweep(
     grid: dict[str, Iterable[Any]],
     client: Any = None,
     fmu: "str | os.PathLike | None" = None,
-    stop_time: float = 3.0,
+    stop_time: float | None = None,
     progress: bool | None = None,
     num_workers: int | None = None,
     check_sensitivity: bool = False,
-    engine: str = "native",
+    engine: str | None = None,
     scenario: Any = None,
 ):
     """Runs every scenario of `grid` ({field: values}, the product in dict order with the last
@@ -164,15 +168,17 @@ def sweep(
     row's run, s) and `error` ("" when fine; the peaks are NaN then); then the former names of
     the peaks and checks (`lower_clamp_bending_stress`, `trusted`, ...), duplicates until 0.2.0.
 
-    `engine`: "native" (default) runs each scenario through the Rust solver itself
-    (`beam_impact.run`'s code; no FMU needed; the GIL is released, so threads solve in parallel);
-    "fmu" through the FMU at `fmu` (or `$BEAM_IMPACT_FMU`) with fmpy. Both give the same columns
+    `engine`: "native" (the default without `fmu`) runs each scenario through the Rust solver
+    itself (`beam_impact.run`'s code; no FMU needed; the GIL is released, so threads solve in
+    parallel); "fmu" (the default when `fmu` is given) through the FMU at `fmu` (or
+    `$BEAM_IMPACT_FMU`) with fmpy. Both give the same columns
     and the same numbers (to round-off: tests/python/test_package.py holds both to the CLI's sweep
     at 1e-9). `scenario` (native engine only): the base scenario, a file path or TOML text as
     `beam_impact.run` takes it (default: the defaults, the FMU's).
     `client`: None for the local threaded scheduler (`num_workers` threads, default one per core),
     a `dask.distributed.Client`, or a scheduler address ("tcp://host:8786").
-    `stop_time`: simulated s per run (a varied `duration` overrides it). `progress`: show a tqdm
+    `stop_time`: simulated s per run (a varied `duration` overrides it; default: the scenario's
+    `duration` on the native engine, 3 s, the defaults' too, on the FMU). `progress`: show a tqdm
     bar with the estimated time left on standard error, from 2 s into the sweep (default: when
     standard error is a terminal). Ctrl-C stops the local sweep's runs between steps
     (KeyboardInterrupt). Rows share no work (see the module's documentation). The FMU is read only
@@ -180,12 +186,17 @@ def sweep(
     folder)."""
     import pandas as pd
 
+    if engine is None:
+        engine = "native" if fmu is None else "fmu"
     if engine not in ("native", "fmu"):
         raise ValueError(f"engine must be \"native\" or \"fmu\", got {engine!r}")
+    if engine == "native" and fmu is not None:
+        raise ValueError("fmu= is for engine=\"fmu\"; the native engine runs the solver itself")
     if engine == "fmu" and scenario is not None:
         raise ValueError("scenario= is for the native engine; the FMU starts from its own parameters")
     points = expand(grid)
     if engine == "fmu":
+        stop_time = 3.0 if stop_time is None else stop_time
         path = _fmu_path(fmu)
         columns = _columns(list(grid), path)
         task, target = run_row, path

@@ -51,7 +51,7 @@ fn base_scenario(
     match (path, text) {
         (Some(p), _) => scenario_file::read_file(p, warnings),
         // A text names its motion file relative to the current folder, as standard input does.
-        (None, Some(t)) => scenario_file::from_text(t, "the scenario text", Path::new(""), warnings),
+        (None, Some(t)) => scenario_file::from_text(t, "text", Path::new(""), warnings),
         // As a bare `beam-impact run` runs the paper's method and `--set` starts from the defaults.
         (None, None) if !has_fields => Ok(Scenario::paper()),
         (None, None) => Ok(Scenario::default()),
