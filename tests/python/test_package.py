@@ -365,6 +365,27 @@ def test_python_m_beam_impact_sweep(tmp_path):
     assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "nonsense" in bad.stderr, bad.stderr
 
 
+def test_python_m_beam_impact_sweep_runs_the_solver_without_an_fmu(tmp_path):
+    """Without --fmu the rows are the solver's own, from --scenario: `beam-impact sweep FILE`'s numbers."""
+    scenario = tmp_path / "light.toml"
+    scenario.write_text("duration = 0.4\n[upper]\nmass = 9000.0\n")
+    out, cli_out = tmp_path / "rows.csv", tmp_path / "cli.csv"
+    vary = ["--vary", "drop_height=0.3,0.9", "--vary", "contact_position=13,40"]
+    run = subprocess.run([sys.executable, "-m", "beam_impact", "sweep", "--scenario", str(scenario), *vary,
+                          "--out", str(out)], capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0 and "4 scenarios" in run.stdout and "2 of 4 scenarios failed" in run.stderr, run.stderr
+    subprocess.run([binary(), "sweep", str(scenario), *vary, "--out", str(cli_out)], check=True, capture_output=True)
+    rows, cli = (pd.read_csv(f, keep_default_na=False, na_values=[""]) for f in (out, cli_out))
+    ok = rows["error"].fillna("") == ""
+    assert ok.tolist() == [True, False, True, False]
+    for column in PEAKS + METHOD:
+        got, want = rows.loc[ok, column].to_numpy(), cli.loc[ok, column].to_numpy()
+        assert np.all(np.abs(got - want) <= 1e-9 * np.abs(want)), column  # the same code: the same bits
+    both = subprocess.run([sys.executable, "-m", "beam_impact", "sweep", "--scenario", str(scenario), "--fmu",
+                           fmu_path(), "--vary", "drop_height=1", "--out", str(out)], capture_output=True, text=True)
+    assert both.returncode == 2 and "--scenario is for the solver itself" in both.stderr, both.stderr
+
+
 def test_the_readmes_local_cluster_script_runs_as_written(tmp_path):
     """Issue 19: a LocalCluster script without the `__main__` guard fails ("Nanny failed to
     start"); the README shows the guard. Its snippet runs here as a script, as a user saves it."""
