@@ -37,7 +37,7 @@ class RunResult(dict):
 
     series: Any = None
     log_path: str | None = None
-    warnings: list = []
+    warnings: tuple = ()
 
     @property
     def peaks(self) -> dict:
