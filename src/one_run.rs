@@ -20,7 +20,7 @@ pub fn check(scenario: &Scenario, max_steps: u64) -> Result<()> {
 
 /// Runs `scenario` with its checks into `recorder` and finishes the record with the answer
 /// attached; `cancel` set stops every run at its next step ([`Error::Cancelled`]; the record is
-/// then not finished).
+/// then neither given the answer nor finished here: an MCAP log completes itself when dropped).
 pub fn run(
     scenario: &Scenario,
     recorder: &mut (dyn Recorder + Send),

@@ -4,8 +4,9 @@
 //!
 //! Goal: with the flag clear the answer is `answer::run`'s to the bit and the record ends with
 //! `answer.json`; a flag set before the run stops it at its first step, one set while it runs
-//! stops it within a few steps, with `Error::Cancelled`, and the record is left unfinished (the
-//! log of a killed run, `NAME.partial`). No tolerances: the same code on the same scenario.
+//! stops it at the next step, with `Error::Cancelled`, and the run does not finish the record
+//! nor attach an answer (an MCAP log completes itself when dropped: the steps up to the stop,
+//! no `answer.json`). No tolerances: the same code on the same scenario.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};

@@ -118,8 +118,9 @@ def run(scenario: Any = None, *, fields: dict | None = None, log: "str | os.Path
     of the checks and leaves `sensitivity_spread` null).
 
     ValueError with the CLI's one-line message for a scenario, field, value, path or step count it
-    refuses, before anything runs; KeyboardInterrupt on Ctrl-C (the run stops between steps; a
-    log is then left as `NAME.partial`); SimulationError when the run fails."""
+    refuses, before anything runs; KeyboardInterrupt on Ctrl-C (the run stops between steps; its
+    log then ends at that step, without the answer: `load_log(...).answer` is None);
+    SimulationError when the run fails."""
     from . import _native
     from .fmu import SimulationError
 

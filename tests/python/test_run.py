@@ -235,14 +235,15 @@ def test_ctrl_c_stops_a_threaded_sweep_s_runs(tmp_path):
     assert stopped < 10, f"exited {stopped:.2f} s after SIGINT"
 
 
-def test_cancel_running_stops_another_thread_s_run():
+def test_cancel_running_stops_another_thread_s_run(tmp_path):
     from beam_impact import _native
 
     outcome = []
+    log = tmp_path / "stopped.mcap"
 
     def solve():
         try:
-            beam_impact.run(duration=2000.0, check_sensitivity=False)
+            beam_impact.run(duration=2000.0, check_sensitivity=False, log=log)
             outcome.append("finished")
         except KeyboardInterrupt as e:
             outcome.append(str(e))
@@ -255,6 +256,11 @@ def test_cancel_running_stops_another_thread_s_run():
     worker.join(timeout=60)
     assert not worker.is_alive() and time.monotonic() - sent < 5
     assert len(outcome) == 1 and outcome[0].startswith("run cancelled at t = "), outcome
+    # Its log ends at the step where it stopped, without the answer.
+    stopped_at = int(outcome[0].split("internal step ")[1].split(")")[0])
+    record = beam_impact.load_log(log)
+    assert record.complete and record.answer is None
+    assert int(record.dataframe()["step"].iloc[-1]) == stopped_at - 1
     # A run started afterwards is not cancelled.
     assert beam_impact.run(duration=0.05)["summary"]["peaks"]["contact.force"] > 0
 
