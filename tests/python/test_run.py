@@ -265,7 +265,7 @@ def test_cancel_running_stops_another_thread_s_run(tmp_path):
     assert beam_impact.run(duration=0.05)["summary"]["peaks"]["contact.force"] > 0
 
 
-@pytest.mark.parametrize("kind", ["link", "folder", "fifo", "nul"])
+@pytest.mark.parametrize("kind", ["link", "folder", "fifo", "nul", "slash"])
 def test_a_link_folder_fifo_or_nul_as_the_log_is_refused_before_the_run(kind, tmp_path):
     victim = tmp_path / "victim.txt"
     victim.write_text("keep me")
@@ -276,12 +276,15 @@ def test_a_link_folder_fifo_or_nul_as_the_log_is_refused_before_the_run(kind, tm
         target.mkdir()
     elif kind == "fifo":
         os.mkfifo(target)
-    else:
+    elif kind == "nul":
         target = tmp_path / "run.csv\0.mcap"
+    else:  # a folder's name: was refused only after the run, when the log was renamed into place
+        target = f"{tmp_path / 'run.mcap'}/"
     started = time.perf_counter()
     with pytest.raises(ValueError) as refused:
         beam_impact.run(duration=30.0, log=str(target))
     assert "\n" not in str(refused.value)
     assert time.perf_counter() - started < 20, "refused before the 30 s run"
     assert victim.read_text() == "keep me"
-    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(["victim.txt", *([kind] if kind != "nul" else [])])
+    made = [kind] if kind in ("link", "folder", "fifo") else []
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(["victim.txt", *made])
