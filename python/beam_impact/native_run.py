@@ -137,6 +137,9 @@ def run(scenario: Any = None, *, fields: dict | None = None, log: "str | os.Path
         doc, steps, warnings, log_path = _native.run(
             scenario=path, scenario_text=text, fields=pairs, log=log_text, series_every=every if series else 0,
             max_steps=limit, sensitivity=bool(check_sensitivity), observed_order=True)
+    except ValueError as e:
+        # The crate's line names the CLI's option; here it is this function's keyword.
+        raise ValueError(str(e).replace("with --max-steps", "with run(..., max_steps=N)")) from None
     except RuntimeError as e:
         raise SimulationError(str(e)) from None
     result = RunResult(json.loads(doc))

@@ -91,6 +91,8 @@ def test_a_scenario_file_or_its_text(tmp_path):
     ({"upper__mass": True}, "upper.mass takes a number or text, got True"),
     ({"fields": {"upper.mass": 1.0}, "upper__mass": 2.0}, "upper.mass is given twice"),
     ({"duration": 1e6}, "at most 100000000 steps"),
+    ({"duration": 0.01, "max_steps": 100}, "this run needs 424 steps (the automatic step"),
+    ({"duration": 0.01, "max_steps": 100}, "raise the limit with run(..., max_steps=N)"),
     ({"scenario": "no-such-file.toml"}, "cannot read scenario no-such-file.toml"),
     ({"scenario": 'drop_height = "x"'}, "TOML parse error"),
 ])
