@@ -6,7 +6,7 @@ sweeps on threads or a Dask cluster, and its MCAP log reader.
     beam_impact.sweep(grid, engine="fmu", fmu=PATH)          the same through the FMU
     beam_impact.simulate(fmu, {"drop_height": 0.8})          one FMU run: the peaks (CLI names)
     beam_impact.load_log("paper.mcap")                       a log as numpy arrays / DataFrame
-    python -m beam_impact sweep --fmu PATH --vary KEY=SPEC ... --out FILE.csv
+    python -m beam_impact sweep [--scenario FILE | --fmu PATH] --vary KEY=SPEC ... --out FILE.csv
 
 Heavy imports (fmpy, dask, pandas) happen inside the functions, so `import beam_impact` is quick.
 """
