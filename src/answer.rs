@@ -20,10 +20,13 @@
 //!
 //! `trusted` means that every check that ran passes.
 
+use std::sync::atomic::AtomicBool;
+
 use serde::{Deserialize, Serialize};
 
 use crate::error::Result;
 use crate::model::{Method, Scenario};
+use crate::record::cancel::Cancellable;
 use crate::record::{NullRecorder, Recorder};
 use crate::results::{EnvelopePeak, Peaks, StressEnvelope, Summary};
 use crate::solver::ModalCache;
@@ -258,7 +261,12 @@ impl Default for Options {
 /// The twin shares the printed rung's modes (a cache of the run's own: the same answer to the
 /// bit, one eigen-solution fewer).
 pub fn run(scenario: &Scenario, recorder: &mut (dyn Recorder + Send), options: Options) -> Result<Answer> {
-    run_with(scenario, recorder, options, &ModalCache::new(4, 1 << 30))
+    run_with(scenario, recorder, options, &own_cache())
+}
+
+/// The modal cache of one run's own (its rungs and twin): four bases of at most 1 GiB.
+pub fn own_cache() -> ModalCache {
+    ModalCache::new(4, 1 << 30)
 }
 
 /// [`run`] with each rung's modes from `cache` (a sweep's, shared by its rows): the same answer
@@ -268,6 +276,19 @@ pub fn run_with(
     recorder: &mut (dyn Recorder + Send),
     options: Options,
     cache: &ModalCache,
+) -> Result<Answer> {
+    run_cancellable(scenario, recorder, options, cache, &AtomicBool::new(false))
+}
+
+/// [`run_with`] that stops every run of the answer (the printed run, the check rungs, the twin) at
+/// its next internal step once `cancel` is set, with [`crate::Error::Cancelled`]; while `cancel`
+/// stays clear, the same answer to the bit.
+pub fn run_cancellable(
+    scenario: &Scenario,
+    recorder: &mut (dyn Recorder + Send),
+    options: Options,
+    cache: &ModalCache,
+    cancel: &AtomicBool,
 ) -> Result<Answer> {
     let mut printed = Simulation::new_cached(scenario, cache)?;
     printed.check_step_count(scenario.duration_ns(), options.max_steps)?;
@@ -282,7 +303,7 @@ pub fn run_with(
     let twin = options.sensitivity.then(|| twin_scenario(scenario));
     let (printed_run, others) = rayon::join(
         || -> Result<(Summary, RungRun)> {
-            let summary = printed.run(recorder)?;
+            let summary = printed.run(&mut Cancellable::new(recorder, cancel))?;
             let run = rung_run("printed", &printed, &summary);
             Ok((summary, run))
         },
@@ -311,7 +332,7 @@ pub fn run_with(
                     if *role == "twin" || s.method == Method::Converged {
                         sim.envelope_worst_only();
                     }
-                    let summary = sim.run(&mut NullRecorder)?;
+                    let summary = sim.run(&mut Cancellable::new(&mut NullRecorder, cancel))?;
                     let run = rung_run(role, &sim, &summary);
                     Ok((summary, run))
                 })

@@ -166,6 +166,15 @@ pub enum Error {
         /// Largest magnitude among the eigenvalues set to 0, 1/s^2 (0 if none).
         largest_rigid: f64,
     },
+    /// The run was stopped between two steps because its caller asked (Ctrl-C in the Python
+    /// package: [`crate::record::cancel`]).
+    #[error("run cancelled at t = {time} s (internal step {step}), as asked")]
+    Cancelled {
+        /// Simulated time of the last step taken, s.
+        time: f64,
+        /// That step's number.
+        step: u64,
+    },
     /// Anything else, with its explanation.
     #[error("{0}")]
     Other(String),

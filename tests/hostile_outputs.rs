@@ -199,6 +199,22 @@ fn a_failed_run_leaves_the_earlier_results_as_they_were() {
     assert!(std::fs::read_to_string(&json).unwrap().contains("\"summary\""));
 }
 
+/// `--mcap x.mcap/` ran the whole run into `x.mcap.partial` and then failed to rename it over
+/// `x.mcap/` ("Not a directory"), leaving the partial file: a name ending with `/` can only be a
+/// folder's, refused before the run, as `--json x.json/` is.
+#[test]
+fn a_name_ending_with_a_slash_is_refused_before_the_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let slash = |name: &str| format!("{}/", dir.path().join(name).display());
+    for args in
+        [vec!["--mcap".to_string(), slash("x.mcap")], vec!["--no-mcap".into(), "--json".into(), slash("x.json")]]
+    {
+        let out = beam_impact().arg("run").args(&args).args(SHORT).output().unwrap();
+        refused(&out, "ends with `/`");
+    }
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "nothing written");
+}
+
 /// Item 10: a 100 MB string in a scenario gave a 300 MB error line. Within the 4 MiB read limit a
 /// 3 MB string still makes a bounded line.
 #[test]

@@ -49,6 +49,7 @@ mod mcap_layout;
 mod mcap_recording;
 mod modes_fine_mesh;
 mod no_circles;
+mod one_run;
 mod paper;
 mod reactions;
 mod report_csv;

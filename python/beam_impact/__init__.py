@@ -1,9 +1,12 @@
-"""beam_impact: design sweeps of the beam-impact FMU (fmpy, Dask) and its MCAP log reader.
+"""beam_impact: the beam-impact solver from Python (its Rust code, or its FMU through fmpy), design
+sweeps on threads or a Dask cluster, and its MCAP log reader.
 
-    beam_impact.simulate(fmu, {"drop_height": 0.8})          one run: the peaks (CLI names)
-    beam_impact.sweep({"drop_height": [...], ...}, fmu=...)  a grid as Dask tasks: a DataFrame
+    beam_impact.run(drop_height=0.8)                         one run, no FMU: `beam-impact run --json`
+    beam_impact.sweep({"drop_height": [...], ...})           a grid as Dask tasks: a DataFrame
+    beam_impact.sweep(grid, engine="fmu", fmu=PATH)          the same through the FMU
+    beam_impact.simulate(fmu, {"drop_height": 0.8})          one FMU run: the peaks (CLI names)
     beam_impact.load_log("paper.mcap")                       a log as numpy arrays / DataFrame
-    python -m beam_impact sweep --fmu PATH --vary KEY=SPEC ... --out FILE.csv
+    python -m beam_impact sweep [--scenario FILE | --fmu PATH] --vary KEY=SPEC ... --out FILE.csv
 
 Heavy imports (fmpy, dask, pandas) happen inside the functions, so `import beam_impact` is quick.
 """
@@ -12,17 +15,20 @@ from .dask_sweep import sweep
 from .fmu import FmuFile, SimulationError, simulate
 from .grid import expand, linspace, parse_spec, parse_vary
 from .log import Log, LogError, load_log
+from .native_run import RunResult, run
 
 __all__ = [
     "FmuFile",
     "Log",
     "LogError",
+    "RunResult",
     "SimulationError",
     "expand",
     "linspace",
     "load_log",
     "parse_spec",
     "parse_vary",
+    "run",
     "simulate",
     "sweep",
 ]

@@ -1,8 +1,12 @@
-"""`beam_impact.sweep`: a grid of FMU runs as Dask tasks, one row per scenario.
+"""`beam_impact.sweep`: a grid of runs as Dask tasks, one row per scenario.
 
-Each task runs one scenario of the grid (`beam_impact.simulate`, logging off, one communication
-step over the whole run) and returns its row; a scenario the FMU refuses, or whose run fails,
-returns its row with the FMU's message in `error`, and the sweep goes on.
+Each task runs one scenario of the grid and returns its row: by default through the Rust solver
+itself (the native module, `beam_impact.run`'s code as one row of `beam-impact sweep`: no FMU,
+the GIL released while it solves, Ctrl-C stopping the runs between steps); with `engine="fmu"`
+through the FMU (`beam_impact.simulate`, logging off, one communication step over the whole run).
+A scenario refused, or whose run fails, returns its row with the message in `error`, and the
+sweep goes on. What follows says how the FMU route runs; the native one runs the same way
+without the FMU file (nothing to scatter: the workers need the `beam_impact` package only).
 
 Where the tasks run:
 - `client=None`: Dask's local threaded scheduler, one thread per core, with a tqdm bar (the
@@ -30,13 +34,15 @@ sweep where that matters, run `beam-impact sweep`.
 
 from __future__ import annotations
 
+import json
+import math
 import os
 import sys
 import time
 import uuid
 from typing import Any, Iterable
 
-from .fmu import CHECK_COLUMNS, FORMER_NAMES, PEAK_OUTPUTS, FmuFile, _extracted, _path_text, simulate
+from .fmu import CHECK_COLUMNS, CHECK_OUTPUTS, FORMER_NAMES, PEAK_OUTPUTS, FmuFile, _extracted, _path_text, simulate
 from .grid import display, expand
 
 #: Dask key prefix of the sweep's tasks (the progress bar's label).
@@ -61,6 +67,60 @@ def run_row(point: dict[str, float], fmu: "str | FmuFile", stop_time: float = 3.
         row["error"] = _one_line(e) or type(e).__name__
     row["wall_time"] = time.perf_counter() - started
     return row
+
+
+def run_row_native(point: dict[str, float], scenario: Any = None, stop_time: float | None = 3.0,
+                   check_sensitivity: bool = False) -> dict[str, Any]:
+    """`run_row` through the Rust solver itself (`beam_impact.run`'s code, as one row of
+    `beam-impact sweep`: the coarsest rung left out), no FMU: the same columns and numbers. The
+    base scenario is `scenario` (a path or TOML text; None: the defaults, the FMU's), the run
+    `stop_time` s long unless the grid varies `duration` (None: the scenario's)."""
+    from . import _native
+    from .native_run import scenario_source
+
+    row: dict[str, Any] = {k: display(k, v) for k, v in point.items()}
+    started = time.perf_counter()
+    try:
+        path, text = scenario_source(scenario)
+        if path is None and text is None:
+            text = ""  # the defaults, as the FMU starts from them
+        fields = [(k, float(v)) for k, v in point.items()]
+        if stop_time is not None and "duration" not in point:
+            fields.append(("duration", float(stop_time)))
+        doc, _, _, _ = _native.run(scenario=path, scenario_text=text, fields=fields, sensitivity=check_sensitivity,
+                                   observed_order=False)
+        row.update(_native_row(json.loads(doc)))
+        row["error"] = ""
+    except Exception as e:  # a refused scenario or a failed run is a row, not an aborted sweep
+        row["error"] = _one_line(e) or type(e).__name__
+    row["wall_time"] = time.perf_counter() - started
+    return row
+
+
+def _native_row(doc: dict) -> dict[str, Any]:
+    """The values of the FMU's outputs (`simulate`'s keys) from a `run --json` document."""
+    summary, checks = doc["summary"], doc["quality"]["checks"]
+    values: dict[str, Any] = {name: float(summary["peaks"][name.removeprefix("peak.")]) for name in PEAK_OUTPUTS}
+    values.update({f"energy_method.{n}": float(summary["energy_method"][n]) for n in _native_energy_method()})
+
+    def figure(check):
+        return math.nan if check is None else float(check["value"])
+
+    values["quality.discretisation_error"] = figure(checks.get("discretisation"))
+    values["quality.sensitivity_spread"] = figure(checks.get("sensitivity"))
+    for name in CHECK_OUTPUTS:
+        if name.startswith("utilisation."):
+            values[name] = float(doc["design"]["utilisation"][name.removeprefix("utilisation.")])
+    values["design.pass"] = bool(doc["design"]["pass"])
+    values["quality.trusted"] = bool(doc["quality"]["trusted"])
+    values.update({former: values[name] for former, name in FORMER_NAMES.items()})
+    return values
+
+
+def _native_energy_method() -> list[str]:
+    from . import _native
+
+    return list(_native.FMU_ENERGY_METHOD)
 
 
 def _fmu_path(fmu: "str | os.PathLike | None") -> str:
@@ -89,36 +149,68 @@ def sweep(
     grid: dict[str, Iterable[Any]],
     client: Any = None,
     fmu: "str | os.PathLike | None" = None,
-    stop_time: float = 3.0,
+    stop_time: float | None = None,
     progress: bool | None = None,
     num_workers: int | None = None,
     check_sensitivity: bool = False,
+    engine: str | None = None,
+    scenario: Any = None,
 ):
     """Runs every scenario of `grid` ({field: values}, the product in dict order with the last
-    field fastest, as `beam-impact sweep --vary`) through the FMU at `fmu` and returns a
-    pandas.DataFrame, one row per scenario in grid order, columns named as the FMU and the CLI's
-    sweep name them: the varied fields, the peaks `peak.lower.tip_deflection` (m),
-    `peak.lower.clamp_bending_stress`, `peak.lower.clamp_shear_stress`,
-    `peak.upper.contact_bending_stress` (Pa), `peak.contact.force` (N), `energy_method.<field>` (SI
-    units), the checks `quality.discretisation_error`, `quality.sensitivity_spread` (NaN unless
+    field fastest, as `beam-impact sweep --vary`) and returns a pandas.DataFrame, one row per
+    scenario in grid order, columns named as the FMU and the CLI's sweep name them: the varied
+    fields, the peaks `peak.lower.tip_deflection` (m), `peak.lower.clamp_bending_stress`,
+    `peak.lower.clamp_shear_stress`, `peak.upper.contact_bending_stress` (Pa),
+    `peak.contact.force` (N), `energy_method.<field>` (SI units), the checks
+    `quality.discretisation_error`, `quality.sensitivity_spread` (NaN unless
     `check_sensitivity=True`, which runs each scenario's twin as the CLI's sweep does, at twice the
     stepping cost), `utilisation.<stress peak>`, `design.pass`, `quality.trusted`, `wall_time` (the
-    row's FMU run, s) and `error` ("" when fine; the peaks are NaN then); then the former names of
+    row's run, s) and `error` ("" when fine; the peaks are NaN then); then the former names of
     the peaks and checks (`lower_clamp_bending_stress`, `trusted`, ...), duplicates until 0.2.0.
 
+    `engine`: "native" (the default without `fmu`) runs each scenario through the Rust solver
+    itself (`beam_impact.run`'s code; no FMU needed; the GIL is released, so threads solve in
+    parallel); "fmu" (the default when `fmu` is given) through the FMU at `fmu` (or
+    `$BEAM_IMPACT_FMU`) with fmpy. Both give the same columns
+    and the same numbers (to round-off: tests/python/test_package.py holds both to the CLI's sweep
+    at 1e-9). `scenario` (native engine only): the base scenario, a file path or TOML text as
+    `beam_impact.run` takes it (default: the defaults, the FMU's).
     `client`: None for the local threaded scheduler (`num_workers` threads, default one per core),
     a `dask.distributed.Client`, or a scheduler address ("tcp://host:8786").
-    `stop_time`: simulated s per run (a varied `duration` overrides it). `progress`: show a tqdm
+    `stop_time`: simulated s per run (a varied `duration` overrides it; default: the scenario's
+    `duration` on the native engine, 3 s, the defaults' too, on the FMU). `progress`: show a tqdm
     bar with the estimated time left on standard error, from 2 s into the sweep (default: when
-    standard error is a terminal). Rows share no work (see the module's documentation). The FMU is read only if it is a regular file of at
-    most 1 GiB (ValueError at once otherwise: a FIFO, a device, a folder)."""
+    standard error is a terminal). Ctrl-C stops the local sweep's runs between steps
+    (KeyboardInterrupt). Rows share no work (see the module's documentation). The FMU is read only
+    if it is a regular file of at most 1 GiB (ValueError at once otherwise: a FIFO, a device, a
+    folder)."""
     import pandas as pd
 
-    path = _fmu_path(fmu)
+    if engine is None:
+        engine = "native" if fmu is None else "fmu"
+    if engine not in ("native", "fmu"):
+        raise ValueError(f"engine must be \"native\" or \"fmu\", got {engine!r}")
+    if engine == "native" and fmu is not None:
+        raise ValueError("fmu= is for engine=\"fmu\"; the native engine runs the solver itself")
+    if engine == "fmu" and scenario is not None:
+        raise ValueError("scenario= is for the native engine; the FMU starts from its own parameters")
     points = expand(grid)
-    columns = _columns(list(grid), path)
+    if engine == "fmu":
+        stop_time = 3.0 if stop_time is None else stop_time
+        path = _fmu_path(fmu)
+        columns = _columns(list(grid), path)
+        task, target = run_row, path
+    else:
+        from . import _native
+
+        for f in grid:
+            if f != "duration":
+                _native.check_field(str(f))
+        method = [f"energy_method.{n}" for n in _native_energy_method()]
+        columns = [*grid, *PEAK_OUTPUTS, *method, *CHECK_COLUMNS, "wall_time", "error", *FORMER_NAMES]
+        task, target = run_row_native, scenario
     if client is None:
-        rows = _run_local(points, path, stop_time, progress, num_workers, check_sensitivity)
+        rows = _run_local(task, points, target, stop_time, progress, num_workers, check_sensitivity)
     else:
         own = isinstance(client, str)
         if own:
@@ -126,7 +218,9 @@ def sweep(
 
             client = Client(client)
         try:
-            rows = _run_distributed(client, points, path, stop_time, progress, check_sensitivity)
+            if engine == "fmu":
+                target = client.scatter(FmuFile.read(target), broadcast=True)
+            rows = _run_distributed(client, task, points, target, stop_time, progress, check_sensitivity)
         finally:
             if own:
                 client.close()
@@ -144,7 +238,7 @@ def _bar(total: int):
     return tqdm(total=total, unit="scenario", desc="sweep", file=sys.stderr, delay=BAR_DELAY, dynamic_ncols=True)
 
 
-def _run_local(points, path, stop_time, progress, num_workers, check_sensitivity) -> list[dict]:
+def _run_local(task, points, target, stop_time, progress, num_workers, check_sensitivity) -> list[dict]:
     import dask
     from dask.callbacks import Callback
 
@@ -162,21 +256,31 @@ def _run_local(points, path, stop_time, progress, num_workers, check_sensitivity
             if str(key).startswith(TASK_PREFIX):
                 self.bar.update(1)
 
-    tasks = [dask.delayed(run_row, pure=False)(p, path, stop_time, check_sensitivity, dask_key_name=f"{TASK_PREFIX}-{i}")
+    tasks = [dask.delayed(task, pure=False)(p, target, stop_time, check_sensitivity, dask_key_name=f"{TASK_PREFIX}-{i}")
              for i, p in enumerate(points)]
-    if not progress:
-        return list(dask.compute(*tasks, scheduler="threads", num_workers=num_workers))
-    with _bar(len(tasks)) as bar, _Advance(bar):
-        return list(dask.compute(*tasks, scheduler="threads", num_workers=num_workers))
+    try:
+        if not progress:
+            return list(dask.compute(*tasks, scheduler="threads", num_workers=num_workers))
+        with _bar(len(tasks)) as bar, _Advance(bar):
+            return list(dask.compute(*tasks, scheduler="threads", num_workers=num_workers))
+    except KeyboardInterrupt:
+        # Ctrl-C reaches the main thread only: the runs on the pool's threads stop at their next
+        # step (native engine); an FMU's doStep runs to its end.
+        from . import _native
+
+        _native.cancel_running()
+        raise
 
 
-def _run_distributed(client, points, path, stop_time, progress, check_sensitivity) -> list[dict]:
+def _run_distributed(client, task, points, target, stop_time, progress, check_sensitivity) -> list[dict]:
     if progress is None:
         progress = sys.stderr.isatty()
-    fmu = client.scatter(FmuFile.read(path), broadcast=True)
     token = uuid.uuid4().hex[:12]  # fresh keys: never another sweep's cached results
     keys = [f"{TASK_PREFIX}-{token}-{i}" for i in range(len(points))]
-    futures = client.map(run_row, points, fmu=fmu, stop_time=stop_time, check_sensitivity=check_sensitivity, key=keys,
+    # The FMU (a scattered future) or the base scenario, the same for every task: a keyword, not
+    # an iterable mapped over.
+    shared = {"fmu": target} if task is run_row else {"scenario": target}
+    futures = client.map(task, points, **shared, stop_time=stop_time, check_sensitivity=check_sensitivity, key=keys,
                          pure=False)
     if progress:
         from distributed import as_completed

@@ -268,19 +268,27 @@ def load_log(path: str) -> Log:
     return _from_native(raw)
 
 
+def step_columns(buffers: dict) -> dict:
+    """The step channel's columns as numpy arrays, from the native module's buffers (a log's
+    steps, or a run's kept steps): one name per quantity, as `report --csv`: the FMU's names
+    first (`lower.clamp_bending_stress`, `peak.contact.force`), then the former field-path names
+    as duplicates (until 0.2.0)."""
+    from . import _native
+
+    steps = {}
+    for name, data in buffers.items():
+        dtype = INTEGER.get(name, np.float64)
+        steps[name] = np.frombuffer(data, dtype=np.uint8 if dtype is np.bool_ else dtype).astype(dtype)
+    renamed = dict(_native.STEP_RENAMES)
+    fields = [*SCALARS, *(f"energy.{n}" for n in ENERGY), *(f"peaks.{n}" for n in PEAKS)]
+    return {**{renamed.get(name, name): steps[name] for name in fields}, **{f: steps[f] for f in renamed}}
+
+
 def _from_native(raw: dict) -> Log:
     """The Log of the native reader's buffers (native-endian, as numpy reads them)."""
     from . import _native
 
-    steps = {}
-    for name, data in raw["steps"].items():
-        dtype = INTEGER.get(name, np.float64)
-        steps[name] = np.frombuffer(data, dtype=np.uint8 if dtype is np.bool_ else dtype).astype(dtype)
-    # One name per quantity, as `report --csv`: the FMU's names first (`lower.clamp_bending_stress`,
-    # `peak.contact.force`), then the former field-path names as duplicates (until 0.2.0).
-    renamed = dict(_native.STEP_RENAMES)
-    fields = [*SCALARS, *(f"energy.{n}" for n in ENERGY), *(f"peaks.{n}" for n in PEAKS)]
-    steps = {**{renamed.get(name, name): steps[name] for name in fields}, **{f: steps[f] for f in renamed}}
+    steps = step_columns(raw["steps"])
     cols = raw["shape_cols"]
     modal_steps = np.frombuffer(raw["modal_steps"], dtype=np.uint64).copy()
     station_steps = np.frombuffer(raw["station_steps"], dtype=np.uint64).copy()

@@ -4,83 +4,36 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use beam_impact::record::output::{
-    check_size, open_input, open_regular_input, read_bounded, shown, MAX_SCENARIO_BYTES,
-};
+use beam_impact::record::output::{read_bounded, shown, MAX_SCENARIO_BYTES};
+use beam_impact::scenario_file;
 use beam_impact::{Error, Result, Scenario};
 
 /// An error as one line of bounded length (shared with the FMU's logger messages).
 pub use beam_impact::error::bounded_line;
 
 /// Reads and validates a scenario file (missing fields take their defaults); `-` is the standard
-/// input. A FIFO or socket is refused rather than waited on.
+/// input. A FIFO or socket is refused rather than waited on. Warnings go to standard error.
 pub fn read_scenario(path: &Path) -> Result<Scenario> {
-    let (text, folder, name) = if path.as_os_str() == "-" {
+    let mut warnings = Vec::new();
+    let scenario = if path.as_os_str() == "-" {
         let text = read_bounded(std::io::stdin().lock(), MAX_SCENARIO_BYTES, "the scenario")
             .map_err(|source| io("cannot read scenario", Path::new("standard input"), source))?;
         // A scenario from standard input names its motion file relative to the current folder.
-        (text, Path::new(""), "standard input".to_string())
+        scenario_file::from_text(&text, "standard input", Path::new(""), &mut warnings)
     } else {
-        let file = open_input(path, "cannot read scenario")?;
-        let text = check_size(&file, MAX_SCENARIO_BYTES, "the scenario")
-            .and_then(|()| read_bounded(file, MAX_SCENARIO_BYTES, "the scenario"))
-            .map_err(|source| io("cannot read scenario", path, source))?;
-        (text, path.parent().unwrap_or(Path::new("")), shown(path))
+        scenario_file::read_file(path, &mut warnings)
     };
-    let mut scenario = Scenario::from_toml(&text, &name)?;
-    if !scenario.motion.file.is_empty() {
-        let motion = motion_file_of_scenario(&scenario.motion.file, folder)?;
-        load_motion(&mut scenario, &motion)?;
-    }
-    Ok(scenario)
+    warnings.iter().for_each(|w| warn(w));
+    scenario
 }
 
-/// Where a scenario file's `[motion] file` points: a relative path inside the scenario's folder
-/// (its folder or below, no `..`), resolved against that folder. A stranger's scenario can reach
-/// nothing else (`/proc/self/environ`, `../../etc/shadow`); the user's own motion file anywhere
-/// is given with `--motion PATH`.
-pub fn motion_file_of_scenario(file: &str, folder: &Path) -> Result<PathBuf> {
-    use std::path::Component;
-    let relative = Path::new(file);
-    let inside = relative.components().all(|c| matches!(c, Component::Normal(_) | Component::CurDir));
-    if !inside || file.contains('\0') {
-        return Err(Error::invalid(
-            "motion.file",
-            "a path relative to the scenario file's folder, inside it (no absolute path, no `..`; give any other \
-             file with --motion PATH)",
-            format!("'{}'", beam_impact::model::motion_table::quote_cell(file)),
-        ));
-    }
-    Ok(folder.join(relative))
-}
-
-/// Largest motion file read, bytes (256 MiB: about 1.3 million rows of ten numbers, 22 minutes
-/// at 1 ms), checked from the file's size before it is read.
-pub const MAX_MOTION_BYTES: u64 = 256 << 20;
-
-/// Reads the support-motion file `path` (`run --motion`, `[motion] file`) into the scenario: its
-/// rows checked (one line of error naming the row), and the rows that disagree with the motion
-/// before them reported on standard error (the run uses them as given).
+/// Reads the support-motion file `path` (`run --motion`) into the scenario
+/// ([`scenario_file::load_motion`]); its warnings go to standard error.
 pub fn load_motion(scenario: &mut Scenario, path: &Path) -> Result<()> {
-    let file = open_regular_input(path, "cannot read motion file")?;
-    let text = check_size(&file, MAX_MOTION_BYTES, "the motion file")
-        .and_then(|()| read_bounded(file, MAX_MOTION_BYTES, "the motion file"))
-        .map_err(|source| io("cannot read motion file", path, source))?;
-    let table = beam_impact::model::motion_table::MotionTable::parse(&text)
-        .map_err(|e| Error::Other(format!("motion file {}: {e}", shown(path))))?;
-    let mismatches = table.mismatches();
-    if let Some(first) = mismatches.first() {
-        warn(&format!(
-            "motion file {}: {} row(s) disagree with the row before them (row {}: {}); they are used as given",
-            shown(path),
-            mismatches.len(),
-            first.row,
-            first.mismatch
-        ));
-    }
-    scenario.motion.file = path.display().to_string();
-    scenario.motion.table = Some(std::sync::Arc::new(table));
-    Ok(())
+    let mut warnings = Vec::new();
+    let loaded = scenario_file::load_motion(scenario, path, &mut warnings);
+    warnings.iter().for_each(|w| warn(w));
+    loaded
 }
 
 pub fn io(action: &'static str, path: &Path, source: std::io::Error) -> Error {

@@ -3,6 +3,7 @@
 
 use std::io::Write;
 use std::path::Path;
+use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
@@ -12,7 +13,7 @@ use beam_impact::record::mcap::{McapRecorder, RecorderOptions};
 use beam_impact::record::output::{check_distinct, OutputFile};
 use beam_impact::record::{NullRecorder, Recorder, RunInfo};
 use beam_impact::results::{ContactEvent, StepResult};
-use beam_impact::{compare, Error, Result, Scenario, Simulation};
+use beam_impact::{compare, Error, Result, Scenario};
 
 use super::args::RunArgs;
 use super::common::{emit, io, read_scenario};
@@ -36,9 +37,7 @@ pub fn run(args: &RunArgs) -> Result<bool> {
         .unwrap_or_else(|| beam_impact::studies::sweep::default_log(args.file.as_deref(), &settings, &scenario));
     let paper = scenario.is_paper();
     let started = Instant::now();
-    let simulation = Simulation::new(&scenario)?;
-    simulation.check_step_count(scenario.duration_ns(), args.max_steps)?;
-    drop(simulation);
+    beam_impact::one_run::check(&scenario, args.max_steps)?;
     // No two of the files name one (device and inode, or folder and name for a new file), and
     // every output is open before the run, so that a bad path fails at once, not after it; the
     // JSON is written beside and renamed into place at the end, so a failed run leaves the user's
@@ -85,8 +84,7 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     };
     let mut progress = Progress::new(recorder.as_mut(), scenario.duration_ns());
     let options = beam_impact::answer::Options { max_steps: args.max_steps, ..Default::default() };
-    let answer = beam_impact::answer::run(&scenario, &mut progress, options)?;
-    progress.complete(&answer)?;
+    let answer = beam_impact::one_run::run(&scenario, &mut progress, options, &AtomicBool::new(false))?;
     progress.bar.finish_and_clear();
     if let Some(reason) = progress.stopped_early() {
         super::common::warn(reason);
@@ -163,25 +161,7 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     }
     text += ")\n";
     if let Some((path, file)) = json_file {
-        let mut summary_json = serde_json::to_value(summary).map_err(|e| Error::Other(format!("JSON: {e}")))?;
-        summary_json["converged_peaks"] = serde_json::json!(answer.converged_peaks);
-        summary_json["converged_first_contact_peaks"] = serde_json::json!(answer.converged_first_contact_peaks);
-        summary_json["quality"] = serde_json::json!(answer.quality);
-        envelope_json(&mut summary_json, &answer);
-        let doc = serde_json::json!({
-            "scenario": resolved,
-            "scenario_as_given": scenario,
-            "summary": summary_json,
-            "quality": answer.quality,
-            "design": answer.design,
-            "discretisation": discretisation_json(&answer),
-            "impact": summary.impact,
-            "merged_contact_windows": compare::merged_windows(&summary.contact_windows, beam_impact::results::BOUNCE_GAP),
-            "units": json_units(),
-            "wall_time_s": wall.as_secs_f64(),
-        });
-        let mut doc = doc;
-        beam_impact::vocabulary::add_quantity_names(&mut doc);
+        let doc = beam_impact::run_document::document(&scenario, &answer, wall.as_secs_f64())?;
         let json = serde_json::to_string_pretty(&doc).map_err(|e| Error::Other(format!("JSON: {e}")))?;
         match file {
             Some(mut file) => {
@@ -197,69 +177,10 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     Ok(answer.quality.trusted)
 }
 
-/// Each beam's worst stress along it (issue 30) in `summary.peaks` beside the paper's five
-/// (`upper.bending_stress`, `upper.shear_stress`, `lower.bending_stress`, `lower.shear_stress`;
-/// null without a shear area), their positions (m from the hinge or the clamp) in
-/// `summary.peak_positions` and their times in `summary.peak_times`.
-pub fn envelope_json(summary: &mut serde_json::Value, answer: &beam_impact::answer::Answer) {
-    let mut positions = serde_json::Map::new();
-    for (name, peak) in beam_impact::results::ENVELOPE_PEAK_NAMES.iter().zip(answer.envelope_peaks) {
-        summary["peaks"][*name] = serde_json::json!(peak.map(|p| p.value));
-        summary["peak_times"][*name] = serde_json::json!(peak.map(|p| p.time));
-        positions.insert(name.to_string(), serde_json::json!(peak.map(|p| p.position)));
-    }
-    summary["peak_positions"] = serde_json::Value::Object(positions);
-}
-
-/// The `discretisation` block of `--json` and of the log's `answer.json`: each peak's figure, the
-/// twin's spreads (whole run and first contact), the late peaks not vouched for, and the runs (rungs) behind the answer.
-pub fn discretisation_json(answer: &beam_impact::answer::Answer) -> serde_json::Value {
-    serde_json::json!({
-        "peaks": answer.discretisation_error,
-        "first_contact_peaks": answer.first_contact_discretisation_error,
-        "sensitivity_spread": answer.sensitivity_spread,
-        "first_contact_sensitivity_spread": answer.first_contact_sensitivity_spread,
-        "unvouched_late_peaks": answer.unvouched_late_peaks,
-        "envelope_peaks": envelope_figures(&answer.envelope_discretisation_error),
-        "envelope_sensitivity_spread": answer.envelope_sensitivity_spread.as_ref().map(envelope_figures),
-        "runs": answer.runs,
-    })
-}
-
-/// The envelope peaks' figures by name (null where not defined).
-fn envelope_figures(values: &[Option<f64>; 4]) -> serde_json::Value {
-    let mut map = serde_json::Map::new();
-    for (name, v) in beam_impact::results::ENVELOPE_PEAK_NAMES.iter().zip(values) {
-        map.insert(name.to_string(), serde_json::json!(v));
-    }
-    serde_json::Value::Object(map)
-}
-
-/// The SI units of the `--json` fields (by name; nested names with dots).
-pub fn json_units() -> serde_json::Value {
-    serde_json::json!({
-        "time, times, contact windows, time_steps, first_contact_end": "s",
-        "peak_positions, envelope positions": "m from the beam's support (the hinge, the clamp)",
-        "lower_tip_deflection, tip_deflection": "m",
-        "*_stress (peaks, first_contact_peaks, energy_method)": "Pa",
-        "contact_force, energy_method.force": "N",
-        "energies, residuals, strain_energy, bridge_strain_energy, upper_strain_at_peak_deflection": "J",
-        "energy_method.flexion_stiffness": "N/m",
-        "energy_method.bridge_deceleration": "rad/s^2",
-        "energy_method.bridge_contact_moment": "N m",
-        "modes": "rad/s",
-        "energy_residual_fraction, energy_tolerance, bridge_strain_ratio": "1 (fraction)",
-        "scenario": "SI, as in `beam-impact scenario`",
-        "wall_time_s": "s"
-    })
-}
-
 /// Shows a progress bar (on a terminal) while passing every step on to the real recorder.
 pub struct Progress<'a> {
     inner: &'a mut (dyn Recorder + Send),
     bar: ProgressBar,
-    /// The run asked to finish the record: deferred until its answer is attached.
-    finish_requested: bool,
 }
 
 impl<'a> Progress<'a> {
@@ -269,27 +190,7 @@ impl<'a> Progress<'a> {
             ProgressStyle::with_template("{bar:40} {pos}/{len} ms simulated, {elapsed} ({eta} left)")
                 .unwrap_or_else(|_| ProgressStyle::default_bar()),
         );
-        Progress { inner, bar, finish_requested: false }
-    }
-}
-
-impl Progress<'_> {
-    /// Stores the answer with its checks in the record (`answer.json`) and finishes it.
-    fn complete(&mut self, answer: &beam_impact::answer::Answer) -> Result<()> {
-        if self.finish_requested {
-            let doc = serde_json::json!({
-                "quality": answer.quality,
-                "design": answer.design,
-                "converged_peaks": answer.converged_peaks,
-                "converged_first_contact_peaks": answer.converged_first_contact_peaks,
-                "discretisation": discretisation_json(answer),
-            });
-            let mut doc = doc;
-            beam_impact::vocabulary::add_quantity_names(&mut doc);
-            let bytes = serde_json::to_vec_pretty(&doc).map_err(|e| Error::Other(format!("JSON: {e}")))?;
-            self.inner.attach(beam_impact::record::mcap::ANSWER_ATTACHMENT, "application/json", &bytes)?;
-        }
-        self.inner.finish()
+        Progress { inner, bar }
     }
 }
 
@@ -306,10 +207,8 @@ impl Recorder for Progress<'_> {
     fn contact_event(&mut self, event: &ContactEvent) -> Result<()> {
         self.inner.contact_event(event)
     }
-    /// Deferred: the answer with its checks is attached first ([`Progress::complete`]).
     fn finish(&mut self) -> Result<()> {
-        self.finish_requested = true;
-        Ok(())
+        self.inner.finish()
     }
     fn wants_details(&self) -> bool {
         self.inner.wants_details()

@@ -322,6 +322,12 @@ const ENERGY_METHOD: &[(&str, &str, &str, Method)] = &[
     ("strain_energy", "J", "Energy method (Eq. 35): strain energy of the arrestor", |e| e.strain_energy),
 ];
 
+/// The energy approach's FMU outputs, `energy_method.<name>`, by name suffix (the Python
+/// package's native sweep gives the FMU route's columns).
+pub fn energy_method_names() -> Vec<&'static str> {
+    ENERGY_METHOD.iter().map(|(name, ..)| *name).collect()
+}
+
 /// Whether a scenario parameter is an FMU parameter: all but `duration`, the CLI's run length (an
 /// FMU runs until its importer's stop time).
 pub fn is_fmu_parameter(p: &Parameter) -> bool {

@@ -1,8 +1,8 @@
 //! Writing results: the [`Recorder`] the simulation writes into, the MCAP log ([`mcap`], its
 //! writer thread [`writer`], its names [`log_format`] and [`options`], the messages [`schema`] and
 //! their encoding [`step_encoding`], the Foxglove scene [`scene`], the stress stations' layout and
-//! feed [`stations`]), the guard every output file goes through ([`output`]) and the
-//! recording benchmark ([`mod@bench`]). The physics never sees a file format; reading a log back
+//! feed [`stations`]), the guard every output file goes through ([`output`]), the wrapper that
+//! stops a run between steps when asked ([`cancel`]) and the recording benchmark ([`mod@bench`]). The physics never sees a file format; reading a log back
 //! and drawing it is [`crate::replay`]'s.
 
 use nalgebra::DMatrix;
@@ -124,6 +124,7 @@ impl Recorder for MemoryRecorder {
     }
 }
 
+pub mod cancel;
 pub mod mcap;
 pub mod output;
 

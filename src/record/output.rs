@@ -128,6 +128,10 @@ impl std::io::Seek for OutputFile {
 /// `None` for a device (written in place, if the caller allows it). A target that is a symbolic
 /// link, a folder, a FIFO or a socket is an error, before anything is written.
 pub fn partial_for(path: &Path) -> std::io::Result<Option<PathBuf>> {
+    // `out.mcap/` can only be a folder: refused here, not when the finished file is renamed.
+    if path.as_os_str().as_encoded_bytes().ends_with(b"/") {
+        return Err(std::io::Error::other("it ends with `/`, a folder's name; give a file name"));
+    }
     match std::fs::symlink_metadata(path) {
         _ if platform::device_by_name(path).is_some() => Ok(None),
         Ok(m) if platform::is_device(&m) => Ok(None),

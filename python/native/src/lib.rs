@@ -6,7 +6,10 @@
 //! `parse_vary` and `parse_value` are the CLI's `--vary` and value parsers (one grammar of numbers).
 //! Every file the package writes goes through the CLI's output guard (`write_file`,
 //! `check_output`), and an FMU is read only if it is a regular file under `MAX_FMU_BYTES` (1 GiB)
-//! (`fmu_key`, `read_fmu`), issue 27.
+//! (`fmu_key`, `read_fmu`), issue 27. `run` runs the solver itself, as `beam-impact run` does
+//! (`run.rs`), for `beam_impact.run` and the sweeps' native engine.
+
+mod run;
 
 use std::collections::HashMap;
 use std::fs::File;
@@ -73,7 +76,7 @@ fn u64_bytes<'py>(py: Python<'py>, values: impl Iterator<Item = u64>) -> Bound<'
 
 /// The step channel, column by column: name -> bytes (u64 for `step` and `time_ns`, one byte
 /// per step for `contact`, f64 otherwise).
-fn columns<'py>(py: Python<'py>, steps: &[StepResult]) -> PyResult<Bound<'py, PyDict>> {
+pub(crate) fn columns<'py>(py: Python<'py>, steps: &[StepResult]) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
     out.set_item("step", u64_bytes(py, steps.iter().map(|r| r.step)))?;
     out.set_item("time_ns", u64_bytes(py, steps.iter().map(|r| r.time_ns)))?;
@@ -236,11 +239,11 @@ const MAX_FMU_BYTES: u64 = 1 << 30;
 /// `src/cli/common.rs`): line breaks and tabs as spaces, other control characters (a terminal's
 /// escape sequences from a hostile value) as U+FFFD, and a line over 600 characters cut to its
 /// first 400 and last 150 with the count cut between.
-fn value_error(e: impl ToString) -> PyErr {
+pub(crate) fn value_error(e: impl ToString) -> PyErr {
     PyValueError::new_err(one_line(&e.to_string()))
 }
 
-fn one_line(message: &str) -> String {
+pub(crate) fn one_line(message: &str) -> String {
     let chars: Vec<char> = message
         .chars()
         .map(|c| match c {
@@ -259,7 +262,7 @@ fn one_line(message: &str) -> String {
 
 /// Refuses a path holding a NUL character: the operating system (and fmpy's C strings) would cut
 /// the name there, so `results.csv\0.mcap` would write `results.csv`.
-fn refuse_nul(role: &str, path: &Path) -> PyResult<()> {
+pub(crate) fn refuse_nul(role: &str, path: &Path) -> PyResult<()> {
     if path.as_os_str().as_encoded_bytes().contains(&0) {
         return Err(value_error(format!(
             "{role} {}: a path holding a NUL character is refused (the file's name would be cut there)",
@@ -270,13 +273,13 @@ fn refuse_nul(role: &str, path: &Path) -> PyResult<()> {
 }
 
 /// Files a call names, each with its role in messages ("the FMU", "--out").
-type Named = Vec<(String, PathBuf)>;
+pub(crate) type Named = Vec<(String, PathBuf)>;
 
 /// The output guard's checks of `path` (`role` in messages), before anything is written: no NUL
 /// in any path; not one file (device and inode) with an input or another output, nor the
 /// `NAME.partial` of one; not a symbolic link, a folder, a FIFO or a socket; a device only
 /// where `allow_devices`, and then only the null device.
-fn guard(role: &str, path: &Path, inputs: &Named, others: &Named, allow_devices: bool) -> PyResult<()> {
+pub(crate) fn guard(role: &str, path: &Path, inputs: &Named, others: &Named, allow_devices: bool) -> PyResult<()> {
     if path.as_os_str().is_empty() {
         return Err(value_error(format!("{role}: an empty path is refused (give a file name)")));
     }
@@ -426,11 +429,16 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(parse_vary, m)?)?;
     m.add_function(wrap_pyfunction!(parse_value, m)?)?;
     m.add_function(wrap_pyfunction!(parse_motion, m)?)?;
+    m.add_function(wrap_pyfunction!(run::run, m)?)?;
+    m.add_function(wrap_pyfunction!(run::cancel_running, m)?)?;
+    m.add_function(wrap_pyfunction!(run::check_field, m)?)?;
     m.add("MAX_FMU_BYTES", MAX_FMU_BYTES)?;
     m.add("MAX_STEPS", beam_impact::model::scenario::MAX_STEPS)?;
     // One name per quantity: the step channel's columns as `report --csv` names them.
     m.add("STEP_COLUMNS", beam_impact::replay::csv::names())?;
     m.add("STEP_RENAMES", beam_impact::vocabulary::STEP_RENAMES.to_vec())?;
+    // The FMU's `energy_method.<name>` outputs, the columns of a sweep by either engine.
+    m.add("FMU_ENERGY_METHOD", beam_impact::fmi::variables::energy_method_names())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -1,0 +1,156 @@
+"""`beam_impact.run`: one scenario through the Rust solver itself (the native module), no FMU.
+
+The run is `beam-impact run`'s, the same code: the scenario read as the CLI reads it, the answer
+with its checks (the printed run, the next coarser rungs, the reproducibility twin), the design
+check, the MCAP log with `answer.json` attached when asked; the result holds the very keys of
+`beam-impact run --json`. While the solver runs the GIL is released (other Python threads run,
+a sweep's threads solve in parallel), and Ctrl-C stops it between two steps with
+KeyboardInterrupt.
+
+Fields are the scenario's dotted names (`beam-impact scenario` lists them). Python keywords hold
+no dots, so a dot is written as a double underscore (`lower__damping_ratio=0.02`), or the names
+go in a dict (`fields={"lower.damping_ratio": 0.02}`); both may be given (a name twice is refused).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import warnings as _warnings
+from typing import Any
+
+
+
+class RunResult(dict):
+    """The `beam-impact run --json` document of one run (the same keys: `scenario`,
+    `scenario_as_given`, `summary`, `quality`, `design`, `discretisation`, `impact`,
+    `merged_contact_windows`, `units`, `wall_time_s`), with shortcuts:
+
+    - `peaks`, `peak_times`: `summary.peaks` / `summary.peak_times` (FMU names and former ones; SI)
+    - `converged_peaks`: `summary.converged_peaks`
+    - `quality`, `trusted`, `reasons`: the checks, the verdict and why not trusted (lines)
+    - `design`: the design check (`pass`, `utilisation`)
+    - `series`: the steps as a pandas.DataFrame (`run(..., series=True)`; the columns of
+      `load_log(...).dataframe()`), else None
+    - `log_path`: the log written (None without `log=`), `warnings`: lines the run printed on the CLI
+    """
+
+    series: Any = None
+    log_path: str | None = None
+    warnings: tuple = ()
+
+    @property
+    def peaks(self) -> dict:
+        return self["summary"]["peaks"]
+
+    @property
+    def peak_times(self) -> dict:
+        return self["summary"]["peak_times"]
+
+    @property
+    def converged_peaks(self) -> dict:
+        return self["summary"]["converged_peaks"]
+
+    @property
+    def quality(self) -> dict:
+        return self["quality"]
+
+    @property
+    def trusted(self) -> bool:
+        return bool(self["quality"]["trusted"])
+
+    @property
+    def reasons(self) -> list:
+        return list(self["quality"]["reasons"])
+
+    @property
+    def design(self) -> dict:
+        return self["design"]
+
+
+def field_pairs(fields: dict | None, keywords: dict) -> list:
+    """(dotted name, value) pairs of a `fields` dict and `name__part=value` keywords; ValueError
+    for a name given twice or a value that is neither a number nor text."""
+    pairs: dict[str, Any] = dict(fields or {})
+    for key, value in keywords.items():
+        name = key.replace("__", ".")
+        if name in pairs:
+            raise ValueError(f"{name} is given twice (as a field and as the keyword {key})")
+        pairs[name] = value
+    out = []
+    for name, value in pairs.items():
+        if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+            raise ValueError(f"{name} takes a number or text, got {value!r}")
+        out.append((str(name), float(value) if isinstance(value, (int, float)) else value))
+    return out
+
+
+def scenario_source(scenario: Any) -> tuple:
+    """(path, text) of `scenario`: a path (os.PathLike, or text with neither a line break nor `=`),
+    else TOML text; (None, None) for None."""
+    if scenario is None:
+        return None, None
+    if isinstance(scenario, (bytes, os.PathLike)):
+        return os.fsdecode(os.fspath(scenario)), None
+    if isinstance(scenario, str):
+        if "\n" in scenario or "=" in scenario or not scenario.strip():
+            return None, scenario
+        return scenario, None
+    raise ValueError(f"scenario takes a file path or TOML text, got {type(scenario).__name__}")
+
+
+def run(scenario: Any = None, *, fields: dict | None = None, log: "str | os.PathLike | None" = None,
+        series: bool = False, series_every: int = 1, max_steps: int | None = None,
+        check_sensitivity: bool = True, **field_keywords: Any) -> RunResult:
+    """Runs one scenario as `beam-impact run` does and returns its `RunResult` (the `run --json`
+    document).
+
+    `scenario`: None (the paper's scenario and method, what a bare `beam-impact run` runs; with
+    fields, the defaults, as `beam-impact run --set`), a scenario file's path (`pathlib.Path`, or
+    text without a line break or `=`), or the TOML text itself (a motion file it names is read
+    relative to the current folder). `fields` / keywords: the dotted fields to change, as `--set`
+    (numbers, or text read by the CLI's parser: `"auto"`, `"mean"`, `"converged"`).
+    `log`: write the MCAP log there, through the CLI's output guard (default: none).
+    `series`: keep every `series_every`-th step (and the last) and return them as
+    `result.series`, a pandas.DataFrame (a converged run takes 1e5 to 1e6 steps of about 250
+    bytes each). `max_steps`: refuse a run needing more internal steps (default the CLI's 1e8).
+    `check_sensitivity`: run the reproducibility twin (as the CLI does; False halves the stepping
+    of the checks and leaves `sensitivity_spread` null).
+
+    ValueError with the CLI's one-line message for a scenario, field, value, path or step count it
+    refuses, before anything runs; KeyboardInterrupt on Ctrl-C (the run stops between steps; its
+    log then ends at that step, without the answer: `load_log(...).answer` is None);
+    SimulationError when the run fails."""
+    from . import _native
+    from .fmu import SimulationError
+
+    path, text = scenario_source(scenario)
+    pairs = field_pairs(fields, field_keywords)
+    limit = _native.MAX_STEPS if max_steps is None else max_steps
+    if isinstance(limit, bool) or not isinstance(limit, int) or not 0 < limit < 2**64:
+        raise ValueError(f"max_steps must be a whole number > 0, got {max_steps!r}")
+    every = int(series_every)
+    if every < 1:
+        raise ValueError(f"series_every must be a whole number >= 1, got {series_every!r}")
+    log_text = None if log is None else os.fsdecode(os.fspath(log))
+    try:
+        doc, steps, warnings, log_path = _native.run(
+            scenario=path, scenario_text=text, fields=pairs, log=log_text, series_every=every if series else 0,
+            max_steps=limit, sensitivity=bool(check_sensitivity), observed_order=True)
+    except ValueError as e:
+        # The crate's line names the CLI's option; here it is this function's keyword.
+        raise ValueError(str(e).replace("with --max-steps", "with run(..., max_steps=N)")) from None
+    except RuntimeError as e:
+        raise SimulationError(str(e)) from None
+    result = RunResult(json.loads(doc))
+    result.warnings = list(warnings)
+    for line in result.warnings:  # what the CLI prints as a warning (motion rows, a log cut short)
+        _warnings.warn(line, RuntimeWarning, stacklevel=2)
+    result.log_path = log_path
+    if steps is not None:
+        import pandas as pd
+
+        from .log import step_columns
+
+        result.series = pd.DataFrame(step_columns(steps))
+    return result

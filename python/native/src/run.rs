@@ -1,0 +1,257 @@
+//! `beam_impact.run` through the crate, without an FMU: the scenario read as `beam-impact run`
+//! reads it (a file, a TOML text, the paper's or the defaults, then the dotted fields as
+//! `--set`), the answer of [`beam_impact::one_run::run`] (the CLI's very path: converged peaks,
+//! checks, design, the log with `answer.json`), the `run --json` document, and, when asked, every
+//! recorded step kept in memory for a DataFrame. The GIL is released while the scenario's modes
+//! are computed and while it steps; the calling thread watches for Ctrl-C meanwhile.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::time::{Duration, Instant};
+
+use beam_impact::answer::Options;
+use beam_impact::record::mcap::{McapRecorder, RecorderOptions};
+use beam_impact::record::{Recorder, RunInfo};
+use beam_impact::results::{ContactEvent, StepResult};
+use beam_impact::studies::sweep::{self, Setting};
+use beam_impact::{scenario_file, Error, Scenario};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::{columns, guard, value_error};
+
+/// Bumped by [`cancel_running`]: every run started before stops at its next step.
+static EPOCH: AtomicU64 = AtomicU64::new(0);
+
+/// How often the calling thread looks for Ctrl-C (and a [`cancel_running`]) while a run steps, s:
+/// short against a person's patience, long against the cost of taking the GIL (microseconds).
+const WATCH_INTERVAL: Duration = Duration::from_millis(50);
+
+/// Stack of the thread that runs the answer (the size of a main thread's: the printed run steps
+/// on it, as on the CLI's main thread).
+const RUN_STACK_BYTES: usize = 8 << 20;
+
+/// One field of `fields`: its dotted name and its value, a number or text read as `--set` reads it.
+#[derive(FromPyObject)]
+pub enum FieldValue {
+    /// A Python float or int (a bool is refused before it gets here).
+    Number(f64),
+    /// Text: `auto`, `mean`, `converged`, a number in Rust's grammar.
+    Text(String),
+}
+
+/// Where the scenario comes from.
+fn base_scenario(
+    path: Option<&Path>,
+    text: Option<&str>,
+    has_fields: bool,
+    warnings: &mut Vec<String>,
+) -> beam_impact::Result<Scenario> {
+    match (path, text) {
+        (Some(p), _) => scenario_file::read_file(p, warnings),
+        // A text names its motion file relative to the current folder, as standard input does.
+        (None, Some(t)) => scenario_file::from_text(t, "text", Path::new(""), warnings),
+        // As a bare `beam-impact run` runs the paper's method and `--set` starts from the defaults.
+        (None, None) if !has_fields => Ok(Scenario::paper()),
+        (None, None) => Ok(Scenario::default()),
+    }
+}
+
+/// The fields as `--set` settings (a name `sweep::field` does not know, or a value its parser
+/// refuses: the CLI's message, naming the field).
+fn settings(fields: Vec<(String, FieldValue)>) -> beam_impact::Result<Vec<Setting>> {
+    fields
+        .into_iter()
+        .map(|(name, value)| {
+            let field = sweep::field(&name)?;
+            let value = match value {
+                FieldValue::Number(v) => v,
+                FieldValue::Text(t) => sweep::parse_value(field, &t)?,
+            };
+            Ok(Setting { field, value })
+        })
+        .collect()
+}
+
+/// Every `every`-th step kept (and the last), for the run's DataFrame.
+struct Series {
+    every: u64,
+    steps: Vec<StepResult>,
+    last: Option<StepResult>,
+}
+
+/// The log (if asked), the series (if asked), or neither (a recorder that keeps nothing, so the
+/// steps skip the details no one reads, as `run --no-mcap`).
+struct Outputs {
+    log: Option<McapRecorder>,
+    series: Option<Series>,
+}
+
+impl Recorder for Outputs {
+    fn start(&mut self, info: &RunInfo<'_>) -> beam_impact::Result<()> {
+        self.log.as_mut().map_or(Ok(()), |l| l.start(info))
+    }
+    fn step(&mut self, result: &StepResult, q: &[f64]) -> beam_impact::Result<()> {
+        if let Some(s) = &mut self.series {
+            if result.step.is_multiple_of(s.every) {
+                s.steps.push(*result);
+                s.last = None;
+            } else {
+                s.last = Some(*result);
+            }
+        }
+        self.log.as_mut().map_or(Ok(()), |l| l.step(result, q))
+    }
+    fn contact_event(&mut self, event: &ContactEvent) -> beam_impact::Result<()> {
+        self.log.as_mut().map_or(Ok(()), |l| l.contact_event(event))
+    }
+    /// A rolled-back run (an FMU's; never here) supersedes the steps after `result`.
+    fn rollback(&mut self, result: &StepResult) -> beam_impact::Result<()> {
+        if let Some(s) = &mut self.series {
+            s.steps.retain(|r| r.step <= result.step);
+            s.last = None;
+        }
+        self.log.as_mut().map_or(Ok(()), |l| l.rollback(result))
+    }
+    fn attach(&mut self, name: &str, media_type: &str, data: &[u8]) -> beam_impact::Result<()> {
+        self.log.as_mut().map_or(Ok(()), |l| l.attach(name, media_type, data))
+    }
+    fn finish(&mut self) -> beam_impact::Result<()> {
+        if let Some(s) = &mut self.series {
+            s.steps.extend(s.last.take());
+        }
+        self.log.as_mut().map_or(Ok(()), |l| l.finish())
+    }
+    fn wants_details(&self) -> bool {
+        self.series.is_some() || self.log.as_ref().is_some_and(|l| l.wants_details())
+    }
+    fn stopped_early(&self) -> Option<&str> {
+        self.log.as_ref().and_then(|l| l.stopped_early())
+    }
+}
+
+/// What Python gets back: the `run --json` document as text, the series' columns (None unless
+/// asked), the warnings (motion rows, the log stopped early), the log's path (None without one).
+type RunOutput<'py> = (String, Option<Bound<'py, PyDict>>, Vec<String>, Option<String>);
+
+/// Runs one scenario as `beam-impact run` does. `scenario`: a scenario file's path; else
+/// `scenario_text`: its TOML; else the paper's scenario (no fields) or the defaults. `fields`:
+/// (dotted name, value) pairs applied as `--set`. `log`: the MCAP log's path (through the output
+/// guard; never the scenario or motion file), None for none. `series_every`: keep every N-th
+/// step (and the last) for a DataFrame, 0 for none. `sensitivity`, `observed_order`: the twin
+/// and the coarsest rung (a sweep's row leaves the latter out, as `beam-impact sweep`).
+/// ValueError with the CLI's one-line message for a scenario, field, path or step count it
+/// refuses; KeyboardInterrupt when Ctrl-C (or [`cancel_running`]) stops the run between steps;
+/// RuntimeError when the run fails.
+#[pyfunction]
+#[pyo3(signature = (scenario=None, scenario_text=None, fields=Vec::new(), log=None, series_every=0,
+    max_steps=beam_impact::model::scenario::MAX_STEPS, sensitivity=true, observed_order=true))]
+#[allow(clippy::too_many_arguments)]
+pub fn run<'py>(
+    py: Python<'py>,
+    scenario: Option<PathBuf>,
+    scenario_text: Option<String>,
+    fields: Vec<(String, FieldValue)>,
+    log: Option<PathBuf>,
+    series_every: u64,
+    max_steps: u64,
+    sensitivity: bool,
+    observed_order: bool,
+) -> PyResult<RunOutput<'py>> {
+    let epoch = EPOCH.load(Ordering::SeqCst);
+    let started = Instant::now();
+    let mut warnings = Vec::new();
+    let has_fields = !fields.is_empty();
+    if let Some(path) = &scenario {
+        crate::refuse_nul("the scenario file", path)?;
+    }
+    // Reading the scenario (and its motion file) and building the modes for the step check take
+    // tens of ms: the GIL is released meanwhile.
+    let prepared = py.detach(|| -> beam_impact::Result<Scenario> {
+        let mut s = base_scenario(scenario.as_deref(), scenario_text.as_deref(), has_fields, &mut warnings)?;
+        sweep::apply_settings(&mut s, &settings(fields)?)?;
+        beam_impact::one_run::check(&s, max_steps)?;
+        Ok(s)
+    });
+    let as_given = prepared.map_err(value_error)?;
+    let mut inputs: Vec<(String, PathBuf)> = Vec::new();
+    if let Some(path) = &scenario {
+        inputs.push(("the scenario file".into(), path.clone()));
+    }
+    if !as_given.motion.file.is_empty() {
+        inputs.push(("the motion file".into(), PathBuf::from(&as_given.motion.file)));
+    }
+    let log_recorder = match &log {
+        None => None,
+        Some(path) => {
+            guard("log", path, &inputs, &Vec::new(), true)?;
+            let options = RecorderOptions { allow_devices: true, ..RecorderOptions::default() };
+            Some(McapRecorder::with_options(path, options).map_err(value_error)?)
+        }
+    };
+    let series = (series_every > 0).then(|| Series { every: series_every, steps: Vec::new(), last: None });
+    let mut outputs = Outputs { log: log_recorder, series };
+    let options = Options { sensitivity, max_steps, observed_order };
+    let cancel = AtomicBool::new(false);
+    let mut interrupt: Option<PyErr> = None;
+    let answer = py.detach(|| {
+        std::thread::scope(|scope| {
+            let worker = std::thread::Builder::new()
+                .name("beam_impact.run".into())
+                .stack_size(RUN_STACK_BYTES)
+                .spawn_scoped(scope, || beam_impact::one_run::run(&as_given, &mut outputs, options, &cancel));
+            let worker = match worker {
+                Ok(w) => w,
+                Err(e) => return Err(Error::Other(format!("cannot start the run's thread: {e}"))),
+            };
+            while !worker.is_finished() {
+                std::thread::park_timeout(WATCH_INTERVAL);
+                if interrupt.is_none() {
+                    // Signal handlers run on the main thread only; elsewhere this returns Ok.
+                    if let Err(e) = Python::attach(|py| py.check_signals()) {
+                        interrupt = Some(e);
+                        cancel.store(true, Ordering::SeqCst);
+                    }
+                }
+                if EPOCH.load(Ordering::SeqCst) != epoch {
+                    cancel.store(true, Ordering::SeqCst);
+                }
+            }
+            worker.join().unwrap_or_else(|_| Err(Error::Other("internal error: the run panicked".into())))
+        })
+    });
+    if let Some(e) = interrupt {
+        return Err(e);
+    }
+    let answer = match answer {
+        Ok(a) => a,
+        Err(e @ Error::Cancelled { .. }) => return Err(PyKeyboardInterrupt::new_err(crate::one_line(&e.to_string()))),
+        Err(e) => return Err(PyRuntimeError::new_err(crate::one_line(&e.to_string()))),
+    };
+    if let Some(reason) = outputs.stopped_early() {
+        warnings.push(reason.to_string());
+    }
+    let doc = beam_impact::run_document::document(&as_given, &answer, started.elapsed().as_secs_f64())
+        .and_then(|d| serde_json::to_string(&d).map_err(|e| Error::Other(format!("JSON: {e}"))))
+        .map_err(|e| PyRuntimeError::new_err(crate::one_line(&e.to_string())))?;
+    let series = match &outputs.series {
+        Some(s) => Some(columns(py, &s.steps)?),
+        None => None,
+    };
+    Ok((doc, series, warnings, log.map(|p| p.display().to_string())))
+}
+
+/// Stops every run of this process at its next step (each raises KeyboardInterrupt): what a
+/// sweep calls when Ctrl-C reaches its main thread while worker threads run.
+#[pyfunction]
+pub fn cancel_running() {
+    EPOCH.fetch_add(1, Ordering::SeqCst);
+}
+
+/// Refuses a name that is not a scenario field `--set` and `--vary` know (ValueError with the
+/// CLI's one-line message), before a sweep runs anything.
+#[pyfunction]
+pub fn check_field(name: &str) -> PyResult<()> {
+    sweep::field(name).map(drop).map_err(value_error)
+}
