@@ -20,6 +20,7 @@ pub mod replay;
 pub mod results;
 pub mod simulation;
 pub mod solver;
+pub mod ssp;
 pub mod studies;
 pub mod vocabulary;
 

@@ -25,6 +25,9 @@ pub struct Request {
     pub darwin_library: Option<PathBuf>,
     /// The scenario file to pack as the FMUs' starting scenario (issue 30).
     pub scenario: Option<PathBuf>,
+    /// Also write DIR/GangwayOnVessel.ssp: the FMI 2 FMU and the vessel-motion FMU built for the
+    /// same platforms (issue 31).
+    pub ssp: bool,
 }
 
 /// Packs the FMUs for the platforms asked for. Linux: `library`, or else the glibc 2.17 build
@@ -87,11 +90,45 @@ pub fn pack(request: &Request) -> Result<()> {
         };
         binaries.push((platform, path));
     }
+    // The vessel-motion libraries are built before anything is written (a failed build leaves
+    // no FMU behind), in a scratch folder removed afterwards.
+    let scratch = std::env::temp_dir().join(format!("beam-impact-vessel-{}", std::process::id()));
+    let vessel = if request.ssp {
+        let platforms: Vec<Platform> = binaries.iter().map(|(p, _)| *p).collect();
+        let built = super::vessel_build::build_all(&platforms, &scratch, toolchain.as_deref(), request.no_zigbuild);
+        if built.is_err() {
+            let _ = std::fs::remove_dir_all(&scratch);
+        }
+        Some(built?)
+    } else {
+        None
+    };
     let tool = beam_impact::fmi::description::generation_tool(git_commit().as_deref());
-    for path in beam_impact::fmi::pack::pack_platforms_with(&binaries, &request.out, &tool, packed.as_ref())? {
+    let written = beam_impact::fmi::pack::pack_platforms_with(&binaries, &request.out, &tool, packed.as_ref())
+        .and_then(|fmus| {
+            let Some(vessel) = &vessel else { return Ok(fmus) };
+            let table = packed.as_ref().map_or_else(beam_impact::fmi::variables::table, |p| {
+                beam_impact::fmi::variables::table_for(&p.scenario)
+            });
+            let ssp = beam_impact::ssp::archive::write_ssp(&request.out, &fmus[0], &table, vessel, &tool)?;
+            Ok(fmus.into_iter().chain(std::iter::once(ssp)).collect())
+        });
+    if vessel.is_some() {
+        let _ = std::fs::remove_dir_all(&scratch);
+    }
+    for path in written? {
         emit(&format!("wrote {}\n", path.display()))?;
     }
     Ok(())
+}
+
+/// An executable named `name` in a directory of PATH.
+pub(super) fn on_path(name: &str) -> Option<PathBuf> {
+    use std::os::unix::fs::PermissionsExt;
+    let paths = std::env::var_os("PATH")?;
+    std::env::split_paths(&paths)
+        .map(|dir| dir.join(name))
+        .find(|p| p.metadata().is_ok_and(|m| m.is_file() && m.permissions().mode() & 0o111 != 0))
 }
 
 /// The crate's source directory (the cross builds and the glibc 2.17 build run there).
@@ -197,15 +234,6 @@ fn linux_library(library: Option<PathBuf>, no_zigbuild: bool) -> Result<PathBuf>
     /// on RHEL 7/8, Ubuntu 20.04, Debian 11 and later); as zig names it.
     const TARGET: &str = "x86_64-unknown-linux-gnu.2.17";
     const ZIG_TARGET: &str = "x86_64-linux-gnu.2.17";
-
-    /// An executable named `name` in a directory of PATH.
-    fn on_path(name: &str) -> Option<PathBuf> {
-        use std::os::unix::fs::PermissionsExt;
-        let paths = std::env::var_os("PATH")?;
-        std::env::split_paths(&paths)
-            .map(|dir| dir.join(name))
-            .find(|p| p.metadata().is_ok_and(|m| m.is_file() && m.permissions().mode() & 0o111 != 0))
-    }
 
     /// Builds the library for glibc 2.17 from the host build's compiled dependencies: cargo
     /// recompiles this crate alone as a cdylib, linked by `cargo-zigbuild zig cc` against
