@@ -54,11 +54,13 @@ pub fn build_all(
                 })?)
             }
             (_, Some(zig)) => Compiler::Zig(zig),
-            (_, None) => return Err(Error::Other(format!(
+            (_, None) => {
+                return Err(Error::Other(format!(
                 "cannot build the vessel-motion library for {}: no cargo-zigbuild on PATH or in the cross toolchain \
                      (pip install ziglang cargo-zigbuild)",
                 platform.name()
-            ))),
+            )))
+            }
         };
         let out = dir.join(format!("{}-{}.{}", vessel::MODEL_IDENTIFIER, platform.name(), platform.extension()));
         match platform {
