@@ -24,6 +24,9 @@ pub const VESSEL_COMPONENT: &str = "vessel";
 pub const BEAM_SOURCE: &str = "resources/BeamImpact.fmu";
 /// Where the archive holds the vessel-motion FMU.
 pub const VESSEL_SOURCE: &str = "resources/VesselMotion.fmu";
+/// The name of each component's parameter set: one name across the components, so that a tool
+/// that applies sets by name (Ecos: `init(parameter_set=...)`) applies both with one call.
+pub const PARAMETER_SET: &str = "GangwayOnVessel";
 /// The communication step of the default experiment, s: the Python master's
 /// (`tests/python/vessel_master.py`), so that a tool's run and the master's exchange the same values.
 pub const COMMUNICATION_STEP: f64 = 1e-3;
@@ -235,8 +238,8 @@ pub fn system_structure(beam: &[Variable], generation_tool: &str) -> Result<Stri
     Ok(out)
 }
 
-/// One component: its connectors, then its parameter binding (one inline parameter set named
-/// after it).
+/// One component: its connectors, then its parameter binding (one inline parameter set,
+/// [`PARAMETER_SET`]).
 fn component(
     out: &mut String,
     name: &str,
@@ -264,7 +267,7 @@ fn component(
     );
     let _ = writeln!(
         out,
-        "              <ssv:ParameterSet version=\"1.0\" name=\"{name}\">\n                <ssv:Parameters>"
+        "              <ssv:ParameterSet version=\"1.0\" name=\"{PARAMETER_SET}\">\n                <ssv:Parameters>"
     );
     for (parameter, value, unit) in bindings {
         let _ = writeln!(

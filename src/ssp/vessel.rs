@@ -197,7 +197,8 @@ mod tests {
         assert_eq!(vars.iter().filter(|v| v.causality == "parameter").count(), 13);
     }
 
-    /// Two thin slices come back whole at 16 KiB boundaries behind a header naming their CPUs.
+    /// Two thin slices come back whole at 16 KiB boundaries behind a header naming their CPUs (the
+    /// 20 000-byte first slice runs from 16 384 past 32 768, so the second starts at 49 152).
     #[test]
     fn a_universal_dylib_holds_each_slice_at_its_aligned_offset() {
         let thin = |cpu: u32, len: usize| {
@@ -212,9 +213,10 @@ mod tests {
         let be = |at: usize| u32::from_be_bytes(fat[at..at + 4].try_into().unwrap());
         assert_eq!((be(0), be(4)), (0xcafe_babe, 2));
         assert_eq!((be(8), be(16), be(20)), (0x0100_0007, 16384, 20_000));
-        assert_eq!((be(28), be(36), be(40)), (0x0100_000c, 32768, 100));
+        assert_eq!((be(28), be(36), be(40)), (0x0100_000c, 49152, 100));
         assert_eq!(&fat[16384..36384], x86.as_slice());
-        assert_eq!(&fat[32768..32868], arm.as_slice());
+        assert_eq!(&fat[49152..49252], arm.as_slice());
+        assert_eq!(fat.len(), 49252);
         assert!(universal_dylib(&[vec![0; 8]]).is_err());
     }
 

@@ -284,15 +284,12 @@ def fmpy_initial_exchange():
 
 
 def with_parameters(parameter_set, extra: dict):
+    """fmpy's ParameterSet holding `parameter_set`'s parameters (if any) and `extra` (Real)."""
     from fmpy.ssp.ssd import Parameter, ParameterSet
 
-    out = ParameterSet(name=getattr(parameter_set, "name", "exchange"))
-    out.parameters = list(getattr(parameter_set, "parameters", []))
-    for name, value in extra.items():
-        p = Parameter(name=name)
-        p.type, p.value = "Real", value
-        out.parameters.append(p)
-    return out
+    added = [Parameter(name=name, type="Real", value=value) for name, value in extra.items()]
+    return ParameterSet(name=getattr(parameter_set, "name", "exchange"),
+                        parameters=list(getattr(parameter_set, "parameters", [])) + added)
 
 
 def ssd_parameter_set(path: Path):
