@@ -1,5 +1,6 @@
 //! `beam-impact pack`: builds the library for glibc 2.17 (linked by cargo-zigbuild's zig) or
-//! takes the host build, and packs the FMI 2.0 and FMI 3.0 FMUs.
+//! takes the host build, and packs the FMI 2.0 and FMI 3.0 FMUs (with `--ssp` also
+//! GangwayOnVessel.ssp).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -38,7 +39,9 @@ pub struct Request {
 /// loaded into every FMU host, which has no business spawning cargo; `fmi::pack` packs the files
 /// it is given. The packed descriptions' `generationTool` names the git commit of the source tree
 /// this executable was built from (also when the binaries are given as files). With a scenario
-/// file, both FMUs start from it ([`beam_impact::fmi::pack::PackedScenario`], issue 30).
+/// file, both FMUs start from it ([`beam_impact::fmi::pack::PackedScenario`], issue 30). With
+/// `ssp`, also `GangwayOnVessel.ssp` ([`beam_impact::ssp`], issue 31): the vessel-motion library
+/// is built for the same platforms (`vessel_build.rs`) before anything is written.
 pub fn pack(request: &Request) -> Result<()> {
     let platforms = Platform::parse_list(&request.platforms)?;
     for (given, option, platform) in [
@@ -90,8 +93,18 @@ pub fn pack(request: &Request) -> Result<()> {
         };
         binaries.push((platform, path));
     }
-    // The vessel-motion libraries are built before anything is written (a failed build leaves
-    // no FMU behind), in a scratch folder removed afterwards.
+    let tool = beam_impact::fmi::description::generation_tool(git_commit().as_deref());
+    // With --ssp the SSD is made first (a description it cannot be written for stops here), then
+    // the vessel-motion libraries are built before anything is written (a failed build leaves no
+    // FMU behind), in a scratch folder removed afterwards.
+    let ssd = if request.ssp {
+        let table = packed
+            .as_ref()
+            .map_or_else(beam_impact::fmi::variables::table, |p| beam_impact::fmi::variables::table_for(&p.scenario));
+        Some(beam_impact::ssp::ssd::system_structure(&table, &tool)?)
+    } else {
+        None
+    };
     let scratch = std::env::temp_dir().join(format!("beam-impact-vessel-{}", std::process::id()));
     let vessel = if request.ssp {
         let platforms: Vec<Platform> = binaries.iter().map(|(p, _)| *p).collect();
@@ -103,15 +116,13 @@ pub fn pack(request: &Request) -> Result<()> {
     } else {
         None
     };
-    let tool = beam_impact::fmi::description::generation_tool(git_commit().as_deref());
     let written = beam_impact::fmi::pack::pack_platforms_with(&binaries, &request.out, &tool, packed.as_ref())
-        .and_then(|fmus| {
-            let Some(vessel) = &vessel else { return Ok(fmus) };
-            let table = packed.as_ref().map_or_else(beam_impact::fmi::variables::table, |p| {
-                beam_impact::fmi::variables::table_for(&p.scenario)
-            });
-            let ssp = beam_impact::ssp::archive::write_ssp(&request.out, &fmus[0], &table, vessel, &tool)?;
-            Ok(fmus.into_iter().chain(std::iter::once(ssp)).collect())
+        .and_then(|fmus| match (&ssd, &vessel) {
+            (Some(ssd), Some(vessel)) => {
+                let ssp = beam_impact::ssp::archive::write_ssp(&request.out, ssd, &fmus[0], vessel)?;
+                Ok(fmus.into_iter().chain(std::iter::once(ssp)).collect())
+            }
+            _ => Ok(fmus),
         });
     if vessel.is_some() {
         let _ = std::fs::remove_dir_all(&scratch);

@@ -71,9 +71,12 @@ pub fn build_all(
             Platform::Windows => compile(&compiler, Some("x86_64-windows-gnu"), &source, &out, &[])?,
             Platform::Darwin => {
                 let mut slices = Vec::new();
-                for (target, arch) in [("x86_64-macos", "x86_64"), ("aarch64-macos", "arm64")] {
+                // The BeamImpact dylib's minimum macOS versions (scripts/cross-build.sh), and an
+                // install name that is not the scratch folder's.
+                let install_name = format!("-Wl,-install_name,@rpath/{}.dylib", vessel::MODEL_IDENTIFIER);
+                for (target, arch) in [("x86_64-macos.10.12", "x86_64"), ("aarch64-macos.11.0", "arm64")] {
                     let slice = dir.join(format!("{}-{arch}.dylib", vessel::MODEL_IDENTIFIER));
-                    compile(&compiler, Some(target), &source, &slice, &[])?;
+                    compile(&compiler, Some(target), &source, &slice, &[install_name.as_str()])?;
                     slices.push(std::fs::read(&slice).map_err(|source| io("cannot read", &slice, source))?);
                 }
                 let universal = vessel::universal_dylib(&slices).map_err(Error::Other)?;

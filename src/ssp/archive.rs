@@ -9,7 +9,6 @@ use zip::{CompressionMethod, ZipWriter};
 
 use super::ssd;
 use crate::fmi::pack::Platform;
-use crate::fmi::variables::Variable;
 use crate::record::output::{create_output_dir, open_regular_input, OutputFile};
 use crate::{Error, Result};
 
@@ -19,18 +18,16 @@ pub const FILE_NAME: &str = "GangwayOnVessel.ssp";
 /// The largest BeamImpact FMU the archive takes, bytes (ours are 10-30 MB).
 const MAX_FMU: u64 = 1 << 30;
 
-/// Writes `out_dir/GangwayOnVessel.ssp` from the BeamImpact FMI 2 FMU at `beam_fmu` (whose
-/// description's table is `beam`) and the vessel-motion libraries built for each platform;
-/// `generation_tool` names this build. The archive replaces an earlier one only when complete.
-/// Returns its path.
+/// Writes `out_dir/GangwayOnVessel.ssp` from `ssd_text` (the text of [`ssd::system_structure`],
+/// made before the FMUs are packed so that a description it cannot be written for stops `pack`
+/// early), the BeamImpact FMI 2 FMU at `beam_fmu` and the vessel-motion libraries built for each
+/// platform. The archive replaces an earlier one only when complete. Returns its path.
 pub fn write_ssp(
     out_dir: &Path,
+    ssd_text: &str,
     beam_fmu: &Path,
-    beam: &[Variable],
     vessel_libraries: &[(Platform, PathBuf)],
-    generation_tool: &str,
 ) -> Result<PathBuf> {
-    let text = ssd::system_structure(beam, generation_tool)?;
     let vessel_fmu = super::vessel::pack_fmu(vessel_libraries)?;
     let what = "cannot read the BeamImpact FMU";
     let mut beam_bytes = Vec::new();
@@ -54,7 +51,7 @@ pub fn write_ssp(
     // The FMUs are zips already: stored, not compressed again.
     let stored = SimpleFileOptions::default().compression_method(CompressionMethod::Stored);
     for (name, data, options) in [
-        ("SystemStructure.ssd", text.as_bytes(), options),
+        ("SystemStructure.ssd", ssd_text.as_bytes(), options),
         (ssd::BEAM_SOURCE, beam_bytes.as_slice(), stored),
         (ssd::VESSEL_SOURCE, vessel_fmu.as_slice(), stored),
     ] {

@@ -57,7 +57,8 @@ pub const BEAM_OUTPUTS: [&str; 12] = [
 ];
 
 /// The scenario's main fields, bound as BeamImpact's parameters (the geometry, masses, contact,
-/// drop and allowables; the rest keep the FMU's start values, which are the same scenario's).
+/// drop and allowables; the rest keep the FMU's start values, which are the same scenario's),
+/// each one the packed description has as a Real parameter.
 pub const BEAM_PARAMETERS: [&str; 14] = [
     "lower.length",
     "lower.mass",
@@ -154,19 +155,14 @@ pub fn system_structure(beam: &[Variable], generation_tool: &str) -> Result<Stri
         let v = find_beam(name)?;
         beam_connectors.push(Connector { name: v.name.clone(), kind: "output", unit: beam_unit(v) });
     }
+    // A packed scenario with beams of sections has no uniform mass or length parameter for such a
+    // beam (its sections come from resources/scenario.toml): those fields are left out.
     let mut beam_bindings = Vec::new();
     for name in BEAM_PARAMETERS {
-        let v = find_beam(name)?;
-        let start = match (&v.start, v.causality, v.ty) {
-            (Some(start), Causality::Parameter, Type::Real) => start.clone(),
-            _ => {
-                return Err(Error::Other(format!(
-                    "cannot write the SSP: BeamImpact's {name} is not a Real parameter with a start value"
-                )))
-            }
-        };
+        let Some(v) = beam.iter().find(|v| v.name == name) else { continue };
+        let (Some(start), Causality::Parameter, Type::Real) = (&v.start, v.causality, v.ty) else { continue };
         beam_connectors.push(Connector { name: v.name.clone(), kind: "parameter", unit: beam_unit(v) });
-        beam_bindings.push((v.name.clone(), start, v.unit.unwrap_or("1").to_string()));
+        beam_bindings.push((v.name.clone(), start.clone(), v.unit.unwrap_or("1").to_string()));
     }
 
     // Every unit a connector or binding names, with its base units (BeamImpact's table, else the
