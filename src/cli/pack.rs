@@ -133,15 +133,6 @@ pub fn pack(request: &Request) -> Result<()> {
     Ok(())
 }
 
-/// An executable named `name` in a directory of PATH.
-pub(super) fn on_path(name: &str) -> Option<PathBuf> {
-    use std::os::unix::fs::PermissionsExt;
-    let paths = std::env::var_os("PATH")?;
-    std::env::split_paths(&paths)
-        .map(|dir| dir.join(name))
-        .find(|p| p.metadata().is_ok_and(|m| m.is_file() && m.permissions().mode() & 0o111 != 0))
-}
-
 /// The crate's source directory (the cross builds and the glibc 2.17 build run there).
 fn source_dir() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -264,12 +255,15 @@ fn linux_library(library: Option<PathBuf>, no_zigbuild: bool) -> Result<PathBuf>
                 source.display()
             )));
         }
-        let cargo = std::env::var_os("CARGO").map(PathBuf::from).or_else(|| on_path("cargo")).ok_or_else(|| {
-            Error::Other(
-                "cannot build the library for glibc 2.17: no cargo on PATH (pass --library FILE or --no-zigbuild)"
-                    .into(),
-            )
-        })?;
+        let cargo = std::env::var_os("CARGO")
+            .map(PathBuf::from)
+            .or_else(|| super::common::on_path("cargo"))
+            .ok_or_else(|| {
+                Error::Other(
+                    "cannot build the library for glibc 2.17: no cargo on PATH (pass --library FILE or --no-zigbuild)"
+                        .into(),
+                )
+            })?;
         let target_dir = std::env::var_os("CARGO_TARGET_DIR").map_or_else(|| source.join("target"), PathBuf::from);
         let zig_dir = target_dir.join("zigbuild");
         std::fs::create_dir_all(&zig_dir).map_err(|source| io("cannot create", &zig_dir, source))?;
@@ -324,7 +318,7 @@ fn linux_library(library: Option<PathBuf>, no_zigbuild: bool) -> Result<PathBuf>
     Ok(match library {
         Some(path) => path,
         None => {
-            let zig = if no_zigbuild { None } else { on_path("cargo-zigbuild") };
+            let zig = if no_zigbuild { None } else { super::common::on_path("cargo-zigbuild") };
             match zig {
                 Some(zig) => zigbuild(&zig)?,
                 None => {

@@ -26,7 +26,7 @@ enum Compiler {
 
 /// Finds cargo-zigbuild: on PATH, else in the cross toolchain's venv (`toolchain`).
 fn zig(toolchain: Option<&Path>) -> Option<PathBuf> {
-    super::pack::on_path("cargo-zigbuild")
+    super::common::on_path("cargo-zigbuild")
         .or_else(|| toolchain.map(|t| t.join("venv").join("bin").join("cargo-zigbuild")).filter(|p| p.is_file()))
 }
 
@@ -49,9 +49,9 @@ pub fn build_all(
         let compiler = match (platform, zig) {
             (Platform::Linux, Some(zig)) if !no_zigbuild => Compiler::Zig(zig),
             (Platform::Linux, _) => {
-                Compiler::Host(super::pack::on_path("cc").or_else(|| super::pack::on_path("gcc")).ok_or_else(|| {
-                    Error::Other("cannot build the vessel-motion library for linux: no cc or gcc on PATH".into())
-                })?)
+                Compiler::Host(super::common::on_path("cc").or_else(|| super::common::on_path("gcc")).ok_or_else(
+                    || Error::Other("cannot build the vessel-motion library for linux: no cc or gcc on PATH".into()),
+                )?)
             }
             (_, Some(zig)) => Compiler::Zig(zig),
             (_, None) => {
