@@ -3,7 +3,7 @@
     python docs/plot_vessel_phase.py                     # 12 phases, 3 s each: docs/vessel-phase.png
     python docs/plot_vessel_phase.py --phases 24 --out phase.png --set wave.amplitude=1.5
 
-Builds the vessel-motion FMU (tests/vessel/vessel_motion.c, with gcc), then for each wave phase
+Builds the vessel-motion FMU (fmu/vessel/vessel_motion.c, with gcc), then for each wave phase
 at the impact (0, 360/N, ... degrees) runs the master of tests/python/vessel_master.py: the vessel
 drives BeamImpact's supports, BeamImpact's reactions go back as the deck load (h = 1 ms). One more
 run on fixed supports is the reference. Prints one row per phase (the peaks sigma_a, sigma_b,

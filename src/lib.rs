@@ -23,6 +23,7 @@ pub mod run_document;
 pub mod scenario_file;
 pub mod simulation;
 pub mod solver;
+pub mod ssp;
 pub mod studies;
 pub mod vocabulary;
 

@@ -55,6 +55,7 @@ mod reactions;
 mod report_csv;
 mod robust_meshes;
 mod scenario;
+mod ssp_pack;
 mod stepped_beams;
 mod stepping;
 mod support_motion;

@@ -50,9 +50,10 @@ export PATH="$PWD/.venv/bin:$PATH"
 
 # The executable `cargo test` built; `pack` relinks the library against glibc 2.17 with zig,
 # reusing the compiled dependencies.
-stage "pack the FMUs (the library linked for glibc 2.17 by cargo-zigbuild's zig)"
+stage "pack the FMUs and GangwayOnVessel.ssp (the library linked for glibc 2.17 by cargo-zigbuild's zig)"
 bin="${CARGO_TARGET_DIR:-target}/release/beam-impact"
-"$bin" pack --out target/fmu
+# --ssp: also GangwayOnVessel.ssp (the vessel-motion FMU compiled by the same zig; tests/python/test_ssp.py).
+"$bin" pack --ssp --out target/fmu
 
 stage "pytest"
 BEAM_IMPACT_FMU_DIR="$PWD/target/fmu" BEAM_IMPACT_BIN="$(cd "$(dirname "$bin")" && pwd)/beam-impact" \

@@ -87,6 +87,12 @@ pub enum Command {
         /// uniform fields. Without it the FMUs start from the paper scenario.
         #[arg(long, value_name = "FILE.toml")]
         scenario: Option<PathBuf>,
+        /// Also write DIR/GangwayOnVessel.ssp (SSP 1.0): the FMI 2.0 FMU and the vessel-motion
+        /// FMU (built from fmu/vessel/vessel_motion.c with zig, or the host's cc for Linux, for the
+        /// same platforms), connected both ways, with parameter bindings and a default experiment
+        /// (docs/ssp.md).
+        #[arg(long)]
+        ssp: bool,
     },
     /// Read an MCAP log: print its summary and write Figures 6-9 (SVG and PNG), and Figures 10-12
     /// (natural modes) of its scenario.

@@ -12,6 +12,7 @@ mod report;
 mod run;
 mod sweep;
 mod verify;
+mod vessel_build;
 
 use args::Command;
 use beam_impact::{Result, Scenario};
@@ -37,7 +38,7 @@ pub fn execute(command: Command) -> Result<Outcome> {
         }
         Command::Damping { file, set, figures } => done(damping::damping(file.as_deref(), &set, figures.as_deref())),
         Command::Modes { file, set, out } => done(modes::modes(file.as_deref(), &set, &out)),
-        Command::Pack { out, library, no_zigbuild, platforms, windows_library, darwin_library, scenario } => {
+        Command::Pack { out, library, no_zigbuild, platforms, windows_library, darwin_library, scenario, ssp } => {
             done(pack::pack(&pack::Request {
                 out,
                 library,
@@ -46,6 +47,7 @@ pub fn execute(command: Command) -> Result<Outcome> {
                 windows_library,
                 darwin_library,
                 scenario,
+                ssp,
             }))
         }
         Command::Report { file, out, csv } => done(report::report(&file, out, csv.as_deref())),

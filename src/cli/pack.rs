@@ -1,5 +1,6 @@
 //! `beam-impact pack`: builds the library for glibc 2.17 (linked by cargo-zigbuild's zig) or
-//! takes the host build, and packs the FMI 2.0 and FMI 3.0 FMUs.
+//! takes the host build, and packs the FMI 2.0 and FMI 3.0 FMUs (with `--ssp` also
+//! GangwayOnVessel.ssp).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -25,6 +26,9 @@ pub struct Request {
     pub darwin_library: Option<PathBuf>,
     /// The scenario file to pack as the FMUs' starting scenario (issue 30).
     pub scenario: Option<PathBuf>,
+    /// Also write DIR/GangwayOnVessel.ssp: the FMI 2 FMU and the vessel-motion FMU built for the
+    /// same platforms (issue 31).
+    pub ssp: bool,
 }
 
 /// Packs the FMUs for the platforms asked for. Linux: `library`, or else the glibc 2.17 build
@@ -35,7 +39,9 @@ pub struct Request {
 /// loaded into every FMU host, which has no business spawning cargo; `fmi::pack` packs the files
 /// it is given. The packed descriptions' `generationTool` names the git commit of the source tree
 /// this executable was built from (also when the binaries are given as files). With a scenario
-/// file, both FMUs start from it ([`beam_impact::fmi::pack::PackedScenario`], issue 30).
+/// file, both FMUs start from it ([`beam_impact::fmi::pack::PackedScenario`], issue 30). With
+/// `ssp`, also `GangwayOnVessel.ssp` ([`beam_impact::ssp`], issue 31): the vessel-motion library
+/// is built for the same platforms (`vessel_build.rs`) before anything is written.
 pub fn pack(request: &Request) -> Result<()> {
     let platforms = Platform::parse_list(&request.platforms)?;
     for (given, option, platform) in [
@@ -88,7 +94,40 @@ pub fn pack(request: &Request) -> Result<()> {
         binaries.push((platform, path));
     }
     let tool = beam_impact::fmi::description::generation_tool(git_commit().as_deref());
-    for path in beam_impact::fmi::pack::pack_platforms_with(&binaries, &request.out, &tool, packed.as_ref())? {
+    // With --ssp the SSD is made first (a description it cannot be written for stops here), then
+    // the vessel-motion libraries are built before anything is written (a failed build leaves no
+    // FMU behind), in a scratch folder removed afterwards.
+    let ssd = if request.ssp {
+        let table = packed
+            .as_ref()
+            .map_or_else(beam_impact::fmi::variables::table, |p| beam_impact::fmi::variables::table_for(&p.scenario));
+        Some(beam_impact::ssp::ssd::system_structure(&table, &tool)?)
+    } else {
+        None
+    };
+    let scratch = std::env::temp_dir().join(format!("beam-impact-vessel-{}", std::process::id()));
+    let vessel = if request.ssp {
+        let platforms: Vec<Platform> = binaries.iter().map(|(p, _)| *p).collect();
+        let built = super::vessel_build::build_all(&platforms, &scratch, toolchain.as_deref(), request.no_zigbuild);
+        if built.is_err() {
+            let _ = std::fs::remove_dir_all(&scratch);
+        }
+        Some(built?)
+    } else {
+        None
+    };
+    let written = beam_impact::fmi::pack::pack_platforms_with(&binaries, &request.out, &tool, packed.as_ref())
+        .and_then(|fmus| match (&ssd, &vessel) {
+            (Some(ssd), Some(vessel)) => {
+                let ssp = beam_impact::ssp::archive::write_ssp(&request.out, ssd, &fmus[0], vessel)?;
+                Ok(fmus.into_iter().chain(std::iter::once(ssp)).collect())
+            }
+            _ => Ok(fmus),
+        });
+    if vessel.is_some() {
+        let _ = std::fs::remove_dir_all(&scratch);
+    }
+    for path in written? {
         emit(&format!("wrote {}\n", path.display()))?;
     }
     Ok(())
@@ -198,15 +237,6 @@ fn linux_library(library: Option<PathBuf>, no_zigbuild: bool) -> Result<PathBuf>
     const TARGET: &str = "x86_64-unknown-linux-gnu.2.17";
     const ZIG_TARGET: &str = "x86_64-linux-gnu.2.17";
 
-    /// An executable named `name` in a directory of PATH.
-    fn on_path(name: &str) -> Option<PathBuf> {
-        use std::os::unix::fs::PermissionsExt;
-        let paths = std::env::var_os("PATH")?;
-        std::env::split_paths(&paths)
-            .map(|dir| dir.join(name))
-            .find(|p| p.metadata().is_ok_and(|m| m.is_file() && m.permissions().mode() & 0o111 != 0))
-    }
-
     /// Builds the library for glibc 2.17 from the host build's compiled dependencies: cargo
     /// recompiles this crate alone as a cdylib, linked by `cargo-zigbuild zig cc` against
     /// glibc 2.17's symbols (a wrapper script written beside the build). Only the link differs
@@ -225,12 +255,15 @@ fn linux_library(library: Option<PathBuf>, no_zigbuild: bool) -> Result<PathBuf>
                 source.display()
             )));
         }
-        let cargo = std::env::var_os("CARGO").map(PathBuf::from).or_else(|| on_path("cargo")).ok_or_else(|| {
-            Error::Other(
-                "cannot build the library for glibc 2.17: no cargo on PATH (pass --library FILE or --no-zigbuild)"
-                    .into(),
-            )
-        })?;
+        let cargo = std::env::var_os("CARGO")
+            .map(PathBuf::from)
+            .or_else(|| super::common::on_path("cargo"))
+            .ok_or_else(|| {
+                Error::Other(
+                    "cannot build the library for glibc 2.17: no cargo on PATH (pass --library FILE or --no-zigbuild)"
+                        .into(),
+                )
+            })?;
         let target_dir = std::env::var_os("CARGO_TARGET_DIR").map_or_else(|| source.join("target"), PathBuf::from);
         let zig_dir = target_dir.join("zigbuild");
         std::fs::create_dir_all(&zig_dir).map_err(|source| io("cannot create", &zig_dir, source))?;
@@ -285,7 +318,7 @@ fn linux_library(library: Option<PathBuf>, no_zigbuild: bool) -> Result<PathBuf>
     Ok(match library {
         Some(path) => path,
         None => {
-            let zig = if no_zigbuild { None } else { on_path("cargo-zigbuild") };
+            let zig = if no_zigbuild { None } else { super::common::on_path("cargo-zigbuild") };
             match zig {
                 Some(zig) => zigbuild(&zig)?,
                 None => {

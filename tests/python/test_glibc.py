@@ -52,6 +52,23 @@ def test_packed_library_needs_at_most_glibc_2_17(version, tmp_path):
     assert highest <= HIGHEST, f"{fmu}: the library needs {name}, newer than GLIBC_2.17"
 
 
+def test_the_ssps_vessel_library_needs_at_most_glibc_2_17(tmp_path):
+    """GangwayOnVessel.ssp's vessel-motion library (`pack --ssp` compiles it with the same zig for
+    glibc 2.17, or with the host's cc without zig) holds to the same bound."""
+    ssp = FMU_DIR / "GangwayOnVessel.ssp"
+    assert ssp.exists(), f"{ssp} not found: run `beam-impact pack --ssp` or set BEAM_IMPACT_FMU_DIR"
+    with zipfile.ZipFile(ssp) as archive:
+        fmu = Path(archive.extract("resources/VesselMotion.fmu", tmp_path))
+    with zipfile.ZipFile(fmu) as archive:
+        library = Path(archive.extract("binaries/linux64/VesselMotion.so", tmp_path))
+    versions = glibc_versions(library)
+    assert versions, "no GLIBC symbol versions found: not a glibc-linked library?"
+    name = "GLIBC_" + ".".join(map(str, max(versions)))
+    if max(versions) > HIGHEST and not REQUIRED:
+        pytest.skip(f"{ssp}'s vessel library was built with the host's cc ({name}): pack with cargo-zigbuild on PATH")
+    assert max(versions) <= HIGHEST, f"{ssp}: the vessel library needs {name}, newer than GLIBC_2.17"
+
+
 @pytest.mark.parametrize("version", ["fmi2", "fmi3"])
 def test_packed_fmu_runs(version, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)

@@ -1,7 +1,7 @@
 """BeamImpact on a vessel in waves: a second FMU drives the supports (issue 17, item 4).
 
-VesselMotion (`tests/vessel/vessel_motion.c`, an FMI 2 co-simulation FMU built here with gcc
-against the FMI 2 headers fmpy ships in `fmpy/c-code`) is the heave and pitch of a walk-to-work
+VesselMotion (`fmu/vessel/vessel_motion.c`, an FMI 2 co-simulation FMU built here with gcc
+against its FMI 2 types `fmu/vessel/fmi2_abi.h`; `beam-impact pack --ssp` builds the same source) is the heave and pitch of a walk-to-work
 vessel in a regular head-sea wave (linear RAOs, steady state), projected onto the two supports:
 the bridge's hinge heaves, the arrestor's clamp heaves and rotates (the README's "Moving supports" section has the
 conventions). A fixed-step master (fmpy's low-level `FMU2Slave`, FMI 2 co-simulation, h = 1 ms,

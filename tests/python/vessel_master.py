@@ -1,8 +1,8 @@
 """The vessel example's co-simulation master, shared by tests/python/test_vessel.py and
 docs/plot_vessel_phase.py (issue 17, item 4).
 
-VesselMotion (tests/vessel/vessel_motion.c, an FMI 2 co-simulation FMU built here with gcc
-against the FMI 2 headers fmpy ships) gives the heave and pitch of a vessel in a regular wave,
+VesselMotion (fmu/vessel/vessel_motion.c, an FMI 2 co-simulation FMU built here with gcc
+against fmu/vessel/fmi2_abi.h) gives the heave and pitch of a vessel in a regular wave,
 projected onto BeamImpact's two supports; BeamImpact's support reactions go back to it as the deck
 load. A fixed-step master (fmpy's low-level FMU2Slave, h = 1 ms by default) runs both; see
 test_vessel.py's docstring for the order of the calls and why it has no algebraic loop.
@@ -35,7 +35,7 @@ from fmpy.fmi2 import (
 from fmpy.logging import addLoggerProxy
 
 ROOT = Path(__file__).resolve().parents[2]
-VESSEL = ROOT / "tests" / "vessel"
+VESSEL = ROOT / "fmu" / "vessel"
 FMU_DIR = Path(os.environ.get("BEAM_IMPACT_FMU_DIR", str(ROOT / "target" / "fmu")))
 
 STEP = 1e-3  # s, communication step
@@ -74,21 +74,18 @@ def beam_fmu(fmu_dir: Path = FMU_DIR) -> Path:
 
 
 def build_vessel_fmu(out_dir: Path, gcc: str | None = None) -> tuple[Path, str]:
-    """Builds VesselMotion.fmu in out_dir with gcc (-Wall -Wextra): the C file, fmpy's FMI 2
-    headers, VesselMotion.xml as the modelDescription. Returns the FMU and gcc's stderr (empty
-    when the file compiles clean); raises RuntimeError when gcc fails."""
+    """Builds VesselMotion.fmu in out_dir with gcc (-Wall -Wextra): the C file and its FMI 2
+    types (fmu/vessel/fmi2_abi.h), VesselMotion.xml as the modelDescription. Returns the FMU and
+    gcc's stderr (empty when the file compiles clean); raises RuntimeError when gcc fails."""
     gcc = gcc or shutil.which("gcc")
     if gcc is None:
-        raise RuntimeError("gcc not found: the vessel example builds its FMU from tests/vessel/vessel_motion.c")
-    headers = Path(fmpy.__file__).parent / "c-code"
-    if not (headers / "fmi2Functions.h").exists():
-        raise RuntimeError(f"fmpy's FMI 2 headers not found in {headers}")
+        raise RuntimeError("gcc not found: the vessel example builds its FMU from fmu/vessel/vessel_motion.c")
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     library = out_dir / "VesselMotion.so"
     compiled = subprocess.run(
         [gcc, "-shared", "-fPIC", "-O2", "-std=c99", "-Wall", "-Wextra", "-fvisibility=hidden",
-         "-I", str(headers), str(VESSEL / "vessel_motion.c"), "-o", str(library), "-lm"],
+         str(VESSEL / "vessel_motion.c"), "-o", str(library), "-lm"],
         capture_output=True, text=True,
     )
     if compiled.returncode != 0:

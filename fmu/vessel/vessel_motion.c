@@ -1,7 +1,8 @@
 /* VesselMotion: the heave and pitch of a vessel in a regular wave as an FMI 2.0 co-simulation
  * FMU, driving the supports of BeamImpact (the bridge's hinge and the arrestor's clamp) in the
- * example of tests/python/test_vessel.py, which builds it with gcc and zips it with
- * VesselMotion.xml as its modelDescription.xml. docs/vessel.md describes it for users.
+ * example: `beam-impact pack --ssp` builds it (gcc, or zig cc for each platform) and packs it with
+ * VesselMotion.xml as its modelDescription.xml into GangwayOnVessel.ssp (docs/ssp.md);
+ * tests/python/test_vessel.py builds it with gcc for its own master. docs/vessel.md describes it for users.
  *
  * Axes (right-handed, fixed to the vessel's mean position): x forward from the centre of
  * flotation (CF), y to port, z up. Heave z is up positive; pitch theta is the rotation about +y,
@@ -40,8 +41,8 @@
  * hydrostatics resist).
  *
  * The outputs are algebraic in time and in the inputs; the FMU has no state, a step only
- * advances its time. The FMI 2 headers come from fmpy's c-code folder at build time
- * (-I .../fmpy/c-code). Every one of the 25 common and 9 co-simulation functions exists; the
+ * advances its time. The FMI 2 types come from fmi2_abi.h beside this file (written from the
+ * standard: no header files of the standard are needed to build it). Every one of the 25 common and 9 co-simulation functions exists; the
  * unsupported ones log why and return fmi2Error. The logger is always called with "%s".
  */
 #include <math.h>
@@ -50,7 +51,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "fmi2Functions.h"
+#include "fmi2_abi.h"
 
 #define GUID "{9e4f2a61-3b7d-4c85-a0d2-6f1c8e3b5a94}"
 #define PI 3.14159265358979323846
@@ -240,11 +241,11 @@ static double output(const Instance *s, fmi2ValueReference vr) {
 
 /* ---- inquire version numbers, logging -------------------------------------------------------- */
 
-const char *fmi2GetTypesPlatform(void) { return fmi2TypesPlatform; }
+FMI2_EXPORT const char *fmi2GetTypesPlatform(void) { return fmi2TypesPlatform; }
 
-const char *fmi2GetVersion(void) { return fmi2Version; }
+FMI2_EXPORT const char *fmi2GetVersion(void) { return fmi2Version; }
 
-fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nCategories,
+FMI2_EXPORT fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nCategories,
                                const fmi2String categories[]) {
     Instance *s = (Instance *)c;
     if (s == NULL) return fmi2Error;
@@ -261,7 +262,7 @@ static void set_defaults(Instance *s) {
     memcpy(s->booleans, START_BOOLEAN, sizeof START_BOOLEAN);
 }
 
-fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2String fmuGUID,
+FMI2_EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2String fmuGUID,
                               fmi2String fmuResourceLocation, const fmi2CallbackFunctions *functions,
                               fmi2Boolean visible, fmi2Boolean loggingOn) {
     Instance *s;
@@ -303,7 +304,7 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
     return s;
 }
 
-void fmi2FreeInstance(fmi2Component c) {
+FMI2_EXPORT void fmi2FreeInstance(fmi2Component c) {
     Instance *s = (Instance *)c;
     if (s == NULL) return;
     free(s->name);
@@ -312,7 +313,7 @@ void fmi2FreeInstance(fmi2Component c) {
 
 /* ---- initialization, termination, reset ------------------------------------------------------ */
 
-fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fmi2Real tolerance,
+FMI2_EXPORT fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fmi2Real tolerance,
                                fmi2Real startTime, fmi2Boolean stopTimeDefined, fmi2Real stopTime) {
     Instance *s = (Instance *)c;
     (void)toleranceDefined;
@@ -326,7 +327,7 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fm
     return fmi2OK;
 }
 
-fmi2Status fmi2EnterInitializationMode(fmi2Component c) {
+FMI2_EXPORT fmi2Status fmi2EnterInitializationMode(fmi2Component c) {
     Instance *s = (Instance *)c;
     if (s == NULL) return fmi2Error;
     if (s->phase != INSTANTIATED) return fail(s, "fmi2EnterInitializationMode", "only allowed after fmi2Instantiate");
@@ -334,7 +335,7 @@ fmi2Status fmi2EnterInitializationMode(fmi2Component c) {
     return fmi2OK;
 }
 
-fmi2Status fmi2ExitInitializationMode(fmi2Component c) {
+FMI2_EXPORT fmi2Status fmi2ExitInitializationMode(fmi2Component c) {
     Instance *s = (Instance *)c;
     char why[160];
     if (s == NULL) return fmi2Error;
@@ -349,7 +350,7 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component c) {
     return fmi2OK;
 }
 
-fmi2Status fmi2Terminate(fmi2Component c) {
+FMI2_EXPORT fmi2Status fmi2Terminate(fmi2Component c) {
     Instance *s = (Instance *)c;
     if (s == NULL) return fmi2Error;
     if (s->phase != STEP_COMPLETE) return fail(s, "fmi2Terminate", "only allowed after initialization");
@@ -357,7 +358,7 @@ fmi2Status fmi2Terminate(fmi2Component c) {
     return fmi2OK;
 }
 
-fmi2Status fmi2Reset(fmi2Component c) {
+FMI2_EXPORT fmi2Status fmi2Reset(fmi2Component c) {
     Instance *s = (Instance *)c;
     if (s == NULL) return fmi2Error;
     s->phase = INSTANTIATED;
@@ -378,7 +379,7 @@ static fmi2Status readable(Instance *s, const char *function) {
     return fmi2OK;
 }
 
-fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Real value[]) {
+FMI2_EXPORT fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Real value[]) {
     Instance *s = (Instance *)c;
     size_t i;
     if (s == NULL) return fmi2Error;
@@ -396,7 +397,7 @@ fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
     return fmi2OK;
 }
 
-fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Real value[]) {
+FMI2_EXPORT fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Real value[]) {
     Instance *s = (Instance *)c;
     size_t i;
     char why[120];
@@ -423,7 +424,7 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
     return fmi2OK;
 }
 
-fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Boolean value[]) {
+FMI2_EXPORT fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Boolean value[]) {
     Instance *s = (Instance *)c;
     size_t i;
     if (s == NULL) return fmi2Error;
@@ -441,7 +442,7 @@ fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t
     return fmi2OK;
 }
 
-fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Boolean value[]) {
+FMI2_EXPORT fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Boolean value[]) {
     Instance *s = (Instance *)c;
     size_t i;
     char why[120];
@@ -461,28 +462,28 @@ fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t
 }
 
 /* No Integer or String variables: empty requests succeed, anything else is an error. */
-fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Integer value[]) {
+FMI2_EXPORT fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Integer value[]) {
     (void)vr;
     (void)value;
     if (c == NULL) return fmi2Error;
     return nvr == 0 ? fmi2OK : fail((Instance *)c, "fmi2GetInteger", "this FMU has no Integer variables");
 }
 
-fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2String value[]) {
+FMI2_EXPORT fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2String value[]) {
     (void)vr;
     (void)value;
     if (c == NULL) return fmi2Error;
     return nvr == 0 ? fmi2OK : fail((Instance *)c, "fmi2GetString", "this FMU has no String variables");
 }
 
-fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Integer value[]) {
+FMI2_EXPORT fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Integer value[]) {
     (void)vr;
     (void)value;
     if (c == NULL) return fmi2Error;
     return nvr == 0 ? fmi2OK : fail((Instance *)c, "fmi2SetInteger", "this FMU has no Integer variables");
 }
 
-fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2String value[]) {
+FMI2_EXPORT fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2String value[]) {
     (void)vr;
     (void)value;
     if (c == NULL) return fmi2Error;
@@ -491,37 +492,37 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
 
 /* ---- FMU state, directional derivatives: not supported (canGetAndSetFMUstate="false") ---------- */
 
-fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *FMUstate) {
+FMI2_EXPORT fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *FMUstate) {
     (void)FMUstate;
     return unsupported(c, "fmi2GetFMUstate");
 }
 
-fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate FMUstate) {
+FMI2_EXPORT fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate FMUstate) {
     (void)FMUstate;
     return unsupported(c, "fmi2SetFMUstate");
 }
 
-fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *FMUstate) {
+FMI2_EXPORT fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *FMUstate) {
     if (c == NULL) return fmi2Error;
     /* Freeing a null state is ignored (FMI 2.0.4); no state can ever be handed out. */
     if (FMUstate == NULL || *FMUstate == NULL) return fmi2OK;
     return unsupported(c, "fmi2FreeFMUstate");
 }
 
-fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate FMUstate, size_t *size) {
+FMI2_EXPORT fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate FMUstate, size_t *size) {
     (void)FMUstate;
     (void)size;
     return unsupported(c, "fmi2SerializedFMUstateSize");
 }
 
-fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate FMUstate, fmi2Byte serializedState[], size_t size) {
+FMI2_EXPORT fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate FMUstate, fmi2Byte serializedState[], size_t size) {
     (void)FMUstate;
     (void)serializedState;
     (void)size;
     return unsupported(c, "fmi2SerializeFMUstate");
 }
 
-fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte serializedState[], size_t size,
+FMI2_EXPORT fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte serializedState[], size_t size,
                                    fmi2FMUstate *FMUstate) {
     (void)serializedState;
     (void)size;
@@ -529,7 +530,7 @@ fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte serializedSta
     return unsupported(c, "fmi2DeSerializeFMUstate");
 }
 
-fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference vUnknown_ref[], size_t nUnknown,
+FMI2_EXPORT fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference vUnknown_ref[], size_t nUnknown,
                                         const fmi2ValueReference vKnown_ref[], size_t nKnown,
                                         const fmi2Real dvKnown[], fmi2Real dvUnknown[]) {
     (void)vUnknown_ref;
@@ -543,7 +544,7 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReferenc
 
 /* ---- co-simulation ----------------------------------------------------------------------------- */
 
-fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+FMI2_EXPORT fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                                        const fmi2Integer order[], const fmi2Real value[]) {
     (void)vr;
     (void)nvr;
@@ -552,7 +553,7 @@ fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference
     return unsupported(c, "fmi2SetRealInputDerivatives (canInterpolateInputs=\"false\")");
 }
 
-fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+FMI2_EXPORT fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                                         const fmi2Integer order[], fmi2Real value[]) {
     (void)vr;
     (void)nvr;
@@ -561,7 +562,7 @@ fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReferenc
     return unsupported(c, "fmi2GetRealOutputDerivatives (maxOutputDerivativeOrder=\"0\")");
 }
 
-fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize,
+FMI2_EXPORT fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize,
                       fmi2Boolean noSetFMUStatePriorToCurrentPoint) {
     Instance *s = (Instance *)c;
     char why[160];
@@ -584,17 +585,17 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint, fmi2R
     return fmi2OK;
 }
 
-fmi2Status fmi2CancelStep(fmi2Component c) {
+FMI2_EXPORT fmi2Status fmi2CancelStep(fmi2Component c) {
     return unsupported(c, "fmi2CancelStep (fmi2DoStep never returns fmi2Pending)");
 }
 
-fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind kind, fmi2Status *value) {
+FMI2_EXPORT fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind kind, fmi2Status *value) {
     (void)kind;
     (void)value;
     return unsupported(c, "fmi2GetStatus (fmi2DoStep never returns fmi2Pending)");
 }
 
-fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind kind, fmi2Real *value) {
+FMI2_EXPORT fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind kind, fmi2Real *value) {
     Instance *s = (Instance *)c;
     if (s == NULL) return fmi2Error;
     if (kind != fmi2LastSuccessfulTime || value == NULL) return unsupported(c, "fmi2GetRealStatus (only fmi2LastSuccessfulTime)");
@@ -602,13 +603,13 @@ fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind kind, fmi2Rea
     return fmi2OK;
 }
 
-fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind kind, fmi2Integer *value) {
+FMI2_EXPORT fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind kind, fmi2Integer *value) {
     (void)kind;
     (void)value;
     return unsupported(c, "fmi2GetIntegerStatus");
 }
 
-fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind kind, fmi2Boolean *value) {
+FMI2_EXPORT fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind kind, fmi2Boolean *value) {
     Instance *s = (Instance *)c;
     if (s == NULL) return fmi2Error;
     if (kind != fmi2Terminated || value == NULL) return unsupported(c, "fmi2GetBooleanStatus (only fmi2Terminated)");
@@ -616,7 +617,7 @@ fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind kind, fmi2
     return fmi2OK;
 }
 
-fmi2Status fmi2GetStringStatus(fmi2Component c, const fmi2StatusKind kind, fmi2String *value) {
+FMI2_EXPORT fmi2Status fmi2GetStringStatus(fmi2Component c, const fmi2StatusKind kind, fmi2String *value) {
     (void)kind;
     (void)value;
     return unsupported(c, "fmi2GetStringStatus");

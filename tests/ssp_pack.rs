@@ -1,0 +1,106 @@
+//! `beam-impact pack --ssp` (issue 31, item 1) writes DIR/GangwayOnVessel.ssp beside the FMUs: a
+//! zip with SystemStructure.ssd at its root and the BeamImpact FMU (FMI 2.0) and the vessel-motion
+//! FMU (built here from its C source with the host's cc) under resources/; a bad `--out` or a
+//! vessel build that cannot run is one line and leaves nothing behind.
+//! tests/python/test_ssp.py validates the SSD against the SSP 1.0 schema and runs it in three tools.
+
+use std::io::Read;
+use std::path::Path;
+
+/// The host build of the library (beside the executable, or in deps/ under `cargo test`).
+fn host_library() -> std::path::PathBuf {
+    let exe = Path::new(env!("CARGO_BIN_EXE_beam-impact"));
+    let beside = exe.with_file_name("libbeam_impact.so");
+    if beside.is_file() {
+        beside
+    } else {
+        exe.with_file_name("deps").join("libbeam_impact.so")
+    }
+}
+
+/// `pack --ssp` with PATH limited to the system's (the host's cc, no cargo-zigbuild); returns
+/// (exit code, stdout, stderr).
+fn pack_ssp(args: &[&str]) -> (Option<i32>, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_beam-impact"))
+        .args(["pack", "--ssp", "--no-zigbuild", "--library"])
+        .arg(host_library())
+        .args(args)
+        .env("PATH", "/usr/local/bin:/usr/bin:/bin")
+        .output()
+        .unwrap();
+    (out.status.code(), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
+}
+
+/// The names and contents of a zip's entries.
+fn unzip(bytes: &[u8]) -> Vec<(String, Vec<u8>)> {
+    let mut archive = zip::ZipArchive::new(std::io::Cursor::new(bytes)).unwrap();
+    (0..archive.len())
+        .map(|k| {
+            let mut entry = archive.by_index(k).unwrap();
+            let mut data = Vec::new();
+            entry.read_to_end(&mut data).unwrap();
+            (entry.name().to_string(), data)
+        })
+        .collect()
+}
+
+#[test]
+fn pack_ssp_writes_the_ssd_and_both_fmus_under_resources() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fmu");
+    let (code, stdout, stderr) = pack_ssp(&["--out", out.to_str().unwrap()]);
+    assert_eq!(code, Some(0), "{stderr}");
+    let ssp = out.join("GangwayOnVessel.ssp");
+    assert!(stdout.contains(&format!("wrote {}", ssp.display())), "{stdout}");
+    let entries = unzip(&std::fs::read(&ssp).unwrap());
+    let names: Vec<&str> = entries.iter().map(|e| e.0.as_str()).collect();
+    assert_eq!(names, ["SystemStructure.ssd", "resources/BeamImpact.fmu", "resources/VesselMotion.fmu"]);
+    // The BeamImpact FMU is the FMI 2.0 one written beside it, byte for byte.
+    assert_eq!(entries[1].1, std::fs::read(out.join("fmi2").join("BeamImpact.fmu")).unwrap());
+    let ssd = String::from_utf8(entries[0].1.clone()).unwrap();
+    for source in ["resources/BeamImpact.fmu", "resources/VesselMotion.fmu"] {
+        assert!(ssd.contains(&format!("source=\"{source}\"")), "{source}");
+    }
+    // The vessel FMU: its description and the Linux library, exporting the FMI 2 functions.
+    let vessel = unzip(&entries[2].1);
+    let vessel_names: Vec<&str> = vessel.iter().map(|e| e.0.as_str()).collect();
+    assert_eq!(vessel_names, ["modelDescription.xml", "binaries/linux64/VesselMotion.so"]);
+    assert_eq!(vessel[0].1, beam_impact::ssp::vessel::DESCRIPTION.as_bytes());
+    let library = &vessel[1].1;
+    assert_eq!(&library[..4], b"\x7fELF");
+    assert!(library.windows(10).any(|w| w == b"fmi2DoStep"));
+}
+
+#[test]
+fn pack_ssp_into_a_file_is_one_line_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("not-a-dir");
+    std::fs::write(&file, "x").unwrap();
+    let (code, _, stderr) = pack_ssp(&["--out", file.to_str().unwrap()]);
+    assert_ne!(code, Some(0));
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("not-a-dir"), "{stderr}");
+    assert_eq!(std::fs::read(&file).unwrap(), b"x");
+}
+
+/// A Windows binary asked for without zig to build the vessel's DLL: one line naming what is
+/// missing, before any FMU is written.
+#[test]
+fn pack_ssp_without_zig_for_windows_is_one_line_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let dll = dir.path().join("BeamImpact.dll");
+    std::fs::write(&dll, "stand-in").unwrap();
+    let out = dir.path().join("fmu");
+    let (code, _, stderr) = pack_ssp(&[
+        "--platforms",
+        "linux,windows",
+        "--windows-library",
+        dll.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_ne!(code, Some(0));
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("vessel-motion library for windows") && stderr.contains("cargo-zigbuild"), "{stderr}");
+    assert!(!out.exists());
+}
