@@ -1,4 +1,4 @@
-"""`python -m beam_impact sweep --fmu PATH --vary KEY=SPEC ... [--scheduler ADDRESS] --out FILE.csv`
+"""`python -m beam_impact sweep [--fmu PATH] --vary KEY=SPEC ... [--scheduler ADDRESS] --out FILE.csv`
 and `python -m beam_impact log FILE.mcap`."""
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ def main(argv: list[str] | None = None) -> int:
         "scenario as a Dask task; one CSV row per scenario in grid order, with the columns of "
         "`beam-impact sweep` that the FMU gives.",
     )
-    s.add_argument("--fmu", required=True, help="the FMU file (target/fmu/fmi2/BeamImpact.fmu)")
+    s.add_argument("--fmu", help="the FMU file (default: beam_impact.fmu_path(), the FMI 2 FMU of $BEAM_IMPACT_FMU_DIR or the one a wheel carries)")
     s.add_argument("--vary", action="append", default=[], metavar="KEY=SPEC",
                    help="a varied field: start:stop:count (inclusive, linear) or a comma list (repeatable)")
     s.add_argument("--scheduler", metavar="ADDRESS",
@@ -47,7 +47,14 @@ def main(argv: list[str] | None = None) -> int:
     # Every output through the CLI's guard (the native module): no NUL, symbolic link, folder,
     # FIFO, socket or device other than /dev/null; never the FMU or the other output (by device
     # and inode); checked before any run, and again when written (beside, then renamed).
-    inputs = [("--fmu", args.fmu)]
+    from .fmu import fmu_path
+
+    try:
+        fmu = args.fmu if args.fmu is not None else fmu_path("fmi2")
+    except FileNotFoundError as e:
+        print(f"python -m beam_impact: {e} (or pass --fmu PATH)", file=sys.stderr)
+        return 2
+    inputs = [("--fmu", fmu)]
     outputs = [("--out", args.out)] + ([("--json", args.json)] if args.json is not None else [])
 
     def others(role: str) -> list:
@@ -58,7 +65,7 @@ def main(argv: list[str] | None = None) -> int:
             _native.check_output(target, role, inputs, others(role), allow_devices=True)
         grid = parse_vary(args.vary)
         started = time.perf_counter()
-        frame = sweep(grid, client=args.scheduler, fmu=args.fmu, stop_time=args.stop_time,
+        frame = sweep(grid, client=args.scheduler, fmu=fmu, stop_time=args.stop_time,
                       num_workers=args.workers)
         wall = time.perf_counter() - started
         render = {"--out": lambda: frame.to_csv(index=False), "--json": lambda: frame.to_json(orient="records", indent=1)}
