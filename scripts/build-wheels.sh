@@ -12,8 +12,8 @@
 #                    (x86_64 and arm64 in one Mach-O); every wheel's FMUs then carry the Linux,
 #                    Windows and macOS binaries (`beam-impact pack --platforms all`).
 #
-# Tools: maturin (pinned below), ziglang and cargo-zigbuild (the pins of tests/python/requirements.txt)
-# in a venv of their own, $BEAM_IMPACT_WHEEL_TOOLS (default target/wheel-tools). The Linux
+# Tools: maturin, ziglang and cargo-zigbuild, pinned in tests/python/requirements.txt, in the venv
+# $BEAM_IMPACT_WHEEL_TOOLS (default target/wheel-tools, made here). The Linux
 # module is the host build of python/native linked by zig (`maturin build -- -C linker=...`: only
 # the link differs, so `cargo build --release`'s compiled dependencies are reused, as `beam-impact
 # pack` does for the FMU). Windows and macOS use the cross toolchain of scripts/cross-toolchain.sh
@@ -32,7 +32,6 @@
 set -eu
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
-MATURIN_VERSION=1.16.0
 
 fail() {
     echo "build-wheels: $*" >&2
@@ -76,18 +75,28 @@ TARGET_DIR=${CARGO_TARGET_DIR:-$ROOT/target}
 STAGE=$TARGET_DIR/wheel-stage
 TOOLS=${BEAM_IMPACT_WHEEL_TOOLS:-$TARGET_DIR/wheel-tools}
 
-# --- tools -----------------------------------------------------------------------------------
+# --- tools ---------------------------------------------------------------------------------
+# maturin, ziglang and cargo-zigbuild at the pins of tests/python/requirements.txt, in TOOLS: a venv
+# made here (target/wheel-tools) or one given that has them (tests/run_all.sh gives its .venv).
 pin() {
-    grep -E "^$1==" "$ROOT/tests/python/requirements.txt" | sed 's/[[:space:]].*//' ||
+    grep -E "^$1==" "$ROOT/tests/python/requirements.txt" | sed 's/[[:space:]].*//' | grep . ||
         fail "tests/python/requirements.txt pins no $1"
 }
-WANT="maturin==$MATURIN_VERSION $(pin ziglang) $(pin cargo-zigbuild)"
-if [ "$(cat "$TOOLS/.pins" 2>/dev/null)" != "$WANT" ]; then
+WANT="$(pin maturin) $(pin ziglang) $(pin cargo-zigbuild)"
+has_pins() {
+    # shellcheck disable=SC2086
+    "$TOOLS/bin/python" - $WANT <<'EOF' 2>/dev/null
+import sys
+from importlib.metadata import version
+sys.exit(any(version(name) != want for name, want in (p.split("==") for p in sys.argv[1:])))
+EOF
+}
+if ! has_pins; then
+    [ -z "${BEAM_IMPACT_WHEEL_TOOLS:-}" ] || fail "BEAM_IMPACT_WHEEL_TOOLS=$TOOLS is not a venv with $WANT"
     rm -rf "$TOOLS"
     python3 -m venv "$TOOLS" || fail "python3 -m venv failed (python3-venv missing?)"
     # shellcheck disable=SC2086
     "$TOOLS/bin/python" -m pip install --quiet --disable-pip-version-check $WANT || fail "cannot install $WANT into $TOOLS"
-    echo "$WANT" >"$TOOLS/.pins"
 fi
 MATURIN=$TOOLS/bin/maturin
 
@@ -162,5 +171,51 @@ WHEEL=$(PATH="$TOOLS/bin:$PATH" maturin_build "$STAGE/linux" --compatibility man
 mv "$WHEEL" "$OUT/"
 keep "$OUT/$(basename "$WHEEL")" linux
 echo "build-wheels: linux in $(($(now) - t0)) s"
+
+if [ "$PLATFORMS" = all ]; then
+    CROSS=$BEAM_IMPACT_CROSS_DIR
+    [ "$("$CROSS/bin/rustc" -V)" = "$(rustc -V)" ] || fail "the machine's rustc changed: run scripts/cross-toolchain.sh"
+    # cross_build TRIPLE DIR [MATURIN ARGS...]: maturin with the cross toolchain (zig from its venv,
+    # std from source), in the target directory scripts/cross-build.sh uses for TRIPLE.
+    cross_build() {
+        triple=$1
+        dir=$2
+        shift 2
+        PATH="$CROSS/venv/bin:$TOOLS/bin:$PATH" RUSTC="$CROSS/bin/rustc" RUSTC_BOOTSTRAP=1 \
+            CARGO_TARGET_DIR="$BEAM_IMPACT_CROSS_TARGET/$triple" \
+            maturin_build "$dir" --zig --target "$triple" -Z build-std=std,panic_abort "$@"
+    }
+
+    # --- Windows: python3.dll's import library from pyo3 (generate-import-lib); the one export
+    # named in a .def file (zig's linker ignores rustc's export list and would export every symbol).
+    t0=$(now)
+    DEF=$STAGE/native.def
+    printf 'LIBRARY _native.pyd\nEXPORTS\n    PyInit__native\n' >"$DEF"
+    WHEEL=$(cross_build x86_64-pc-windows-gnu "$STAGE/windows" -- -C link-arg="$DEF") ||
+        fail "maturin build for x86_64-pc-windows-gnu failed"
+    mv "$WHEEL" "$OUT/"
+    keep "$OUT/$(basename "$WHEEL")" windows
+    echo "build-wheels: windows in $(($(now) - t0)) s"
+
+    # --- macOS: each slice as scripts/cross-build.sh builds the FMU's dylib (its header says why:
+    # hidden default visibility, the deployment targets, no strip), then one universal2 wheel.
+    t0=$(now)
+    for triple in x86_64-apple-darwin aarch64-apple-darwin; do
+        WHEEL=$(
+            case "$triple" in
+            x86_64-*) export MACOSX_DEPLOYMENT_TARGET=10.12 ;;
+            *) export MACOSX_DEPLOYMENT_TARGET=11.0 ;;
+            esac
+            export CARGO_PROFILE_RELEASE_STRIP=false
+            export "CARGO_TARGET_$(echo "$triple" | tr 'a-z-' 'A-Z_')_RUSTFLAGS=-Zdefault-visibility=hidden"
+            export "CFLAGS_$(echo "$triple" | tr '-' '_')=-fvisibility=hidden -DLZ4LIB_VISIBILITY= -DLZ4FLIB_VISIBILITY="
+            cross_build "$triple" "$STAGE/$triple" -- -C link-arg=-Wl,-dead_strip_dylibs
+        ) || fail "maturin build for $triple failed"
+    done
+    WHEEL=$(python3 "$ROOT/scripts/wheel_universal2.py" "$STAGE"/x86_64-apple-darwin/*.whl \
+        "$STAGE"/aarch64-apple-darwin/*.whl "$OUT") || fail "cannot merge the macOS wheels into a universal2 one"
+    keep "$WHEEL" macos
+    echo "build-wheels: macos in $(($(now) - t0)) s"
+fi
 
 echo "build-wheels: OK: version $VERSION, FMUs for $PACK_PLATFORMS, in $OUT:$(echo "$BUILT" | sed 's/ /\n  /g') (total $(($(now) - START)) s)"

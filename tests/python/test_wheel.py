@@ -111,6 +111,20 @@ def test_fmu_path_refuses_an_unknown_version(installed, tmp_path):
     assert "version must be one of fmi2, fmi3, got 'fmi1'" in done.stderr
 
 
+def test_beam_impact_fmu_dir_wins_over_the_wheels_fmus(installed, tmp_path):
+    """fmu_path()'s order: BEAM_IMPACT_FMU_DIR's FMU when it holds one, else the wheel's."""
+    python, venv, env, _ = installed
+    (tmp_path / "packed" / "fmi3").mkdir(parents=True)
+    (tmp_path / "packed" / "fmi3" / "BeamImpact.fmu").write_bytes(b"not read by fmu_path")
+    probe = "import beam_impact; print(beam_impact.fmu_path('fmi3')); print(beam_impact.fmu_path('fmi2'))"
+    done = subprocess.run([str(python), "-c", probe], cwd=tmp_path, env=dict(env, BEAM_IMPACT_FMU_DIR=str(tmp_path / "packed")),
+                          capture_output=True, text=True, timeout=TIMEOUT)
+    assert done.returncode == 0, done.stderr
+    fmi3, fmi2 = done.stdout.split()
+    assert fmi3 == str(tmp_path / "packed" / "fmi3" / "BeamImpact.fmu")
+    assert str(Path(fmi2).resolve()).startswith(str(venv.resolve())), fmi2  # no fmi2 there: the wheel's
+
+
 def test_the_tutorial_runs_from_the_wheel(installed, tmp_path):
     """Every ```sh and ```python block of the tutorial, in order, in a folder without target/fmu;
     the FMU's peaks are the CLI's (the FMU block prints both)."""
