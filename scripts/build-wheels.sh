@@ -183,15 +183,31 @@ if [ "$PLATFORMS" = all ]; then
         shift 2
         PATH="$CROSS/venv/bin:$TOOLS/bin:$PATH" RUSTC="$CROSS/bin/rustc" RUSTC_BOOTSTRAP=1 \
             CARGO_TARGET_DIR="$BEAM_IMPACT_CROSS_TARGET/$triple" \
-            maturin_build "$dir" --zig --target "$triple" -Z build-std=std,panic_abort "$@"
+            maturin_build "$dir" --target "$triple" -Z build-std=std,panic_abort "$@"
     }
 
-    # --- Windows: python3.dll's import library from pyo3 (generate-import-lib); the one export
-    # named in a .def file (zig's linker ignores rustc's export list and would export every symbol).
+    # --- Windows: python3.dll's import library from pyo3 (generate-import-lib, with zig's dlltool);
+    # the one export named in a .def file (zig's linker ignores rustc's export list and would export
+    # every symbol). Not maturin's --zig: for this mixed package it adds, to every crate's
+    # RUSTFLAGS, a .def exporting `PyInit_beam_impact._native`, which no crate defines (the link of
+    # the crate's own cdylib fails). Instead maturin's `cargo rustc` goes through cargo-zigbuild (a
+    # `cargo` on PATH that hands `rustc` to it), which links with zig as scripts/cross-build.sh does.
     t0=$(now)
     DEF=$STAGE/native.def
     printf 'LIBRARY _native.pyd\nEXPORTS\n    PyInit__native\n' >"$DEF"
-    WHEEL=$(cross_build x86_64-pc-windows-gnu "$STAGE/windows" -- -C link-arg="$DEF") ||
+    mkdir -p "$STAGE/cargo-zigbuild"
+    cat >"$STAGE/cargo-zigbuild/cargo" <<EOF
+#!/bin/sh
+# Written by scripts/build-wheels.sh: maturin's \`cargo rustc\` through cargo-zigbuild, the rest to cargo.
+if [ "\$1" = rustc ] && [ -z "\${BEAM_IMPACT_IN_ZIGBUILD:-}" ]; then
+    shift
+    BEAM_IMPACT_IN_ZIGBUILD=1 exec cargo-zigbuild rustc "\$@"
+fi
+exec '$(command -v cargo)' "\$@"
+EOF
+    chmod +x "$STAGE/cargo-zigbuild/cargo"
+    WHEEL=$(PATH="$STAGE/cargo-zigbuild:$PATH" ZIG_COMMAND="$CROSS/venv/bin/python3 -m ziglang" \
+        cross_build x86_64-pc-windows-gnu "$STAGE/windows" -- -C link-arg="$DEF") ||
         fail "maturin build for x86_64-pc-windows-gnu failed"
     mv "$WHEEL" "$OUT/"
     keep "$OUT/$(basename "$WHEEL")" windows
@@ -209,7 +225,7 @@ if [ "$PLATFORMS" = all ]; then
             export CARGO_PROFILE_RELEASE_STRIP=false
             export "CARGO_TARGET_$(echo "$triple" | tr 'a-z-' 'A-Z_')_RUSTFLAGS=-Zdefault-visibility=hidden"
             export "CFLAGS_$(echo "$triple" | tr '-' '_')=-fvisibility=hidden -DLZ4LIB_VISIBILITY= -DLZ4FLIB_VISIBILITY="
-            cross_build "$triple" "$STAGE/$triple" -- -C link-arg=-Wl,-dead_strip_dylibs
+            cross_build "$triple" "$STAGE/$triple" --zig -- -C link-arg=-Wl,-dead_strip_dylibs
         ) || fail "maturin build for $triple failed"
     done
     WHEEL=$(python3 "$ROOT/scripts/wheel_universal2.py" "$STAGE"/x86_64-apple-darwin/*.whl \
