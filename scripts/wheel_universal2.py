@@ -6,7 +6,9 @@ cached target directory, which maturin's own universal2 target cannot reuse):
     wheel_universal2.py X86_64.whl ARM64.whl OUT_DIR
 
 Every file of the two wheels must be the same bytes, except the native module (merged into one
-fat Mach-O by scripts/macho_info.py --merge, x86_64 slice first), `WHEEL` (its `Tag:` lines become
+fat Mach-O by scripts/macho_info.py --merge, x86_64 slice first), the software bill of materials
+maturin writes per target (`*.dist-info/sboms/NAME.json`: the x86_64 one is kept under its name,
+the arm64 one added as `NAME.arm64.json`), `WHEEL` (its `Tag:` lines become
 the three tags maturin gives a universal2 wheel: macosx_A_x86_64, macosx_B_arm64 and
 macosx_A_universal2, A and B the input wheels' versions) and `RECORD` (written anew). Prints the
 new wheel's path; exits 1 with one line otherwise. Standard library only.
@@ -58,7 +60,8 @@ def main() -> int:
         special = {MODULE} | {n for n in names if re.fullmatch(r"[^/]+\.dist-info/(WHEEL|RECORD)", n)}
         if MODULE not in names or len(special) != 3:
             sys.exit(f"wheel_universal2: {x86.name} lacks {MODULE}, WHEEL or RECORD")
-        differ = [n for n in names if n not in special and a.read(n) != b.read(n)]
+        sboms = {n for n in names if re.fullmatch(r"[^/]+\.dist-info/sboms/[^/]+\.json", n) and a.read(n) != b.read(n)}
+        differ = [n for n in names if n not in special | sboms and a.read(n) != b.read(n)]
         if differ:
             sys.exit(f"wheel_universal2: the wheels' {differ} differ (only the native module may)")
         thin = [Path(scratch) / "x86_64.so", Path(scratch) / "arm64.so"]
@@ -86,6 +89,14 @@ def main() -> int:
                 info.compress_type = zipfile.ZIP_DEFLATED
                 w.writestr(info, data)
                 record.append(f"{n},{digest(data)},{len(data)}")
+            for n in sorted(sboms):
+                data = b.read(n)
+                extra = n[: -len(".json")] + ".arm64.json"
+                info = zipfile.ZipInfo(extra, date_time=b.getinfo(n).date_time)
+                info.external_attr = b.getinfo(n).external_attr
+                info.compress_type = zipfile.ZIP_DEFLATED
+                w.writestr(info, data)
+                record.append(f"{extra},{digest(data)},{len(data)}")
             record.append(f"{record_name},,")
             info = zipfile.ZipInfo(record_name, date_time=a.getinfo(record_name).date_time)
             info.external_attr = a.getinfo(record_name).external_attr
