@@ -80,6 +80,9 @@ def record_problems(archive: zipfile.ZipFile) -> list[str]:
         listed.add(name)
         if name == record[0]:
             continue
+        if name not in names:
+            problems.append(f"RECORD lists {name}, which the wheel lacks")
+            continue
         data = archive.read(name)
         want = "sha256=" + base64.urlsafe_b64encode(hashlib.sha256(data).digest()).rstrip(b"=").decode()
         if digest != want or int(size) != len(data):

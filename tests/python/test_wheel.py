@@ -149,3 +149,35 @@ def test_the_tutorial_runs_from_the_wheel(installed, tmp_path):
     wrapped = [out for info, body, out in outputs if info == "python" and "beam_impact.simulate(" in body]
     assert wrapped and "design.pass False" in wrapped[0], wrapped
     assert (tmp_path / "sweep-stresses.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def wheel_check(wheel: Path, platform: str = "linux", fmus: str = "linux") -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, str(ROOT / "scripts" / "wheel_check.py"), str(wheel), platform, fmus],
+                          capture_output=True, text=True, timeout=TIMEOUT)
+
+
+def test_wheel_check_passes_the_wheel_and_refuses_altered_copies(tmp_path):
+    """scripts/wheel_check.py (run by build-wheels.sh on every wheel) passes the built wheel and
+    refuses: a copy without its FMI 3 FMU (RECORD still lists it), one renamed to another
+    platform's tag, and the same wheel checked as carrying every platform's FMU binaries."""
+    wheel = the_wheel()
+    done = wheel_check(wheel)
+    assert done.returncode == 0, done.stderr
+    assert "needs GLIBC_2.17 at most" in done.stdout and "exports PyInit__native" in done.stdout
+
+    without = tmp_path / wheel.name
+    with zipfile.ZipFile(wheel) as source, zipfile.ZipFile(without, "w") as copy:
+        for item in source.infolist():
+            if item.filename != "beam_impact/fmus/fmi3/BeamImpact.fmu":
+                copy.writestr(item, source.read(item.filename))
+    done = wheel_check(without)
+    assert done.returncode == 1
+    assert "no beam_impact/fmus/fmi3/BeamImpact.fmu" in done.stderr
+
+    renamed = tmp_path / "beam_impact-0.1.0-cp39-abi3-manylinux_2_28_x86_64.whl"
+    shutil.copy(wheel, renamed)
+    done = wheel_check(renamed)
+    assert done.returncode == 1 and "is not beam_impact-V-cp39-abi3-" in done.stderr
+
+    done = wheel_check(wheel, fmus="all")
+    assert done.returncode == 1 and "binaries/win64/BeamImpact.dll" in done.stderr
