@@ -77,7 +77,8 @@ TOOLS=${BEAM_IMPACT_WHEEL_TOOLS:-$TARGET_DIR/wheel-tools}
 
 # --- tools ---------------------------------------------------------------------------------
 # maturin, ziglang and cargo-zigbuild at the pins of tests/python/requirements.txt, in TOOLS: a venv
-# made here (target/wheel-tools) or one given that has them (tests/run_all.sh gives its .venv).
+# made here (target/wheel-tools, or BEAM_IMPACT_WHEEL_TOOLS when that does not exist yet) or one
+# given that has them (tests/run_all.sh gives its .venv).
 pin() {
     grep -E "^$1==" "$ROOT/tests/python/requirements.txt" | sed 's/[[:space:]].*//' | grep . ||
         fail "tests/python/requirements.txt pins no $1"
@@ -92,7 +93,9 @@ sys.exit(any(version(name) != want for name, want in (p.split("==") for p in sys
 EOF
 }
 if ! has_pins; then
-    [ -z "${BEAM_IMPACT_WHEEL_TOOLS:-}" ] || fail "BEAM_IMPACT_WHEEL_TOOLS=$TOOLS is not a venv with $WANT"
+    # A folder given that exists is never removed (it may be the test venv): only made when absent.
+    [ -z "${BEAM_IMPACT_WHEEL_TOOLS:-}" ] || [ ! -e "$TOOLS" ] ||
+        fail "BEAM_IMPACT_WHEEL_TOOLS=$TOOLS is not a venv with $WANT"
     rm -rf "$TOOLS"
     python3 -m venv "$TOOLS" || fail "python3 -m venv failed (python3-venv missing?)"
     # shellcheck disable=SC2086

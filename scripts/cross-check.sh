@@ -120,11 +120,11 @@ stage pack env PATH="$BEAM_IMPACT_CROSS_DIR/venv/bin:$PATH" "$ROOT/target/releas
 stage fmpy python_with_fmpy
 stage fmu-check check_fmus
 # The wheels of every platform (issue 31), each carrying the FMUs just checked; the Linux one is
-# also built (and run) by tests/run_all.sh. maturin from the test venv when it has the pins.
+# also built (and run) by tests/run_all.sh. maturin in a venv of the cache, not of the clone: its
+# zig wrappers (the C compiler of lz4-sys and zstd-sys) are named after maturin's path, and a new
+# path would rebuild the C and what depends on it for both macOS slices.
 wheels() {
-    if [ -x "$ROOT/.venv/bin/maturin" ]; then
-        export BEAM_IMPACT_WHEEL_TOOLS="$ROOT/.venv"
-    fi
+    export BEAM_IMPACT_WHEEL_TOOLS="${BEAM_IMPACT_WHEEL_TOOLS:-$CACHE/wheel-tools}"
     rm -rf "$ROOT/target/wheels-all"
     "$ROOT/scripts/build-wheels.sh" "$ROOT/target/wheels-all" --platforms all --fmu-dir "$OUT"
 }
