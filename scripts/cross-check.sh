@@ -6,8 +6,9 @@
 # libraries), checks both FMUs (fmpy's validate_fmu, the binaries in each platform directory, the
 # Mach-O slices with scripts/macho_info.py), and runs the DLL taken from the packed FMU under wine
 # against the Linux library taken from it (scripts/wine-check.sh: FMI 2 and FMI 3, state
-# serialization, MCAP logs byte for byte). Prints `unzip -l` of both FMUs and one verdict line with
-# each stage's time.
+# serialization, MCAP logs byte for byte), then builds the abi3 wheels of Linux, Windows and macOS
+# carrying those FMUs (scripts/build-wheels.sh --platforms all, each wheel checked by
+# scripts/wheel_check.py). Prints `unzip -l` of both FMUs and one verdict line with each stage's time.
 #
 # The toolchain and the cross builds' directories are cached under ~/.cache/beam-impact-cross
 # (toolchain/, target/<triple>/; CI's fresh clone has no .cross/ or target/): std, the
@@ -118,5 +119,15 @@ stage host-build cargo build --release --quiet
 stage pack env PATH="$BEAM_IMPACT_CROSS_DIR/venv/bin:$PATH" "$ROOT/target/release/beam-impact" pack --platforms all --out "$OUT"
 stage fmpy python_with_fmpy
 stage fmu-check check_fmus
+# The wheels of every platform (issue 31), each carrying the FMUs just checked; the Linux one is
+# also built (and run) by tests/run_all.sh. maturin in a venv of the cache, not of the clone: its
+# zig wrappers (the C compiler of lz4-sys and zstd-sys) are named after maturin's path, and a new
+# path would rebuild the C and what depends on it for both macOS slices.
+wheels() {
+    export BEAM_IMPACT_WHEEL_TOOLS="${BEAM_IMPACT_WHEEL_TOOLS:-$CACHE/wheel-tools}"
+    rm -rf "$ROOT/target/wheels-all"
+    "$ROOT/scripts/build-wheels.sh" "$ROOT/target/wheels-all" --platforms all --fmu-dir "$OUT"
+}
 stage wine "$ROOT/scripts/wine-check.sh" "$CHECK/fmi3/binaries/x86_64-windows/BeamImpact.dll" "$CHECK/fmi3/binaries/x86_64-linux/BeamImpact.so"
-echo "cross-check: OK: both FMUs carry Linux, Windows and macOS (universal2) binaries, pass validate_fmu and the binary checks; the packed DLL matches the packed Linux library under wine (${TIMES%,}; total $(($(now) - START)) s)"
+stage wheels wheels
+echo "cross-check: OK: both FMUs carry Linux, Windows and macOS (universal2) binaries, pass validate_fmu and the binary checks; the packed DLL matches the packed Linux library under wine; the abi3 wheels of the three platforms carry them and pass scripts/wheel_check.py (${TIMES%,}; total $(($(now) - START)) s)"

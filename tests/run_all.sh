@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Runs every test of beam-impact on a fresh machine (Rust toolchain, gcc, Python 3.11):
 # formatting and lints, the Rust tests (physics, paper tables, CLI, FMI importer, MCAP),
-# then, in a venv it creates itself (.venv, with the pinned ziglang and cargo-zigbuild on PATH),
-# installs the Python package (its native module, the Rust log reader, built by maturin), packs the
-# FMUs with the library built for glibc 2.17 and runs the Python tests (fmpy, mcap).
+# then, in a venv it creates itself (.venv, with the pinned maturin, ziglang and cargo-zigbuild on
+# PATH), packs the FMUs with the library built for glibc 2.17, builds the Linux wheel of the Python
+# package from them (its native module, the Rust log reader, built by maturin), installs it and runs
+# the Python tests (fmpy, mcap, the wheel in a fresh venv).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # Each stage prints its time, so a slow stage shows where it is.
@@ -38,13 +39,12 @@ RUSTDOCFLAGS="-D warnings" cargo doc --release --workspace --no-deps --quiet
 stage "cargo test --release (the library's unit tests, then one binary with every integration test)"
 cargo test --release
 
-stage "Python venv (.venv) with fmpy, mcap, ziglang, cargo-zigbuild and beam_impact (maturin builds its native module)"
+stage "Python venv (.venv) with fmpy, mcap, maturin, ziglang and cargo-zigbuild"
 if ! wait "$requirements"; then
   cat .venv/requirements.log
   echo "pip install -r tests/python/requirements.txt failed (its output above)" >&2
   exit 1
 fi
-.venv/bin/python -m pip install --quiet --disable-pip-version-check ./python
 # cargo-zigbuild finds zig through the venv's python (python3 -m ziglang).
 export PATH="$PWD/.venv/bin:$PATH"
 
@@ -55,7 +55,16 @@ bin="${CARGO_TARGET_DIR:-target}/release/beam-impact"
 # --ssp: also GangwayOnVessel.ssp (the vessel-motion FMU compiled by the same zig; tests/python/test_ssp.py).
 "$bin" pack --ssp --out target/fmu
 
+# The wheel users install (docs/wheels.md), built once from the FMUs just packed (maturin links
+# the native module for glibc 2.17, reusing the compiled dependencies), is the package the tests
+# use: installed here, and into a fresh venv without Rust by tests/python/test_wheel.py.
+stage "the Linux wheel (scripts/build-wheels.sh) into target/wheels and .venv"
+rm -rf target/wheels
+BEAM_IMPACT_WHEEL_TOOLS="$PWD/.venv" scripts/build-wheels.sh target/wheels --fmu-dir target/fmu
+.venv/bin/python -m pip uninstall --quiet --yes beam_impact > /dev/null 2>&1 || true
+.venv/bin/python -m pip install --quiet --disable-pip-version-check target/wheels/beam_impact-*.whl
+
 stage "pytest"
 BEAM_IMPACT_FMU_DIR="$PWD/target/fmu" BEAM_IMPACT_BIN="$(cd "$(dirname "$bin")" && pwd)/beam-impact" \
-  BEAM_IMPACT_REQUIRE_GLIBC_2_17=1 .venv/bin/python -m pytest -q tests/python
+  BEAM_IMPACT_REQUIRE_GLIBC_2_17=1 BEAM_IMPACT_REQUIRE_WHEEL=1 .venv/bin/python -m pytest -q tests/python
 stage "all tests passed in $((SECONDS - started)) s"

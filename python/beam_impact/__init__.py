@@ -7,12 +7,13 @@ sweeps on threads or a Dask cluster, and its MCAP log reader.
     beam_impact.simulate(fmu, {"drop_height": 0.8})          one FMU run: the peaks (CLI names)
     beam_impact.load_log("paper.mcap")                       a log as numpy arrays / DataFrame
     python -m beam_impact sweep [--scenario FILE | --fmu PATH] --vary KEY=SPEC ... --out FILE.csv
+    beam_impact.fmu_path("fmi3")                             the FMU a wheel carries (or $BEAM_IMPACT_FMU_DIR's)
 
 Heavy imports (fmpy, dask, pandas) happen inside the functions, so `import beam_impact` is quick.
 """
 
 from .dask_sweep import sweep
-from .fmu import FmuFile, SimulationError, simulate
+from .fmu import FmuFile, SimulationError, fmu_path, simulate
 from .grid import expand, linspace, parse_spec, parse_vary
 from .log import Log, LogError, load_log
 from .native_run import RunResult, run
@@ -24,6 +25,7 @@ __all__ = [
     "RunResult",
     "SimulationError",
     "expand",
+    "fmu_path",
     "linspace",
     "load_log",
     "parse_spec",

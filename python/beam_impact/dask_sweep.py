@@ -42,7 +42,7 @@ import time
 import uuid
 from typing import Any, Iterable
 
-from .fmu import CHECK_COLUMNS, CHECK_OUTPUTS, FORMER_NAMES, PEAK_OUTPUTS, FmuFile, _extracted, _path_text, simulate
+from .fmu import CHECK_COLUMNS, CHECK_OUTPUTS, FORMER_NAMES, PEAK_OUTPUTS, FmuFile, _extracted, _path_text, fmu_path, simulate
 from .grid import display, expand
 
 #: Dask key prefix of the sweep's tasks (the progress bar's label).
@@ -124,9 +124,14 @@ def _native_energy_method() -> list[str]:
 
 
 def _fmu_path(fmu: "str | os.PathLike | None") -> str:
+    """`fmu` as given, else BEAM_IMPACT_FMU, else `beam_impact.fmu_path()` (BEAM_IMPACT_FMU_DIR,
+    then the FMI 2 FMU a wheel carries)."""
     path = fmu if fmu is not None else os.environ.get("BEAM_IMPACT_FMU")
     if path is None:
-        raise ValueError("no FMU: pass fmu=PATH (or set BEAM_IMPACT_FMU)")
+        try:
+            return fmu_path("fmi2")
+        except FileNotFoundError as e:
+            raise ValueError(f"no FMU: pass fmu=PATH (or set BEAM_IMPACT_FMU); {e}") from None
     path = _path_text(path)
     if not os.path.lexists(path):
         raise FileNotFoundError(f"{path}: no such FMU (build it with `beam-impact pack`)")

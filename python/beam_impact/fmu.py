@@ -58,6 +58,42 @@ _INT_MAX = 2**31 - 1
 _ERROR = 3
 
 
+#: Where a wheel keeps its packed FMUs, inside the installed package: fmus/fmi2/BeamImpact.fmu and
+#: fmus/fmi3/BeamImpact.fmu (scripts/build-wheels.sh puts them there; `pip install ./python` has none).
+PACKED_FMUS = Path(__file__).resolve().parent / "fmus"
+#: The FMI versions `fmu_path` knows.
+FMI_VERSIONS = ("fmi2", "fmi3")
+
+
+def fmu_path(version: str = "fmi2") -> str:
+    """The path of the beam-impact FMU for `version` ("fmi2" or "fmi3"), found in this order:
+
+    1. `$BEAM_IMPACT_FMU_DIR/<version>/BeamImpact.fmu` when BEAM_IMPACT_FMU_DIR is set (the layout
+       `beam-impact pack --out DIR` writes): a setting made on purpose beats the default, so a
+       developer's freshly packed FMUs win over the ones a wheel carries;
+    2. the FMU packed inside the installed package (`beam_impact/fmus/<version>/BeamImpact.fmu`),
+       which every wheel built by scripts/build-wheels.sh carries.
+
+    Raises ValueError for another version, and FileNotFoundError with one line naming the places
+    looked at when neither holds the FMU (a package installed from source carries none: pack them
+    with `beam-impact pack --out DIR` and set BEAM_IMPACT_FMU_DIR=DIR)."""
+    if version not in FMI_VERSIONS:
+        raise ValueError(f"fmu_path: version must be one of {', '.join(FMI_VERSIONS)}, got {version!r}")
+    looked = []
+    directory = os.environ.get("BEAM_IMPACT_FMU_DIR")
+    if directory:
+        path = Path(directory) / version / "BeamImpact.fmu"
+        if path.is_file():
+            return str(path)
+        looked.append(f"{path} (BEAM_IMPACT_FMU_DIR)")
+    packed = PACKED_FMUS / version / "BeamImpact.fmu"
+    if packed.is_file():
+        return str(packed)
+    looked.append(f"{packed} (inside the package: wheels carry it, an install from source does not)")
+    raise FileNotFoundError(f"no {version} FMU: looked at {'; '.join(looked)}; pack one with "
+                            "`beam-impact pack --out DIR` and set BEAM_IMPACT_FMU_DIR=DIR")
+
+
 class SimulationError(RuntimeError):
     """A run the FMU refused or could not finish; the message is the FMU's own (its logger's)."""
 

@@ -412,3 +412,27 @@ def test_the_local_sweep_shows_a_bar_with_the_time_left(monkeypatch, capsys):
     bar = capsys.readouterr().err
     assert "sweep" in bar and "2/2" in bar and "<00:00" in bar, bar  # tqdm: [elapsed<left, rate]
     assert (table["error"] == "").all() and (table["wall_time"] > 0).all()
+
+
+def test_fmu_path_without_an_fmu_names_both_places(tmp_path, monkeypatch):
+    """No FMU in BEAM_IMPACT_FMU_DIR nor inside the package (an install from source): one line
+    naming both places; and the sweep without fmu= says so too."""
+    import beam_impact.fmu as fmu_module
+
+    monkeypatch.setattr(fmu_module, "PACKED_FMUS", tmp_path / "package" / "fmus")
+    monkeypatch.setenv("BEAM_IMPACT_FMU_DIR", str(tmp_path / "empty"))
+    monkeypatch.delenv("BEAM_IMPACT_FMU", raising=False)
+    with pytest.raises(FileNotFoundError) as e:
+        beam_impact.fmu_path("fmi3")
+    message = str(e.value)
+    assert "\n" not in message
+    assert str(tmp_path / "empty" / "fmi3" / "BeamImpact.fmu") in message
+    assert str(tmp_path / "package" / "fmus" / "fmi3" / "BeamImpact.fmu") in message
+    with pytest.raises(ValueError, match="no FMU: pass fmu=PATH"):
+        beam_impact.sweep({"drop_height": [1.0]})
+
+
+def test_fmu_path_takes_beam_impact_fmu_dir(monkeypatch):
+    monkeypatch.setenv("BEAM_IMPACT_FMU_DIR", str(FMU_DIR))
+    assert beam_impact.fmu_path() == str(FMU_DIR / "fmi2" / "BeamImpact.fmu")
+    assert beam_impact.fmu_path("fmi3") == str(FMU_DIR / "fmi3" / "BeamImpact.fmu")

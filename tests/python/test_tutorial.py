@@ -5,7 +5,8 @@ directory, and succeeds; what the tutorial states about the results holds (one C
 height, the figure written, the worst case the one it goes on with, the FMU giving the CLI's
 peaks, the log and its figures written). The ```sh setup block (build, pack, pip install) is what
 the suite's environment has already done, so it is not run: `beam-impact` is BEAM_IMPACT_BIN
-(a symbolic link on PATH), `target/fmu` is BEAM_IMPACT_FMU_DIR, `python` is this interpreter,
+(a symbolic link on PATH), `target/fmu` is BEAM_IMPACT_FMU_DIR (exported to the blocks, as the set-up
+does), `python` is this interpreter,
 and `examples/` and `docs/` are copies of the repository's. Output blocks (```text) are not
 compared: the numbers in them are abbreviated and may move with the physics.
 
@@ -62,7 +63,8 @@ def tutorial(tmp_path_factory):
     (bin_dir / "beam-impact").symlink_to(binary())
     (bin_dir / "python").symlink_to(sys.executable)
     (bin_dir / "python3").symlink_to(sys.executable)
-    env = dict(os.environ, PATH=os.pathsep.join([str(bin_dir), os.environ.get("PATH", "")]), MPLBACKEND="Agg")
+    env = dict(os.environ, PATH=os.pathsep.join([str(bin_dir), os.environ.get("PATH", "")]), MPLBACKEND="Agg",
+               BEAM_IMPACT_FMU_DIR=str(FMU_DIR.resolve()))  # the set-up's export: beam_impact.fmu_path() finds them
     ran = []
     for n, (info, body) in enumerate(runnable(TUTORIAL.read_text()), 1):
         if info == "sh":

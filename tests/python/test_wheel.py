@@ -1,0 +1,183 @@
+"""The Linux wheel works without Rust (issue 31, item 2).
+
+Goal: the wheel scripts/build-wheels.sh makes (tests/run_all.sh builds it once, from the FMUs it
+packed, into target/wheels/) installs into a fresh venv whose PATH has no cargo or rustc, and
+there runs docs/tutorial.md as test_tutorial.py does, except that `python` is the fresh venv's,
+no BEAM_IMPACT_FMU_DIR is set and the working folder has no target/fmu: `beam_impact.fmu_path()`
+must find the FMUs the wheel carries, and the native module must be the wheel's. The CLI blocks
+run `beam-impact` (BEAM_IMPACT_BIN: the built executable, no Rust toolchain).
+
+The wheel is BEAM_IMPACT_WHEEL, or the one manylinux wheel in target/wheels/. Without one the test
+is skipped, except where BEAM_IMPACT_REQUIRE_WHEEL=1 (tests/run_all.sh), where it fails.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+
+from test_tutorial import TIMEOUT, TUTORIAL, binary, runnable
+
+ROOT = Path(__file__).resolve().parents[2]
+REQUIRED = os.environ.get("BEAM_IMPACT_REQUIRE_WHEEL") == "1"
+#: Variables that would point the fresh venv at the repository's FMUs or package, or at Rust.
+DROPPED = ("BEAM_IMPACT_FMU_DIR", "BEAM_IMPACT_FMU", "PYTHONPATH", "VIRTUAL_ENV", "CARGO", "CARGO_HOME",
+           "CARGO_TARGET_DIR", "RUSTC", "RUSTUP_HOME", "RUSTUP_TOOLCHAIN")
+
+
+def the_wheel() -> Path:
+    given = os.environ.get("BEAM_IMPACT_WHEEL")
+    if given:
+        assert Path(given).is_file(), f"BEAM_IMPACT_WHEEL={given}: no such file"
+        return Path(given)
+    found = sorted((ROOT / "target" / "wheels").glob("beam_impact-*-cp39-abi3-*manylinux*_x86_64*.whl"))
+    if not found:
+        message = "no Linux wheel in target/wheels: run scripts/build-wheels.sh target/wheels (or set BEAM_IMPACT_WHEEL)"
+        if REQUIRED:
+            pytest.fail(message, pytrace=False)
+        pytest.skip(message)
+    assert len(found) == 1, f"more than one Linux wheel in target/wheels: {[p.name for p in found]}"
+    return found[0]
+
+
+def pin(name: str) -> str:
+    """The pinned requirement of tests/python/requirements.txt (the same fmpy and matplotlib as the suite)."""
+    for line in (ROOT / "tests" / "python" / "requirements.txt").read_text().splitlines():
+        if line.startswith(f"{name}=="):
+            return line.split()[0]
+    raise AssertionError(f"tests/python/requirements.txt pins no {name}")
+
+
+def without_rust(path: str) -> str:
+    """PATH less every folder that holds cargo or rustc."""
+    return os.pathsep.join(d for d in path.split(os.pathsep)
+                           if d and not any(os.path.exists(os.path.join(d, tool)) for tool in ("cargo", "rustc")))
+
+
+@pytest.fixture(scope="module")
+def installed(tmp_path_factory):
+    """A fresh venv with the wheel (and matplotlib for the tutorial's plot): (its python, env)."""
+    wheel = the_wheel()
+    venv = tmp_path_factory.mktemp("wheel-venv")
+    subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True, timeout=TIMEOUT)
+    python = venv / "bin" / "python"
+    done = subprocess.run([str(python), "-m", "pip", "install", "--quiet", "--disable-pip-version-check", str(wheel),
+                           pin("fmpy"), pin("matplotlib")], capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, f"pip install {wheel.name} failed:\n{done.stdout}{done.stderr}"
+    bin_dir = tmp_path_factory.mktemp("wheel-bin")
+    (bin_dir / "beam-impact").symlink_to(binary())
+    for name in ("python", "python3"):
+        (bin_dir / name).symlink_to(python)
+    env = {k: v for k, v in os.environ.items() if k not in DROPPED}
+    env.update(PATH=os.pathsep.join([str(bin_dir), str(venv / "bin"), without_rust(os.environ.get("PATH", ""))]),
+               MPLBACKEND="Agg")
+    for tool in ("cargo", "rustc"):
+        assert shutil.which(tool, path=env["PATH"]) is None, f"{tool} is still on the test's PATH"
+    return python, venv, env, wheel
+
+
+def test_the_wheel_carries_the_module_and_both_fmus(installed, tmp_path):
+    """Imported from the fresh venv: the package, its native module and the FMUs fmu_path() finds all
+    lie inside the venv's site-packages, and the FMUs are the wheel's bytes."""
+    python, venv, env, wheel = installed
+    probe = ("import beam_impact, beam_impact._native as n\n"
+             "print(beam_impact.__file__); print(n.__file__)\n"
+             "print(beam_impact.fmu_path('fmi2')); print(beam_impact.fmu_path('fmi3'))\n")
+    done = subprocess.run([str(python), "-c", probe], cwd=tmp_path, env=env, capture_output=True, text=True,
+                          timeout=TIMEOUT)
+    assert done.returncode == 0, done.stderr
+    package, module, fmi2, fmi3 = done.stdout.split()
+    site = str(venv.resolve())
+    for path in (package, module, fmi2, fmi3):
+        assert str(Path(path).resolve()).startswith(site), f"{path} is not inside the fresh venv {site}"
+    assert module.endswith("_native.abi3.so")
+    with zipfile.ZipFile(wheel) as archive:
+        for fmi, path in (("fmi2", fmi2), ("fmi3", fmi3)):
+            assert Path(path).read_bytes() == archive.read(f"beam_impact/fmus/{fmi}/BeamImpact.fmu")
+
+
+def test_fmu_path_refuses_an_unknown_version(installed, tmp_path):
+    python, _, env, _ = installed
+    done = subprocess.run([str(python), "-c", "import beam_impact; beam_impact.fmu_path('fmi1')"], cwd=tmp_path,
+                          env=env, capture_output=True, text=True, timeout=TIMEOUT)
+    assert done.returncode != 0
+    assert "version must be one of fmi2, fmi3, got 'fmi1'" in done.stderr
+
+
+def test_beam_impact_fmu_dir_wins_over_the_wheels_fmus(installed, tmp_path):
+    """fmu_path()'s order: BEAM_IMPACT_FMU_DIR's FMU when it holds one, else the wheel's."""
+    python, venv, env, _ = installed
+    (tmp_path / "packed" / "fmi3").mkdir(parents=True)
+    (tmp_path / "packed" / "fmi3" / "BeamImpact.fmu").write_bytes(b"not read by fmu_path")
+    probe = "import beam_impact; print(beam_impact.fmu_path('fmi3')); print(beam_impact.fmu_path('fmi2'))"
+    done = subprocess.run([str(python), "-c", probe], cwd=tmp_path, env=dict(env, BEAM_IMPACT_FMU_DIR=str(tmp_path / "packed")),
+                          capture_output=True, text=True, timeout=TIMEOUT)
+    assert done.returncode == 0, done.stderr
+    fmi3, fmi2 = done.stdout.split()
+    assert fmi3 == str(tmp_path / "packed" / "fmi3" / "BeamImpact.fmu")
+    assert str(Path(fmi2).resolve()).startswith(str(venv.resolve())), fmi2  # no fmi2 there: the wheel's
+
+
+def test_the_tutorial_runs_from_the_wheel(installed, tmp_path):
+    """Every ```sh and ```python block of the tutorial, in order, in a folder without target/fmu;
+    the FMU's peaks are the CLI's (the FMU block prints both)."""
+    python, _, env, _ = installed
+    shutil.copytree(ROOT / "examples", tmp_path / "examples")
+    shutil.copytree(ROOT / "docs", tmp_path / "docs")
+    outputs = []
+    for n, (info, body) in enumerate(runnable(TUTORIAL.read_text()), 1):
+        args = ["bash", "-euo", "pipefail", "-c", body] if info == "sh" else [str(python), "-c", body]
+        done = subprocess.run(args, cwd=tmp_path, env=env, capture_output=True, text=True, timeout=TIMEOUT)
+        output = done.stdout + done.stderr
+        assert done.returncode == 0, f"tutorial block {n} (```{info}) failed from the wheel:\n{body}\n--- output:\n{output}"
+        outputs.append((info, body, output))
+    assert not (tmp_path / "target").exists(), "the tutorial made a target/ folder: an FMU may have come from it"
+    fmu = [out for info, body, out in outputs if info == "python" and "fmpy.simulate_fmu" in body]
+    assert fmu, "the tutorial has no fmpy block"
+    pairs = re.findall(r"FMU\s+(\S+)\s+CLI\s+(\S+)", fmu[0])
+    assert len(pairs) >= 3, fmu[0]
+    for got, want in pairs:
+        # Both print 4 decimals of MPa of the same internal steps (the FMU takes the CLI's steps).
+        assert float(got) == pytest.approx(float(want), rel=1e-6), fmu[0]
+    wrapped = [out for info, body, out in outputs if info == "python" and "beam_impact.simulate(" in body]
+    assert wrapped and "design.pass False" in wrapped[0], wrapped
+    assert (tmp_path / "sweep-stresses.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def wheel_check(wheel: Path, platform: str = "linux", fmus: str = "linux") -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, str(ROOT / "scripts" / "wheel_check.py"), str(wheel), platform, fmus],
+                          capture_output=True, text=True, timeout=TIMEOUT)
+
+
+def test_wheel_check_passes_the_wheel_and_refuses_altered_copies(tmp_path):
+    """scripts/wheel_check.py (run by build-wheels.sh on every wheel) passes the built wheel and
+    refuses: a copy without its FMI 3 FMU (RECORD still lists it), one renamed to another
+    platform's tag, and the same wheel checked as carrying every platform's FMU binaries."""
+    wheel = the_wheel()
+    done = wheel_check(wheel)
+    assert done.returncode == 0, done.stderr
+    assert "needs GLIBC_2.17 at most" in done.stdout and "exports PyInit__native" in done.stdout
+
+    without = tmp_path / wheel.name
+    with zipfile.ZipFile(wheel) as source, zipfile.ZipFile(without, "w") as copy:
+        for item in source.infolist():
+            if item.filename != "beam_impact/fmus/fmi3/BeamImpact.fmu":
+                copy.writestr(item, source.read(item.filename))
+    done = wheel_check(without)
+    assert done.returncode == 1
+    assert "no beam_impact/fmus/fmi3/BeamImpact.fmu" in done.stderr
+
+    renamed = tmp_path / "beam_impact-0.1.0-cp39-abi3-manylinux_2_28_x86_64.whl"
+    shutil.copy(wheel, renamed)
+    done = wheel_check(renamed)
+    assert done.returncode == 1 and "is not beam_impact-V-cp39-abi3-" in done.stderr
+
+    done = wheel_check(wheel, fmus="all")
+    assert done.returncode == 1 and "binaries/win64/BeamImpact.dll" in done.stderr
