@@ -12,6 +12,7 @@ mod answer;
 mod benchmarks;
 mod cli;
 mod cli_defects;
+mod docs;
 mod closed_form;
 mod contact_laws;
 mod converged_references;
