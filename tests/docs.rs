@@ -359,12 +359,8 @@ fn the_readme_is_short_and_opens_with_the_two_set_up_commands() {
     // Before it only the title and the block's marker.
     let before: Vec<&str> = readme.lines().take(first.line - 1).filter(|l| !l.trim().is_empty()).collect();
     assert!(before.len() <= 2 && before[0].starts_with("# "), "the README opens with its commands: {before:?}");
-    let commands: Vec<&str> = first
-        .body
-        .lines()
-        .map(|l| l.split('#').next().unwrap().trim())
-        .filter(|l| !l.is_empty())
-        .collect();
+    let commands: Vec<&str> =
+        first.body.lines().map(|l| l.split('#').next().unwrap().trim()).filter(|l| !l.is_empty()).collect();
     assert_eq!(commands, ["cargo run --release", "tests/run_all.sh"], "the two set-up commands");
     let ci = std::fs::read_to_string(root().join(".ci/run")).unwrap();
     assert!(ci.lines().any(|l| l.trim() == "tests/run_all.sh"), ".ci/run calls the README's test command");
@@ -377,7 +373,10 @@ fn slugs_and_links_follow_githubs_rules() {
         slug(" Results against the paper (paper scenario, `cargo run --release`)"),
         "results-against-the-paper-paper-scenario-cargo-run---release"
     );
-    assert_eq!(slug(" Answers an engineer can sign: converged, checked"), "answers-an-engineer-can-sign-converged-checked");
+    assert_eq!(
+        slug(" Answers an engineer can sign: converged, checked"),
+        "answers-an-engineer-can-sign-converged-checked"
+    );
     let a = anchors("# T\n## A b\n```sh\n# not a heading\n```\n## A b\n");
     assert_eq!(a, ["a-b", "a-b-1", "t"].iter().map(|s| s.to_string()).collect());
     let links = link_targets("see [x](a.md#b) and `[y](not/a/link)`, ![i](p.png)\n```\n[z](code)\n```\n[w\nv](c.md)");
