@@ -11,7 +11,8 @@
 //!
 //! or its page says `<!-- page run by PATH -->` (a page whose every block a test executes in
 //! order, as `tests/python/test_tutorial.py` does `docs/tutorial.md`'s). Blocks of data (`text`,
-//! `toml`, `json`, `csv`, `xml`) need no marker.
+//! `toml`, `json`, `csv`, `xml`) need no marker; a scenario shown (```toml) must be one the program
+//! reads.
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -381,4 +382,24 @@ fn slugs_and_links_follow_githubs_rules() {
     assert_eq!(a, ["a-b", "a-b-1", "t"].iter().map(|s| s.to_string()).collect());
     let links = link_targets("see [x](a.md#b) and `[y](not/a/link)`, ![i](p.png)\n```\n[z](code)\n```\n[w\nv](c.md)");
     assert_eq!(links, ["a.md#b", "p.png", "c.md"]);
+}
+
+/// A scenario a page shows is one the program reads: every ```toml block of the README and the
+/// docs parses as a scenario (unknown fields are refused), and one without a `[motion]` file (which
+/// the page's own folder does not hold) validates as well.
+#[test]
+fn every_scenario_a_page_shows_is_read_by_the_program() {
+    let mut shown = 0;
+    for page in pages() {
+        let text = std::fs::read_to_string(root().join(&page)).unwrap();
+        for block in blocks(&text).into_iter().filter(|b| b.language == "toml") {
+            let at = format!("{page}:{}", block.line);
+            let scenario = beam_impact::Scenario::from_toml(&block.body, &at).unwrap_or_else(|e| panic!("{e}"));
+            if scenario.motion.file.is_empty() {
+                scenario.validate().unwrap_or_else(|e| panic!("{at}: {e}"));
+            }
+            shown += 1;
+        }
+    }
+    assert!(shown >= 2, "{shown} scenarios shown");
 }
