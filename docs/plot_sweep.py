@@ -1,4 +1,4 @@
-"""The README's sweep figure: peak arrestor clamp stress over drop height, one line per damping ratio.
+"""The sweep figure of docs/cli.md: peak arrestor clamp stress over drop height, one line per damping ratio.
 
     beam-impact sweep --vary drop_height=0.1:2:100 --vary damping_ratio=0.005:0.05:10 --out sweep.csv
     python docs/plot_sweep.py sweep.csv docs/sweep-arrestor-stress.png

@@ -565,8 +565,8 @@ fn packed_fmu_carries_reference_results_and_its_documentation() {
             assert_eq!(row[0], k as f64 * 1e-3, "row {k}");
         }
         // The defaults' run (the converged method) against Table 1 (FEM): the running peaks at 3 s
-        // within 15 % (the converged method moves the shear stress by 13 %: README "Answers an
-        // engineer can sign").
+        // within 15 % (the converged method moves the shear stress by 13 %: docs/trust.md, "Answers
+        // an engineer can sign").
         let last = rows.last().unwrap();
         let peak = |name: &str| last[header.iter().position(|h| h == name).unwrap()];
         for (name, paper) in [

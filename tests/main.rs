@@ -15,6 +15,7 @@ mod cli_defects;
 mod closed_form;
 mod contact_laws;
 mod converged_references;
+mod docs;
 mod energy_method;
 mod energy_safety;
 mod envelope_log;

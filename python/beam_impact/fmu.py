@@ -6,7 +6,7 @@ time (the FMU runs until its importer's stop time); `upper.tip_force` / `lower.t
 FMU's inputs, held constant. Logging is off unless asked (`log.path` = "").
 
 With one communication step over the whole run (the default here) the FMU takes the CLI's very
-internal steps, so the peaks equal `beam-impact run`'s to round-off (README, "Co-simulation grid").
+internal steps, so the peaks equal `beam-impact run`'s to round-off (docs/fmu.md, "Co-simulation grid").
 """
 
 from __future__ import annotations

@@ -52,8 +52,9 @@ fn table1(default: &ReferenceRun, paper: &ReferenceRun) -> Result<String, String
         "<h2>The paper's run</h2>\n<p>With the defaults (0 to 3 s), the running peaks <code>peak.*</code> at the \
          stop time against Table 1 (FEM) of the paper. <code>method</code> = 1 runs the paper's 7 + 7/7 mesh and \
          time steps, which Table 1 is bound to; the default converged method differs from it where the paper's \
-         mesh is coarse (the shear stress at the clamp, the bridge's stress; README \"Answers an engineer can \
-         sign\"). These numbers were computed when this FMU was packed, by its own model:</p>\n",
+         mesh is coarse (the shear stress at the clamp, the bridge's stress; the repository's docs/trust.md, \
+         \"Answers an engineer can sign\"). These numbers were computed when this FMU was packed, by its own \
+         model:</p>\n",
     );
     out.push_str(
         "<table>\n<tr><th>Table 1 (FEM)</th><th>output at 3 s</th><th>paper</th><th>this FMU, <code>method</code> = 1 \

@@ -267,10 +267,11 @@ pub fn converged_benchmark(runs: usize) -> Result<String> {
     Ok(out)
 }
 
-/// The README's 1000-scenario grid (drop 0.1:2:100 x damping 0.005:0.05:10, 3 s each, converged
-/// answers with their checks) projected from a sample run as `beam-impact sweep` runs it (every
-/// core, the rows sharing their modes): the ten damping ratios at three drop heights (0.1, 1.05,
-/// 2 m), so that the sample's mix of lightly damped (slower) and damped rows is the grid's.
+/// The 1000-scenario grid of docs/cli.md's "Design sweeps" (drop 0.1:2:100 x damping
+/// 0.005:0.05:10, 3 s each, converged answers with their checks) projected from a sample run as
+/// `beam-impact sweep` runs it (every core, the rows sharing their modes): the ten damping ratios
+/// at three drop heights (0.1, 1.05, 2 m), so that the sample's mix of lightly damped (slower) and
+/// damped rows is the grid's.
 pub fn sweep_projection() -> Result<String> {
     use crate::studies::sweep::{field, linspace, Axis, Sweep};
     let axes = vec![
@@ -290,8 +291,8 @@ pub fn sweep_projection() -> Result<String> {
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "the README's 1000-scenario grid (drop 0.1:2:100 x damping 0.005:0.05:10, 3 s), projected from {} rows \
-         (drop 0.1 / 1.05 / 2 m x every damping ratio) on {jobs} threads:",
+        "the 1000-scenario grid of docs/cli.md (drop 0.1:2:100 x damping 0.005:0.05:10, 3 s), projected from {} \
+         rows (drop 0.1 / 1.05 / 2 m x every damping ratio) on {jobs} threads:",
         sweep.len()
     );
     let _ = writeln!(

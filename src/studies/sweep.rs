@@ -393,7 +393,7 @@ pub fn grid_len(axes: &[Axis]) -> Result<usize> {
 pub const GROUP_WINDOW: usize = 4096;
 
 /// Largest grid a sweep runs, checked before any value is built: a million converged scenarios
-/// is about ten days of CPU (0.86 s each, README).
+/// is about ten days of CPU (0.86 s each, docs/cli.md).
 pub const MAX_SCENARIOS: usize = 1_000_000;
 
 /// At most 200 characters of user text for a one-line message (an ellipsis marks the cut).

@@ -8,7 +8,7 @@ the cluster's very numbers; the SPEC syntax gives the CLI's grid to the bit; `si
 peaks and histories and logs only when asked; `load_log` reads a complete log and a killed run's.
 
 Tolerances: the issue asks for 0.5 %; the FMU at one communication step over the run takes the
-CLI's very internal steps (README "Co-simulation grid"), so the peaks are compared to 1e-9
+CLI's very internal steps (docs/fmu.md, "Co-simulation grid"), so the peaks are compared to 1e-9
 relative (round-off), like tests/python/test_fmu.py; the native engine runs the CLI sweep's own
 code for a row, so it meets the same bound (it gives the same bits). Both sides use automatic time steps: a scenario
 file without steps on the CLI, the FMU's default 0 (`beam-impact sweep` without a file would run
@@ -386,14 +386,15 @@ def test_python_m_beam_impact_sweep_runs_the_solver_without_an_fmu(tmp_path):
     assert both.returncode == 2 and "--scenario is for the solver itself" in both.stderr, both.stderr
 
 
-def test_the_readmes_local_cluster_script_runs_as_written(tmp_path):
+def test_the_docs_local_cluster_script_runs_as_written(tmp_path):
     """Issue 19: a LocalCluster script without the `__main__` guard fails ("Nanny failed to
-    start"); the README shows the guard. Its snippet runs here as a script, as a user saves it."""
-    readme = (ROOT / "README.md").read_text()
-    start = readme.index('  if __name__ == "__main__":') - len("  from dask.distributed import Client, LocalCluster\n\n")
-    block_start = readme.rindex("```python\n", 0, start) + len("```python\n")
-    block = readme[block_start:readme.index("```", block_start)]
-    script = "\n".join(line[2:] for line in block.splitlines())  # the README indents it by two
+    start"); docs/python-reference.md shows the guard. Its snippet runs here as a script, as a user
+    saves it."""
+    page = (ROOT / "docs" / "python-reference.md").read_text()
+    start = page.index('  if __name__ == "__main__":') - len("  from dask.distributed import Client, LocalCluster\n\n")
+    block_start = page.rindex("```python\n", 0, start) + len("```python\n")
+    block = page[block_start:page.index("```", block_start)]
+    script = "\n".join(line[2:] for line in block.splitlines())  # the page indents it by two (a list item)
     assert "LocalCluster" in script and '__name__ == "__main__"' in script
     (tmp_path / "study.py").write_text(script.replace("target/fmu/fmi2/BeamImpact.fmu", fmu_path()))
     run = subprocess.run([sys.executable, "study.py"], cwd=tmp_path, capture_output=True, text=True, timeout=300)

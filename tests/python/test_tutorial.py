@@ -162,7 +162,7 @@ def test_the_fmu_gives_the_cli_peaks(tutorial):
 
 
 def test_the_readme_sweep_figure_script_draws_a_cli_sweep(tmp_path):
-    """docs/plot_sweep.py (the README's figure) reads the CLI sweep's columns as they are named
+    """docs/plot_sweep.py (the figure of docs/cli.md) reads the CLI sweep's columns as they are named
     now: a 2 x 2 grid of short runs, drawn to a PNG."""
     rows = tmp_path / "sweep.csv"
     subprocess.run([binary(), "sweep", "--vary", "drop_height=0.3,0.6", "--vary", "damping_ratio=0.02,0.04",

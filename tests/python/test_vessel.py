@@ -3,7 +3,7 @@
 VesselMotion (`fmu/vessel/vessel_motion.c`, an FMI 2 co-simulation FMU built here with gcc
 against its FMI 2 types `fmu/vessel/fmi2_abi.h`; `beam-impact pack --ssp` builds the same source) is the heave and pitch of a walk-to-work
 vessel in a regular head-sea wave (linear RAOs, steady state), projected onto the two supports:
-the bridge's hinge heaves, the arrestor's clamp heaves and rotates (the README's "Moving supports" section has the
+the bridge's hinge heaves, the arrestor's clamp heaves and rotates (docs/moving-supports.md has the
 conventions). A fixed-step master (fmpy's low-level `FMU2Slave`, FMI 2 co-simulation, h = 1 ms,
 3 s from the impact; `tests/python/vessel_master.py`, shared with docs/plot_vessel_phase.py)
 couples them both ways:
@@ -100,7 +100,7 @@ def in_tmp(tmp_path, monkeypatch):
 
 
 def closed_form(p: dict, booleans: dict, t: np.ndarray) -> dict[str, np.ndarray]:
-    """The vessel's outputs from the README's formulas (section "Moving supports"), written again here (numpy)."""
+    """The vessel's outputs from docs/moving-supports.md's formulas, written again here (numpy)."""
     omega = 2 * math.pi / p["wave.period"]
     k = omega**2 / p["gravity"]
     psi = omega * t + p["wave.phase"]
@@ -224,7 +224,7 @@ def test_vessel_outputs_are_the_closed_form_with_exact_rates(vessel_fmu, tmp_pat
 def test_arrestor_end_moves_with_the_deck_point_under_it(vessel_fmu, tmp_path):
     """The clamp's heave and rotation carry the arrestor's end (length L, along clamp.direction)
     as the deck carries the point at clamp.x + direction L; with the defaults that point is the
-    bridge's contact point, 13 m forward of the hinge (the geometry the README describes)."""
+    bridge's contact point, 13 m forward of the hinge (the geometry docs/moving-supports.md describes)."""
     p, got = vessel_alone(vessel_fmu, tmp_path, {}, steps=900, step=0.01)
     length, contact = 12.0, 13.0  # BeamImpact's lower.length and contact_position
     assert p["hinge.x"] + contact == p["clamp.x"] + p["clamp.direction"] * length
