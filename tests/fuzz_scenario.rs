@@ -47,11 +47,14 @@ const LITERALS: &[&str] = &[
     "1979-05-27T07:32:00Z",
 ];
 
-/// The seed scenarios: every field (the default), the paper's, and a sparse file.
+/// The seed scenarios: every field (the default), the paper's, a sparse file, and beams of
+/// sections (issue 30: `[[lower.sections]]` and `[[upper.sections]]` tables mutated too).
 fn seeds() -> Vec<String> {
     vec![
         Scenario::default().to_toml(),
         Scenario::paper().to_toml(),
+        include_str!("../examples/tapered-arrestor.toml").to_string(),
+        include_str!("../examples/three-section-gangway.toml").to_string(),
         "drop_height = 0.8\nstep_free = 5e-5\n[upper]\nelements_to_contact = 14\n[lower]\nelements = 3\n".to_string(),
     ]
 }
