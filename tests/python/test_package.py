@@ -417,7 +417,8 @@ def test_the_local_sweep_shows_a_bar_with_the_time_left(monkeypatch, capsys):
 
 def test_fmu_path_without_an_fmu_names_both_places(tmp_path, monkeypatch):
     """No FMU in BEAM_IMPACT_FMU_DIR nor inside the package (an install from source): one line
-    naming both places; and the sweep without fmu= says so too."""
+    naming both places; and the FMU route of the sweep without fmu= says so too (without
+    engine="fmu" the sweep runs the solver itself and needs no FMU)."""
     import beam_impact.fmu as fmu_module
 
     monkeypatch.setattr(fmu_module, "PACKED_FMUS", tmp_path / "package" / "fmus")
@@ -430,7 +431,7 @@ def test_fmu_path_without_an_fmu_names_both_places(tmp_path, monkeypatch):
     assert str(tmp_path / "empty" / "fmi3" / "BeamImpact.fmu") in message
     assert str(tmp_path / "package" / "fmus" / "fmi3" / "BeamImpact.fmu") in message
     with pytest.raises(ValueError, match="no FMU: pass fmu=PATH"):
-        beam_impact.sweep({"drop_height": [1.0]})
+        beam_impact.sweep({"drop_height": [1.0]}, engine="fmu")
 
 
 def test_fmu_path_takes_beam_impact_fmu_dir(monkeypatch):
