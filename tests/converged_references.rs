@@ -271,3 +271,13 @@ fn one_reference_is_recomputed() {
         assert!(row["56"]["peaks"][name].as_f64().unwrap() >= expected * (1.0 - 1e-12), "{name}");
     }
 }
+
+/// `beam-impact bench` prints the fixture's verdict counts (issue 29 item 4): the same rows as
+/// the test above, each from its own scenario (the examples of sections from their files: the
+/// bench once ran them as the default scenario and counted 20 false greens).
+#[test]
+fn the_bench_counts_the_fixtures_verdicts_as_the_test_does() {
+    let line = beam_impact::studies::bench::fixture_verdicts().unwrap();
+    assert!(line.contains("false greens 0,"), "{line}");
+    assert!(line.contains("21 scenarios"), "{line}");
+}

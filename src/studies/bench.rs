@@ -330,7 +330,19 @@ pub fn fixture_verdicts() -> Result<String> {
     let (mut runs, mut trusted, mut false_greens, mut false_alarms, mut wanted) = (0, 0, 0, 0, 0);
     for (_, row) in rows {
         let settings = &row["scenario"];
-        let mut s = Scenario::default();
+        // A row of an example file (beams of sections): that file, embedded; any other file is
+        // not this build's to judge.
+        let mut s = match settings.get("file").and_then(Value::as_str) {
+            None => Scenario::default(),
+            Some(file) => {
+                let text = match file {
+                    "examples/tapered-arrestor.toml" => include_str!("../../examples/tapered-arrestor.toml"),
+                    "examples/three-section-gangway.toml" => include_str!("../../examples/three-section-gangway.toml"),
+                    _ => continue,
+                };
+                Scenario::from_toml(text, file)?
+            }
+        };
         for (field, value) in [
             (&mut s.drop_height, settings.get("drop_height")),
             (&mut s.contact_position, settings.get("contact_position")),
