@@ -60,58 +60,30 @@ fn seeds() -> Vec<String> {
     ]
 }
 
-/// One structure-aware mutation of the TOML text `text`.
+/// Lines a mutation may insert.
+const EXTRAS: &[&str] = &[
+    "[[lower.sections]]",
+    "[[upper.sections]]",
+    "[lower.sections]",
+    "[[lower.sections.x]]",
+    "section_modulus_bottom = 1e-13",
+    "allowable_shear_stress = 0",
+    "[motion]",
+    "time_shift = 1.0",
+    "file = \"motion.csv\"",
+    "unknown = 1",
+    "sections = []",
+];
+
+/// One structure-aware mutation of the TOML text `text` ([`fuzz_support::mutate_toml`]).
 fn mutate_toml(text: &str, rng: &mut Rng) -> String {
-    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
-    for _ in 0..1 + rng.below(3) {
-        if lines.is_empty() {
-            lines.push("x = 1".into());
-        }
-        let i = rng.below(lines.len());
-        match rng.below(8) {
-            0..=2 => {
-                if let Some((key, _)) = lines[i].split_once('=') {
-                    lines[i] = format!("{key}= {}", rng.pick(LITERALS));
-                }
-            }
-            3 => {
-                lines.remove(i);
-            }
-            4 => {
-                // A whole section table, or any line, repeated elsewhere.
-                let line = lines[i].clone();
-                lines.insert(rng.below(lines.len() + 1), line);
-            }
-            5 => {
-                let j = rng.below(lines.len());
-                lines.swap(i, j);
-            }
-            6 => {
-                let extra = rng.pick(&[
-                    "[[lower.sections]]",
-                    "[[upper.sections]]",
-                    "[lower.sections]",
-                    "[[lower.sections.x]]",
-                    "section_modulus_bottom = 1e-13",
-                    "allowable_shear_stress = 0",
-                    "[motion]",
-                    "time_shift = 1.0",
-                    "file = \"motion.csv\"",
-                    "unknown = 1",
-                    "sections = []",
-                ]);
-                lines.insert(i, extra.to_string());
-            }
-            _ => {
-                // Many sections: beyond the 32 a beam may have.
-                let table = "[[lower.sections]]\nlength = 0.1\nsecond_moment = 0.002\nsection_modulus = 0.01\n\
-                             shear_area = 0.01\nmass_per_length = 800.0";
-                let count = *rng.pick(&[2usize, 31, 33, 500]);
-                lines.push(vec![table; count].join("\n"));
-            }
-        }
-    }
-    lines.join("\n")
+    fuzz_support::mutate_toml(text, rng, LITERALS, EXTRAS, &|rng: &mut Rng, lines: &mut Vec<String>, _: usize| {
+        // Many sections (appended): beyond the 32 a beam may have.
+        let table = "[[lower.sections]]\nlength = 0.1\nsecond_moment = 0.002\nsection_modulus = 0.01\n\
+                     shear_area = 0.01\nmass_per_length = 800.0";
+        let count = *rng.pick(&[2usize, 31, 33, 500]);
+        lines.push(vec![table; count].join("\n"));
+    })
 }
 
 /// Reads `bytes`: an error is one bounded line naming the resource; an accepted scenario

@@ -59,53 +59,26 @@ fn seeds() -> Vec<String> {
     ]
 }
 
-/// One structure-aware mutation of the TOML text `text`.
+/// Lines a mutation may insert.
+const EXTRAS: &[&str] = &[
+    "unknown = 1",
+    "[upper]",
+    "[[upper]]",
+    "[upper.deeper]",
+    "[nothing]",
+    "upper = 1",
+    "upper.length = 3",
+    "\"drop_height\" = 1",
+    "drop_height.x = 1",
+];
+
+/// One structure-aware mutation of the TOML text `text` ([`fuzz_support::mutate_toml`]).
 fn mutate_toml(text: &str, rng: &mut Rng) -> String {
-    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
-    for _ in 0..1 + rng.below(3) {
-        if lines.is_empty() {
-            lines.push("x = 1".into());
-        }
-        let i = rng.below(lines.len());
-        match rng.below(8) {
-            0..=2 => {
-                if let Some((key, _)) = lines[i].split_once('=') {
-                    lines[i] = format!("{key}= {}", rng.pick(LITERALS));
-                }
-            }
-            3 => {
-                lines.remove(i);
-            }
-            4 => {
-                let line = lines[i].clone();
-                lines.insert(rng.below(lines.len() + 1), line);
-            }
-            5 => {
-                let j = rng.below(lines.len());
-                lines.swap(i, j);
-            }
-            6 => {
-                let extra = rng.pick(&[
-                    "unknown = 1",
-                    "[upper]",
-                    "[[upper]]",
-                    "[upper.deeper]",
-                    "[nothing]",
-                    "upper = 1",
-                    "upper.length = 3",
-                    "\"drop_height\" = 1",
-                    "drop_height.x = 1",
-                ]);
-                lines.insert(i, extra.to_string());
-            }
-            _ => {
-                let depth = *rng.pick(&[2usize, 64, 1000, 100_000]);
-                let nested = format!("drop_height = {}1{}", "[".repeat(depth), "]".repeat(depth));
-                lines.insert(i, nested);
-            }
-        }
-    }
-    lines.join("\n")
+    fuzz_support::mutate_toml(text, rng, LITERALS, EXTRAS, &|rng: &mut Rng, lines: &mut Vec<String>, i: usize| {
+        let depth = *rng.pick(&[2usize, 64, 1000, 100_000]);
+        let nested = format!("drop_height = {}1{}", "[".repeat(depth), "]".repeat(depth));
+        lines.insert(i, nested);
+    })
 }
 
 /// Parses `text`; an accepted scenario must validate, round-trip and (when small, every `every`-th

@@ -656,3 +656,47 @@ pub fn rewrite_messages(log: &[u8], topic: &str, edit: &mut dyn FnMut(usize, &[u
         out
     })
 }
+
+/// One structure-aware mutation of the TOML text `text` (scenario files and packed resources
+/// alike): one to three edits, each a key's value set to one of `literals`, a line removed,
+/// repeated or swapped, one of `extras` inserted, or `other` (the caller's own edit at line `i`).
+pub fn mutate_toml(
+    text: &str,
+    rng: &mut Rng,
+    literals: &[&str],
+    extras: &[&str],
+    other: &dyn Fn(&mut Rng, &mut Vec<String>, usize),
+) -> String {
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    for _ in 0..1 + rng.below(3) {
+        if lines.is_empty() {
+            lines.push("x = 1".into());
+        }
+        let i = rng.below(lines.len());
+        match rng.below(8) {
+            0..=2 => {
+                if let Some((key, _)) = lines[i].split_once('=') {
+                    lines[i] = format!("{key}= {}", rng.pick(literals));
+                }
+            }
+            3 => {
+                lines.remove(i);
+            }
+            4 => {
+                // A whole table header, or any line, repeated elsewhere.
+                let line = lines[i].clone();
+                lines.insert(rng.below(lines.len() + 1), line);
+            }
+            5 => {
+                let j = rng.below(lines.len());
+                lines.swap(i, j);
+            }
+            6 => {
+                let extra = rng.pick(extras);
+                lines.insert(i, extra.to_string());
+            }
+            _ => other(rng, &mut lines, i),
+        }
+    }
+    lines.join("\n")
+}
