@@ -239,21 +239,11 @@ pub struct Options {
     /// Run the coarsest rung too, for the observed order the reason lines report (no figure or
     /// verdict uses it): a sweep, which prints no reasons, leaves it out (a fifth of a row's work).
     pub observed_order: bool,
-    /// Keep every station of the printed run's stress envelope exact (`summary.envelope`); false
-    /// keeps each envelope's worst stress and worst utilisation exact only (the other stations'
-    /// values are lower bounds), every printed peak and verdict the same: a sweep, whose rows
-    /// print the worst of each beam only (about half of a row's envelope work).
-    pub full_envelope: bool,
 }
 
 impl Default for Options {
     fn default() -> Self {
-        Options {
-            sensitivity: true,
-            max_steps: crate::model::scenario::MAX_STEPS,
-            observed_order: true,
-            full_envelope: true,
-        }
+        Options { sensitivity: true, max_steps: crate::model::scenario::MAX_STEPS, observed_order: true }
     }
 }
 
@@ -292,9 +282,6 @@ pub fn run_cancellable(
 ) -> Result<Answer> {
     let mut printed = Simulation::new_cached(scenario, cache)?;
     printed.check_step_count(scenario.duration_ns(), options.max_steps)?;
-    if !options.full_envelope {
-        printed.envelope_worst_only();
-    }
     let resolved = printed.scenario().clone();
     let mut check_scenarios = check_scenarios(scenario)?;
     if !options.observed_order {
@@ -327,11 +314,6 @@ pub fn run_cancellable(
                         )),
                     })?;
                     sim.check_step_count(s.duration_ns(), options.max_steps)?;
-                    // Its envelope serves the beams' worst stresses only (figures, spreads),
-                    // except the converged answer of a paper-method run (its design check).
-                    if *role == "twin" || s.method == Method::Converged {
-                        sim.envelope_worst_only();
-                    }
                     let summary = sim.run(&mut Cancellable::new(&mut NullRecorder, cancel))?;
                     let run = rung_run(role, &sim, &summary);
                     Ok((summary, run))

@@ -428,11 +428,7 @@ impl<S: Stepper> Simulation<S> {
         };
         let stations = if stepper.modal_coordinates() {
             let divisors: Vec<f64> = model.stations.all().map(|s| s.divisor).collect();
-            let allowables = model.stations.all().map(|s| s.allowable).collect();
-            std::sync::Arc::new(
-                StationRows::new(&modal, &divisors, crate::solver::envelope::groups(&model))
-                    .with_allowables(allowables),
-            )
+            std::sync::Arc::new(StationRows::new(&modal, &divisors, crate::solver::envelope::groups(&model)))
         } else {
             std::sync::Arc::default()
         };
@@ -1451,7 +1447,6 @@ impl<S: Stepper> Simulation<S> {
     /// [`RunState::validate`]; a refused state leaves the simulation as it was.
     pub fn restore(&mut self, state: RunState) -> Result<()> {
         state.validate(self.modal.dofs(), self.longest_step_ns())?;
-        self.envelope_work.invalidate();
         // The stress envelope: one value per station of this model, each a finite |stress|
         // reached at a time within the run.
         let stations = self.model.stations.len();
@@ -1561,14 +1556,6 @@ impl<S: Stepper> Simulation<S> {
     /// bench's side-by-side measure of what the envelope costs per step.
     pub fn without_envelope(&mut self) {
         self.stations = std::sync::Arc::default();
-    }
-
-    /// Keeps only each envelope's worst value exact from here on (a check rung's or a twin's
-    /// run: their figures and spreads compare the beams' worst stresses; see
-    /// [`crate::solver::envelope::EnvelopeWork::worst_only`]): the run takes a fraction of the
-    /// envelope's work.
-    pub fn envelope_worst_only(&mut self) {
-        self.envelope_work.worst_only = true;
     }
 
     /// The running peaks and their times at the run's last record: a stop point inside the next

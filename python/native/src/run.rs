@@ -194,7 +194,7 @@ pub fn run<'py>(
     let mut outputs = Outputs { log: log_recorder, series };
     // A sweep's row (no observed order) keeps each envelope's worst only, as the CLI's sweep
     // does: the same row values for a fraction of the envelope's work.
-    let options = Options { sensitivity, max_steps, observed_order, full_envelope: observed_order };
+    let options = Options { sensitivity, max_steps, observed_order };
     let cancel = AtomicBool::new(false);
     let mut interrupt: Option<PyErr> = None;
     let answer = py.detach(|| {
