@@ -268,7 +268,7 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     impact: Impact,
     /// The stress envelope's stations in modal coordinates.
     stations: std::sync::Arc<StationRows>,
-    /// The run's own envelope work: the bounds' anchor, worst-only or every station.
+    /// The run's own envelope work: the scratch of the stations' values.
     envelope_work: crate::solver::envelope::EnvelopeWork,
     /// The recorder's feed of the stations' per-step loads and the run's envelope (issue 30).
     feed: FeedEnd,
