@@ -19,6 +19,7 @@ mod docs;
 mod energy_method;
 mod energy_safety;
 mod envelope_log;
+mod envelope_sampling;
 mod examples;
 mod figures;
 mod fmi_answer;
