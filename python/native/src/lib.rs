@@ -351,12 +351,13 @@ fn open_fmu(path: &Path) -> PyResult<File> {
 fn fmu_key(path: PathBuf) -> PyResult<String> {
     let m = open_fmu(&path)?.metadata().map_err(value_error)?;
     let modified = m.modified().ok().and_then(|t| t.duration_since(std::time::UNIX_EPOCH).ok());
-    let mut key = format!("{}:{}", m.len(), modified.map_or(0, |d| d.as_nanos()));
+    let key = format!("{}:{}", m.len(), modified.map_or(0, |d| d.as_nanos()));
+    // Not `mut` + `+=`: the Windows build has no Unix part and warned of an unused `mut`.
     #[cfg(unix)]
-    {
+    let key = {
         use std::os::unix::fs::MetadataExt;
-        key += &format!(":{}:{}", m.dev(), m.ino());
-    }
+        format!("{key}:{}:{}", m.dev(), m.ino())
+    };
     Ok(key)
 }
 
