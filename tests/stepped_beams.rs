@@ -28,21 +28,36 @@ fn references() -> Value {
     serde_json::from_str(&text).unwrap()
 }
 
+/// A symmetric section of `length` m with the beam's allowables (none of its own).
+fn section_spec(
+    length: f64,
+    second_moment: f64,
+    section_modulus: f64,
+    shear_area: f64,
+    mass_per_length: f64,
+) -> SectionSpec {
+    SectionSpec {
+        length,
+        second_moment,
+        section_modulus,
+        section_modulus_bottom: None,
+        shear_area,
+        mass_per_length,
+        allowable_bending_stress: None,
+        allowable_shear_stress: None,
+    }
+}
+
 /// The sections of a reference case (mass per length 1 kg/m where it gives none).
 fn sections(case: &Value) -> Vec<SectionSpec> {
     case["segments"]
         .as_array()
         .unwrap()
         .iter()
-        .map(|s| SectionSpec {
-            length: s["length"].as_f64().unwrap(),
-            second_moment: s["second_moment"].as_f64().unwrap(),
-            section_modulus: 0.01,
-            section_modulus_bottom: None,
-            shear_area: 0.01,
-            mass_per_length: s["mass_per_length"].as_f64().unwrap_or(1.0),
-            allowable_bending_stress: None,
-            allowable_shear_stress: None,
+        .map(|s| {
+            let length = s["length"].as_f64().unwrap();
+            let second_moment = s["second_moment"].as_f64().unwrap();
+            section_spec(length, second_moment, 0.01, 0.01, s["mass_per_length"].as_f64().unwrap_or(1.0))
         })
         .collect()
 }
@@ -186,16 +201,7 @@ fn a_double_tapered_cantilever_matches_the_published_frequencies() {
                 let s = (k as f64 + 0.5) / slices as f64;
                 let (h, b) = (h1 * (4.0 - 3.0 * s), b1 * (4.0 - 3.0 * s));
                 let second_moment = b * h * h * h / 12.0;
-                SectionSpec {
-                    length: length / slices as f64,
-                    second_moment,
-                    section_modulus: second_moment / (0.5 * h),
-                    section_modulus_bottom: None,
-                    shear_area: b * h,
-                    mass_per_length: rho * b * h,
-                    allowable_bending_stress: None,
-                    allowable_shear_stress: None,
-                }
+                section_spec(length / slices as f64, second_moment, second_moment / (0.5 * h), b * h, rho * b * h)
             })
             .collect();
         let scenario = arrestor(specs, e, 4 * slices as u32);
@@ -226,16 +232,7 @@ fn a_beam_of_identical_sections_is_the_uniform_beam() {
     let uniform = Scenario { duration: 0.3, ..Scenario::default() };
     let mut cut = uniform.clone();
     let l = &uniform.lower;
-    let piece = |length: f64| SectionSpec {
-        length,
-        second_moment: l.second_moment,
-        section_modulus: l.section_modulus,
-        section_modulus_bottom: None,
-        shear_area: l.shear_area,
-        mass_per_length: l.mass / l.length,
-        allowable_bending_stress: None,
-        allowable_shear_stress: None,
-    };
+    let piece = |length: f64| section_spec(length, l.second_moment, l.section_modulus, l.shear_area, l.mass / l.length);
     cut.lower.sections = vec![piece(3.0), piece(9.0)];
     let a = beam_impact::answer::run(&uniform, &mut beam_impact::record::NullRecorder, Default::default()).unwrap();
     let b = beam_impact::answer::run(&cut, &mut beam_impact::record::NullRecorder, Default::default()).unwrap();
@@ -355,14 +352,8 @@ fn a_beam_of_sections_states_its_length_and_mass_and_reads_back() {
 fn paper_utilisations_use_the_allowables_of_the_sections_where_they_sit() {
     let u = Scenario::default().upper.clone();
     let piece = |length: f64, section_modulus: f64, allowable: f64| SectionSpec {
-        length,
-        second_moment: u.second_moment,
-        section_modulus,
-        section_modulus_bottom: None,
-        shear_area: 0.01,
-        mass_per_length: u.mass / u.length,
         allowable_bending_stress: Some(allowable),
-        allowable_shear_stress: None,
+        ..section_spec(length, u.second_moment, section_modulus, 0.01, u.mass / u.length)
     };
     let mut s = Scenario::default();
     let d = s.contact_position;
@@ -375,25 +366,11 @@ fn paper_utilisations_use_the_allowables_of_the_sections_where_they_sit() {
     let l = s.lower.clone();
     s.lower.sections = vec![
         SectionSpec {
-            length: 4.0,
-            second_moment: l.second_moment,
-            section_modulus: l.section_modulus,
-            section_modulus_bottom: None,
-            shear_area: l.shear_area,
-            mass_per_length: l.mass / l.length,
             allowable_bending_stress: Some(400e6),
             allowable_shear_stress: Some(200e6),
+            ..section_spec(4.0, l.second_moment, l.section_modulus, l.shear_area, l.mass / l.length)
         },
-        SectionSpec {
-            length: l.length - 4.0,
-            second_moment: l.second_moment,
-            section_modulus: l.section_modulus,
-            section_modulus_bottom: None,
-            shear_area: l.shear_area,
-            mass_per_length: l.mass / l.length,
-            allowable_bending_stress: None,
-            allowable_shear_stress: None,
-        },
+        section_spec(l.length - 4.0, l.second_moment, l.section_modulus, l.shear_area, l.mass / l.length),
     ];
     s.lower.length = l.length;
     assert_eq!(s.paper_allowables(), [400e6, 200e6, 300e6]);
