@@ -14,7 +14,7 @@ use crate::results::{
     Summary, TimeSteps,
 };
 use crate::solver::contact::{self, Stage};
-use crate::solver::envelope::StationRows;
+use crate::solver::envelope::{StationRows, StationState};
 use crate::solver::initial::{initial_state, Pitching};
 use crate::solver::static_correction::LOADS;
 use crate::solver::{
@@ -463,6 +463,7 @@ impl<S: Stepper> Simulation<S> {
 
     /// Raises the stress envelope by the current state (in `stage` under `excitation`, at `time` s).
     fn observe_envelope(&mut self, stage: Stage, excitation: &Excitation, time: f64, step: u64) {
+        self.envelope_work.forget();
         if self.stations.is_empty() || !step.is_multiple_of(self.stations.stride) {
             return;
         }
@@ -476,6 +477,65 @@ impl<S: Stepper> Simulation<S> {
             &mut state.envelope,
             &mut state.envelope_times,
         );
+    }
+
+    /// Raises the stress envelope over the exact advance's contact step just taken (from
+    /// `start_ns`, the state before it in `self.backup`), by the cubic through each station's
+    /// values and rates at the step's ends: its steps are long in contact (the bar's force is a
+    /// cubic over them), and a station's crest between two ends would be missed. Other steps
+    /// (and every `stride`-th step of a large model's envelope) take the end alone
+    /// ([`Self::observe_envelope`]).
+    fn observe_envelope_over_step(
+        &mut self,
+        stage: Stage,
+        excitation: &Excitation,
+        (start_ns, end_ns): (u64, u64),
+        step: u64,
+    ) {
+        let stride = self.stations.stride;
+        if !(stage.is_contact() && self.stepper.adapts_steps() && stride == 1) || self.stations.is_empty() {
+            return self.observe_envelope(stage, excitation, seconds(end_ns), step);
+        }
+        if !self.envelope_work.holds_end_of(step - 1, start_ns) {
+            let start_excitation = self.excitation_at(start_ns);
+            let (q0, v0) = (self.backup.displacement.as_slice(), self.backup.velocity.as_slice());
+            let loads = self.correction_loads(q0, stage, &start_excitation);
+            let load_rates = self.correction_load_rates(&self.backup, stage, &start_excitation);
+            let start = StationState { q: q0, v: v0, loads: loads.as_ref(), load_rates: load_rates.as_ref() };
+            self.stations.set_start(&mut self.envelope_work, start);
+        }
+        let loads = self.correction_loads(self.state.kinematics.displacement.as_slice(), stage, excitation);
+        let load_rates = self.correction_load_rates(&self.state.kinematics, stage, excitation);
+        let RunState { kinematics, envelope, envelope_times, .. } = &mut self.state;
+        let (q1, v1) = (kinematics.displacement.as_slice(), kinematics.velocity.as_slice());
+        let end = StationState { q: q1, v: v1, loads: loads.as_ref(), load_rates: load_rates.as_ref() };
+        self.stations.observe_step(
+            &mut self.envelope_work,
+            end,
+            (step, end_ns),
+            (seconds(start_ns), seconds(end_ns)),
+            seconds(end_ns - start_ns),
+            envelope,
+            envelope_times,
+        );
+    }
+
+    /// The rates of [`Self::correction_loads`] for `kinematics`: only the contact load moves
+    /// within a stage, -k (b^T v + d') in contact (the other loads change with the inputs only).
+    fn correction_load_rates(
+        &self,
+        kinematics: &Kinematics,
+        stage: Stage,
+        excitation: &Excitation,
+    ) -> Option<[f64; LOADS]> {
+        self.modal.is_truncated().then(|| {
+            let mut rates = [0.0; LOADS];
+            if stage.is_contact() {
+                let gap_rate = self.stepper.rates(kinematics, stage, excitation)[Probe::Gap as usize];
+                rates[crate::solver::static_correction::CONTACT] = -self.modal.bar_stiffness * gap_rate;
+            }
+            rates
+        })
     }
 
     /// The discarded modes' load coefficients at the state `q` (in `stage` under `excitation`), as
@@ -828,7 +888,8 @@ impl<S: Stepper> Simulation<S> {
             });
         }
         self.state.gap = probes[Probe::Gap as usize];
-        self.observe_envelope(stage, &excitation, seconds(previous.time_ns + step_ns), previous.step + 1);
+        let span = (previous.time_ns, previous.time_ns + step_ns);
+        self.observe_envelope_over_step(stage, &excitation, span, previous.step + 1);
         let rate = self.gap_rate(&self.state.kinematics, stage, &excitation);
         energies.dissipation_rate += self.contact_dissipation_rate(self.state.gap, rate, stage);
         let mut result = self.outputs(&probes, stage, previous.time_ns + step_ns, rate);
@@ -892,9 +953,14 @@ impl<S: Stepper> Simulation<S> {
 
     /// The step from `backup` ended in the other stage (gap `gap_end` after `step_ns`): retakes it
     /// with the shortest whole-nanosecond step after which Eq. (6) has changed, so that every stage
-    /// starts where the gap crosses zero, whatever the step phase. Regula falsi on the nearly linear
-    /// gap(t), alternating with bisection so that the bracket always shrinks (a pure regula falsi
-    /// stalls on one side). Returns the step taken, ns; the state is left at its end.
+    /// starts where the gap crosses zero, whatever the step phase. The exact advance's first guess
+    /// is the root of the gap's cubic over the step, and each retake's gap and gap rate give the
+    /// next by Newton's method (the first whole nanosecond past the root, or the one before the
+    /// bracket's end): three retakes a change as a rule, each a new step size whose coefficients
+    /// cost more than the step. Otherwise, and whenever Newton leaves the bracket, regula falsi on
+    /// the nearly linear gap(t), alternating with bisection so that the bracket always shrinks (a
+    /// pure regula falsi stalls on one side). Returns the step taken, ns; the state is left at its
+    /// end.
     fn locate_stage_change(&mut self, stage: Stage, step_ns: u64, gap_end: f64) -> u64 {
         let start_ns = self.state.result.time_ns;
         let threshold = -contact::GAP_TOLERANCE;
@@ -902,29 +968,34 @@ impl<S: Stepper> Simulation<S> {
         let (mut lo, mut hi) = (0u64, step_ns);
         let (mut f_lo, mut f_hi) = (gap_start - threshold, gap_end - threshold);
         let mut state_at_hi = false;
+        let newton = self.stepper.adapts_steps();
+        // The gap (less the threshold) after a retake of `ns`, and its rate (m/s; with `newton`).
         let retake = |simulation: &mut Self, ns: u64| {
             simulation.state.kinematics.copy_from(&simulation.backup);
             let excitation = simulation.excitation_at(start_ns + ns);
             simulation.stepper.step(&mut simulation.state.kinematics, stage, seconds(ns), &excitation);
-            simulation.stepper.measure(&simulation.state.kinematics, stage, &excitation).0[Probe::Gap as usize]
-                - threshold
+            let gap = simulation.stepper.measure(&simulation.state.kinematics, stage, &excitation).0
+                [Probe::Gap as usize]
+                - threshold;
+            let rate = if newton {
+                simulation.stepper.rates(&simulation.state.kinematics, stage, &excitation)[Probe::Gap as usize]
+            } else {
+                0.0
+            };
+            (gap, rate)
         };
-        // The exact advance's steps are long: its first two guesses straddle the root of the
-        // gap's cubic through its values and rates at the step's ends, which is within a few
-        // nanoseconds of the change (each retake costs the modes' coefficients for a new step).
-        let mut hints = self.cubic_root_ns(stage, step_ns, gap_end, threshold).into_iter().flatten();
+        let mut next = self.cubic_root_ns(stage, step_ns, gap_end, threshold);
         let mut bisect = false;
         while hi - lo > 1 {
-            let hint = hints.next().filter(|&h| h > lo && h < hi);
-            let guess = if let Some(h) = hint {
-                h
+            let guess = if let Some(g) = next.take().filter(|&g| g > lo && g < hi) {
+                g
             } else if bisect || f_lo == f_hi {
                 lo + (hi - lo) / 2
             } else {
                 let t = f_lo / (f_lo - f_hi);
                 (lo + (t * (hi - lo) as f64).round() as u64).clamp(lo + 1, hi - 1)
             };
-            let f = retake(self, guess);
+            let (f, rate) = retake(self, guess);
             let changed = contact::stage(f + threshold) != stage;
             if changed {
                 hi = guess;
@@ -936,6 +1007,15 @@ impl<S: Stepper> Simulation<S> {
                 state_at_hi = false;
             }
             bisect = !bisect && hi - lo > 2;
+            if newton && rate != 0.0 {
+                // The root by Newton from this retake, ns; test the first whole ns past it, or
+                // the one before `hi` when that is it.
+                let root = guess as f64 - f / (rate * 1e-9);
+                if root.is_finite() && root > lo as f64 && root < hi as f64 {
+                    let past = (root.ceil() as u64).clamp(lo + 1, hi);
+                    next = Some(if past >= hi { hi - 1 } else { past });
+                }
+            }
         }
         if !state_at_hi {
             retake(self, hi);
@@ -943,10 +1023,10 @@ impl<S: Stepper> Simulation<S> {
         hi
     }
 
-    /// For the exact advance: the whole nanoseconds on both sides of where the cubic through the
-    /// gap's values and rates at the step's ends crosses `threshold` (`None` for other steppers
-    /// or when the cubic does not cross).
-    fn cubic_root_ns(&self, stage: Stage, step_ns: u64, gap_end: f64, threshold: f64) -> Option<[u64; 2]> {
+    /// For the exact advance: the first whole nanosecond past where the cubic through the gap's
+    /// values and rates at the step's ends crosses `threshold` (`None` for other steppers or when
+    /// the cubic does not cross).
+    fn cubic_root_ns(&self, stage: Stage, step_ns: u64, gap_end: f64, threshold: f64) -> Option<u64> {
         if !self.stepper.adapts_steps() || step_ns < 4 {
             return None;
         }
@@ -982,8 +1062,7 @@ impl<S: Stepper> Simulation<S> {
                 b = m;
             }
         }
-        let at = (b * step_ns as f64).ceil() as u64;
-        Some([at.clamp(1, step_ns - 1), at.saturating_sub(1).clamp(1, step_ns - 1)])
+        Some(((b * step_ns as f64).ceil() as u64).clamp(1, step_ns - 1))
     }
 
     /// Steps until `target_ns`, landing on it exactly (the last step is shortened: the stop time
@@ -1035,9 +1114,17 @@ impl<S: Stepper> Simulation<S> {
         record
     }
 
-    /// The own coordinates at `at_ns` inside the next internal step (its cubic), the state left as
-    /// it was.
+    /// The own coordinates at `at_ns` inside the next internal step (its cubic; the exact
+    /// advance's own step to it, as [`Self::interpolate`] takes the outputs there), the state left
+    /// as it was.
     fn displacement_at(&mut self, at_ns: u64) -> Result<DVector<f64>> {
+        if self.stepper.adapts_steps() {
+            let stage = self.next_stage();
+            let mut k = self.state.kinematics.clone();
+            let tau = seconds(at_ns - self.state.result.time_ns);
+            self.stepper.step(&mut k, stage, tau, &self.excitation_at(at_ns));
+            return Ok(k.displacement);
+        }
         let saved = (self.state.clone(), self.backup.clone());
         let stepped = self.step(u64::MAX, false);
         let displacement = stepped.map(|_| {
@@ -1447,6 +1534,8 @@ impl<S: Stepper> Simulation<S> {
     /// [`RunState::validate`]; a refused state leaves the simulation as it was.
     pub fn restore(&mut self, state: RunState) -> Result<()> {
         state.validate(self.modal.dofs(), self.longest_step_ns())?;
+        // The envelope's held step end belongs to the run before.
+        self.envelope_work.forget();
         // The stress envelope: one value per station of this model, each a finite |stress|
         // reached at a time within the run.
         let stations = self.model.stations.len();

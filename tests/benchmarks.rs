@@ -246,5 +246,6 @@ fn runs_of_the_new_fields_replay_from_their_logs() {
     let csv = dir.path().join("s.csv");
     let out = std::process::Command::new(bin).arg("report").arg(&log).arg("--csv").arg(&csv).output().unwrap();
     assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
-    assert!(std::fs::read_to_string(&csv).unwrap().lines().count() > 100);
+    // One row per recorded step: 77 for these 12 ms (the exact advance's steps, long in contact).
+    assert!(std::fs::read_to_string(&csv).unwrap().lines().count() > 50);
 }

@@ -9,8 +9,11 @@
 //! before either still replays, without an envelope; the figure `envelope.svg`/`.png` is written;
 //! the FMU's log carries the envelope too; decimation keeps the stresses of the recorded steps.
 //! Tolerances: the attachment is JSON of f64 written with round-trip precision, compared exactly;
-//! the recorded stresses are single precision (relative 2^-24 = 6e-8 each), so a rebuilt envelope
-//! and a station against its step's f64 value are compared to 1e-6 of the beam's largest stress.
+//! the recorded stresses are single precision (relative 2^-24 = 6e-8 each), so a station against
+//! its step's f64 value is compared to 1e-6 of the beam's largest stress; a rebuilt envelope takes
+//! the recorded step ends, where the run's takes each station's cubic inside the exact advance's
+//! contact steps too, so it is at most the run's and below it by the crests between step ends (see
+//! `assert_rebuilt`).
 
 use std::path::Path;
 use std::process::Command;
@@ -45,14 +48,17 @@ fn lists(e: &StressEnvelope) -> [&StationEnvelope; 4] {
     [&e.lower.bending, &e.lower.shear, &e.upper.bending, &e.upper.shear]
 }
 
-/// Every value of `a` within `tolerance` of the beam's largest stress of `b`, positions and
-/// allowables equal.
-fn assert_close(a: &StressEnvelope, b: &StressEnvelope, tolerance: f64, what: &str) {
-    for (k, ((x, y), scale)) in lists(a).into_iter().zip(lists(b)).zip(largest(b)).enumerate() {
+/// A rebuilt envelope against the run's `run`: never above it (beyond single precision, 1e-6 of
+/// the beam's largest stress), below it by at most 3e-2 of the beam's largest: a station's crest
+/// inside a long contact step (the bar's force a cubic over it) is in the run's envelope, not in
+/// the recorded step ends (measured on these runs: 2.2e-2 at most, shear stations beside the
+/// contact; 1.0e-2 bending), positions and allowables equal.
+fn assert_rebuilt(rebuilt: &StressEnvelope, run: &StressEnvelope, what: &str) {
+    for (k, ((x, y), scale)) in lists(rebuilt).into_iter().zip(lists(run)).zip(largest(run)).enumerate() {
         assert_eq!(x.positions, y.positions, "{what}: list {k}");
         assert_eq!(x.allowable, y.allowable, "{what}: list {k}");
         for (i, (u, v)) in x.max.iter().zip(&y.max).enumerate() {
-            assert!((u - v).abs() <= tolerance * scale, "{what}: list {k} station {i}: {u} vs {v}");
+            assert!(u - v <= 1e-6 * scale && v - u <= 3e-2 * scale, "{what}: list {k} station {i}: {u} vs {v}");
         }
     }
 }
@@ -146,7 +152,7 @@ fn stepped_example_replays(file: &str) {
     assert!(!killed.complete && killed.envelope_json.is_none());
     let (rebuilt, source) = envelope_of_log(&killed);
     assert!(matches!(source, EnvelopeSource::Rebuilt { rows, .. } if rows == data.steps.len()), "{source:?}");
-    assert_close(&rebuilt, &expected_rebuild(&run, &killed), 1e-6, file);
+    assert_rebuilt(&rebuilt, &expected_rebuild(&run, &killed), file);
     let text = cli(&["report", cut.to_str().unwrap(), "--out", figures.to_str().unwrap()]);
     assert!(text.contains("stress envelope: REBUILT from the stresses of the"), "{text}");
     assert!(text.contains("the log holds no envelope.json"), "{text}");
@@ -264,7 +270,7 @@ fn a_malformed_envelope_attachment_is_refused_in_one_line_and_rebuilt() {
         let (rebuilt, source) = envelope_of_log(&data);
         let EnvelopeSource::Rebuilt { why, .. } = &source else { panic!("{source:?}") };
         assert!(why.contains(expected) && !source.describe().contains('\n'), "{why}");
-        assert_close(&rebuilt, &expected_rebuild(&run, &data), 1e-6, expected);
+        assert_rebuilt(&rebuilt, &expected_rebuild(&run, &data), expected);
     }
 }
 
@@ -314,7 +320,7 @@ fn the_fmus_log_carries_the_envelope_of_the_run_it_ended_with() {
     for e in [&mut rebuilt_rest, &mut expected_rest] {
         (e.lower.bending.max[0], e.lower.shear.max[0], e.upper.bending.max[contact]) = (0.0, 0.0, 0.0);
     }
-    assert_close(&rebuilt_rest, &expected_rest, 1e-6, "the FMU's log rebuilt");
+    assert_rebuilt(&rebuilt_rest, &expected_rest, "the FMU's log rebuilt");
     for (r, e) in [
         (rebuilt.lower.bending.max[0], expected.lower.bending.max[0]),
         (rebuilt.lower.shear.max[0], expected.lower.shear.max[0]),

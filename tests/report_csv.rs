@@ -246,12 +246,13 @@ fn report_csv_is_the_step_channel() {
         let last = *csv.column(&format!("peaks.{name}")).last().unwrap();
         assert!(close(last, json), "peaks.{name}: last row {last} vs --json {json}");
         // The converged method's peaks are the largest |value| over each internal step, so at
-        // least every step's end value, and within 1e-2 of the largest of them: its exact modal
-        // advance steps 4x the plan's out of contact and up to 128x in contact, over which the
-        // highest kept modes' share of a stress crests between two step ends (measured on the
-        // clamp shear: 3.8e-3; the same peak from steps of the plan's length moves by 5e-5).
+        // least every step's end value, and within 5e-2 of the largest of them: its exact modal
+        // advance steps up to 128x the plan's out of contact and in contact (where the bar's force
+        // is a cubic over the step), over which a pulse crests between two step ends (measured on
+        // the contact force: 2.4e-2; the clamp shear 3.8e-3; the same peaks from steps of the
+        // plan's length move by 5e-5).
         let ends = largest(name);
-        let within = 1e-2;
+        let within = 5e-2;
         assert!(ends <= json && json - ends <= within * json, "max |{name}| {ends} vs --json {json}");
     }
     let time = csv.column("time");

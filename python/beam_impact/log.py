@@ -42,8 +42,9 @@ changed). A log written before logs carried the table has `motion_csv` None.
 
 The stress envelope comes from the log's `envelope.json` (stored when the log was finished:
 `envelope["source"] == "attachment"`); a log without it (a killed run) has it rebuilt from the
-stresses recorded at every station (`/beam/stations`, single precision), as `beam-impact report`
-rebuilds it (`"rebuilt"`, and `envelope["note"]` says why); a log written before logs carried the
+stresses recorded at every station (`/beam/stations`, single precision, at the steps' ends: at most
+the run's own envelope, which also takes the crests inside long contact steps), as `beam-impact
+report` rebuilds it (`"rebuilt"`, and `envelope["note"]` says why); a log written before logs carried the
 envelope has `envelope` None, and `station_stresses` None.
 
 Both log formats load. Format 2 (metadata `log_format` = 2) keeps the modal coordinates on

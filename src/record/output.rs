@@ -157,22 +157,31 @@ pub fn partial_path(path: &Path) -> PathBuf {
 }
 
 /// Creates `path` exclusively, never through a link, and locks it (an exclusive advisory lock,
-/// held while the file is open): a leftover of a killed run (a regular file whose lock is free,
-/// or a link, never followed) is removed first; a partial file another run still writes (its
-/// lock taken: two runs given the same output) is an error, not removed from under it.
+/// held while the file is open). A regular file already there whose lock is free (a name reserved
+/// by [`crate::fmi::instance::unique_log`], or a leftover of a killed run) is taken over in place:
+/// opened without following links, locked and emptied, so the name never disappears on the way
+/// (removing it and creating it anew left a moment in which another process reserving names
+/// could take the same one: two FMU processes in one folder, one log lost). A partial file
+/// another run still writes (its lock taken: two runs given the same output) is an error, not
+/// removed from under it; a link (symbolic or hard) is removed, never followed or written through.
 fn create_exclusive(path: &Path) -> std::io::Result<File> {
     if let Ok(m) = std::fs::symlink_metadata(path) {
         if m.is_dir() {
             return Err(std::io::Error::other(format!("{} is a folder", path.display())));
         }
         if m.is_file() {
-            let leftover = platform::no_follow(std::fs::OpenOptions::new().read(true)).open(path)?;
-            if leftover.try_lock().is_err() {
+            let file = platform::no_follow(std::fs::OpenOptions::new().write(true)).open(path)?;
+            if file.try_lock().is_err() {
                 return Err(std::io::Error::other(format!(
                     "{} is being written by another run (its lock is taken)",
                     path.display()
                 )));
             }
+            if !has_other_links(&m) {
+                file.set_len(0)?;
+                return Ok(file);
+            }
+            // A hard link: writing it would change its other names; removed instead.
         }
         std::fs::remove_file(path)?;
     }

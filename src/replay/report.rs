@@ -741,8 +741,9 @@ impl EnvelopeSource {
         match self {
             EnvelopeSource::Attachment => format!("from the log's {ENVELOPE_ATTACHMENT} (stored with the run)"),
             EnvelopeSource::Rebuilt { rows, why } => format!(
-                "REBUILT from the stresses of the {rows} recorded steps (/beam/stations, single precision; the \
-                 paper's three points raised by the steps' running peaks): {why}"
+                "REBUILT from the stresses of the {rows} recorded steps (/beam/stations, single precision, at the \
+                 steps' ends: a crest inside a long contact step, which the run's own envelope holds, is not in \
+                 them; the paper's three points raised by the steps' running peaks): {why}"
             ),
             EnvelopeSource::Absent { why } => format!("not in this log: {why}"),
         }
@@ -787,7 +788,8 @@ fn envelope_problem(envelope: &StressEnvelope, layout: Option<&StationLayout>) -
 
 /// The run's stress envelope from a log (issue 30): its `envelope.json` when it holds a sound one,
 /// else rebuilt from the stresses recorded at the stations (the largest |value| of the recorded
-/// steps at each station, raised at the paper's three points by the steps' running peaks
+/// steps' ends at each station, at most the run's own, which also takes each station's cubic
+/// inside the exact advance's contact steps; raised at the paper's three points by the steps' running peaks
 /// `peaks`, reached at `peak_times`; the bridge's contact point at `contact_position` m), else
 /// empty; with where it came from.
 pub fn replay_envelope(

@@ -61,10 +61,43 @@ pub struct StationRows {
     pub stride: u64,
 }
 
-/// A run's own scratch for the envelope's work: the stations' values of the step.
+/// A run's own scratch for the envelope's work: the stations' values of the step, and for the
+/// exact advance's contact steps their rates, kept as the next step's start.
 #[derive(Clone, Debug, Default)]
 pub struct EnvelopeWork {
     values: Vec<f64>,
+    rates: Vec<f64>,
+    start_values: Vec<f64>,
+    start_rates: Vec<f64>,
+    /// The step (number, end time in ns) whose end `start_values` and `start_rates` hold.
+    end_of: Option<(u64, u64)>,
+}
+
+impl EnvelopeWork {
+    /// True when the stations' values and rates at the end of step `step`, at `time_ns`, are
+    /// held (the next step's start).
+    pub fn holds_end_of(&self, step: u64, time_ns: u64) -> bool {
+        self.end_of == Some((step, time_ns))
+    }
+
+    /// Forgets the held values and rates (a restored state, a step observed without rates).
+    pub fn forget(&mut self) {
+        self.end_of = None;
+    }
+}
+
+/// One end of a step as the envelope's cubic takes it: the own coordinates and their rates, the
+/// correction's load coefficients and their rates (None: a full basis).
+#[derive(Clone, Copy, Debug)]
+pub struct StationState<'a> {
+    /// Own (modal) coordinates.
+    pub q: &'a [f64],
+    /// Their rates.
+    pub v: &'a [f64],
+    /// The static correction's load coefficients.
+    pub loads: Option<&'a [f64; LOADS]>,
+    /// Their rates.
+    pub load_rates: Option<&'a [f64; LOADS]>,
 }
 
 impl StationRows {
@@ -129,6 +162,57 @@ impl StationRows {
                 *at = time;
             }
         }
+    }
+
+    /// Sets the start of the next [`Self::observe_step`]: the stations' values and rates at
+    /// `start` (when the previous step's end is not held).
+    pub fn set_start(&self, work: &mut EnvelopeWork, start: StationState) {
+        work.start_values.resize(self.count, 0.0);
+        work.start_rates.resize(self.count, 0.0);
+        self.stresses(start.q, start.loads, &mut work.start_values);
+        self.stresses(start.v, start.load_rates, &mut work.start_rates);
+    }
+
+    /// Raises each station's running largest |stress| over one step from `start_time` to
+    /// `end_time` s (`h` s long): its end `end` and the largest |value| of the cubic through each station's values and
+    /// rates at the step's ends (the start from [`Self::set_start`] or the previous step's end),
+    /// so that a crest between two long steps' ends is not missed (the exact advance's contact
+    /// steps). Holds the end as the next step's start (`step`, `end_ns`).
+    #[allow(clippy::too_many_arguments)]
+    pub fn observe_step(
+        &self,
+        work: &mut EnvelopeWork,
+        end: StationState,
+        (step, end_ns): (u64, u64),
+        (start_time, end_time): (f64, f64),
+        h: f64,
+        max: &mut [f64],
+        times: &mut [f64],
+    ) {
+        work.values.resize(self.count, 0.0);
+        work.rates.resize(self.count, 0.0);
+        self.stresses(end.q, end.loads, &mut work.values);
+        self.stresses(end.v, end.load_rates, &mut work.rates);
+        let ends = work.values.iter().zip(&work.rates).zip(work.start_values.iter().zip(&work.start_rates));
+        for (((&y1, &r1), (&y0, &r0)), (max, at)) in ends.zip(max.iter_mut().zip(times.iter_mut())) {
+            if y1.abs() > *max {
+                *max = y1.abs();
+                *at = end_time;
+            }
+            let (d0, d1) = (h * r0, h * r1);
+            // |H00 y0 + H01 y1| <= max(|y0|, |y1|) and |H10|, |H11| <= 4/27 on [0, 1].
+            if y0.abs().max(y1.abs()) + 4.0 / 27.0 * (d0.abs() + d1.abs()) > *max {
+                let (value, s) = crate::solver::step_extrema::cubic_extremum(y0, y1, d0, d1, 1.0);
+                if value > *max {
+                    *max = value;
+                    // Never past the step's end by round-off (a restored state's times are checked).
+                    *at = (start_time + s * h).min(end_time);
+                }
+            }
+        }
+        std::mem::swap(&mut work.values, &mut work.start_values);
+        std::mem::swap(&mut work.rates, &mut work.start_rates);
+        work.end_of = Some((step, end_ns));
     }
 
     /// Every station's signed stress, Pa, at the state `q` under the correction's load

@@ -10,7 +10,9 @@ before logs carried the envelope loads with `envelope` None; a stored envelope t
 the log's stations is refused in one line and rebuilt, never raised.
 
 Tolerances: the attachment is JSON with round-trip precision (compared exactly); the recorded
-stresses are single precision (relative 6e-8), compared to 1e-6 of the beam's largest stress.
+stresses are single precision (relative 6e-8), compared to 1e-6 of the beam's largest stress; a
+rebuilt envelope takes the recorded steps' ends, at most the run's own (which takes the crests
+inside long contact steps too).
 """
 
 from __future__ import annotations
@@ -100,11 +102,16 @@ def test_a_killed_runs_log_rebuilds_the_envelope(stepped_run, tmp_path):
             if not run["max"]:
                 continue
             scale = max(run["max"])
-            # At least the run's (to single precision); above it only by the stop point's record.
+            # The recorded steps' ends: at most the run's (to single precision; above it only by
+            # the stop point's record), below it by at most 3e-2 of the beam's largest, the crests
+            # inside long contact steps the run's envelope takes from each station's cubic
+            # (measured 2.2e-2 at most on the Rust side's runs, tests/envelope_log.rs).
             columns = [c for c in log.stations["column"] if c.startswith(f"{beam}.{stress}.")]
             last = np.abs(log.station_stresses[columns].to_numpy()[-1])
             bound = np.maximum(np.asarray(run["max"]), last)
-            assert np.all(np.abs(frame["max"].to_numpy() - bound) <= 1e-6 * scale)
+            rebuilt = frame["max"].to_numpy()
+            assert np.all(rebuilt - bound <= 1e-6 * scale)
+            assert np.all(bound - rebuilt <= 3e-2 * scale)
 
 
 def test_a_log_from_before_the_envelope_loads_without_it():
