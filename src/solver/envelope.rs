@@ -10,8 +10,11 @@
 //! printed rung's 344 stations x 33 modes and 7 loads per beam (`beam-impact bench`), cheaper than
 //! proving stations unable to rise (the bound-and-skip scheme this replaced cost 4-7 us a step),
 //! and every station's envelope value exact at every step. The stations are evaluated at the
-//! internal steps' ends (the peaks' within-step cubic is kept for the five probes of Table 1: see
-//! [`crate::model::stations`] for where the stations sit).
+//! internal steps' ends; over the exact advance's contact steps, which grow long (the bar's force
+//! a cubic over them), also at the largest |value| of each station's cubic through its values and
+//! rates at the step's ends ([`StationRows::observe_step`]: a second product, the rates), as the
+//! five probes of Table 1 take theirs over every step (see [`crate::model::stations`] for where
+//! the stations sit).
 
 use std::ops::Range;
 

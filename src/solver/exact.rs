@@ -1,8 +1,9 @@
 //! Exact modal advance (issue 29): each modal coordinate of a stage is a damped oscillator
-//! q'' + c q' + omega^2 q = f(t), and over one step the converged method's stepper takes f linear
-//! in time (the loads and the contact bar's force at the step's two ends). For such a forcing the
-//! oscillator's state at the step's end is a closed form, exact for any step, so the steps are set
-//! by resolving the contact force and the peaks, not by the highest kept frequency (the linear
+//! q'' + c q' + omega^2 q = f(t), and over one step the converged method's stepper takes f a
+//! polynomial in time (linear out of contact; in contact the bar's force a cubic, see below). For
+//! such a forcing the oscillator's state at the step's end is a closed form, exact for any step,
+//! so the steps are set by resolving the contact force and the peaks, not by the highest kept
+//! frequency (the linear
 //! acceleration method of Eqs. (7)-(11) needs omega_max dt <= 1 for its phase and energy errors,
 //! see [`super::step_plan`]).
 //!

@@ -132,8 +132,8 @@ pub trait Stepper {
     fn step_dissipation(&self) -> Option<f64> {
         None
     }
-    /// After an exact contact step: how far the bar's force may have strayed from the linear
-    /// ramp the step assumed, N (the step-size control's measure); `None` otherwise.
+    /// After an exact contact step: the estimated departure of the bar's force from the cubic
+    /// the step assumed, N (the step-size control's measure); `None` otherwise.
     fn force_ramp_error(&self) -> Option<f64> {
         None
     }

@@ -3,8 +3,9 @@
 //! k_c b b^T to K, and S^-1 follows from Sherman-Morrison. Every step costs O(n).
 //!
 //! The converged method's runs with the linear bar advance each mode exactly instead
-//! ([`super::exact`]): the modal forcing linear over the step, the bar's force at the step's end
-//! from one scalar equation (the same rank-one structure), O(n) per step at any step size.
+//! ([`super::exact`]): out of contact under its loads, in contact under the bar's force taken as
+//! the cubic through its values and rates at the step's ends, the end force and rate from one
+//! 2x2 system (the same rank-one structure), O(n) per step at any step size.
 
 use nalgebra::DVector;
 
@@ -375,8 +376,7 @@ impl ModalStepper {
 
     /// One exact step ([`super::exact`]): each mode under a forcing linear over the step, from
     /// the start's total modal force f0 = a + c v + omega^2 q (the state's own, so a retaken step
-    /// starts alike) to the end's, F - b P+ in contact. In contact the bar's force is the cubic
-    /// through its values and rates at both ends (`contact_step`). Books the damping's exact work
+    /// starts alike) to the end's loads; in contact `contact_step` (the bar's force a cubic). Books the damping's exact work
     /// over the step (the modes' energy balance).
     fn exact_step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, excitation: &Excitation) {
         let s = &self.system;
