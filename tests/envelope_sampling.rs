@@ -9,7 +9,7 @@
 //! Tolerance 1e-3 relative (a tenth of the default `discretisation_tolerance`): the two runs
 //! differ by the sampling and by the bar force's error over the longer contact steps (their
 //! tolerance is 1e-4 of the largest force, see `FORCE_RAMP_TOLERANCE`); measured on this grid:
-//! 5.4e-4 at most (the bridge's worst bending, drop 1 m, damping 0.02: the force tolerance's own
+//! 5.3e-4 at most (the bridge's worst bending, drop 1 m, damping 0.02: the force tolerance's own
 //! order, 4.4e-4 on the bridge's stress of the paper scenario; with the straight ramp the contact
 //! force took before, and four times the contact steps, 1.7e-5). The positions must be the same
 //! station. Scenarios: drop heights 0.3-2 m, damping 0.02-0.05, contact 10-16 m, and the tapered
