@@ -376,8 +376,8 @@ impl ModalStepper {
 
     /// One exact step ([`super::exact`]): each mode under a forcing linear over the step, from
     /// the start's total modal force f0 = a + c v + omega^2 q (the state's own, so a retaken step
-    /// starts alike) to the end's loads; in contact `contact_step` (the bar's force a cubic). Books the damping's exact work
-    /// over the step (the modes' energy balance).
+    /// starts alike) to the end's loads; in contact `contact_step` (the bar's force a cubic).
+    /// Books the damping's exact work over the step (the modes' energy balance).
     fn exact_step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, excitation: &Excitation) {
         let s = &self.system;
         // The stages' own steps recur, a located change's or a landing's rarely: on a miss the
