@@ -536,8 +536,7 @@ impl<S: Stepper> Simulation<S> {
         self.modal.is_truncated().then(|| {
             let mut rates = [0.0; LOADS];
             if stage.is_contact() {
-                let gap_rate =
-                    self.stepper.probes(&kinematics.velocity)[Probe::Gap as usize] + excitation.gap_offset_rate;
+                let gap_rate = self.modal_gap(kinematics.velocity.as_slice()) + excitation.gap_offset_rate;
                 rates[crate::solver::static_correction::CONTACT] = -self.modal.bar_stiffness * gap_rate;
             }
             rates
@@ -548,10 +547,16 @@ impl<S: Stepper> Simulation<S> {
     /// the stepper's measurements take them; None for a full basis.
     fn correction_loads(&self, q: &[f64], stage: Stage, excitation: &Excitation) -> Option<[f64; LOADS]> {
         self.modal.is_truncated().then(|| {
-            let b = self.modal.probes.row(Probe::Gap as usize);
-            let gap = (0..q.len().min(b.len())).map(|i| b[i] * q[i]).sum::<f64>() + excitation.gap_offset;
+            let gap = self.modal_gap(q) + excitation.gap_offset;
             self.modal.correction.evaluate(gap, stage.is_contact(), excitation).loads
         })
+    }
+
+    /// The kept modes' gap functional b^T x of own coordinates `x` (displacements or their rates),
+    /// without the supports' offset.
+    fn modal_gap(&self, x: &[f64]) -> f64 {
+        let b = self.modal.probes.row(Probe::Gap as usize);
+        (0..x.len().min(b.len())).map(|i| b[i] * x[i]).sum::<f64>()
     }
 
     /// Sends `result` with its own coordinates `q` to `recorder`, after telling the stations'
