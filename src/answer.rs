@@ -29,6 +29,7 @@ use crate::model::{Method, Scenario};
 use crate::record::cancel::Cancellable;
 use crate::record::{NullRecorder, Recorder};
 use crate::results::{EnvelopePeak, Peaks, StressEnvelope, Summary};
+use crate::solver::envelope::EnvelopeScope;
 use crate::solver::ModalCache;
 use crate::Simulation;
 
@@ -239,11 +240,21 @@ pub struct Options {
     /// Run the coarsest rung too, for the observed order the reason lines report (no figure or
     /// verdict uses it): a sweep, which prints no reasons, leaves it out (a fifth of a row's work).
     pub observed_order: bool,
+    /// Keep every station's stress envelope in the printed run (the log's and the report's); a
+    /// sweep, whose rows take each envelope's peak only, leaves it out
+    /// ([`crate::solver::envelope::EnvelopeScope::Peaks`]: the same peaks to the bit, about half
+    /// a run's envelope work). The check runs always keep the peaks only.
+    pub station_envelope: bool,
 }
 
 impl Default for Options {
     fn default() -> Self {
-        Options { sensitivity: true, max_steps: crate::model::scenario::MAX_STEPS, observed_order: true }
+        Options {
+            sensitivity: true,
+            max_steps: crate::model::scenario::MAX_STEPS,
+            observed_order: true,
+            station_envelope: true,
+        }
     }
 }
 
@@ -282,6 +293,9 @@ pub fn run_cancellable(
 ) -> Result<Answer> {
     let mut printed = Simulation::new_cached(scenario, cache)?;
     printed.check_step_count(scenario.duration_ns(), options.max_steps)?;
+    if !options.station_envelope {
+        printed.set_envelope_scope(EnvelopeScope::Peaks);
+    }
     let resolved = printed.scenario().clone();
     let mut check_scenarios = check_scenarios(scenario)?;
     if !options.observed_order {
@@ -314,6 +328,8 @@ pub fn run_cancellable(
                         )),
                     })?;
                     sim.check_step_count(s.duration_ns(), options.max_steps)?;
+                    // The answer takes each envelope's peak of a check run, no station's own.
+                    sim.set_envelope_scope(EnvelopeScope::Peaks);
                     let summary = sim.run(&mut Cancellable::new(&mut NullRecorder, cancel))?;
                     let run = rung_run(role, &sim, &summary);
                     Ok((summary, run))

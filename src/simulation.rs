@@ -14,7 +14,7 @@ use crate::results::{
     Summary, TimeSteps,
 };
 use crate::solver::contact::{self, Stage};
-use crate::solver::envelope::{StationRows, StationState};
+use crate::solver::envelope::{EnvelopeScope, Running, StationRows, StationState};
 use crate::solver::initial::{initial_state, Pitching};
 use crate::solver::static_correction::LOADS;
 use crate::solver::{
@@ -431,7 +431,9 @@ impl<S: Stepper> Simulation<S> {
         };
         let stations = if stepper.modal_coordinates() {
             let divisors: Vec<f64> = model.stations.all().map(|s| s.divisor).collect();
-            std::sync::Arc::new(StationRows::new(&modal, &divisors, crate::solver::envelope::groups(&model)))
+            let allowables: Vec<f64> = model.stations.all().map(|s| s.allowable).collect();
+            let groups = crate::solver::envelope::groups(&model);
+            std::sync::Arc::new(StationRows::new(&modal, &divisors, &allowables, groups))
         } else {
             std::sync::Arc::default()
         };
@@ -464,9 +466,22 @@ impl<S: Stepper> Simulation<S> {
         Ok(simulation)
     }
 
+    /// Which of the stress envelope's running values this run keeps exact: every station's (the
+    /// default, what a log and `report` draw) or each envelope's peak only
+    /// ([`EnvelopeScope::Peaks`]: an answer's check runs, a sweep's rows; the peaks are the same
+    /// to the bit, the run faster).
+    pub fn set_envelope_scope(&mut self, scope: EnvelopeScope) {
+        self.envelope_work.set_scope(scope);
+    }
+
+    /// Chunks of stations the envelope was asked to evaluate and those it skipped by their bound.
+    pub fn envelope_skips(&self) -> (u64, u64) {
+        (self.envelope_work.asked, self.envelope_work.skipped)
+    }
+
     /// Raises the stress envelope by the current state (in `stage` under `excitation`, at `time` s).
     fn observe_envelope(&mut self, stage: Stage, excitation: &Excitation, time: f64, step: u64) {
-        self.envelope_work.forget();
+        self.envelope_work.release_end();
         if self.stations.is_empty() || !step.is_multiple_of(self.stations.stride) {
             return;
         }
@@ -477,8 +492,7 @@ impl<S: Stepper> Simulation<S> {
             state.kinematics.displacement.as_slice(),
             loads.as_ref(),
             time,
-            &mut state.envelope,
-            &mut state.envelope_times,
+            Running { max: &mut state.envelope, times: &mut state.envelope_times },
         );
     }
 
@@ -512,14 +526,15 @@ impl<S: Stepper> Simulation<S> {
         let RunState { kinematics, envelope, envelope_times, .. } = &mut self.state;
         let (q1, v1) = (kinematics.displacement.as_slice(), kinematics.velocity.as_slice());
         let end = StationState { q: q1, v: v1, loads: loads.as_ref(), load_rates: load_rates.as_ref() };
+        let start = (self.backup.displacement.as_slice(), self.backup.velocity.as_slice());
         self.stations.observe_step(
             &mut self.envelope_work,
+            start,
             end,
             (step, end_ns),
             (seconds(start_ns), seconds(end_ns)),
             seconds(end_ns - start_ns),
-            envelope,
-            envelope_times,
+            Running { max: envelope, times: envelope_times },
         );
     }
 

@@ -20,6 +20,7 @@ mod energy_method;
 mod energy_safety;
 mod envelope_log;
 mod envelope_sampling;
+mod envelope_scope;
 mod examples;
 mod figures;
 mod fmi_answer;

@@ -711,8 +711,12 @@ impl Sweep {
         let values = grid_point(&self.axes, index);
         let run = || -> Result<RowResults> {
             let scenario = self.scenario(&values)?;
-            let options =
-                crate::answer::Options { max_steps: self.max_steps, observed_order: false, ..Default::default() };
+            let options = crate::answer::Options {
+                max_steps: self.max_steps,
+                observed_order: false,
+                station_envelope: false,
+                ..Default::default()
+            };
             let answer = crate::answer::run_with(&scenario, &mut NullRecorder, options, cache)?;
             Ok(RowResults::from(&answer))
         };

@@ -192,9 +192,10 @@ pub fn run<'py>(
     };
     let series = (series_every > 0).then(|| Series { every: series_every, steps: Vec::new(), last: None });
     let mut outputs = Outputs { log: log_recorder, series };
-    // A sweep's row (no observed order) keeps each envelope's worst only, as the CLI's sweep
-    // does: the same row values for a fraction of the envelope's work.
-    let options = Options { sensitivity, max_steps, observed_order };
+    // A sweep's row (no observed order, no log) keeps each envelope's peak only, as the CLI's
+    // sweep does: the same row values for a fraction of the envelope's work.
+    let station_envelope = observed_order || log.is_some();
+    let options = Options { sensitivity, max_steps, observed_order, station_envelope };
     let cancel = AtomicBool::new(false);
     let mut interrupt: Option<PyErr> = None;
     let answer = py.detach(|| {
