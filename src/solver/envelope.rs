@@ -618,13 +618,40 @@ fn product(block: &Block, local: Range<usize>, q: &[f64], loads: Option<&[f64; L
     while j + 4 <= total {
         let (c0, c1, c2, c3) = (&column(j)[..m], &column(j + 1)[..m], &column(j + 2)[..m], &column(j + 3)[..m]);
         let (w0, w1, w2, w3) = (weight(j), weight(j + 1), weight(j + 2), weight(j + 3));
-        for (k, o) in out.iter_mut().enumerate() {
-            let mut sum = *o;
-            sum += c0[k] * w0;
-            sum += c1[k] * w1;
-            sum += c2[k] * w2;
-            sum += c3[k] * w3;
-            *o = sum;
+        if m >= 32 {
+            // A long run of stations (a whole beam's): the compiler's vector loop.
+            for (k, o) in out.iter_mut().enumerate() {
+                let mut sum = *o;
+                sum += c0[k] * w0;
+                sum += c1[k] * w1;
+                sum += c2[k] * w2;
+                sum += c3[k] * w3;
+                *o = sum;
+            }
+        } else {
+            // A chunk's few: eight at a time as fixed arrays, or that loop would go scalar below
+            // 32 of them.
+            let lanes = m - m % 8;
+            for k in (0..lanes).step_by(8) {
+                let o: &mut [f64; 8] = (&mut out[k..k + 8]).try_into().expect("eight stations");
+                let a: [&[f64; 8]; 4] =
+                    [c0, c1, c2, c3].map(|c| <&[f64; 8]>::try_from(&c[k..k + 8]).expect("eight stations"));
+                let mut sum = *o;
+                for (column, w) in a.iter().zip([w0, w1, w2, w3]) {
+                    for i in 0..8 {
+                        sum[i] += column[i] * w;
+                    }
+                }
+                *o = sum;
+            }
+            for k in lanes..m {
+                let mut sum = out[k];
+                sum += c0[k] * w0;
+                sum += c1[k] * w1;
+                sum += c2[k] * w2;
+                sum += c3[k] * w3;
+                out[k] = sum;
+            }
         }
         j += 4;
     }
