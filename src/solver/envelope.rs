@@ -15,6 +15,13 @@
 //! rates at the step's ends ([`StationRows::observe_step`]: a second product, the rates), as the
 //! five probes of Table 1 take theirs over every step (see [`crate::model::stations`] for where
 //! the stations sit).
+//!
+//! A run that needs each envelope's peak only (an answer's check runs, a sweep's rows:
+//! [`EnvelopeScope::Peaks`]) tests a bound first, sum_j max_k |column_jk| |w_j| over an
+//! envelope's stations and then over chunks of [`CHUNK`] of them, against the envelope's peak and
+//! worst utilisation so far, and evaluates only the chunks that could raise them: about one chunk
+//! in ten a step, 2.3x fewer instructions in the products and 17 % fewer in a whole check run
+//! (callgrind, the default scenario at damping 0.03), the same peaks to the bit.
 
 use std::ops::Range;
 
