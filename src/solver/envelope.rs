@@ -20,7 +20,7 @@
 //! [`EnvelopeScope::Peaks`]) tests a bound first, sum_j max_k |column_jk| |w_j| over an
 //! envelope's stations and then over chunks of [`CHUNK`] of them, against the envelope's peak and
 //! worst utilisation so far, and evaluates only the chunks that could raise them: about one chunk
-//! in ten a step, 2.3x fewer instructions in the products and 17 % fewer in a whole check run
+//! in ten a step, 3.9x fewer instructions in the products and 17 % fewer in whole runs
 //! (callgrind, the default scenario at damping 0.03), the same peaks to the bit.
 
 use std::ops::Range;
