@@ -233,11 +233,6 @@ impl EnvelopeWork {
         self.scope = scope;
         self.forget();
     }
-
-    /// Which running values are kept exact.
-    pub fn scope(&self) -> EnvelopeScope {
-        self.scope
-    }
 }
 
 /// One end of a step as the envelope's cubic takes it: the own coordinates and their rates, the
