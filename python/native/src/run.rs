@@ -24,9 +24,13 @@ use crate::{columns, guard, value_error};
 /// Bumped by [`cancel_running`]: every run started before stops at its next step.
 static EPOCH: AtomicU64 = AtomicU64::new(0);
 
-/// How often the calling thread looks for Ctrl-C (and a [`cancel_running`]) while a run steps, s:
-/// short against a person's patience, long against the cost of taking the GIL (microseconds).
+/// How often the calling thread looks for Ctrl-C while a run steps: short against a person's
+/// patience, long against the cost of taking the GIL (microseconds).
 const WATCH_INTERVAL: Duration = Duration::from_millis(50);
+
+/// How often the calling thread looks for a [`cancel_running`] (an atomic load, no GIL): a sweep's
+/// pool threads each step on for up to this long after Ctrl-C reached the main thread.
+const EPOCH_INTERVAL: Duration = Duration::from_millis(5);
 
 /// Stack of the thread that runs the answer (the size of a main thread's: the printed run steps
 /// on it, as on the CLI's main thread).
@@ -208,9 +212,11 @@ pub fn run<'py>(
                 Ok(w) => w,
                 Err(e) => return Err(Error::Other(format!("cannot start the run's thread: {e}"))),
             };
+            let mut signals_checked = Instant::now();
             while !worker.is_finished() {
-                std::thread::park_timeout(WATCH_INTERVAL);
-                if interrupt.is_none() {
+                std::thread::park_timeout(EPOCH_INTERVAL);
+                if interrupt.is_none() && signals_checked.elapsed() >= WATCH_INTERVAL {
+                    signals_checked = Instant::now();
                     // Signal handlers run on the main thread only; elsewhere this returns Ok.
                     if let Err(e) = Python::attach(|py| py.check_signals()) {
                         interrupt = Some(e);
