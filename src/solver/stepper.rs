@@ -74,6 +74,12 @@ pub struct ModalStepper {
 struct ExactStage {
     dt: f64,
     modes: Vec<ModeStep>,
+    /// The same coefficients as twelve columns (q(h), v(h), int q; per q0, v0, f0, r), so that
+    /// the step's loop over the modes runs in the CPU's vectors.
+    columns: [Vec<f64>; 12],
+    /// The contact stage's coefficients as eighteen columns (q(h), v(h), int q per s^2 and s^3;
+    /// the two moments per q0, v0, f0, r, s^2, s^3).
+    cubic_columns: [Vec<f64>; 18],
     /// The contact stage's cubic coefficients (empty until a contact step takes this size).
     cubic: Vec<CubicStep>,
     /// The contact step's 2x2 system for the bar's end force and rate (see `BarSolve`).
@@ -84,7 +90,15 @@ struct ExactStage {
 
 impl Default for ExactStage {
     fn default() -> Self {
-        ExactStage { dt: f64::NAN, modes: Vec::new(), cubic: Vec::new(), bar: BarSolve::default(), hits: 0 }
+        ExactStage {
+            dt: f64::NAN,
+            modes: Vec::new(),
+            columns: Default::default(),
+            cubic_columns: Default::default(),
+            cubic: Vec::new(),
+            bar: BarSolve::default(),
+            hits: 0,
+        }
     }
 }
 
@@ -140,6 +154,16 @@ impl ExactStage {
     fn reset(&mut self, s: &ModalSystem, dt: f64) {
         self.modes.clear();
         self.modes.extend(s.omega2.iter().zip(s.damping.iter()).map(|(&w2, &c)| ModeStep::new(w2, c, dt)));
+        let n = self.modes.len();
+        for column in &mut self.columns {
+            column.resize(n, 0.0);
+        }
+        for (k, column) in self.columns.iter_mut().enumerate() {
+            let (row, lane) = (k / 4, k % 4);
+            for (c, m) in column.iter_mut().zip(&self.modes) {
+                *c = [&m.q, &m.v, &m.integral][row][lane];
+            }
+        }
         self.cubic.clear();
         self.dt = dt;
         self.hits = 0;
@@ -155,6 +179,20 @@ impl ExactStage {
             s.omega2.iter().zip(s.damping.iter()).zip(&self.modes).map(|((&w2, &c), m)| CubicStep::new(w2, c, dt, m)),
         );
         self.bar = BarSolve::new(s, dt, &self.modes, &self.cubic);
+        let n = self.cubic.len();
+        for column in &mut self.cubic_columns {
+            column.resize(n, 0.0);
+        }
+        for (k, column) in self.cubic_columns.iter_mut().enumerate() {
+            for (value, c) in column.iter_mut().zip(&self.cubic) {
+                *value = match k {
+                    0..=1 => c.q[k],
+                    2..=3 => c.v[k - 2],
+                    4..=5 => c.integral[k - 4],
+                    _ => c.moments[(k - 6) / 6][(k - 6) % 6],
+                };
+            }
+        }
     }
 }
 
@@ -220,6 +258,131 @@ impl ModalStepper {
     /// The modal system (modes, damping, modal probes).
     pub fn system(&self) -> &ModalSystem {
         &self.system
+    }
+}
+
+/// One state's modal arrays and the stage's modal loads and parameters, each `n` long.
+struct ModeArrays<'a> {
+    q: &'a mut [f64],
+    v: &'a mut [f64],
+    a: &'a mut [f64],
+    load: &'a [f64],
+    omega2: &'a [f64],
+    damping: &'a [f64],
+}
+
+/// One exact step out of contact ([`ModalStepper::exact_step`]) over every mode, in the widest
+/// vectors the CPU has (chosen once at run time; no fused multiply-add, so the same bits whichever
+/// runs): each mode under the forcing linear from its start's f0 = a + c v + omega^2 q to its end
+/// load; `dissipated[i]` gets mode i's damping work over the step (0 for an undamped mode).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn free_exact_step(m: ModeArrays, columns: &[Vec<f64>; 12], dt: f64, dissipated: &mut [f64]) {
+    let n = m.q.len();
+    let (q, v, a) = (m.q, &mut m.v[..n], &mut m.a[..n]);
+    let (load, omega2, damping) = (&m.load[..n], &m.omega2[..n], &m.damping[..n]);
+    let dissipated = &mut dissipated[..n];
+    let c: [&[f64]; 12] = std::array::from_fn(|k| &columns[k][..n]);
+    let inv_dt = 1.0 / dt;
+    for i in 0..n {
+        let (q0, v0) = (q[i], v[i]);
+        let f0 = a[i] + damping[i] * v0 + omega2[i] * q0;
+        let f1 = load[i];
+        let r = (f1 - f0) * inv_dt;
+        // ModeStep::apply, term by term in its order.
+        let q1 = c[0][i] * q0 + c[1][i] * v0 + c[2][i] * f0 + c[3][i] * r;
+        let v1 = c[4][i] * q0 + c[5][i] * v0 + c[6][i] * f0 + c[7][i] * r;
+        let integral = c[8][i] * q0 + c[9][i] * v0 + c[10][i] * f0 + c[11][i] * r;
+        // The mode's energy balance: c int v^2 = -(E1 - E0) + int v f, with
+        // int v f = f0 (q1 - q0) + r (dt q1 - int q).
+        let energy_change = 0.5 * (v1 * v1 - v0 * v0) + 0.5 * omega2[i] * (q1 * q1 - q0 * q0);
+        let work = -energy_change + f0 * (q1 - q0) + r * (dt * q1 - integral);
+        dissipated[i] = if damping[i] != 0.0 { work } else { 0.0 };
+        q[i] = q1;
+        v[i] = v1;
+        a[i] = f1 - damping[i] * v1 - omega2[i] * q1;
+    }
+}
+
+/// The shares of each mode in the end's gap and gap rate of an exact contact step without the
+/// bar's change over it (`gap[i]`, `rate[i]`; see [`ModalStepper::contact_step`]), in the CPU's
+/// widest vectors (no fused multiply-add: the same bits whichever runs).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn contact_free_response(
+    m: &ModeArrays,
+    b: &[f64],
+    columns: &[Vec<f64>; 12],
+    inv_dt: f64,
+    gap: &mut [f64],
+    rate: &mut [f64],
+) {
+    let n = m.q.len();
+    let (q, v, a) = (&m.q[..n], &m.v[..n], &m.a[..n]);
+    let (load, omega2, damping, b) = (&m.load[..n], &m.omega2[..n], &m.damping[..n], &b[..n]);
+    let (gap, rate) = (&mut gap[..n], &mut rate[..n]);
+    let c: [&[f64]; 8] = std::array::from_fn(|k| &columns[k][..n]);
+    for i in 0..n {
+        let f0 = a[i] + damping[i] * v[i] + omega2[i] * q[i];
+        let r = (load[i] - f0) * inv_dt;
+        gap[i] = b[i] * (c[0][i] * q[i] + c[1][i] * v[i] + c[2][i] * f0 + c[3][i] * r);
+        rate[i] = b[i] * (c[4][i] * q[i] + c[5][i] * v[i] + c[6][i] * f0 + c[7][i] * r);
+    }
+}
+
+/// The bar's force over an exact contact step: its end value, N, and its cubic's departure from
+/// the chord (alpha, and the s^2 and s^3 coefficients g2, g3; see [`ModalStepper::contact_step`]).
+#[derive(Clone, Copy)]
+struct BarForce {
+    force: f64,
+    alpha: f64,
+    g2: f64,
+    g3: f64,
+}
+
+/// Every mode's exact advance over a contact step under `bar`'s force, in the CPU's widest
+/// vectors (no fused multiply-add: the same bits whichever runs); `dissipated[i]` gets mode i's
+/// damping work over the step (0 for an undamped mode).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn contact_advance(
+    m: &mut ModeArrays,
+    b: &[f64],
+    columns: &[Vec<f64>; 12],
+    cubic: &[Vec<f64>; 18],
+    dt: f64,
+    bar: BarForce,
+    dissipated: &mut [f64],
+) {
+    let n = m.q.len();
+    let (q, v, a) = (&mut m.q[..n], &mut m.v[..n], &mut m.a[..n]);
+    let (load, omega2, damping, b) = (&m.load[..n], &m.omega2[..n], &m.damping[..n], &b[..n]);
+    let dissipated = &mut dissipated[..n];
+    let c: [&[f64]; 12] = std::array::from_fn(|k| &columns[k][..n]);
+    let cu: [&[f64]; 18] = std::array::from_fn(|k| &cubic[k][..n]);
+    let inv_dt = 1.0 / dt;
+    for i in 0..n {
+        let (q0, v0) = (q[i], v[i]);
+        let f0 = a[i] + damping[i] * v0 + omega2[i] * q0;
+        let f1 = load[i] - b[i] * bar.force;
+        let r = (f1 - f0 - b[i] * bar.alpha) * inv_dt;
+        let (c2, c3) = (b[i] * bar.g2, b[i] * bar.g3);
+        // ModeStep::apply, term by term in its order, then the cubic's s^2 and s^3 forcings.
+        let q1 = c[0][i] * q0 + c[1][i] * v0 + c[2][i] * f0 + c[3][i] * r;
+        let v1 = c[4][i] * q0 + c[5][i] * v0 + c[6][i] * f0 + c[7][i] * r;
+        let integral = c[8][i] * q0 + c[9][i] * v0 + c[10][i] * f0 + c[11][i] * r;
+        let q1 = q1 + c2 * cu[0][i] + c3 * cu[1][i];
+        let v1 = v1 + c2 * cu[2][i] + c3 * cu[3][i];
+        // The mode's energy balance: c int v^2 = -(E1 - E0) + int v f, with
+        // int v f = f0 (q1 - q0) + r (dt q1 - int q) + c2 (q1 - 2/dt int q s)
+        //         + c3 (q1 - 3/dt int q s^2).
+        let integral = integral + c2 * cu[4][i] + c3 * cu[5][i];
+        let m1 = cu[6][i] * q0 + cu[7][i] * v0 + cu[8][i] * f0 + cu[9][i] * r + cu[10][i] * c2 + cu[11][i] * c3;
+        let m2 = cu[12][i] * q0 + cu[13][i] * v0 + cu[14][i] * f0 + cu[15][i] * r + cu[16][i] * c2 + cu[17][i] * c3;
+        let energy_change = 0.5 * (v1 * v1 - v0 * v0) + 0.5 * omega2[i] * (q1 * q1 - q0 * q0);
+        let work =
+            f0 * (q1 - q0) + r * (dt * q1 - integral) + c2 * (q1 - 2.0 * inv_dt * m1) + c3 * (q1 - 3.0 * inv_dt * m2);
+        dissipated[i] = if damping[i] != 0.0 { -energy_change + work } else { 0.0 };
+        q[i] = q1;
+        v[i] = v1;
+        a[i] = f1 - damping[i] * v1 - omega2[i] * q1;
     }
 }
 
@@ -396,34 +559,23 @@ impl ModalStepper {
             self.contact_step(state, slot, dt, excitation);
             return;
         }
-        let coefficients = &self.exact_cache[slot];
         let n = state.displacement.len();
-        let q = &mut state.displacement.as_mut_slice()[..n];
-        let v = &mut state.velocity.as_mut_slice()[..n];
-        let a = &mut state.acceleration.as_mut_slice()[..n];
-        let modes = &coefficients.modes[..n];
-        let load = &self.load.as_slice()[..n];
-        let omega2 = &s.omega2.as_slice()[..n];
-        let damping = &s.damping.as_slice()[..n];
-        let inv_dt = 1.0 / dt;
-        let mut dissipated = 0.0;
-        for i in 0..n {
-            let (q0, v0) = (q[i], v[i]);
-            let f0 = a[i] + damping[i] * v0 + omega2[i] * q0;
-            let f1 = load[i];
-            let r = (f1 - f0) * inv_dt;
-            let (q1, v1, integral) = modes[i].apply(q0, v0, f0, r);
-            if damping[i] != 0.0 {
-                // The mode's energy balance: c int v^2 = -(E1 - E0) + int v f, with
-                // int v f = f0 (q1 - q0) + r (dt q1 - int q).
-                let energy_change = 0.5 * (v1 * v1 - v0 * v0) + 0.5 * omega2[i] * (q1 * q1 - q0 * q0);
-                dissipated += -energy_change + f0 * (q1 - q0) + r * (dt * q1 - integral);
-            }
-            q[i] = q1;
-            v[i] = v1;
-            a[i] = f1 - damping[i] * v1 - omega2[i] * q1;
-        }
-        self.last_dissipation = Some(dissipated);
+        let work = &mut self.z.as_mut_slice()[..n];
+        free_exact_step(
+            ModeArrays {
+                q: &mut state.displacement.as_mut_slice()[..n],
+                v: &mut state.velocity.as_mut_slice()[..n],
+                a: &mut state.acceleration.as_mut_slice()[..n],
+                load: &self.load.as_slice()[..n],
+                omega2: &s.omega2.as_slice()[..n],
+                damping: &s.damping.as_slice()[..n],
+            },
+            &self.exact_cache[slot].columns,
+            dt,
+            work,
+        );
+        // The modes' dissipated work in their order (the same sum as one mode after the other).
+        self.last_dissipation = Some(work.iter().fold(0.0, |sum, w| sum + w));
         self.last_force_error = None;
     }
 
@@ -442,33 +594,32 @@ impl ModalStepper {
         let coefficients = &self.exact_cache[slot];
         let bar = coefficients.bar;
         let n = state.displacement.len();
-        let q = &mut state.displacement.as_mut_slice()[..n];
-        let v = &mut state.velocity.as_mut_slice()[..n];
-        let a = &mut state.acceleration.as_mut_slice()[..n];
-        let modes = &coefficients.modes[..n];
-        let cubic = &coefficients.cubic[..n];
-        let load = &self.load.as_slice()[..n];
-        let omega2 = &s.omega2.as_slice()[..n];
-        let damping = &s.damping.as_slice()[..n];
         let b = &s.contact.as_slice()[..n];
         let inv_dt = 1.0 / dt;
         let k = s.bar_stiffness;
         // The gap's offset (the discarded modes' static gap and the supports') at the end, and at
         // the start from its rate.
         let (offset, offset_rate) = (self.shift + excitation.gap_offset, excitation.gap_offset_rate);
-        // The end's gap and gap rate without the bar's change over the step, and the start's gap,
-        // rate and acceleration.
+        let (gap_terms, rate_terms) = (&mut self.z.as_mut_slice()[..n], &mut self.y.as_mut_slice()[..n]);
+        let mut m = ModeArrays {
+            q: &mut state.displacement.as_mut_slice()[..n],
+            v: &mut state.velocity.as_mut_slice()[..n],
+            a: &mut state.acceleration.as_mut_slice()[..n],
+            load: &self.load.as_slice()[..n],
+            omega2: &s.omega2.as_slice()[..n],
+            damping: &s.damping.as_slice()[..n],
+        };
+        // The end's gap and gap rate without the bar's change over the step (each mode's share
+        // in the vectors, summed in the modes' order), and the start's gap, rate and acceleration.
+        contact_free_response(&m, b, &coefficients.columns, inv_dt, gap_terms, rate_terms);
         let (mut gap, mut gap_rate) = (0.0, 0.0);
         let (mut start_gap, mut start_rate, mut start_acceleration) = (0.0, 0.0, 0.0);
         for i in 0..n {
-            let f0 = a[i] + damping[i] * v[i] + omega2[i] * q[i];
-            let m = &modes[i];
-            let r = (load[i] - f0) * inv_dt;
-            gap += b[i] * (m.q[0] * q[i] + m.q[1] * v[i] + m.q[2] * f0 + m.q[3] * r);
-            gap_rate += b[i] * (m.v[0] * q[i] + m.v[1] * v[i] + m.v[2] * f0 + m.v[3] * r);
-            start_gap += b[i] * q[i];
-            start_rate += b[i] * v[i];
-            start_acceleration += b[i] * a[i];
+            gap += gap_terms[i];
+            gap_rate += rate_terms[i];
+            start_gap += b[i] * m.q[i];
+            start_rate += b[i] * m.v[i];
+            start_acceleration += b[i] * m.a[i];
         }
         let p0 = k * (start_gap + offset - dt * offset_rate);
         let p0_step = dt * k * (start_rate + offset_rate);
@@ -481,37 +632,14 @@ impl ModalStepper {
         let (alpha, beta) = (p0_step - change, force_step - change);
         // Mode i's forcing beyond the chord: -b_i alpha s + b_i g2 s^2 + b_i g3 s^3.
         let (g2, g3) = (2.0 * alpha + beta, -(alpha + beta));
+        let work = gap_terms;
+        let bar_force = BarForce { force, alpha, g2, g3 };
+        contact_advance(&mut m, b, &coefficients.columns, &coefficients.cubic_columns, dt, bar_force, work);
         let mut end_acceleration = 0.0;
         let mut dissipated = 0.0;
         for i in 0..n {
-            let (q0, v0) = (q[i], v[i]);
-            let f0 = a[i] + damping[i] * v0 + omega2[i] * q0;
-            let f1 = load[i] - b[i] * force;
-            let r = (f1 - f0 - b[i] * alpha) * inv_dt;
-            let (c2, c3) = (b[i] * g2, b[i] * g3);
-            let (m, cu) = (&modes[i], &cubic[i]);
-            let (q1, v1, integral) = m.apply(q0, v0, f0, r);
-            let q1 = q1 + c2 * cu.q[0] + c3 * cu.q[1];
-            let v1 = v1 + c2 * cu.v[0] + c3 * cu.v[1];
-            if damping[i] != 0.0 {
-                // The mode's energy balance: c int v^2 = -(E1 - E0) + int v f, with
-                // int v f = f0 (q1 - q0) + r (dt q1 - int q) + c2 (q1 - 2/dt int q s)
-                //         + c3 (q1 - 3/dt int q s^2).
-                let integral = integral + c2 * cu.integral[0] + c3 * cu.integral[1];
-                let inputs = [q0, v0, f0, r, c2, c3];
-                let moment = |row: &[f64; 6]| row.iter().zip(inputs).map(|(m, x)| m * x).sum::<f64>();
-                let (m1, m2) = (moment(&cu.moments[0]), moment(&cu.moments[1]));
-                let energy_change = 0.5 * (v1 * v1 - v0 * v0) + 0.5 * omega2[i] * (q1 * q1 - q0 * q0);
-                let work = f0 * (q1 - q0)
-                    + r * (dt * q1 - integral)
-                    + c2 * (q1 - 2.0 * inv_dt * m1)
-                    + c3 * (q1 - 3.0 * inv_dt * m2);
-                dissipated += -energy_change + work;
-            }
-            q[i] = q1;
-            v[i] = v1;
-            a[i] = f1 - damping[i] * v1 - omega2[i] * q1;
-            end_acceleration += b[i] * a[i];
+            end_acceleration += b[i] * m.a[i];
+            dissipated += work[i];
         }
         self.last_dissipation = Some(dissipated);
         // The quintic through the force's second derivatives at the ends against the cubic.
@@ -528,18 +656,16 @@ impl ModalStepper {
         let n = state.displacement.len();
         let (q, v) = (&state.displacement.as_slice()[..n], &state.velocity.as_slice()[..n]);
         let (omega2, damping) = (&s.omega2.as_slice()[..n], &s.damping.as_slice()[..n]);
-        let mut probes = [0.0; PROBES];
+        let mut probes = column_dots(self.probe_columns.as_slice(), self.probe_columns.nrows(), q);
         let mut e = Energies::default();
-        for (k, p) in probes.iter_mut().enumerate() {
-            *p = dot(&self.probe_columns.column(k).as_slice()[..n], q);
-        }
         probes[Probe::Gap as usize] += excitation.gap_offset;
         let lower = s.lower_dofs.min(n);
-        let lower_strain = 0.5 * weighted_squares(&omega2[..lower], &q[..lower]);
-        e.upper_strain = 0.5 * weighted_squares(&omega2[lower..], &q[lower..]);
+        let sums = energy_sums(q, v, omega2, damping, &s.gravity.as_slice()[..n], lower);
+        let lower_strain = 0.5 * sums.lower_strain;
+        e.upper_strain = 0.5 * sums.upper_strain;
         e.beam_strain = lower_strain + e.upper_strain;
-        e.kinetic = 0.5 * dot(v, v);
-        e.gravity_potential = -dot(&s.gravity.as_slice()[..n], q);
+        e.kinetic = 0.5 * sums.kinetic;
+        e.gravity_potential = -sums.gravity;
         if excitation.moves() {
             // The support load of the last step's excitation, or this one's (a state measured at
             // another instant: a step's start, an output time).
@@ -549,7 +675,7 @@ impl ModalStepper {
                 -s.support_load(excitation).dot(&state.displacement)
             };
         }
-        e.dissipation_rate = weighted_squares(damping, v);
+        e.dissipation_rate = sums.dissipation;
         if s.is_truncated() {
             apply_correction(s, &mut probes, &mut e, stage.is_contact(), excitation);
         }
@@ -602,28 +728,19 @@ impl Stepper for ModalStepper {
         if !self.exact {
             return None;
         }
-        // Out of contact each elastic mode swings about its static deflection F_i / omega_i^2
-        // with amplitude A_i = sqrt(d^2 + (v / omega)^2); its share of a probe's fourth derivative
-        // is at most |P_ki| omega_i^4 A_i (the rigid mode's motion is a quadratic: none). The
-        // amplitudes go to the step's work vector (free between steps): no allocation per step.
-        let s = &self.system;
+        // The amplitudes go to the step's work vector (free between steps): no allocation per
+        // step.
         let n = state.displacement.len().min(self.fourth_derivative.nrows());
-        let (q, v) = (state.displacement.as_slice(), state.velocity.as_slice());
         let amplitude = &mut self.y.as_mut_slice()[..n];
-        for (i, a) in amplitude.iter_mut().enumerate() {
-            let w2 = s.omega2[i];
-            *a = if w2 <= 0.0 {
-                0.0
-            } else {
-                let d = q[i] - self.load[i] / w2;
-                (d * d + v[i] * v[i] / w2).sqrt()
-            };
-        }
-        let mut out = [0.0; PROBES];
-        for (k, o) in out.iter_mut().enumerate() {
-            *o = dot(&self.fourth_derivative.column(k).as_slice()[..n], amplitude);
-        }
-        Some(out)
+        Some(fourth_derivative_bounds(
+            &state.displacement.as_slice()[..n],
+            &state.velocity.as_slice()[..n],
+            &self.load.as_slice()[..n],
+            &self.system.omega2.as_slice()[..n],
+            amplitude,
+            self.fourth_derivative.as_slice(),
+            self.fourth_derivative.nrows(),
+        ))
     }
 
     fn equilibrium_acceleration(&mut self, state: &mut Kinematics, stage: Stage, excitation: &Excitation) {
@@ -644,11 +761,7 @@ impl Stepper for ModalStepper {
 
     fn probes(&self, displacement: &DVector<f64>) -> [f64; PROBES] {
         let n = displacement.len().min(self.probe_columns.nrows());
-        let mut out = [0.0; PROBES];
-        for (k, value) in out.iter_mut().enumerate() {
-            *value = dot(&self.probe_columns.column(k).as_slice()[..n], &displacement.as_slice()[..n]);
-        }
-        out
+        column_dots(self.probe_columns.as_slice(), self.probe_columns.nrows(), &displacement.as_slice()[..n])
     }
 
     fn measure(&self, state: &Kinematics, stage: Stage, excitation: &Excitation) -> ([f64; PROBES], Energies) {
@@ -752,13 +865,73 @@ impl Stepper for ModalStepper {
 }
 
 /// sum a_i b_i in four lanes.
+#[inline(always)]
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     four_lanes(a, b, |x, y| x * y)
 }
 
 /// sum w_i x_i^2 in four lanes.
+#[inline(always)]
 fn weighted_squares(w: &[f64], x: &[f64]) -> f64 {
     four_lanes(w, x, |u, y| u * y * y)
+}
+
+/// x's [`dot`] with each of the first [`PROBES`] columns of a column-major matrix (`rows` a
+/// column), over x's length, in the CPU's widest vectors (the same four lanes and so the same
+/// bits whichever runs).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn column_dots(columns: &[f64], rows: usize, x: &[f64]) -> [f64; PROBES] {
+    let n = x.len().min(rows);
+    std::array::from_fn(|k| dot(&columns[k * rows..k * rows + n], &x[..n]))
+}
+
+/// The sums behind a modal state's energies ([`ModalStepper::measure_state`]): sum omega^2 q^2
+/// of the arrestor's coordinates (the first `lower`) and of the bridge's, sum v^2, sum g q and
+/// sum c v^2.
+struct EnergySums {
+    lower_strain: f64,
+    upper_strain: f64,
+    kinetic: f64,
+    gravity: f64,
+    dissipation: f64,
+}
+
+/// [`EnergySums`] in four lanes each, in the CPU's widest vectors (the same bits whichever runs).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn energy_sums(q: &[f64], v: &[f64], omega2: &[f64], damping: &[f64], gravity: &[f64], lower: usize) -> EnergySums {
+    EnergySums {
+        lower_strain: weighted_squares(&omega2[..lower], &q[..lower]),
+        upper_strain: weighted_squares(&omega2[lower..], &q[lower..]),
+        kinetic: dot(v, v),
+        gravity: dot(gravity, q),
+        dissipation: weighted_squares(damping, v),
+    }
+}
+
+/// Out of contact each elastic mode swings about its static deflection F_i / omega_i^2 with
+/// amplitude A_i = sqrt(d^2 + (v / omega)^2) (into `amplitude`); its share of a probe's fourth
+/// derivative is at most |P_ki| omega_i^4 A_i (`fourth`: those weights, column-major, `rows` a
+/// column; the rigid mode's motion is a quadratic: none). In the CPU's widest vectors (the same
+/// bits whichever runs).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn fourth_derivative_bounds(
+    q: &[f64],
+    v: &[f64],
+    load: &[f64],
+    omega2: &[f64],
+    amplitude: &mut [f64],
+    fourth: &[f64],
+    rows: usize,
+) -> [f64; PROBES] {
+    let n = amplitude.len();
+    let (q, v, load, omega2) = (&q[..n], &v[..n], &load[..n], &omega2[..n]);
+    for i in 0..n {
+        let w2 = omega2[i];
+        let d = q[i] - load[i] / w2;
+        let swing = (d * d + v[i] * v[i] / w2).sqrt();
+        amplitude[i] = if w2 <= 0.0 { 0.0 } else { swing };
+    }
+    std::array::from_fn(|k| dot(&fourth[k * rows..k * rows + n], amplitude))
 }
 
 /// sum term(a_i, b_i) over the common length, in four lanes (the compiler vectorises it; a plain
