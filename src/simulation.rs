@@ -299,20 +299,28 @@ impl Simulation<ModalStepper> {
     fn starting_with_cache(scenario: &Scenario, motion: SupportMotion, cache: Option<&ModalCache>) -> Result<Self> {
         let resolved = crate::discretise::printed(scenario)?;
         let model = Model::new(&resolved)?;
-        let (full, run) = match cache.filter(|c| c.is_enabled()) {
+        let (full, run, projector) = match cache.filter(|c| c.is_enabled()) {
             Some(cache) => {
                 let modes = cache.modes(&model)?;
-                (modes.full, modes.run)
+                (modes.full, modes.run, modes.projector)
             }
-            None => (ModalSystem::new(&model)?, None),
+            None => (ModalSystem::new(&model)?, None, None),
         };
         let physical = initial_physical_state(&model, &full, &motion)?;
-        let modal = match run {
-            Some(run) => run,
-            None => full.for_run(&model)?,
+        let (modal, projector) = match (run, projector) {
+            (Some(run), Some(projector)) => (run, projector),
+            (Some(run), None) => {
+                let projector = std::sync::Arc::new(crate::solver::stepper::projector(&model, &run));
+                (run, projector)
+            }
+            (None, _) => {
+                let run = full.for_run(&model)?;
+                let projector = std::sync::Arc::new(crate::solver::stepper::projector(&model, &run));
+                (run, projector)
+            }
         };
         let exact = model.scenario.method == Method::Converged;
-        let stepper = ModalStepper::new(&model, modal.clone()).with_exact(exact);
+        let stepper = ModalStepper::with_projector(modal.clone(), projector).with_exact(exact);
         Self::with_stepper(model, modal, stepper, &physical, motion)
     }
 }

@@ -415,7 +415,7 @@ impl StationRows {
             self.stresses(end.q, end.loads, &mut work.values);
             self.stresses(end.v, end.load_rates, &mut work.rates);
             let (y0, r0, y1, r1) = (&work.start_values, &work.start_rates, &work.values, &work.rates);
-            raise_over_step(y0, r0, y1, r1, running, (start_time, end_time), h);
+            raise_over_step(y0, r0, y1, r1, running, (start_time, end_time), h, 0.0);
             end_held.resize(self.chunks.len(), true);
         } else {
             end_held.resize(self.chunks.len(), false);
@@ -490,7 +490,8 @@ impl StationRows {
                     Running { max: &mut running.max[stations.clone()], times: &mut running.times[stations.clone()] };
                 let (y0, r0) = (&work.start_values[stations.clone()], &work.start_rates[stations.clone()]);
                 let (y1, r1) = (&work.values[stations.clone()], &work.rates[stations]);
-                raise_over_step(y0, r0, y1, r1, running_chunk, (start_time, end_time), h);
+                let floor = chunk.floor(work.peak[g], work.utilisation[g]);
+                raise_over_step(y0, r0, y1, r1, running_chunk, (start_time, end_time), h, floor);
                 self.summarise_chunk(work, chunk, running.max);
             }
         }
@@ -561,6 +562,10 @@ fn raise(values: &[f64], max: &mut [f64], times: &mut [f64], time: f64) {
 
 /// Raises each running value over a step `h` s long by its station's end value `y1` and the
 /// largest |value| of the cubic through its values `y0`, `y1` and rates `r0`, `r1` at the ends.
+/// The cubic's largest value is sought only where its bound reaches the running value and
+/// `floor` (0 for every station's envelope; with the peaks only, the stress below which no
+/// station raises its envelope's peak or worst utilisation, [`Span::floor`]).
+#[allow(clippy::too_many_arguments)]
 fn raise_over_step(
     y0: &[f64],
     r0: &[f64],
@@ -569,7 +574,11 @@ fn raise_over_step(
     running: Running,
     (start_time, end_time): (f64, f64),
     h: f64,
+    floor: f64,
 ) {
+    // The floor less the bounds' round-off margin: a cubic left unsought stays below it by more
+    // than a division's rounding.
+    let floor = floor / BOUND_MARGIN;
     let ends = y1.iter().zip(r1).zip(y0.iter().zip(r0));
     for (((&y1, &r1), (&y0, &r0)), (max, at)) in ends.zip(running.max.iter_mut().zip(running.times.iter_mut())) {
         if y1.abs() > *max {
@@ -578,7 +587,7 @@ fn raise_over_step(
         }
         let (d0, d1) = (h * r0, h * r1);
         // |H00 y0 + H01 y1| <= max(|y0|, |y1|) and |H10|, |H11| <= 4/27 on [0, 1].
-        if y0.abs().max(y1.abs()) + 4.0 / 27.0 * (d0.abs() + d1.abs()) > *max {
+        if y0.abs().max(y1.abs()) + 4.0 / 27.0 * (d0.abs() + d1.abs()) > max.max(floor) {
             let (value, s) = crate::solver::step_extrema::cubic_extremum(y0, y1, d0, d1, 1.0);
             if value > *max {
                 *max = value;

@@ -62,7 +62,8 @@ impl ModeStep {
         let sigma = 0.5 * c;
         let wd = libm::sqrt(w2 - sigma * sigma);
         let e = libm::exp(-sigma * h);
-        let (sn, cs) = (libm::sin(wd * h), libm::cos(wd * h));
+        // One argument reduction for both (the same bits as libm's sin and cos apart).
+        let (sn, cs) = libm::sincos(wd * h);
         let a = e * (cs + sigma / wd * sn);
         let b = e * sn / wd;
         let cc = -e * w2 / wd * sn;

@@ -20,6 +20,8 @@
 use std::collections::VecDeque;
 use std::sync::{Arc, Mutex, MutexGuard};
 
+use nalgebra::DMatrix;
+
 use super::modal::ModalSystem;
 use crate::error::Result;
 use crate::model::{Model, Scenario};
@@ -65,6 +67,8 @@ struct Shared {
     /// `None` when [`ModalSystem::for_run`] failed: each run then computes it again and meets
     /// its own error, in its own order.
     run: Option<ModalSystem>,
+    /// The run basis's [`crate::solver::stepper::projector`].
+    projector: Option<Arc<DMatrix<f64>>>,
     bytes: usize,
 }
 
@@ -100,6 +104,8 @@ pub struct RunModes {
     /// The basis the run steps in, with the run's damping; `None`: compute it from `full` (its
     /// error is the run's).
     pub run: Option<ModalSystem>,
+    /// `run`'s projector Phi^T M (with `run`).
+    pub projector: Option<Arc<DMatrix<f64>>>,
 }
 
 impl ModalCache {
@@ -152,7 +158,11 @@ impl ModalCache {
             }
         };
         let s = &model.scenario;
-        Ok(RunModes { full: shared.full.clone().with_damping(s), run: shared.run.clone().map(|m| m.with_damping(s)) })
+        Ok(RunModes {
+            full: shared.full.clone().with_damping(s),
+            run: shared.run.clone().map(|m| m.with_damping(s)),
+            projector: shared.projector.clone(),
+        })
     }
 
     /// The slot of `model`'s key, made most recent (a new, empty one when missing); `None` when the
@@ -191,8 +201,11 @@ fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
 fn compute(model: &Model) -> Result<Shared> {
     let full = ModalSystem::new(model)?;
     let run = full.clone().for_run(model).ok();
-    let bytes = approximate_bytes(&full) + run.as_ref().map_or(0, approximate_bytes);
-    Ok(Shared { full, run, bytes })
+    let projector = run.as_ref().map(|r| Arc::new(crate::solver::stepper::projector(model, r)));
+    let bytes = approximate_bytes(&full)
+        + run.as_ref().map_or(0, approximate_bytes)
+        + 8 * projector.as_ref().map_or(0, |p| p.len());
+    Ok(Shared { full, run, projector, bytes })
 }
 
 /// The matrices' and vectors' bytes of a system.

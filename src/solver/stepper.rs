@@ -35,7 +35,7 @@ struct StageInverse {
 pub struct ModalStepper {
     system: ModalSystem,
     /// Phi^T M: physical to modal coordinates.
-    projector: nalgebra::DMatrix<f64>,
+    projector: std::sync::Arc<nalgebra::DMatrix<f64>>,
     /// The probe functionals as contiguous columns (modal probes transposed), for O(n) dots.
     probe_columns: nalgebra::DMatrix<f64>,
     /// The three support reactions' rows and the two tip-velocity probes, interleaved per
@@ -199,7 +199,13 @@ impl ExactStage {
 impl ModalStepper {
     /// A stepper over the modal form of `model`.
     pub fn new(model: &Model, system: ModalSystem) -> ModalStepper {
-        let projector = system.shapes().transpose() * model.mass();
+        let projector = std::sync::Arc::new(projector(model, &system));
+        Self::with_projector(system, projector)
+    }
+
+    /// [`Self::new`] with `system`'s [`projector`] for its model already at hand (a sweep's runs
+    /// of one geometry share it).
+    pub fn with_projector(system: ModalSystem, projector: std::sync::Arc<nalgebra::DMatrix<f64>>) -> ModalStepper {
         let n = system.dofs();
         let probe_columns = system.probes.transpose();
         let [r0, r1, r2] = &system.reactions;
@@ -259,6 +265,11 @@ impl ModalStepper {
     pub fn system(&self) -> &ModalSystem {
         &self.system
     }
+}
+
+/// Phi^T M: a physical state's modal coordinates in `system`'s basis of `model`.
+pub fn projector(model: &Model, system: &ModalSystem) -> nalgebra::DMatrix<f64> {
+    system.shapes().transpose() * model.mass()
 }
 
 /// One state's modal arrays and the stage's modal loads and parameters, each `n` long.
@@ -857,9 +868,9 @@ impl Stepper for ModalStepper {
 
     fn own_coordinates(&self, physical: &Kinematics) -> Kinematics {
         Kinematics {
-            displacement: &self.projector * &physical.displacement,
-            velocity: &self.projector * &physical.velocity,
-            acceleration: &self.projector * &physical.acceleration,
+            displacement: &*self.projector * &physical.displacement,
+            velocity: &*self.projector * &physical.velocity,
+            acceleration: &*self.projector * &physical.acceleration,
         }
     }
 }
