@@ -328,8 +328,10 @@ pub fn run_cancellable(
                         )),
                     })?;
                     sim.check_step_count(s.duration_ns(), options.max_steps)?;
-                    // The answer takes each envelope's peak of a check run, no station's own.
+                    // The answer takes each envelope's peak of a check run, no station's own, and
+                    // none of its energies.
                     sim.set_envelope_scope(EnvelopeScope::Peaks);
+                    sim.without_energy_account();
                     let summary = sim.run(&mut Cancellable::new(&mut NullRecorder, cancel))?;
                     let run = rung_run(role, &sim, &summary);
                     Ok((summary, run))

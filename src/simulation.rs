@@ -571,7 +571,7 @@ impl<S: Stepper> Simulation<S> {
     fn correction_loads(&self, q: &[f64], stage: Stage, excitation: &Excitation) -> Option<[f64; LOADS]> {
         self.modal.is_truncated().then(|| {
             let gap = self.modal_gap(q) + excitation.gap_offset;
-            self.modal.correction.evaluate(gap, stage.is_contact(), excitation).loads
+            self.modal.correction.loads(gap, stage.is_contact(), excitation)
         })
     }
 
@@ -1682,6 +1682,14 @@ impl<S: Stepper> Simulation<S> {
             impact: self.impact,
             envelope: self.envelope(),
         }
+    }
+
+    /// Keeps no energy account from here on: the modal stepper's measurements leave the energy
+    /// terms 0, so the run's energies, residual and energy quality say nothing; its states,
+    /// probes, peaks and envelope are the same to the bit. For runs whose peaks alone are read
+    /// (an answer's check rungs and twin): the energies are about a seventh of a step's work.
+    pub fn without_energy_account(&mut self) {
+        self.stepper.keep_energies(false);
     }
 
     /// Takes no stress envelope from here on (its stations' values stay as they are): the

@@ -16,6 +16,7 @@ mod closed_form;
 mod contact_laws;
 mod converged_references;
 mod docs;
+mod energy_account_off;
 mod energy_method;
 mod energy_safety;
 mod envelope_log;

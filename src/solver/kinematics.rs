@@ -178,6 +178,12 @@ pub trait Stepper {
     /// The stepper's state from physical kinematics.
     fn own_coordinates(&self, physical: &Kinematics) -> Kinematics;
 
+    /// Whether measurements take the energy terms (default); without, [`Stepper::measure`] and a
+    /// measured step leave them 0 (a run whose energies nobody reads: an answer's check runs).
+    fn keep_energies(&mut self, keep: bool) {
+        let _ = keep;
+    }
+
     /// True when the state's coordinates are the modal system's (the stress envelope is
     /// evaluated from them); the dense oracle's are physical.
     fn modal_coordinates(&self) -> bool {

@@ -70,15 +70,7 @@ impl StaticCorrection {
     /// supports' offset), in the given stage, under `excitation`.
     pub fn evaluate(&self, modal_gap: f64, contact: bool, excitation: &Excitation) -> Correction {
         let gram = &self.gram;
-        let mut loads = external_loads(excitation);
-        let shifted = modal_gap + row_dot(&gram[CONTACT], &loads);
-        // In contact F_c = k_c gap with gap = shifted - F_c f_r: F_c = k_c shifted / (1 + k_c f_r).
-        let force = if contact {
-            self.bar_stiffness * shifted / (1.0 + self.bar_stiffness * gram[CONTACT][CONTACT])
-        } else {
-            0.0
-        };
-        loads[CONTACT] = -force;
+        let loads = self.loads(modal_gap, contact, excitation);
         let quadratic = |g: &[[f64; LOADS]; LOADS]| {
             let mut sum = 0.0;
             for a in 0..LOADS {
@@ -100,10 +92,31 @@ impl StaticCorrection {
         }
     }
 
+    /// [`Self::evaluate`]'s load coefficients alone (the probes' and stresses' correction, without
+    /// the energies' quadratic forms).
+    pub fn loads(&self, modal_gap: f64, contact: bool, excitation: &Excitation) -> [f64; LOADS] {
+        let gram = &self.gram;
+        let mut loads = external_loads(excitation);
+        let shifted = modal_gap + row_dot(&gram[CONTACT], &loads);
+        // In contact F_c = k_c gap with gap = shifted - F_c f_r: F_c = k_c shifted / (1 + k_c f_r).
+        let force = if contact {
+            self.bar_stiffness * shifted / (1.0 + self.bar_stiffness * gram[CONTACT][CONTACT])
+        } else {
+            0.0
+        };
+        loads[CONTACT] = -force;
+        loads
+    }
+
     /// Adds the static part R f to probe values computed from the kept modes.
     pub fn correct_probes(&self, probes: &mut [f64; PROBES], correction: &Correction) {
+        self.correct_probes_by(probes, &correction.loads);
+    }
+
+    /// [`Self::correct_probes`] from the load coefficients alone ([`Self::loads`]).
+    pub fn correct_probes_by(&self, probes: &mut [f64; PROBES], loads: &[f64; LOADS]) {
         for (value, row) in probes.iter_mut().zip(&self.probes) {
-            *value += row_dot(row, &correction.loads);
+            *value += row_dot(row, loads);
         }
     }
 
