@@ -304,7 +304,7 @@ impl Simulation<ModalStepper> {
                 let modes = cache.modes(&model)?;
                 (modes.full, modes.run, modes.projector)
             }
-            None => (ModalSystem::new(&model)?, None, None),
+            None => (std::sync::Arc::new(ModalSystem::new(&model)?), None, None),
         };
         let physical = initial_physical_state(&model, &full, &motion)?;
         let (modal, projector) = match (run, projector) {
@@ -314,7 +314,7 @@ impl Simulation<ModalStepper> {
                 (run, projector)
             }
             (None, _) => {
-                let run = full.for_run(&model)?;
+                let run = std::sync::Arc::unwrap_or_clone(full).with_damping(&model.scenario).for_run(&model)?;
                 let projector = std::sync::Arc::new(crate::solver::stepper::projector(&model, &run));
                 (run, projector)
             }

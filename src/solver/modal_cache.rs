@@ -63,7 +63,7 @@ pub const DEFAULT_BYTES: usize = 512 << 20;
 /// a run steps in, both with the damping of the run that computed them.
 #[derive(Debug)]
 struct Shared {
-    full: ModalSystem,
+    full: Arc<ModalSystem>,
     /// `None` when [`ModalSystem::for_run`] failed: each run then computes it again and meets
     /// its own error, in its own order.
     run: Option<ModalSystem>,
@@ -99,8 +99,10 @@ impl Default for ModalCache {
 
 /// The modes of one run, from a cache: the full system and the basis it steps in.
 pub struct RunModes {
-    /// The full modal system (every mode of the mesh), with the run's damping.
-    pub full: ModalSystem,
+    /// The full modal system (every mode of the mesh) as the cache keeps it, shared: with the
+    /// damping of the run that computed it ([`ModalSystem::with_damping`] gives a run's own; the
+    /// initial state reads none).
+    pub full: Arc<ModalSystem>,
     /// The basis the run steps in, with the run's damping; `None`: compute it from `full` (its
     /// error is the run's).
     pub run: Option<ModalSystem>,
@@ -159,7 +161,7 @@ impl ModalCache {
         };
         let s = &model.scenario;
         Ok(RunModes {
-            full: shared.full.clone().with_damping(s),
+            full: shared.full.clone(),
             run: shared.run.clone().map(|m| m.with_damping(s)),
             projector: shared.projector.clone(),
         })
@@ -205,7 +207,7 @@ fn compute(model: &Model) -> Result<Shared> {
     let bytes = approximate_bytes(&full)
         + run.as_ref().map_or(0, approximate_bytes)
         + 8 * projector.as_ref().map_or(0, |p| p.len());
-    Ok(Shared { full, run, projector, bytes })
+    Ok(Shared { full: Arc::new(full), run, projector, bytes })
 }
 
 /// The matrices' and vectors' bytes of a system.
@@ -278,7 +280,7 @@ mod tests {
             let cached = cache.modes(&m).unwrap();
             let full = ModalSystem::new(&m).unwrap();
             let run = full.clone().for_run(&m).unwrap();
-            assert_eq!(bits(&cached.full), bits(&full), "full, {}", s.drop_height);
+            assert_eq!(bits(&(*cached.full).clone().with_damping(s)), bits(&full), "full, {}", s.drop_height);
             assert_eq!(bits(cached.run.as_ref().unwrap()), bits(&run), "run, {}", s.drop_height);
         }
         assert_eq!(cache.len(), 2, "one entry per geometry");
