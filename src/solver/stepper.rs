@@ -588,8 +588,9 @@ impl ModalStepper {
             dt,
             work,
         );
-        // The modes' dissipated work in their order (the same sum as one mode after the other).
-        self.last_dissipation = Some(work.iter().fold(0.0, |sum, w| sum + w));
+        // The modes' dissipated work in their order (the same sum as one mode after the other);
+        // none without an energy account (a chain of additions as long as the modes).
+        self.last_dissipation = Some(if self.energies { work.iter().fold(0.0, |sum, w| sum + w) } else { 0.0 });
         self.last_force_error = None;
     }
 
