@@ -730,13 +730,17 @@ impl<S: Stepper> Simulation<S> {
     /// (from `backup` to the current kinematics, in `stage`), with its time, s: the
     /// cubic of each output from its values and rates at the step's ends
     /// ([`crate::solver::step_extrema`]). `end` holds the probes at the step's end.
-    /// Returns the end's rates too (the next step's start: [`StepEnd`]).
+    /// Returns the end's rates too (the next step's start: [`StepEnd`]). With `floors` (the
+    /// peaks so far, in the order of [`Peaks::as_array`]), an output whose cubic is bounded below
+    /// its floor (|H00 p0 + H01 p1| <= max(|p0|, |p1|), |H10|, |H11| <= 4/27 on [0, 1]) is not
+    /// sought: its step-end value stands in, which raises no peak, as the cubic's would not.
     fn step_extremes(
         &self,
         start: &StepResult,
         end: &[f64; PROBES],
         stage: Stage,
         fraction: f64,
+        floors: Option<[f64; 5]>,
     ) -> ([(f64, f64); 5], [f64; PROBES]) {
         let s = &self.model.scenario;
         let (k0, k1) = (&self.backup, &self.state.kinematics);
@@ -756,8 +760,19 @@ impl<S: Stepper> Simulation<S> {
             (Probe::Gap, bar),
         ];
         let law = self.modal.law.filter(|_| stage.is_contact());
+        let mut index = 0;
         let extremes = outputs.map(|(probe, scale)| {
             let k = probe as usize;
+            let floor = floors.map(|f| f[index]);
+            index += 1;
+            if let (Some(floor), None) = (floor, law) {
+                let reach =
+                    (p0[k].abs().max(end[k].abs()) + 4.0 / 27.0 * dt * (r0[k].abs() + r1[k].abs())) * scale.abs();
+                // A margin far above the bound's and the cubic's round-off.
+                if reach * (1.0 + 1e-10) < floor {
+                    return (end[k].abs() * scale.abs(), self.state.result.time);
+                }
+            }
             let (value, at) =
                 crate::solver::step_extrema::cubic_extremum(p0[k], end[k], r0[k] * dt, r1[k] * dt, fraction);
             // The time within the run (never past the step's end by round-off).
@@ -953,7 +968,9 @@ impl<S: Stepper> Simulation<S> {
         self.state.last_forces = forces;
         self.state.result = result;
         let within_step = if self.polynomial_peaks() {
-            let (extremes, rates) = self.step_extremes(&previous, &probes, stage, 1.0);
+            // Once the first contact's peaks are settled, only the run's own can rise.
+            let floors = self.state.first_contact.end().is_some().then(|| previous.peaks.as_array());
+            let (extremes, rates) = self.step_extremes(&previous, &probes, stage, 1.0, floors);
             self.step_end = Some(StepEnd { time_ns: result.time_ns, step: result.step, stage, probes, rates });
             Some(extremes)
         } else {
@@ -1349,7 +1366,7 @@ impl<S: Stepper> Simulation<S> {
             // so that a peak output is never below an output at a communication point.
             let end_excitation = self.excitation_at(end.time_ns);
             let (end, _) = self.stepper.measure(&self.state.kinematics, stage, &end_excitation);
-            let (extremes, _) = self.step_extremes(start, &end, stage, tau / dt);
+            let (extremes, _) = self.step_extremes(start, &end, stage, tau / dt, None);
             // The exact advance's point is its own value, not the cubic's: a peak is never below
             // an output.
             let at = seconds(at_ns);
