@@ -1,47 +1,14 @@
 //! An answer's check rungs and twin keep no energy account (`Simulation::without_energy_account`:
 //! only their peaks are read). Their states, peaks, first-contact peaks, contact windows, step
 //! counts and stress envelopes must be those of the same run with its energies, to the bit, and
-//! the energies must really be off (read 0), or the saving is not there. Held on a grid (drop
-//! heights 0.1-2 m, damping 0-0.05, contact positions 10-16 m), the paper method (Eqs. 7-11) on a
-//! four times finer mesh and a full basis, and a section example.
+//! the energies must really be off (read 0), or the saving is not there. Held on the peaks-only
+//! scope's grid (`envelope_scope::grid`: drop heights 0.1-2 m, damping 0-0.05, contact positions
+//! 10-16 m, the paper method (Eqs. 7-11) on a four times finer mesh, two section examples).
 
-use std::path::Path;
-
-use beam_impact::model::TimeStep;
 use beam_impact::record::NullRecorder;
 use beam_impact::results::Summary;
 use beam_impact::solver::envelope::EnvelopeScope;
 use beam_impact::{Scenario, Simulation};
-
-fn scenarios() -> Vec<(String, Scenario)> {
-    let mut out: Vec<(String, Scenario)> =
-        [(0.1, 0.05, 12.0), (0.5, 0.0, 14.0), (1.0, 0.03, 16.0), (1.4, 0.01, 10.0), (2.0, 0.02, 13.0)]
-            .into_iter()
-            .map(|(h, g, d)| {
-                let s = Scenario {
-                    drop_height: h,
-                    damping_ratio: g,
-                    contact_position: d,
-                    duration: 1.0,
-                    ..Scenario::default()
-                };
-                (format!("drop {h} m, damping {g}, contact {d} m"), s)
-            })
-            .collect();
-    let mut fine = Scenario {
-        drop_height: 0.8,
-        duration: 0.4,
-        step_free: TimeStep::Auto,
-        step_contact: TimeStep::Auto,
-        ..Scenario::paper()
-    };
-    (fine.lower.elements, fine.upper.elements_to_contact, fine.upper.elements_beyond_contact) = (28, 28, 28);
-    out.push(("the paper method on a mesh four times the paper's".into(), fine));
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join("tapered-arrestor.toml");
-    let tapered = Scenario::from_toml(&std::fs::read_to_string(path).unwrap(), "tapered-arrestor.toml").unwrap();
-    out.push(("tapered-arrestor.toml".into(), Scenario { duration: 1.0, ..tapered }));
-    out
-}
 
 /// The run of `scenario` as an answer's check run takes it (peaks-only envelope), with or without
 /// its energy account; its summary and its final displacements and velocities.
@@ -58,7 +25,7 @@ fn run(scenario: &Scenario, energies: bool) -> (Summary, Vec<f64>) {
 
 #[test]
 fn a_run_without_its_energy_account_keeps_its_states_and_peaks_to_the_bit() {
-    for (name, scenario) in scenarios() {
+    for (name, scenario) in super::envelope_scope::grid() {
         let (with, state_with) = run(&scenario, true);
         let (without, state_without) = run(&scenario, false);
         // Bitwise: to_bits distinguishes what == would let pass (-0.0, NaN).

@@ -20,7 +20,9 @@ fn example(name: &str) -> Scenario {
     Scenario::from_toml(&std::fs::read_to_string(path).unwrap(), name).unwrap()
 }
 
-fn grid() -> Vec<(String, Scenario)> {
+/// The scenarios the peaks-only scope is held on (also the energy-free check runs', see
+/// `energy_account_off`).
+pub(crate) fn grid() -> Vec<(String, Scenario)> {
     let mut out: Vec<(String, Scenario)> =
         [(0.1, 0.05, 12.0), (0.5, 0.0, 14.0), (1.0, 0.03, 16.0), (1.4, 0.01, 10.0), (2.0, 0.02, 13.0)]
             .into_iter()

@@ -285,6 +285,21 @@ struct ModeArrays<'a> {
     damping: &'a [f64],
 }
 
+impl<'a> ModeArrays<'a> {
+    /// The arrays of `state` with the modal `load` and `system`'s parameters, the state's length.
+    fn new(state: &'a mut Kinematics, load: &'a DVector<f64>, system: &'a ModalSystem) -> ModeArrays<'a> {
+        let n = state.displacement.len();
+        ModeArrays {
+            q: &mut state.displacement.as_mut_slice()[..n],
+            v: &mut state.velocity.as_mut_slice()[..n],
+            a: &mut state.acceleration.as_mut_slice()[..n],
+            load: &load.as_slice()[..n],
+            omega2: &system.omega2.as_slice()[..n],
+            damping: &system.damping.as_slice()[..n],
+        }
+    }
+}
+
 /// One exact step out of contact ([`ModalStepper::exact_step`]) over every mode, in the widest
 /// vectors the CPU has (chosen once at run time; no fused multiply-add, so the same bits whichever
 /// runs): each mode under the forcing linear from its start's f0 = a + c v + omega^2 q to its end
@@ -575,19 +590,7 @@ impl ModalStepper {
         }
         let n = state.displacement.len();
         let work = &mut self.z.as_mut_slice()[..n];
-        free_exact_step(
-            ModeArrays {
-                q: &mut state.displacement.as_mut_slice()[..n],
-                v: &mut state.velocity.as_mut_slice()[..n],
-                a: &mut state.acceleration.as_mut_slice()[..n],
-                load: &self.load.as_slice()[..n],
-                omega2: &s.omega2.as_slice()[..n],
-                damping: &s.damping.as_slice()[..n],
-            },
-            &self.exact_cache[slot].columns,
-            dt,
-            work,
-        );
+        free_exact_step(ModeArrays::new(state, &self.load, s), &self.exact_cache[slot].columns, dt, work);
         // The modes' dissipated work in their order (the same sum as one mode after the other);
         // none without an energy account (a chain of additions as long as the modes).
         self.last_dissipation = Some(if self.energies { work.iter().fold(0.0, |sum, w| sum + w) } else { 0.0 });
@@ -616,14 +619,7 @@ impl ModalStepper {
         // the start from its rate.
         let (offset, offset_rate) = (self.shift + excitation.gap_offset, excitation.gap_offset_rate);
         let (gap_terms, rate_terms) = (&mut self.z.as_mut_slice()[..n], &mut self.y.as_mut_slice()[..n]);
-        let mut m = ModeArrays {
-            q: &mut state.displacement.as_mut_slice()[..n],
-            v: &mut state.velocity.as_mut_slice()[..n],
-            a: &mut state.acceleration.as_mut_slice()[..n],
-            load: &self.load.as_slice()[..n],
-            omega2: &s.omega2.as_slice()[..n],
-            damping: &s.damping.as_slice()[..n],
-        };
+        let mut m = ModeArrays::new(state, &self.load, s);
         // The end's gap and gap rate without the bar's change over the step (each mode's share
         // in the vectors, summed in the modes' order), and the start's gap, rate and acceleration.
         contact_free_response(&m, b, &coefficients.columns, inv_dt, gap_terms, rate_terms);
