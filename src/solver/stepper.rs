@@ -75,15 +75,15 @@ pub struct ModalStepper {
 #[derive(Clone, Debug)]
 struct ExactStage {
     dt: f64,
+    /// Each mode's coefficients (what the contact stage's [`CubicStep`]s start from).
     modes: Vec<ModeStep>,
     /// The same coefficients as twelve columns (q(h), v(h), int q; per q0, v0, f0, r), so that
     /// the step's loop over the modes runs in the CPU's vectors.
     columns: [Vec<f64>; 12],
-    /// The contact stage's coefficients as eighteen columns (q(h), v(h), int q per s^2 and s^3;
-    /// the two moments per q0, v0, f0, r, s^2, s^3).
+    /// The contact stage's [`CubicStep`]s as eighteen columns (q(h), v(h), int q per s^2 and
+    /// s^3; the two moments per q0, v0, f0, r, s^2, s^3): empty until a contact step takes this
+    /// size.
     cubic_columns: [Vec<f64>; 18],
-    /// The contact stage's cubic coefficients (empty until a contact step takes this size).
-    cubic: Vec<CubicStep>,
     /// The contact step's 2x2 system for the bar's end force and rate (see `BarSolve`).
     bar: BarSolve,
     /// Steps taken with them.
@@ -97,7 +97,6 @@ impl Default for ExactStage {
             modes: Vec::new(),
             columns: Default::default(),
             cubic_columns: Default::default(),
-            cubic: Vec::new(),
             bar: BarSolve::default(),
             hits: 0,
         }
@@ -166,27 +165,32 @@ impl ExactStage {
                 *c = [&m.q, &m.v, &m.integral][row][lane];
             }
         }
-        self.cubic.clear();
+        for column in &mut self.cubic_columns {
+            column.clear();
+        }
         self.dt = dt;
         self.hits = 0;
     }
 
     /// The contact stage's coefficients of this step size, computed at its first contact step.
     fn prepare_contact(&mut self, s: &ModalSystem) {
-        if !self.cubic.is_empty() || self.modes.is_empty() {
+        if !self.cubic_columns[0].is_empty() || self.modes.is_empty() {
             return;
         }
         let dt = self.dt;
-        self.cubic.extend(
-            s.omega2.iter().zip(s.damping.iter()).zip(&self.modes).map(|((&w2, &c), m)| CubicStep::new(w2, c, dt, m)),
-        );
-        self.bar = BarSolve::new(s, dt, &self.modes, &self.cubic);
-        let n = self.cubic.len();
+        let cubic: Vec<CubicStep> = s
+            .omega2
+            .iter()
+            .zip(s.damping.iter())
+            .zip(&self.modes)
+            .map(|((&w2, &c), m)| CubicStep::new(w2, c, dt, m))
+            .collect();
+        self.bar = BarSolve::new(s, dt, &self.modes, &cubic);
         for column in &mut self.cubic_columns {
-            column.resize(n, 0.0);
+            column.resize(cubic.len(), 0.0);
         }
         for (k, column) in self.cubic_columns.iter_mut().enumerate() {
-            for (value, c) in column.iter_mut().zip(&self.cubic) {
+            for (value, c) in column.iter_mut().zip(&cubic) {
                 *value = match k {
                     0..=1 => c.q[k],
                     2..=3 => c.v[k - 2],
