@@ -131,6 +131,14 @@ pub fn table1(summary: &Summary, paper: bool) -> String {
         );
     }
     let first = &summary.first_contact_peaks;
+    if summary.contact_windows.is_empty() {
+        let _ = writeln!(
+            s,
+            "no contact: the beams never touch in the run (t = 0 .. {:.4} s), so no impact peak was reached",
+            summary.time
+        );
+        return s;
+    }
     let _ = writeln!(
         s,
         "first sustained contact (t = 0 .. {}): sigma_din,b = {:.1} MPa (whole run {:.1} MPa), \
@@ -200,6 +208,10 @@ fn period(omega: f64) -> f64 {
 pub fn contact_windows(summary: &Summary, paper: bool) -> String {
     let mut s = String::new();
     let merged = merged_windows(&summary.contact_windows, BOUNCE_GAP);
+    if merged.is_empty() {
+        let _ = writeln!(s, "Contact: none (the beams never touch in the run)");
+        return s;
+    }
     let _ = writeln!(
         s,
         "Contact: {} windows ({} after merging bounces closer than 10 ms):",

@@ -175,6 +175,25 @@ pub enum Error {
         /// That step's number.
         step: u64,
     },
+    /// The run took as many internal steps as it may (`--max-steps`, the answer's limit) before
+    /// its end: checked at every step, so a run whose steps shrink far below the plan's stops.
+    #[error(
+        "max_steps = {limit} internal steps reached at t = {time} s of {duration} s (the last step {last_step:e} s, \
+         the plan's {planned:e} s): the run's steps shrank far below the plan's (a very stiff contact chattering, \
+         a motion that changes every instant); raise the limit with --max-steps, or soften the contact"
+    )]
+    StepLimit {
+        /// The limit.
+        limit: u64,
+        /// Simulated time reached, s.
+        time: f64,
+        /// The run's duration, s.
+        duration: f64,
+        /// The last step's size, s.
+        last_step: f64,
+        /// The plan's smaller step, s.
+        planned: f64,
+    },
     /// Anything else, with its explanation.
     #[error("{0}")]
     Other(String),

@@ -361,6 +361,10 @@ pub struct Summary {
     /// The stress envelope along each beam (issue 30).
     #[serde(default)]
     pub envelope: StressEnvelope,
+    /// The linear model's range over every node of both beams (issue 40); a summary rebuilt
+    /// from a log leaves it at its default (the stored answer's verdict carries its check).
+    #[serde(default)]
+    pub model_range: crate::solver::model_range::RangeCheck,
 }
 
 /// One stress's envelope along a beam: at each station (a node; two at a section change or a

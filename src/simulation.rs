@@ -16,6 +16,7 @@ use crate::results::{
 use crate::solver::contact::{self, Stage};
 use crate::solver::envelope::{EnvelopeScope, Running, StationRows, StationState};
 use crate::solver::initial::{initial_state, Pitching};
+use crate::solver::model_range::{ModelRange, RangeCheck, RangeRows, StrainPeak};
 use crate::solver::static_correction::LOADS;
 use crate::solver::{
     DenseStepper, Energies, EnergyMethod, Excitation, Kinematics, ModalCache, ModalStepper, ModalSystem, StepPlan,
@@ -84,6 +85,9 @@ pub struct RunState {
     /// When each station's largest stress was reached, s.
     #[serde(default)]
     pub envelope_times: Vec<f64>,
+    /// Every node's largest deflection and rotation so far, the model's range (issue 40).
+    #[serde(default)]
+    pub range: ModelRange,
 }
 
 impl RunState {
@@ -111,6 +115,12 @@ impl RunState {
         }
         if self.step_level > MAX_STEP_LEVEL {
             return invalid("step_level", format!("= {} is above the largest level {MAX_STEP_LEVEL}", self.step_level));
+        }
+        if !self.range.is_plausible(self.result.time) {
+            return invalid(
+                "range",
+                format!("= {:?} holds a value that is not finite and >= 0, or a time outside the run", self.range),
+            );
         }
         let r = &self.result;
         let e = &r.energy;
@@ -272,6 +282,10 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     envelope_work: crate::solver::envelope::EnvelopeWork,
     /// The recorder's feed of the stations' per-step loads and the run's envelope (issue 30).
     feed: FeedEnd,
+    /// Every node's deflection and rotation rows, for the model's range (issue 40).
+    range_rows: std::sync::Arc<RangeRows>,
+    /// The most internal steps the run may take, checked at every step (issue 40).
+    max_steps: u64,
 }
 
 impl Simulation<ModalStepper> {
@@ -436,7 +450,9 @@ impl<S: Stepper> Simulation<S> {
             step_level: 0,
             envelope: vec![0.0; model.stations.len()],
             envelope_times: vec![0.0; model.stations.len()],
+            range: ModelRange::default(),
         };
+        let range_rows = range_rows(&model, &modal, &shapes, stepper.modal_coordinates());
         let stations = if stepper.modal_coordinates() {
             let divisors: Vec<f64> = model.stations.all().map(|s| s.divisor).collect();
             let allowables: Vec<f64> = model.stations.all().map(|s| s.allowable).collect();
@@ -469,6 +485,8 @@ impl<S: Stepper> Simulation<S> {
             stations,
             envelope_work: Default::default(),
             feed: FeedEnd::default(),
+            range_rows: std::sync::Arc::new(range_rows),
+            max_steps: crate::model::scenario::MAX_STEPS,
         };
         simulation.evaluate_initial();
         Ok(simulation)
@@ -502,6 +520,13 @@ impl<S: Stepper> Simulation<S> {
             time,
             Running { max: &mut state.envelope, times: &mut state.envelope_times },
         );
+    }
+
+    /// Raises the model's range (every node's deflection and rotation) by the current state.
+    fn observe_range(&mut self, stage: Stage, excitation: &Excitation, time: f64) {
+        let q = self.state.kinematics.displacement.as_slice();
+        let loads = self.correction_loads(q, stage, excitation);
+        self.range_rows.observe(q, loads.as_ref(), time, &mut self.state.range);
     }
 
     /// Raises the stress envelope over the exact advance's contact step just taken (from
@@ -605,6 +630,7 @@ impl<S: Stepper> Simulation<S> {
         let excitation = self.excitation_at(0);
         let (probes, energies) = self.stepper.measure(&self.state.kinematics, Stage::Free, &excitation);
         self.observe_envelope(Stage::Free, &excitation, 0.0, 0);
+        self.observe_range(Stage::Free, &excitation, 0.0);
         let mut result = self.outputs(&probes, Stage::Free, 0, 0.0);
         self.set_support_and_tips(&mut result, &self.state.kinematics, &excitation);
         self.state.inertial_potential = energies.inertial_potential;
@@ -909,6 +935,15 @@ impl<S: Stepper> Simulation<S> {
     pub fn step(&mut self, max_step_ns: u64, details: bool) -> Result<Option<ContactEvent>> {
         let stage = self.next_stage();
         let previous = self.state.result;
+        if previous.step >= self.max_steps {
+            return Err(Error::StepLimit {
+                limit: self.max_steps,
+                time: previous.time,
+                duration: self.model.scenario.duration,
+                last_step: previous.step_size,
+                planned: seconds(self.plan.free_ns.min(self.plan.contact_ns)),
+            });
+        }
         let mut step_ns = self.next_step_ns(stage).min(max_step_ns).max(1);
         let mut dt = seconds(step_ns);
         let forces = self.state.forces;
@@ -939,6 +974,7 @@ impl<S: Stepper> Simulation<S> {
         self.state.gap = probes[Probe::Gap as usize];
         let span = (previous.time_ns, previous.time_ns + step_ns);
         self.observe_envelope_over_step(stage, &excitation, span, previous.step + 1);
+        self.observe_range(stage, &excitation, seconds(span.1));
         let rate = self.gap_rate(&self.state.kinematics, stage, &excitation);
         energies.dissipation_rate += self.contact_dissipation_rate(self.state.gap, rate, stage);
         let mut result = self.outputs(&probes, stage, previous.time_ns + step_ns, rate);
@@ -1548,6 +1584,13 @@ impl<S: Stepper> Simulation<S> {
         Ok(())
     }
 
+    /// Limits the run to `max_steps` internal steps in all, checked before each step: a run whose
+    /// steps shrink beyond what [`Self::check_step_count`] foresaw stops with
+    /// [`Error::StepLimit`] instead of running on (default [`crate::model::scenario::MAX_STEPS`]).
+    pub fn set_max_steps(&mut self, max_steps: u64) {
+        self.max_steps = max_steps;
+    }
+
     /// The resolved time steps of both stages.
     pub fn step_plan(&self) -> &StepPlan {
         &self.plan
@@ -1557,8 +1600,8 @@ impl<S: Stepper> Simulation<S> {
     /// flows in the run (the larger of m_u g h + |external work| and the largest strain energy),
     /// against the scenario's `energy_tolerance`; and fixed time steps above the energy-safe limit.
     ///
-    /// A run whose arrestor deflects beyond [`SMALL_DEFLECTION`] of its length has left the
-    /// small-deflection range of the linear (Euler-Bernoulli) model: not trusted, with the reason.
+    /// A run that leaves the linear model's range anywhere along either beam is not trusted, with
+    /// the reason ([`Self::range_reasons`]).
     pub fn quality(&self) -> Quality {
         let s = &self.model.scenario;
         let state = &self.state;
@@ -1570,19 +1613,56 @@ impl<S: Stepper> Simulation<S> {
             s.energy_tolerance,
             self.plan.advisories(s, &self.modal),
         );
-        let deflection = state.result.peaks.lower_tip_deflection.abs();
-        let ratio = deflection / s.lower.length;
-        if ratio.is_nan() || ratio > SMALL_DEFLECTION {
+        let reasons = self.range_reasons();
+        if !reasons.is_empty() {
             quality.trusted = false;
-            quality.reasons.push(format!(
-                "small deflection: the arrestor's end deflects {deflection:.4e} m, {:.1} % of its {} m length, beyond \
-                 the linear beam model's small-deflection range ({} % of the length)",
-                100.0 * ratio,
-                s.lower.length,
-                100.0 * SMALL_DEFLECTION
-            ));
+            quality.reasons.extend(reasons);
         }
         quality
+    }
+
+    /// The model's range so far: every node's largest deflection and rotation, the arrestor's
+    /// tip deflection within the steps (its peak), and each beam's largest strain from its stress
+    /// envelope, against [`SMALL_DEFLECTION`], [`SMALL_ROTATION`] and [`ELASTIC_STRAIN`].
+    pub fn model_range(&self) -> RangeCheck {
+        let s = &self.model.scenario;
+        let mut range = self.state.range;
+        let (peaks, times) = self.last_peaks();
+        let tip = peaks.lower_tip_deflection.abs();
+        if tip > range.lower_deflection.value || tip.is_nan() {
+            range.lower_deflection = crate::solver::model_range::RangePeak {
+                value: tip,
+                position: Some(s.lower.length),
+                time: times.lower_tip_deflection,
+            };
+        }
+        let envelope = self.envelope();
+        let strain = |beam: &crate::results::BeamEnvelope, modulus: f64| -> Option<StrainPeak> {
+            let bending = beam.bending.peak().map(|p| (p.value, p.position, p.time, "bending"));
+            let shear = beam.shear.peak().map(|p| (3f64.sqrt() * p.value, p.position, p.time, "shear"));
+            let worst = match (bending, shear) {
+                (Some(b), Some(t)) => Some(if t.0 > b.0 { t } else { b }),
+                (b, t) => b.or(t),
+            }?;
+            Some(StrainPeak {
+                value: worst.0 / modulus,
+                stress: worst.0,
+                position: worst.1,
+                time: worst.2,
+                shear: worst.3 == "shear",
+            })
+        };
+        RangeCheck {
+            range,
+            lower_strain: strain(&envelope.lower, s.lower.elastic_modulus),
+            upper_strain: strain(&envelope.upper, s.upper.elastic_modulus),
+            lengths: [s.lower.length, s.upper.length],
+        }
+    }
+
+    /// One reason per range quantity beyond its limit.
+    fn range_reasons(&self) -> Vec<String> {
+        self.model_range().reasons()
     }
 
     /// The run state, for saving (FMU state, rollback).
@@ -1698,6 +1778,7 @@ impl<S: Stepper> Simulation<S> {
             time_steps: TimeSteps { free: seconds(self.plan.free_ns), contact: seconds(self.plan.contact_ns) },
             impact: self.impact,
             envelope: self.envelope(),
+            model_range: self.model_range(),
         }
     }
 
@@ -1785,6 +1866,32 @@ fn continues_value(expected: f64, given: f64) -> bool {
     (expected - given).abs() <= 1e-12 * expected.abs().max(given.abs()).max(1.0)
 }
 
+/// The model's range rows (issue 40) for a stepper in modal coordinates (`modal`'s, whose
+/// `shapes` they are) or in physical ones (the dense oracle): the deflections without the rigid
+/// modes' motion, the rotations with it.
+fn range_rows(model: &Model, modal: &ModalSystem, shapes: &DMatrix<f64>, in_modes: bool) -> RangeRows {
+    let rigid: Vec<usize> = (0..modal.dofs()).filter(|&j| modal.omega2[j] == 0.0).collect();
+    if in_modes {
+        let mut elastic = shapes.clone();
+        for &j in &rigid {
+            elastic.column_mut(j).fill(0.0);
+        }
+        return RangeRows::new(model, shapes, &elastic, modal.lower_dofs, &modal.correction.dofs);
+    }
+    // Physical coordinates: the elastic part is u less its M-projection on the rigid modes
+    // (mass-normalised), (I - Phi_r Phi_r^T M) u.
+    let n = model.dofs();
+    let total = DMatrix::identity(n, n);
+    let mass = model.mass();
+    let mut elastic = total.clone();
+    for &j in &rigid {
+        let phi = shapes.column(j);
+        let projection = phi * (phi.transpose() * &mass);
+        elastic -= projection;
+    }
+    RangeRows::new(model, &total, &elastic, model.lower.dofs(), &[])
+}
+
 /// Rows: every node of the arrestor, then of the bridge; columns: global modal coordinates.
 fn nodal_shapes(model: &Model, shapes: &DMatrix<f64>) -> DMatrix<f64> {
     let nodes: Vec<Option<usize>> = model
@@ -1797,12 +1904,6 @@ fn nodal_shapes(model: &Model, shapes: &DMatrix<f64>) -> DMatrix<f64> {
         .collect();
     DMatrix::from_fn(nodes.len(), shapes.ncols(), |r, c| nodes[r].map_or(0.0, |i| shapes[(i, c)]))
 }
-
-/// Largest arrestor end deflection, as a fraction of its length, within the linear model's
-/// small-deflection range: where the linear tip deflection of a cantilever under a tip load is
-/// 0.1 L (P L^2 / EI = 0.3), the large-deflection elastica (Bisshopp and Drucker 1945; solved by
-/// shooting: 0.0990 L) is 1.0 % less; the gap grows about as (w/L)^2 beyond it.
-pub const SMALL_DEFLECTION: f64 = 0.1;
 
 /// The support motion as an error names it: "fixed", or each moving coordinate's values.
 fn describe_motion(motion: &SupportMotion) -> String {

@@ -371,3 +371,20 @@ fn the_energy_and_yield_reasons_name_their_check_and_remedy() {
         "{line}"
     );
 }
+
+/// Issue 40: the step limit is enforced at every step, not only foreseen before the run: a run
+/// whose steps would pass it stops there with an error naming the limit, the time reached and the
+/// step sizes (the 1e13 N/m contact's 50 ns steps ran on for 400 s before).
+#[test]
+fn a_run_stops_at_its_step_limit_during_the_run() {
+    let scenario = short(0.3);
+    let mut sim = beam_impact::Simulation::new(&scenario).unwrap();
+    sim.set_max_steps(50);
+    let error = sim.run(&mut NullRecorder).unwrap_err().to_string();
+    assert!(error.starts_with("max_steps = 50 internal steps reached at t = "), "{error}");
+    assert!(error.contains("of 0.3 s") && error.contains("--max-steps"), "{error}");
+    assert_eq!(sim.result().step, 50);
+    // The answer passes its own limit to every run it makes.
+    let options = answer::Options { max_steps: 1_000_000, ..Default::default() };
+    assert!(answer::run(&scenario, &mut NullRecorder, options).is_ok());
+}

@@ -242,6 +242,19 @@ fn accepted(p: &Parameter, value: f64) -> std::result::Result<(), String> {
     if p.name == "contact.law" {
         s.contact.given_stiffness = Some(1e9);
     }
+    // The declared range of contact.stiffness is the power law's (N/m^n); the linear law's stops
+    // at 1e12 N/m (issue 40).
+    if p.name == "contact.stiffness" && value > beam_impact::model::scenario::MAX_CONTACT_STIFFNESS {
+        s.contact.law = beam_impact::model::contact_law::LawKind::Power;
+        s.contact.given_stiffness = Some(1e9);
+    }
+    // The bar's E A / l is held to 1e12 N/m as a whole: each of its fields at its declared end
+    // with the others' at a bar that stays within it.
+    if ["contact.area", "contact.elastic_modulus", "contact.length"].contains(&p.name) {
+        s.contact.length = 1e3;
+        s.contact.area = 1e-3;
+        s.contact.elastic_modulus = 1e6;
+    }
     s.validate().expect("the base scenario is valid");
     let outcome = parameters::set(&mut s, p, value).and_then(|()| s.validate());
     match outcome {

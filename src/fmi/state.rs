@@ -40,7 +40,7 @@ pub const MAGIC: &[u8; 8] = b"BEAMFMU\0";
 
 /// Version of the byte format; bump it when the layout, [`Snapshot`], [`RunState`] or the set of
 /// FMU parameters changes.
-pub const FORMAT_VERSION: u32 = 7;
+pub const FORMAT_VERSION: u32 = 8;
 
 /// Bytes before the payload.
 pub const HEADER: usize = 24;
@@ -336,7 +336,7 @@ mod tests {
         out.insert(format!("{prefix}: {leaf}"));
     }
 
-    /// The payload's layout at FORMAT_VERSION 7 (7: the stress envelope's stations, the bridge's
+    /// The payload's layout at FORMAT_VERSION 8 (8: every node's largest deflection and rotation, the model's range, issue 40; 7: the stress envelope's stations, the bridge's
     /// shear area and allowable shear stress, the beams' sections, issue 30; 6: the exact modal advance's step level; 5: issue 28's FMU parameters, the impact's
     /// angular velocity, `lower.kind`, `contact.stiffness` and `contact.clearance`; 4: the supports' motion, its start and input, the
     /// inertial potential and the supports' displacements in the results; 3: the method, modal cut-off, discretisation
@@ -351,8 +351,8 @@ mod tests {
     /// list together. (A DVector is nalgebra's `[data, nrows, ncols]`: `[][]` the data, `[]` the
     /// sizes; `null` an absent Option or the static column count.)
     #[test]
-    fn snapshot_fields_are_pinned_at_format_version_7() {
-        const VERSION_7: &[&str] = &[
+    fn snapshot_fields_are_pinned_at_format_version_8() {
+        const VERSION_8: &[&str] = &[
             "checks[].contact_windows[].end: f64",
             "checks[].contact_windows[].start: f64",
             "checks[].dissipation_rate: f64",
@@ -417,6 +417,18 @@ mod tests {
             "checks[].peak_times.lower_clamp_shear_stress: f64",
             "checks[].peak_times.lower_tip_deflection: f64",
             "checks[].peak_times.upper_contact_bending_stress: f64",
+            "checks[].range.lower_deflection.position: null",
+            "checks[].range.lower_deflection.time: f64",
+            "checks[].range.lower_deflection.value: f64",
+            "checks[].range.lower_rotation.position: null",
+            "checks[].range.lower_rotation.time: f64",
+            "checks[].range.lower_rotation.value: f64",
+            "checks[].range.upper_deflection.position: null",
+            "checks[].range.upper_deflection.time: f64",
+            "checks[].range.upper_deflection.value: f64",
+            "checks[].range.upper_rotation.position: null",
+            "checks[].range.upper_rotation.time: f64",
+            "checks[].range.upper_rotation.value: f64",
             "checks[].result.contact: bool",
             "checks[].result.contact_force: f64",
             "checks[].result.contact_stress: f64",
@@ -560,6 +572,18 @@ mod tests {
             "run.peak_times.lower_clamp_shear_stress: f64",
             "run.peak_times.lower_tip_deflection: f64",
             "run.peak_times.upper_contact_bending_stress: f64",
+            "run.range.lower_deflection.position: null",
+            "run.range.lower_deflection.time: f64",
+            "run.range.lower_deflection.value: f64",
+            "run.range.lower_rotation.position: null",
+            "run.range.lower_rotation.time: f64",
+            "run.range.lower_rotation.value: f64",
+            "run.range.upper_deflection.position: null",
+            "run.range.upper_deflection.time: f64",
+            "run.range.upper_deflection.value: f64",
+            "run.range.upper_rotation.position: null",
+            "run.range.upper_rotation.time: f64",
+            "run.range.upper_rotation.value: f64",
             "run.result.contact: bool",
             "run.result.contact_force: f64",
             "run.result.contact_stress: f64",
@@ -630,7 +654,7 @@ mod tests {
         let found: Vec<&str> = found.iter().map(String::as_str).collect();
         assert_eq!(
             (FORMAT_VERSION, found.as_slice()),
-            (7, VERSION_7),
+            (8, VERSION_8),
             "Snapshot's fields changed: bump FORMAT_VERSION and update the pinned list"
         );
     }

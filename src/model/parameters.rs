@@ -334,7 +334,7 @@ pub const RANGES: &[(&str, Option<f64>, Option<f64>)] = &[
     ("upper.yield_stress", Some(0.0), Some(1e12)),
     ("impact_angular_velocity", Some(0.0), Some(crate::model::scenario::MAX_IMPACT_ANGULAR_VELOCITY)),
     ("lower.kind", Some(0.0), Some(1.0)),
-    ("contact.stiffness", Some(0.0), Some(1e13)),
+    ("contact.stiffness", Some(0.0), Some(crate::model::scenario::MAX_POWER_LAW_STIFFNESS)),
     ("contact.clearance", Some(0.0), Some(10.0)),
     ("contact.law", Some(0.0), Some(1.0)),
     ("contact.exponent", Some(1.0), Some(3.0)),

@@ -473,11 +473,24 @@ fn stress(name: &'static str, value: f64) -> Result<()> {
 }
 
 /// An optional stress limit: 0 (none) or a stress.
+/// The stiffest contact, N/m (N/m^n for the power law): 36 times the paper's steel bar (E A / l =
+/// 2.8e10 N/m). Stiffer, the bar's compression at a separation rings at a frequency the steps must
+/// follow: measured on the default scenario (3 s), 2.8e10 N/m takes 4 500 steps (0.35 s), 3e11
+/// 9 600 (0.66 s), 1e12 30 000 (5 s), and 1e13 did not pass t = 0.75 s in 400 s (steps of 50 ns
+/// at the first separation).
+pub const MAX_CONTACT_STIFFNESS: f64 = 1e12;
+
+/// The stiffest power-law contact, N/m^n (its own unit: a Hertz law carrying the paper's 475 kN at
+/// the bar's 17 um compression is 6.8e12 N/m^1.5).
+pub const MAX_POWER_LAW_STIFFNESS: f64 = 1e13;
+
+/// A yield stress: 0 (none given), or from 1 kPa (below any solid's: the softest elastomers yield
+/// above 1 MPa; a smaller one makes every utilisation overflow) to 1e12 Pa.
 fn optional_stress(name: &'static str, value: f64) -> Result<()> {
     if value == 0.0 {
         Ok(())
     } else {
-        within(name, "Pa (0: none)", value, 0.0, 1e12)
+        within(name, "Pa (0: none)", value, 1e3, 1e12)
     }
 }
 
@@ -769,7 +782,28 @@ impl Scenario {
         check(tip_force("lower.tip_force", l.tip_force));
 
         if let Some(k) = c.given_stiffness {
-            check(size("contact.stiffness", "N/m", k, 1e-3, 1e13));
+            let max = if c.law == LawKind::Linear { MAX_CONTACT_STIFFNESS } else { MAX_POWER_LAW_STIFFNESS };
+            let unit = if c.law == LawKind::Linear { "N/m (the linear law's limit)" } else { "N/m^n" };
+            check(size("contact.stiffness", unit, k, 1e-3, max));
+        } else if c.law == LawKind::Linear
+            && size("contact.area", "m^2", c.area, 1e-12, 1e3).is_ok()
+            && size("contact.length", "m", c.length, 1e-6, 1e3).is_ok()
+            && size("contact.elastic_modulus", "Pa", c.elastic_modulus, 1e6, 1e13).is_ok()
+        {
+            // The bar's fields each within their own ranges, their stiffness within the law's.
+            let k = c.stiffness();
+            if !(k <= MAX_CONTACT_STIFFNESS) {
+                check(Err(Error::invalid(
+                    "contact.elastic_modulus * contact.area / contact.length",
+                    format!(
+                        "<= {MAX_CONTACT_STIFFNESS:e} N/m (the bar's stiffness; {} Pa * {} m^2 / {} m)",
+                        bound(c.elastic_modulus),
+                        bound(c.area),
+                        bound(c.length)
+                    ),
+                    bound(k),
+                )));
+            }
         }
         check(within("contact.clearance", "m", c.clearance, 0.0, 10.0));
         check(within("contact.exponent", "", c.exponent, EXPONENT_RANGE.0, EXPONENT_RANGE.1));

@@ -682,6 +682,7 @@ pub fn summary_from_log(data: &LogData, simulation: &Simulation) -> Result<Summa
         },
         impact: simulation.impact(),
         envelope: replay_envelope(data, &last.peaks, &peak_times, simulation.scenario().contact_position).0,
+        model_range: Default::default(),
     })
 }
 

@@ -13,6 +13,7 @@ pub mod initial;
 pub mod kinematics;
 pub mod modal;
 pub mod modal_cache;
+pub mod model_range;
 pub mod secular;
 pub mod static_correction;
 pub mod step_extrema;

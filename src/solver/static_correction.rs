@@ -39,6 +39,10 @@ pub struct StaticCorrection {
     pub reactions: [[f64; LOADS]; REACTIONS],
     /// s_k^T R x_a for each stress envelope station s_k (issue 30).
     pub stations: Vec<[f64; LOADS]>,
+    /// e_d^T R x_a for each physical DOF d of both beams (the arrestor's, then the bridge's): the
+    /// discarded modes' static deflections and rotations, which the model's range check reads
+    /// ([`super::model_range`]; issue 40).
+    pub dofs: Vec<[f64; LOADS]>,
     /// The physical contact bar's stiffness k_c, N/m (the stepper's is k_eff).
     pub bar_stiffness: f64,
 }

@@ -99,8 +99,12 @@ impl ModalSystem {
         let mut correction = StaticCorrection {
             bar_stiffness: self.bar_stiffness,
             stations: vec![[0.0; LOADS]; self.stations.nrows()],
+            dofs: vec![[0.0; LOADS]; self.full_dofs],
             ..StaticCorrection::default()
         };
+        // Each physical DOF's row of the discarded modes' shapes (the block-diagonal basis: a
+        // mode moves its own beam's DOFs only).
+        let (lower_rows, lower_modes) = self.lower.shapes.shape();
         for &i in &discarded {
             let w = 1.0 / self.omega2[i];
             let x: [f64; LOADS] = std::array::from_fn(|a| loads[a][i]);
@@ -119,6 +123,19 @@ impl ModalSystem {
                 }
                 for (s, reaction) in self.reactions.iter().enumerate() {
                     correction.reactions[s][a] += w * reaction.displacement[i] * x[a];
+                }
+            }
+            let (shapes, column, offset) = if i < lower_modes {
+                (&self.lower.shapes, i, 0)
+            } else {
+                (&self.upper.shapes, i - lower_modes, lower_rows)
+            };
+            for (r, value) in shapes.column(column).iter().enumerate() {
+                if *value != 0.0 {
+                    let row = &mut correction.dofs[offset + r];
+                    for a in 0..LOADS {
+                        row[a] += w * value * x[a];
+                    }
                 }
             }
         }
@@ -183,6 +200,9 @@ fn add_into(into: &mut StaticCorrection, from: &StaticCorrection) {
             into.reactions[s][a] += from.reactions[s][a];
         }
         for (row, from_row) in into.stations.iter_mut().zip(&from.stations) {
+            row[a] += from_row[a];
+        }
+        for (row, from_row) in into.dofs.iter_mut().zip(&from.dofs) {
             row[a] += from_row[a];
         }
     }

@@ -295,3 +295,12 @@ def test_a_link_folder_fifo_or_nul_as_the_log_is_refused_before_the_run(kind, tm
     assert victim.read_text() == "keep me"
     made = [kind] if kind in ("link", "folder", "fifo") else []
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted(["victim.txt", *made])
+
+
+def test_a_run_outside_the_model_is_not_trusted_in_python():
+    """Issue 40: the arrestor deflecting 5.9 m (49 % of its 12 m) is outside the linear model; the
+    Python door says so as the CLI does (`trusted` False, the `model_range` check failed, the reason)."""
+    result = beam_impact.run(drop_height=0, impact_angular_velocity=3)
+    assert result.trusted is False
+    assert result["quality"]["checks"]["model_range"]["pass"] is False
+    assert any(r.startswith("small deflection: the arrestor") for r in result.reasons), result.reasons

@@ -1,0 +1,354 @@
+//! The linear model's range over every node of both beams (issue 40): the Euler-Bernoulli
+//! elements, the contact at fixed points of each beam and the linear-elastic stresses hold for
+//! small deflections, small rotations and elastic strains only. A run that leaves that range
+//! anywhere (not just at the arrestor's tip) is outside the model, whatever its mesh and steps.
+//!
+//! Every node's deflection and rotation is a row of the basis's shapes times the coordinates,
+//! plus the discarded modes' static part (the correction's rows times its load coefficients).
+//! Evaluating all of them every step would cost as much as the step itself, so each step first
+//! takes a bound, sum_j max_r |phi_rj| |q_j| + sum_a max_r |R_ra| |c_a| (O(modes)), and evaluates
+//! the rows only where the bound reaches the limit: a value below the bound is below the limit,
+//! and every value that could exceed it is computed exactly.
+
+use std::ops::Range;
+
+use nalgebra::DMatrix;
+use serde::{Deserialize, Serialize};
+
+use super::static_correction::LOADS;
+use crate::model::Model;
+
+/// Largest deflection of any node, as a fraction of its beam's length, within the linear model's
+/// small-deflection range: where the linear tip deflection of a cantilever under a tip load is
+/// 0.1 L (P L^2 / EI = 0.3), the large-deflection elastica (Bisshopp and Drucker 1945; solved by
+/// shooting: 0.0990 L) is 1.0 % less; the gap grows about as (w/L)^2 beyond it.
+pub const SMALL_DEFLECTION: f64 = 0.1;
+
+/// Largest rotation of any node, rad, within the small-rotation range: the same cantilever's tip
+/// slope where its deflection is [`SMALL_DEFLECTION`] (theta = P L^2 / 2EI = 0.15 at
+/// P L^2 / EI = 0.3), where sin(theta) and tan(theta) differ from theta by 0.4 % and 0.8 %: the
+/// contact points, fixed on each beam, have moved along it by L (1 - cos 0.15) = 1.1 % of a length.
+pub const SMALL_ROTATION: f64 = 0.15;
+
+/// Largest strain (the extreme fibre's bending stress, or sqrt(3) times the shear stress, over E)
+/// within the linear-elastic range whatever the material: the elastic strain of structural metals
+/// ends below it (yield over E: S355 0.17 %, S960 0.46 %, aluminium 7075-T6 0.7 %, Ti-6Al-4V
+/// 0.8 %). A stated `yield_stress` checks the material's own, lower limit.
+pub const ELASTIC_STRAIN: f64 = 0.01;
+
+/// One beam's largest value of one range quantity so far.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct RangePeak {
+    /// An upper bound of the largest |value| at the steps' ends (exact wherever it reaches the
+    /// limit): m for deflections, rad for rotations, a fraction for strains.
+    pub value: f64,
+    /// Where the largest exact value is, m from the beam's support (null: no node's value needed
+    /// evaluating, the bound stayed below the limit).
+    pub position: Option<f64>,
+    /// When, s.
+    pub time: f64,
+}
+
+impl RangePeak {
+    /// Raises the peak by `value` at `time` (and `position` where exact).
+    fn raise(&mut self, value: f64, position: Option<f64>, time: f64) {
+        if value > self.value || value.is_nan() {
+            *self = RangePeak { value, position, time };
+        }
+    }
+}
+
+/// The range quantities of a run so far, per beam.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ModelRange {
+    /// The arrestor's largest |deflection| of any node, m (its bending; the arrestor has no
+    /// rigid-body motion of its own).
+    pub lower_deflection: RangePeak,
+    /// The bridge's, m (its bending: from its position at the first touch, less its rigid pitching
+    /// about the hinge, which the rotations bound).
+    pub upper_deflection: RangePeak,
+    /// The arrestor's largest |rotation| of any node, rad.
+    pub lower_rotation: RangePeak,
+    /// The bridge's, rad.
+    pub upper_rotation: RangePeak,
+}
+
+impl ModelRange {
+    /// Every value finite and >= 0, every time within `[0, end]` s (a restored state's check).
+    pub fn is_plausible(&self, end: f64) -> bool {
+        [self.lower_deflection, self.upper_deflection, self.lower_rotation, self.upper_rotation].iter().all(|p| {
+            p.value.is_finite()
+                && p.value >= 0.0
+                && p.time.is_finite()
+                && (0.0..=end).contains(&p.time)
+                && p.position.is_none_or(f64::is_finite)
+        })
+    }
+}
+
+/// One kind of row (deflections or rotations) of one beam.
+#[derive(Clone, Debug, Default)]
+struct Rows {
+    /// One row per node with that DOF, over the beam's own coordinates.
+    shapes: DMatrix<f64>,
+    /// Each row's static correction over the load coefficients (empty: a full basis).
+    correction: Vec<[f64; LOADS]>,
+    /// The nodes' positions, m from the support.
+    positions: Vec<f64>,
+    /// max_r |shapes[r, j]| per coordinate.
+    bound: Vec<f64>,
+    /// max_r |correction[r][a]| per load.
+    correction_bound: [f64; LOADS],
+    /// The value the rows are evaluated above (the range's limit).
+    limit: f64,
+}
+
+impl Rows {
+    fn new(shapes: DMatrix<f64>, correction: Vec<[f64; LOADS]>, positions: Vec<f64>, limit: f64) -> Rows {
+        let bound = shapes.column_iter().map(|c| c.amax()).collect();
+        let correction_bound = std::array::from_fn(|a| correction.iter().map(|r| r[a].abs()).fold(0.0, f64::max));
+        Rows { shapes, correction, positions, bound, correction_bound, limit }
+    }
+
+    /// Raises `peak` by the rows at `q` (the beam's coordinates) with the load coefficients `loads`.
+    fn observe(&self, q: &[f64], loads: Option<&[f64; LOADS]>, time: f64, peak: &mut RangePeak) {
+        if self.positions.is_empty() {
+            return;
+        }
+        let mut bound: f64 = self.bound.iter().zip(q).map(|(b, q)| b * q.abs()).sum();
+        if let Some(c) = loads {
+            bound += self.correction_bound.iter().zip(c).map(|(b, c)| b * c.abs()).sum::<f64>();
+        }
+        if bound.is_nan() || bound < self.limit {
+            // Below the limit: the bound is an upper bound of every row (NaN: carried as it is).
+            peak.raise(bound, None, time);
+            return;
+        }
+        let mut largest = (0.0, 0usize);
+        for r in 0..self.positions.len() {
+            let mut value: f64 = self.shapes.row(r).iter().zip(q).map(|(s, q)| s * q).sum();
+            if let (Some(c), Some(row)) = (loads, self.correction.get(r)) {
+                value += row.iter().zip(c).map(|(a, b)| a * b).sum::<f64>();
+            }
+            let value = value.abs();
+            if value > largest.0 || value.is_nan() {
+                largest = (value, r);
+            }
+        }
+        peak.raise(largest.0, Some(self.positions[largest.1]), time);
+    }
+}
+
+/// One beam's rows and the coordinates they read.
+#[derive(Clone, Debug, Default)]
+struct BeamRows {
+    coordinates: Range<usize>,
+    deflection: Rows,
+    rotation: Rows,
+}
+
+/// Every node's deflection and rotation rows of both beams in the run's coordinates.
+#[derive(Clone, Debug, Default)]
+pub struct RangeRows {
+    beams: [BeamRows; 2],
+}
+
+impl RangeRows {
+    /// The rows of `model` in coordinates whose shapes are `total` (one row per physical DOF, the
+    /// arrestor's then the bridge's; one column per coordinate, the arrestor's first, its
+    /// `lower_coordinates` of them), with the discarded modes' rows `correction` (one per physical
+    /// DOF, or none for a full basis). The deflections are read from `elastic`, the same shapes
+    /// without the rigid-body motion (the bridge's pitching about its hinge, which
+    /// [`SMALL_ROTATION`] bounds through the rotations: a rigid rotation of 0.12 rad swings a 29 m
+    /// bridge's tip 3.5 m, 12 % of its length, and bends nothing).
+    pub fn new(
+        model: &Model,
+        total: &DMatrix<f64>,
+        elastic: &DMatrix<f64>,
+        lower_coordinates: usize,
+        correction: &[[f64; LOADS]],
+    ) -> RangeRows {
+        let coordinates = [0..lower_coordinates, lower_coordinates..total.ncols()];
+        let offsets = [0, model.lower.dofs()];
+        let lengths = [model.scenario.lower.length, model.scenario.upper.length];
+        let beams = [&model.lower, &model.upper];
+        let beam_rows = |b: usize| {
+            let nodes = &beams[b].mesh.nodes;
+            let range = coordinates[b].clone();
+            let rows = |shapes: &DMatrix<f64>, dof: fn(&crate::model::mesh::Node) -> Option<usize>, limit: f64| {
+                let picked: Vec<(usize, f64)> =
+                    nodes.iter().filter_map(|n| dof(n).map(|i| (offsets[b] + i, n.x))).collect();
+                let block = DMatrix::from_fn(picked.len(), range.len(), |r, c| shapes[(picked[r].0, range.start + c)]);
+                let correction = if correction.is_empty() {
+                    Vec::new()
+                } else {
+                    picked.iter().map(|(i, _)| correction[*i]).collect()
+                };
+                Rows::new(block, correction, picked.iter().map(|p| p.1).collect(), limit)
+            };
+            BeamRows {
+                coordinates: range.clone(),
+                deflection: rows(elastic, |n| n.w, SMALL_DEFLECTION * lengths[b]),
+                rotation: rows(total, |n| n.theta, SMALL_ROTATION),
+            }
+        };
+        RangeRows { beams: [beam_rows(0), beam_rows(1)] }
+    }
+
+    /// Raises `range` by the state `q` (own coordinates) with the correction's load coefficients
+    /// `loads` (None: a full basis), at `time` s.
+    pub fn observe(&self, q: &[f64], loads: Option<&[f64; LOADS]>, time: f64, range: &mut ModelRange) {
+        let [lower, upper] = &self.beams;
+        for (beam, deflection, rotation) in [
+            (lower, &mut range.lower_deflection, &mut range.lower_rotation),
+            (upper, &mut range.upper_deflection, &mut range.upper_rotation),
+        ] {
+            let Some(q) = q.get(beam.coordinates.clone()) else { continue };
+            beam.deflection.observe(q, loads, time, deflection);
+            beam.rotation.observe(q, loads, time, rotation);
+        }
+    }
+}
+
+/// A beam's largest strain: its stress envelope's worst over E.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StrainPeak {
+    /// sigma / E, or sqrt(3) tau / E where the shear's is larger.
+    pub value: f64,
+    /// The stress it comes from, Pa (sigma, or sqrt(3) tau).
+    pub stress: f64,
+    /// Where, m from the beam's support.
+    pub position: f64,
+    /// When, s.
+    pub time: f64,
+    /// True when the shear's equivalent is the larger.
+    pub shear: bool,
+}
+
+/// The model's range of a run (issue 40): every node's largest deflection and rotation, and each
+/// beam's largest strain, with the check against the linear model's limits.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct RangeCheck {
+    /// Deflections and rotations.
+    pub range: ModelRange,
+    /// The arrestor's largest strain (null: a rigid support, no stress).
+    pub lower_strain: Option<StrainPeak>,
+    /// The bridge's.
+    pub upper_strain: Option<StrainPeak>,
+    /// The beams' lengths, m (arrestor, bridge).
+    pub lengths: [f64; 2],
+}
+
+impl RangeCheck {
+    /// The worst quantity's fraction of its limit (1: at the limit; NaN when a value is NaN).
+    pub fn worst_ratio(&self) -> f64 {
+        let r = &self.range;
+        let ratios = [
+            r.lower_deflection.value / (SMALL_DEFLECTION * self.lengths[0]),
+            r.upper_deflection.value / (SMALL_DEFLECTION * self.lengths[1]),
+            r.lower_rotation.value / SMALL_ROTATION,
+            r.upper_rotation.value / SMALL_ROTATION,
+            self.lower_strain.map_or(0.0, |p| p.value / ELASTIC_STRAIN),
+            self.upper_strain.map_or(0.0, |p| p.value / ELASTIC_STRAIN),
+        ];
+        if ratios.iter().any(|r| r.is_nan()) {
+            return f64::NAN;
+        }
+        ratios.into_iter().fold(0.0, f64::max)
+    }
+
+    /// One line per quantity beyond its limit, naming the beam, the value, where and when.
+    pub fn reasons(&self) -> Vec<String> {
+        let r = &self.range;
+        let mut reasons = Vec::new();
+        let beams = [("the arrestor", "clamp"), ("the bridge", "hinge")];
+        let at = |position: Option<f64>, support: &str, time: f64| match position {
+            Some(x) => format!(" at {x:.3} m from its {support} (t = {time:.4} s)"),
+            None => format!(" (t = {time:.4} s)"),
+        };
+        let beyond = |value: f64, limit: f64| value.is_nan() || value > limit;
+        for (b, deflection, rotation) in
+            [(0, r.lower_deflection, r.lower_rotation), (1, r.upper_deflection, r.upper_rotation)]
+        {
+            let (name, support) = beams[b];
+            let length = self.lengths[b];
+            if beyond(deflection.value, SMALL_DEFLECTION * length) {
+                reasons.push(format!(
+                    "small deflection: {name} deflects {:.4} m{}, {:.1} % of its {length} m length, beyond the \
+                     linear beam model's small-deflection range ({} % of the length; a smaller impact or a stiffer \
+                     beam stays in it)",
+                    deflection.value,
+                    at(deflection.position, support, deflection.time),
+                    100.0 * deflection.value / length,
+                    100.0 * SMALL_DEFLECTION
+                ));
+            }
+            if beyond(rotation.value, SMALL_ROTATION) {
+                reasons.push(format!(
+                    "small rotation: {name} rotates {:.4} rad{}, beyond the linear beam model's small-rotation \
+                     range ({SMALL_ROTATION} rad)",
+                    rotation.value,
+                    at(rotation.position, support, rotation.time)
+                ));
+            }
+        }
+        for (b, strain) in [(0, self.lower_strain), (1, self.upper_strain)] {
+            let Some(p) = strain else { continue };
+            if beyond(p.value, ELASTIC_STRAIN) {
+                let (name, support) = beams[b];
+                let stress = if p.shear {
+                    format!("sqrt(3) tau = {:.1} MPa", p.stress * 1e-6)
+                } else {
+                    format!("sigma = {:.1} MPa", p.stress * 1e-6)
+                };
+                reasons.push(format!(
+                    "elastic strain: {name}'s strain reaches {:.2} % ({stress} over E){}, beyond the \
+                     linear-elastic range of any structural material ({} %)",
+                    100.0 * p.value,
+                    at(Some(p.position), support, p.time),
+                    100.0 * ELASTIC_STRAIN
+                ));
+            }
+        }
+        reasons
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A row block whose bound is below the limit reports the bound (an upper bound of every
+    /// row's value), and one whose bound reaches it reports the exact largest row and where.
+    #[test]
+    fn rows_report_the_bound_below_the_limit_and_the_exact_value_above() {
+        // Two rows over two coordinates: values 0.5 q0 + 0.25 q1 and -q0 + 0.5 q1.
+        let shapes = DMatrix::from_row_slice(2, 2, &[0.5, 0.25, -1.0, 0.5]);
+        let rows = Rows::new(shapes, Vec::new(), vec![1.0, 2.0], 1.0);
+        let mut peak = RangePeak::default();
+        rows.observe(&[0.2, 0.4], None, 0.5, &mut peak);
+        // Bound: 1.0 * 0.2 + 0.5 * 0.4 = 0.4 (< 1): the bound, no position.
+        assert_eq!(peak, RangePeak { value: 0.4, position: None, time: 0.5 });
+        rows.observe(&[1.0, -1.0], None, 0.75, &mut peak);
+        // Bound 1.5 >= 1: exact rows 0.25 and 1.5 (at x = 2).
+        assert_eq!(peak, RangePeak { value: 1.5, position: Some(2.0), time: 0.75 });
+        // A smaller later value leaves the peak.
+        rows.observe(&[0.1, 0.0], None, 1.0, &mut peak);
+        assert_eq!(peak.time, 0.75);
+    }
+
+    /// The correction's rows add to the exact values and to the bound.
+    #[test]
+    fn the_static_correction_counts_in_the_bound_and_the_values() {
+        let shapes = DMatrix::from_row_slice(1, 1, &[1.0]);
+        let mut row = [0.0; LOADS];
+        row[3] = 2.0;
+        let rows = Rows::new(shapes, vec![row], vec![3.0], 1.0);
+        let mut loads = [0.0; LOADS];
+        loads[3] = -0.5;
+        let mut peak = RangePeak::default();
+        // 0.9 - 1.0 = -0.1 exactly, bound 0.9 + 1.0 = 1.9 >= 1: the exact |value| 0.1.
+        rows.observe(&[0.9], Some(&loads), 0.1, &mut peak);
+        assert!((peak.value - 0.1).abs() < 1e-15 && peak.position == Some(3.0), "{peak:?}");
+    }
+}
