@@ -792,7 +792,7 @@ impl Scenario {
         {
             // The bar's fields each within their own ranges, their stiffness within the law's.
             let k = c.stiffness();
-            if !(k <= MAX_CONTACT_STIFFNESS) {
+            if k.is_nan() || k > MAX_CONTACT_STIFFNESS {
                 check(Err(Error::invalid(
                     "contact.elastic_modulus * contact.area / contact.length",
                     format!(
