@@ -10,7 +10,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use beam_impact::model::TimeStep;
 use beam_impact::record::mcap::{McapRecorder, RecorderOptions};
-use beam_impact::record::output::{check_distinct, OutputFile};
+use beam_impact::record::output::{check_distinct, shown, OutputFile};
 use beam_impact::record::{NullRecorder, Recorder, RunInfo};
 use beam_impact::results::{ContactEvent, StepResult};
 use beam_impact::{compare, Error, Result, Scenario};
@@ -120,7 +120,7 @@ pub fn run(args: &RunArgs) -> Result<bool> {
         text += &format!(
             "supports moving: {} ({} rows of {}, each with its velocity and acceleration), from its time {} s; \
              deflections are relative to the supports, the energy approach's column assumes fixed ones\n\n",
-            scenario.motion.file,
+            shown(Path::new(&scenario.motion.file)),
             table.times.len(),
             table
                 .columns
@@ -157,7 +157,7 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     }
     text += &format!("wall time: {:.1} ms (assembly, modes and stepping", wall.as_secs_f64() * 1e3);
     if !args.no_mcap {
-        text += &format!(", recorded to {}", mcap.display());
+        text += &format!(", recorded to {}", shown(&mcap));
     }
     text += ")\n";
     if let Some((path, file)) = json_file {
@@ -167,7 +167,7 @@ pub fn run(args: &RunArgs) -> Result<bool> {
             Some(mut file) => {
                 writeln!(file, "{json}").map_err(|source| io("cannot write JSON", path, source))?;
                 file.commit()?;
-                text += &format!("results written to {}\n", path.display());
+                text += &format!("results written to {}\n", shown(path));
             }
             // `--json -`: the JSON is the standard output, without the tables.
             None => return emit(&format!("{json}\n")).map(|()| answer.quality.trusted),
