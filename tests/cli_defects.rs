@@ -133,3 +133,30 @@ fn the_impact_speeds_are_printed_truthfully() {
     let line = impact_line(&["impact_angular_velocity=1e-9"]);
     assert!(line.contains("turns at 1.000e-9 rad/s") && line.contains("closing at 1.300e-8 m/s"), "{line}");
 }
+
+/// Issue 40 (part 5) item 4: `modes --set contact_position=29` (the paper's scenario, whose bridge
+/// has 7 elements beyond the contact) blamed upper.elements_beyond_contact, a field the user never
+/// set. Now the message names the field set, contact_position, with the user's value, and says
+/// what else to set.
+#[test]
+fn a_setting_at_odds_with_the_scenario_is_the_one_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = beam_impact()
+        .args(["modes", "--set", "contact_position=29", "--out"])
+        .arg(dir.path().join("modes"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.starts_with("beam-impact: contact_position must be"), "{stderr}");
+    assert!(stderr.contains("got 29") && stderr.contains("upper.elements_beyond_contact=auto"), "{stderr}");
+    assert!(!dir.path().join("modes").exists());
+    // Set with the count it needs, it is accepted.
+    let out = beam_impact()
+        .args(["modes", "--set", "contact_position=29", "--set", "upper.elements_beyond_contact=auto", "--out"])
+        .arg(dir.path().join("modes"))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+}
