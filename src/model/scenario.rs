@@ -730,12 +730,22 @@ impl Scenario {
         if u.allowable_shear_stress != 0.0 {
             check(stress("upper.allowable_shear_stress", u.allowable_shear_stress));
         }
-        for (beam, sections, fields) in [
-            ("upper", &u.sections, [u.length, u.mass, u.second_moment, u.section_modulus, u.shear_area]),
-            ("lower", &l.sections, [l.length, l.mass, l.second_moment, l.section_modulus, l.shear_area]),
+        for (beam, elastic_modulus, sections, fields) in [
+            (
+                "upper",
+                u.elastic_modulus,
+                &u.sections,
+                [u.length, u.mass, u.second_moment, u.section_modulus, u.shear_area],
+            ),
+            (
+                "lower",
+                l.elastic_modulus,
+                &l.sections,
+                [l.length, l.mass, l.second_moment, l.section_modulus, l.shear_area],
+            ),
         ] {
             let errors_before = errors.len();
-            errors.extend(section::validation_errors(beam, sections));
+            errors.extend(section::validation_errors(beam, elastic_modulus, sections));
             if sections.is_empty() || errors.len() > errors_before {
                 continue;
             }
