@@ -59,6 +59,12 @@ pub fn pack(request: &Request) -> Result<()> {
             )));
         }
     }
+    // Every output goes through the output guard's checks before anything is built or written:
+    // a link at DIR/GangwayOnVessel.ssp was refused only after both FMUs had been replaced.
+    beam_impact::fmi::pack::check_outputs(&request.out)?;
+    if request.ssp {
+        beam_impact::ssp::archive::check_output(&request.out)?;
+    }
     // The scenario is read, validated and checked for an FMU before anything is built.
     let packed = match &request.scenario {
         Some(path) => {
