@@ -109,3 +109,54 @@ fn a_scenario_file_is_never_overwritten_by_its_log() {
     assert!(stderr.contains("the scenario file and --mcap name the same file"), "{stderr}");
     assert_eq!(std::fs::read_to_string(&other).unwrap(), scenario);
 }
+
+/// Issue 40 (part 5) item 2: the impact line printed "closing at -0.000000 m/s" for a drop of 0
+/// (a negative zero), and "0.000000 rad/s" for a stated speed of 1e-9 rad/s (a speed that is not
+/// 0 printed as 0). Now a zero is "0.000000" and a speed too small for six decimals is printed in
+/// scientific form.
+#[test]
+fn the_impact_speeds_are_printed_truthfully() {
+    let impact_line = |settings: &[&str]| {
+        let mut command = beam_impact();
+        command.args(["run", "--no-mcap", "--set", "duration=0.002"]);
+        for setting in settings {
+            command.args(["--set", setting]);
+        }
+        let out = command.output().unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let stdout = String::from_utf8(out.stdout).unwrap();
+        stdout.lines().find(|l| l.starts_with("impact: ")).unwrap_or_else(|| panic!("{stdout}")).to_string()
+    };
+    let line = impact_line(&["drop_height=0"]);
+    assert!(!line.contains("-0.000000"), "{line}");
+    assert!(line.contains("turns at 0.000000 rad/s") && line.contains("closing at 0.000000 m/s"), "{line}");
+    let line = impact_line(&["impact_angular_velocity=1e-9"]);
+    assert!(line.contains("turns at 1.000e-9 rad/s") && line.contains("closing at 1.300e-8 m/s"), "{line}");
+}
+
+/// Issue 40 (part 5) item 4: `modes --set contact_position=29` (the paper's scenario, whose bridge
+/// has 7 elements beyond the contact) blamed upper.elements_beyond_contact, a field the user never
+/// set. Now the message names the field set, contact_position, with the user's value, and says
+/// what else to set.
+#[test]
+fn a_setting_at_odds_with_the_scenario_is_the_one_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = beam_impact()
+        .args(["modes", "--set", "contact_position=29", "--out"])
+        .arg(dir.path().join("modes"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.starts_with("beam-impact: contact_position must be"), "{stderr}");
+    assert!(stderr.contains("got 29") && stderr.contains("upper.elements_beyond_contact=auto"), "{stderr}");
+    assert!(!dir.path().join("modes").exists());
+    // Set with the count it needs, it is accepted.
+    let out = beam_impact()
+        .args(["modes", "--set", "contact_position=29", "--set", "upper.elements_beyond_contact=auto", "--out"])
+        .arg(dir.path().join("modes"))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+}

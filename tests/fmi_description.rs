@@ -238,7 +238,8 @@ fn accepted(p: &Parameter, value: f64) -> std::result::Result<(), String> {
     if p.name == "gravity" {
         s.impact_angular_velocity = Some(1.0);
     }
-    // A power law needs its rate in N/m^n.
+    // A power law needs its rate in N/m^n; the exponent is the power law's (issue 40: given with
+    // the linear law it is refused).
     if p.name == "contact.law" {
         s.contact.given_stiffness = Some(1e9);
     }
@@ -254,6 +255,10 @@ fn accepted(p: &Parameter, value: f64) -> std::result::Result<(), String> {
         s.contact.length = 1e3;
         s.contact.area = 1e-3;
         s.contact.elastic_modulus = 1e6;
+    }
+    if p.name == "contact.exponent" {
+        s.contact.law = beam_impact::model::contact_law::LawKind::Power;
+        s.contact.given_stiffness = Some(1e9);
     }
     s.validate().expect("the base scenario is valid");
     let outcome = parameters::set(&mut s, p, value).and_then(|()| s.validate());

@@ -510,3 +510,43 @@ fn huge_numbers_in_error_messages_are_short() {
     fmu.free_state(forged);
     short(&fmu.log.text(), "a forged state's tip force");
 }
+
+/// Issue 40 (part 5) item 7: a setter called where it is not allowed was refused as
+/// "fmi2SetInteger is not allowed in state Step Mode", naming no variable: an importer's log did
+/// not say which of its settings was lost. Now the refusal names the variable (its name and value
+/// reference) and the value, in FMI 2 and FMI 3, for each setter.
+#[test]
+fn a_refused_setter_names_the_variable_and_the_value() {
+    let fmu = fresh();
+    assert_eq!(fmu.initialize(), OK);
+    let before = fmu.get_integer("lower.elements");
+    let elements = vr("lower.elements");
+    assert_eq!(fmu.set_integer("lower.elements", 7), ERROR);
+    let log = fmu.log.text();
+    let line = log.lines().find(|l| l.contains("fmi2SetInteger is not allowed in state Step Mode")).unwrap();
+    assert!(line.contains(&format!("`lower.elements` (value reference {elements}) = 7")), "{log}");
+    assert_eq!(fmu.set_string("log.path", "x.mcap"), ERROR);
+    let log = fmu.log.text();
+    let line = log.lines().find(|l| l.contains("fmi2SetString is not allowed in state Step Mode")).unwrap();
+    assert!(line.contains(&format!("`log.path` (value reference {}) = \"x.mcap\"", vr("log.path"))), "{log}");
+    // A per-variable refusal names the value reference and the value too.
+    assert_eq!(fmu.set("drop_height", 1.0), ERROR);
+    let log = fmu.log.text();
+    let refused = format!(
+        "illegal call sequence: parameters are fixed at ExitInitializationMode): value reference {} = 1 is not set",
+        vr("drop_height")
+    );
+    assert!(log.contains(&refused), "{log}");
+    // Refused, the value is not set.
+    assert_eq!(fmu.get_integer("lower.elements"), before);
+
+    let lib = load();
+    let fmu3 = Fmu3::try_new(&lib, None, false).0.unwrap();
+    assert_eq!(fmu3.set_string("log.path", ""), OK);
+    assert_eq!(fmu3.initialize(), OK, "{}", fmu3.log.text());
+    assert_eq!(fmu3.set_integer("upper.elements_to_contact", 9), ERROR);
+    let log = fmu3.log.text();
+    let line = log.lines().find(|l| l.contains("fmi3SetInt32 is not allowed in state Step Mode")).unwrap();
+    let named = format!("`upper.elements_to_contact` (value reference {}) = 9", vr("upper.elements_to_contact"));
+    assert!(line.contains(&named), "{log}");
+}

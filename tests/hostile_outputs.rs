@@ -348,3 +348,77 @@ fn a_partial_output_another_run_writes_is_not_taken_over() {
     assert!(out.status.success(), "{}", stderr(&out));
     assert!(json.exists() && !partial.exists());
 }
+
+/// Issue 40 (part 5) item 1: every path the CLI prints is escaped, as docs/security.md promises.
+/// A folder named with an escape sequence and a line break reached the terminal raw through
+/// `run`'s "supports moving:", "recorded to" and "results written to", `sweep`'s "rows written
+/// to" (its JSON and units sidecar too), `report`'s log and figures, `modes`' figures and `pack`'s
+/// "wrote" lines. Now no control byte reaches standard output or standard error, and each path is
+/// shown with its escapes (`\u{1b}`, `\n`).
+#[test]
+fn printed_paths_carry_no_control_character() {
+    let dir = tempfile::tempdir().unwrap();
+    let hostile = dir.path().join("a\u{1b}[31mb\nc");
+    std::fs::create_dir(&hostile).unwrap();
+    let escaped = "a\\u{1b}[31mb\\nc";
+    let clean = |what: &str, out: &Output| {
+        assert!(out.status.success(), "{what}: {}", stderr(out));
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        for (stream, bytes) in [("stdout", &out.stdout), ("stderr", &out.stderr)] {
+            let raw = bytes.iter().any(|&b| (b < 0x20 && b != b'\n') || b == 0x7f);
+            assert!(!raw, "{what}: a raw control byte on {stream}: {:?}", String::from_utf8_lossy(bytes));
+            assert!(!String::from_utf8_lossy(bytes).contains("b\nc"), "{what}: a raw line break in a path on {stream}");
+        }
+        assert!(stdout.contains(escaped), "{what}: the path is shown escaped: {stdout}");
+        stdout.into_owned()
+    };
+    let motion = hostile.join("m.csv");
+    std::fs::write(
+        &motion,
+        "time,upper.hinge_heave,upper.hinge_heave_velocity,upper.hinge_heave_acceleration\n0,0,0,0\n1,0,0,0\n",
+    )
+    .unwrap();
+    let log = hostile.join("r.mcap");
+    let out = beam_impact()
+        .args(["run", "--set", "duration=0.002", "--motion"])
+        .arg(&motion)
+        .arg("--json")
+        .arg(hostile.join("r.json"))
+        .arg("--mcap")
+        .arg(&log)
+        .output()
+        .unwrap();
+    let stdout = clean("run", &out);
+    for line in ["supports moving: ", "recorded to ", "results written to "] {
+        let at = stdout.find(line).unwrap_or_else(|| panic!("{line:?} in {stdout}"));
+        assert!(stdout[at..].lines().next().unwrap().contains(escaped), "{line:?} in {stdout}");
+    }
+    let out = beam_impact().arg("report").arg(&log).arg("--out").arg(hostile.join("figures")).output().unwrap();
+    let stdout = clean("report", &out);
+    assert!(stdout.lines().filter(|l| l.contains(escaped)).count() > 2, "the log and the figures: {stdout}");
+    let out = beam_impact()
+        .args(["sweep", "--set", "duration=0.002", "--vary", "drop_height=0.5", "--out"])
+        .arg(hostile.join("rows.csv"))
+        .arg("--json")
+        .arg(hostile.join("rows.json"))
+        .output()
+        .unwrap();
+    let stdout = clean("sweep", &out);
+    assert_eq!(stdout.matches(escaped).count(), 3, "the CSV, the JSON and the units sidecar: {stdout}");
+    let out = beam_impact().arg("modes").arg("--out").arg(hostile.join("modes")).output().unwrap();
+    clean("modes", &out);
+    let exe = Path::new(env!("CARGO_BIN_EXE_beam-impact"));
+    let library = [exe.with_file_name("libbeam_impact.so"), exe.with_file_name("deps").join("libbeam_impact.so")]
+        .into_iter()
+        .find(|p| p.is_file())
+        .unwrap();
+    let out = beam_impact()
+        .args(["pack", "--no-zigbuild", "--library"])
+        .arg(&library)
+        .arg("--out")
+        .arg(hostile.join("fmu"))
+        .output()
+        .unwrap();
+    let stdout = clean("pack", &out);
+    assert_eq!(stdout.lines().filter(|l| l.starts_with("wrote ") && l.contains(escaped)).count(), 2, "{stdout}");
+}

@@ -135,3 +135,24 @@ fn hostile_scenarios_are_refused_naming_the_field() {
     fine.upper.elements_beyond_contact = 224;
     assert!(fine.validate().is_ok(), "32x the paper's mesh stays allowed");
 }
+
+/// Issue 40 (part 5) item 3: `contact.exponent` given with the linear law (the default) was
+/// silently ignored: the run was the linear bar's. Now it is refused, naming both fields and the
+/// value, from a file, `--set` and the FMU's parameters alike; the default exponent (1.5, what
+/// every scenario and the FMU's start value holds) and any exponent with the power law pass.
+#[test]
+fn an_exponent_with_the_linear_law_is_refused() {
+    let message = Scenario::from_toml("[contact]\nexponent = 2.0\n", "x.toml").unwrap_err().to_string();
+    assert!(message.starts_with("contact.exponent must be"), "{message}");
+    assert!(message.contains("contact.law") && message.contains("linear") && message.contains("got 2"), "{message}");
+    assert!(!message.contains('\n'), "{message}");
+    // The same through the parameters (`--set`, sweeps, the FMU).
+    let mut s = Scenario::default();
+    parameters::set(&mut s, parameters::find("contact.exponent").unwrap(), 1.2).unwrap();
+    let message = s.validate().unwrap_err().to_string();
+    assert!(message.contains("contact.law") && message.contains("got 1.2"), "{message}");
+    // The default exponent stated, and any exponent with the power law, are accepted.
+    assert!(Scenario::from_toml("[contact]\nexponent = 1.5\n", "x.toml").is_ok());
+    let power = "[contact]\nlaw = \"power\"\nexponent = 2.0\nstiffness = 1e9\n";
+    assert!(Scenario::from_toml(power, "x.toml").is_ok());
+}

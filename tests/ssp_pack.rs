@@ -104,3 +104,42 @@ fn pack_ssp_without_zig_for_windows_is_one_line_and_writes_nothing() {
     assert!(stderr.contains("vessel-motion library for windows") && stderr.contains("cargo-zigbuild"), "{stderr}");
     assert!(!out.exists());
 }
+
+/// Issue 40 (part 5) item 9: a symbolic link at DIR/GangwayOnVessel.ssp was refused only after
+/// both FMUs in DIR had been replaced. Now every output of `pack` goes through the output guard's
+/// checks before the first is written (before anything is built): one line naming the archive,
+/// the earlier FMUs untouched (content and modification time), the link's target too.
+#[test]
+fn pack_ssp_onto_a_link_is_refused_before_any_fmu_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fmu");
+    let earlier: Vec<std::path::PathBuf> =
+        ["fmi2", "fmi3"].iter().map(|v| out.join(v).join("BeamImpact.fmu")).collect();
+    for fmu in &earlier {
+        std::fs::create_dir_all(fmu.parent().unwrap()).unwrap();
+        std::fs::write(fmu, "an earlier FMU").unwrap();
+    }
+    let modified = |p: &Path| std::fs::metadata(p).unwrap().modified().unwrap();
+    let before: Vec<_> = earlier.iter().map(|p| modified(p)).collect();
+    let victim = dir.path().join("victim.txt");
+    std::fs::write(&victim, "keep me").unwrap();
+    std::os::unix::fs::symlink(&victim, out.join("GangwayOnVessel.ssp")).unwrap();
+    let (code, stdout, stderr) = pack_ssp(&["--out", out.to_str().unwrap()]);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("GangwayOnVessel.ssp") && stderr.contains("symbolic link"), "{stderr}");
+    assert!(stdout.is_empty(), "{stdout}");
+    for (fmu, mtime) in earlier.iter().zip(before) {
+        assert!(std::fs::read(fmu).unwrap() == b"an earlier FMU", "{} replaced", fmu.display());
+        assert_eq!(modified(fmu), mtime, "{}", fmu.display());
+    }
+    assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep me");
+    // The same for an FMU's folder that is a link: refused before the other FMU is written.
+    std::fs::remove_file(out.join("GangwayOnVessel.ssp")).unwrap();
+    std::fs::remove_dir_all(out.join("fmi3")).unwrap();
+    std::os::unix::fs::symlink(dir.path(), out.join("fmi3")).unwrap();
+    let (code, _, stderr) = pack_ssp(&["--out", out.to_str().unwrap()]);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("fmi3") && stderr.contains("symbolic link"), "{stderr}");
+    assert!(std::fs::read(&earlier[0]).unwrap() == b"an earlier FMU", "the FMI 2 FMU replaced");
+}

@@ -407,3 +407,32 @@ fn a_run_stopping_inside_a_step_puts_its_printed_peaks_on_the_envelope() {
         }
     }
 }
+
+/// Issue 40 (part 5) item 5: two sections whose bending stiffnesses differ by 1e12 failed at the
+/// natural modes with "0 rigid-body modes expected ... the lowest elastic eigenvalue is not
+/// positive", naming no section. Now the scenario is refused before any work, naming the
+/// softest and the stiffest section with their EI and the ratio's limit; within it, accepted.
+#[test]
+fn sections_too_unlike_in_stiffness_are_refused_by_name() {
+    let section = |second_moment: f64| {
+        format!(
+            "[[lower.sections]]\nlength = 6.0\nsecond_moment = {second_moment:e}\nsection_modulus = 0.01\n\
+             shear_area = 0.01\nmass_per_length = 800.0\n"
+        )
+    };
+    let text = format!("{}{}", section(1e-12), section(1.0));
+    let message = Scenario::from_toml(&text, "x.toml").unwrap_err().to_string();
+    for needle in ["lower.sections[1]", "lower.sections[2]", "2.1e-1 N m^2", "2.1e11 N m^2", "factor 1e12", "1e6"] {
+        assert!(message.contains(needle), "{needle:?} in: {message}");
+    }
+    assert!(!message.contains('\n'), "{message}");
+    // Either way round, on the bridge too.
+    let bridge = format!(
+        "contact_position = 13.0\n{}",
+        format!("{}{}", section(1e-6), section(1e3)).replace("lower.", "upper.").replace("6.0", "14.5")
+    );
+    let message = Scenario::from_toml(&bridge, "x.toml").unwrap_err().to_string();
+    assert!(message.contains("upper.sections[1]") && message.contains("upper.sections[2]"), "{message}");
+    // Within the limit: accepted (a factor 1e5).
+    assert!(Scenario::from_toml(&format!("{}{}", section(1e-2), section(1e3)), "x.toml").is_ok());
+}

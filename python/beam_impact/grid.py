@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import operator
 from typing import Any, Iterable
 
 #: Integer fields of the scenario (the FMU's Integer parameters).
@@ -81,7 +82,20 @@ def round_half_away(x: float) -> float:
 
 
 def linspace(start: float, stop: float, count: int) -> list[float]:
-    """`count` values from start to stop inclusive, as the CLI computes them."""
+    """`count` values from start to stop inclusive, as the CLI computes them. `count` is bounded as
+    `--vary start:stop:count`'s is: a whole number from 1 to MAX_SCENARIOS (ValueError in one
+    line otherwise, before any value is built)."""
+    try:
+        n = None if isinstance(count, bool) else operator.index(count)
+    except TypeError:  # 2.5, "10", None
+        n = None
+    if n is None or not 1 <= n <= MAX_SCENARIOS:
+        shown = f"a whole number of {count.bit_length()} bits" if isinstance(count, int) and count.bit_length() > 128 \
+            else repr(count)[:100]
+        raise ValueError(
+            f"linspace: the count must be a whole number from 1 to {MAX_SCENARIOS} (the limit of a sweep and of "
+            f"--vary start:stop:count), got {shown}")
+    count = n
     out = []
     for i in range(count):
         if i == 0:

@@ -99,6 +99,24 @@ def scenario_source(scenario: Any) -> tuple:
     raise ValueError(f"scenario takes a file path or TOML text, got {type(scenario).__name__}")
 
 
+#: Largest `series_every`: the native module takes it as a 64-bit unsigned count.
+MAX_SERIES_EVERY = 2**64 - 1
+
+
+def series_every_of(value: Any) -> int:
+    """`series_every` as a whole number from 1 to MAX_SERIES_EVERY; ValueError in one line naming
+    it, its bounds and the value otherwise (2**80 raised OverflowError in the native module)."""
+    try:
+        every = None if isinstance(value, bool) else int(value)
+    except (TypeError, ValueError, OverflowError):  # "x", None, inf, nan
+        every = None
+    if every is None or not 1 <= every <= MAX_SERIES_EVERY:
+        shown = f"a whole number of {value.bit_length()} bits" if isinstance(value, int) and value.bit_length() > 128 \
+            else repr(value)[:100]
+        raise ValueError(f"series_every must be a whole number from 1 to {MAX_SERIES_EVERY} (2**64 - 1), got {shown}")
+    return every
+
+
 def run(scenario: Any = None, *, fields: dict | None = None, log: "str | os.PathLike | None" = None,
         series: bool = False, series_every: int = 1, max_steps: int | None = None,
         check_sensitivity: bool = True, **field_keywords: Any) -> RunResult:
@@ -129,9 +147,7 @@ def run(scenario: Any = None, *, fields: dict | None = None, log: "str | os.Path
     limit = _native.MAX_STEPS if max_steps is None else max_steps
     if isinstance(limit, bool) or not isinstance(limit, int) or not 0 < limit < 2**64:
         raise ValueError(f"max_steps must be a whole number > 0, got {max_steps!r}")
-    every = int(series_every)
-    if every < 1:
-        raise ValueError(f"series_every must be a whole number >= 1, got {series_every!r}")
+    every = series_every_of(series_every)
     log_text = None if log is None else os.fsdecode(os.fspath(log))
     try:
         doc, steps, warnings, log_path = _native.run(

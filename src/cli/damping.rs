@@ -18,7 +18,7 @@ pub fn damping(file: Option<&Path>, set: &[String], figures: Option<&Path>) -> R
     let mut text = table(&rows);
     text += "\nfigures (of this FE model, not of the paper's simplified Figure A1 model):\n";
     for file in beam_impact::replay::damping_figures::write_damping_figures(&scenario, &runs, dir)? {
-        text += &format!("  {}\n", file.display());
+        text += &format!("  {}\n", beam_impact::record::output::shown(&file));
     }
     emit(&text)
 }

@@ -27,7 +27,7 @@ pub fn modes(file: Option<&Path>, set: &[String], out: &Path) -> Result<()> {
     }
     text += "figures:\n";
     for file in beam_impact::replay::mode_figures::write_mode_figures(&model, &modal, out)? {
-        text += &format!("  {}\n", file.display());
+        text += &format!("  {}\n", beam_impact::record::output::shown(&file));
     }
     emit(&text)
 }

@@ -8,6 +8,8 @@ use std::time::Instant;
 use beam_impact::fmi::pack::Platform;
 use beam_impact::{Error, Result};
 
+use beam_impact::record::output::shown;
+
 use super::common::{emit, io};
 
 /// What `pack` is asked for (the command line's options).
@@ -56,6 +58,12 @@ pub fn pack(request: &Request) -> Result<()> {
                 platform.name()
             )));
         }
+    }
+    // Every output goes through the output guard's checks before anything is built or written:
+    // a link at DIR/GangwayOnVessel.ssp was refused only after both FMUs had been replaced.
+    beam_impact::fmi::pack::check_outputs(&request.out)?;
+    if request.ssp {
+        beam_impact::ssp::archive::check_output(&request.out)?;
     }
     // The scenario is read, validated and checked for an FMU before anything is built.
     let packed = match &request.scenario {
@@ -128,7 +136,7 @@ pub fn pack(request: &Request) -> Result<()> {
         let _ = std::fs::remove_dir_all(&scratch);
     }
     for path in written? {
-        emit(&format!("wrote {}\n", path.display()))?;
+        emit(&format!("wrote {}\n", shown(&path)))?;
     }
     Ok(())
 }
@@ -174,7 +182,7 @@ fn cross_toolchain(platforms: &[Platform]) -> Result<PathBuf> {
         return Err(Error::Other(format!(
             "cannot cross-build the {names} binary: the crate's source {} is gone (pass --windows-library / \
              --darwin-library)",
-            source_dir().display()
+            shown(source_dir())
         )));
     }
     let cache = std::env::var_os("XDG_CACHE_HOME")
@@ -189,7 +197,7 @@ fn cross_toolchain(platforms: &[Platform]) -> Result<PathBuf> {
         dir.join("bin").join("rustc").is_file() && dir.join("venv").join("bin").join("cargo-zigbuild").is_file()
     };
     candidates.iter().find(|dir| complete(dir)).cloned().ok_or_else(|| {
-        let looked: Vec<String> = candidates.iter().map(|d| d.display().to_string()).collect();
+        let looked: Vec<String> = candidates.iter().map(|d| shown(d)).collect();
         Error::Other(format!(
             "cannot cross-build the {names} binary: no cross toolchain (rustc wrapper and cargo-zigbuild) in {}: run \
              scripts/cross-toolchain.sh (downloads about 240 MB once), or pass --windows-library / --darwin-library",
@@ -209,7 +217,7 @@ fn cross_build(toolchain: Option<&PathBuf>, triple: &str, platform: Platform) ->
     super::common::note(&format!(
         "beam-impact: cross-building the {} binary ({triple}) with {}",
         platform.name(),
-        script.display()
+        shown(&script)
     ));
     let started = Instant::now();
     let status = std::process::Command::new("sh")
@@ -225,7 +233,7 @@ fn cross_build(toolchain: Option<&PathBuf>, triple: &str, platform: Platform) ->
             platform.name()
         )));
     }
-    super::common::note(&format!("beam-impact: built {} in {:.0} s", out.display(), started.elapsed().as_secs_f64()));
+    super::common::note(&format!("beam-impact: built {} in {:.0} s", shown(&out), started.elapsed().as_secs_f64()));
     Ok(out)
 }
 
@@ -252,7 +260,7 @@ fn linux_library(library: Option<PathBuf>, no_zigbuild: bool) -> Result<PathBuf>
             return Err(Error::Other(format!(
                 "cannot build the library for glibc 2.17: the crate's source {} is gone (pass --library FILE or \
                  --no-zigbuild)",
-                source.display()
+                shown(source)
             )));
         }
         let cargo = std::env::var_os("CARGO")
@@ -276,7 +284,7 @@ fn linux_library(library: Option<PathBuf>, no_zigbuild: bool) -> Result<PathBuf>
         write_executable(&linker, &script)?;
         super::common::note(&format!(
             "beam-impact: building the library for glibc 2.17 (linked by {})",
-            zigbuild.display()
+            shown(zigbuild)
         ));
         let started = Instant::now();
         let status = std::process::Command::new(&cargo)
@@ -293,7 +301,7 @@ fn linux_library(library: Option<PathBuf>, no_zigbuild: bool) -> Result<PathBuf>
             return Err(Error::Other(format!(
                 "`cargo rustc --release --lib --crate-type cdylib -- -C linker={}` failed ({status}); --no-zigbuild \
                  packs the host build",
-                linker.display()
+                shown(&linker)
             )));
         }
         let built = target_dir.join("release").join("libbeam_impact.so");
@@ -301,7 +309,7 @@ fn linux_library(library: Option<PathBuf>, no_zigbuild: bool) -> Result<PathBuf>
         std::fs::copy(&built, &library).map_err(|source| io("cannot copy", &built, source))?;
         super::common::note(&format!(
             "beam-impact: built {} for glibc 2.17 in {:.1} s",
-            library.display(),
+            shown(&library),
             started.elapsed().as_secs_f64()
         ));
         Ok(library)
@@ -350,7 +358,7 @@ pub fn host_library() -> Result<PathBuf> {
         Error::Other(format!(
             "no libbeam_impact.so beside {} (an installed beam-impact carries no library): run `cargo run --release \
              -- pack` in the source tree, or pass --library PATH to a built libbeam_impact.so",
-            exe.display()
+            shown(&exe)
         ))
     })
 }

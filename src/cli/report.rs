@@ -3,7 +3,7 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use beam_impact::record::output::{check_distinct, OutputFile};
+use beam_impact::record::output::{check_distinct, shown, OutputFile};
 use beam_impact::{Error, Result};
 
 use super::common::{io, units_sidecars, write_units_sidecars};
@@ -22,8 +22,8 @@ pub fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>) -> Result<(
         if !csv_to_stdout && beam_impact::record::output::same_folder(path, &out) {
             return Err(Error::Other(format!(
                 "--csv {} is inside the figure folder {}, which the figures are written to; give another folder",
-                path.display(),
-                out.display()
+                shown(path),
+                shown(&out)
             )));
         }
         // Opened before the log is read, so that a bad path fails at once.
@@ -33,7 +33,7 @@ pub fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>) -> Result<(
             // The summary, which would say so, is not printed.
             super::common::warn(&format!(
                 "{}: {}; the CSV holds the {} step messages before it",
-                beam_impact::record::output::shown(file),
+                shown(file),
                 data.problem.as_deref().or(data.stopped_early.as_deref()).unwrap_or("incomplete log"),
                 data.steps.len()
             ));

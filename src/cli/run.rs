@@ -10,7 +10,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use beam_impact::model::TimeStep;
 use beam_impact::record::mcap::{McapRecorder, RecorderOptions};
-use beam_impact::record::output::{check_distinct, OutputFile};
+use beam_impact::record::output::{check_distinct, shown, OutputFile};
 use beam_impact::record::{NullRecorder, Recorder, RunInfo};
 use beam_impact::results::{ContactEvent, StepResult};
 use beam_impact::{compare, Error, Result, Scenario};
@@ -105,8 +105,8 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     );
     let impact = summary.impact;
     text += &format!(
-        "impact: the bridge turns at {:.6} rad/s about its hinge ({}), its contact point closing at {:.6} m/s\n\n",
-        impact.angular_velocity,
+        "impact: the bridge turns at {} rad/s about its hinge ({}), its contact point closing at {} m/s\n\n",
+        speed(impact.angular_velocity),
         match scenario.impact_angular_velocity {
             Some(_) => "as stated: impact_angular_velocity".to_string(),
             None => format!(
@@ -114,13 +114,13 @@ pub fn run(args: &RunArgs) -> Result<bool> {
                 scenario.drop_height
             ),
         },
-        impact.closing_speed
+        speed(impact.closing_speed)
     );
     if let Some(table) = &scenario.motion.table {
         text += &format!(
             "supports moving: {} ({} rows of {}, each with its velocity and acceleration), from its time {} s; \
              deflections are relative to the supports, the energy approach's column assumes fixed ones\n\n",
-            scenario.motion.file,
+            shown(Path::new(&scenario.motion.file)),
             table.times.len(),
             table
                 .columns
@@ -157,7 +157,7 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     }
     text += &format!("wall time: {:.1} ms (assembly, modes and stepping", wall.as_secs_f64() * 1e3);
     if !args.no_mcap {
-        text += &format!(", recorded to {}", mcap.display());
+        text += &format!(", recorded to {}", shown(&mcap));
     }
     text += ")\n";
     if let Some((path, file)) = json_file {
@@ -167,7 +167,7 @@ pub fn run(args: &RunArgs) -> Result<bool> {
             Some(mut file) => {
                 writeln!(file, "{json}").map_err(|source| io("cannot write JSON", path, source))?;
                 file.commit()?;
-                text += &format!("results written to {}\n", path.display());
+                text += &format!("results written to {}\n", shown(path));
             }
             // `--json -`: the JSON is the standard output, without the tables.
             None => return emit(&format!("{json}\n")).map(|()| answer.quality.trusted),
@@ -175,6 +175,19 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     }
     emit(&text)?;
     Ok(answer.quality.trusted)
+}
+
+/// A speed on the impact line, as it is: six decimals; a zero as "0.000000" (a negative zero,
+/// the closing speed of a drop of 0, printed "-0.000000"), and a speed too small for six
+/// decimals in scientific form (1e-9 rad/s printed "0.000000", a speed that is not 0).
+fn speed(x: f64) -> String {
+    if x == 0.0 {
+        format!("{:.6}", 0.0)
+    } else if x.abs() < 5e-7 {
+        format!("{x:.3e}")
+    } else {
+        format!("{x:.6}")
+    }
 }
 
 /// Shows a progress bar (on a terminal) while passing every step on to the real recorder.

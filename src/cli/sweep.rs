@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use beam_impact::record::output::{check_distinct, OutputFile};
+use beam_impact::record::output::{check_distinct, shown, OutputFile};
 use beam_impact::{Result, Scenario};
 
 use super::args::SweepArgs;
@@ -91,13 +91,13 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
         tally.scenarios - tally.failed,
         tally.failed,
         tally.untrusted,
-        args.out.display()
+        shown(&args.out)
     );
     if let Some(path) = &args.json {
-        text += &format!(" and {}", path.display());
+        text += &format!(" and {}", shown(path));
     }
     for path in sidecars {
-        text += &format!(", units in {}", path.display());
+        text += &format!(", units in {}", shown(&path));
     }
     emit(&(text + "\n"))
 }

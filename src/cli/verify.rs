@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use beam_impact::record::output::{check_distinct, OutputFile};
+use beam_impact::record::output::{check_distinct, shown, OutputFile};
 use beam_impact::{Error, Result};
 
 use super::common::{emit, io, scenario_with_settings};
@@ -47,7 +47,7 @@ pub fn verify(file: Option<&Path>, set: &[String], json: Option<&Path>, toleranc
         let json = serde_json::to_string_pretty(&verification).map_err(|e| Error::Other(format!("JSON: {e}")))?;
         writeln!(file, "{json}").map_err(|source| io("cannot write JSON", path, source))?;
         file.commit()?;
-        text += &format!("verdicts written to {}\n", path.display());
+        text += &format!("verdicts written to {}\n", shown(path));
     }
     emit(&text)
 }

@@ -8,7 +8,7 @@
 use std::ffi::{c_char, c_int, c_uint, c_void};
 
 use super::boundary::{out, slice, slice_mut, string, utf8_string};
-use super::instance::{Instance, Version};
+use super::instance::{Instance, Shown, Version};
 pub use super::logger::Fmi2CallbackLogger;
 use super::logger::{log_with, Logger};
 use super::resource;
@@ -58,6 +58,22 @@ fn with(
     // does not use it from two threads at once (FMI 2.0, section 2.1.5).
     match unsafe { c.as_mut() } {
         Some(instance) => instance.guard(function, mask, work),
+        None => Status::Error,
+    }
+}
+
+/// [`with`] for a setter: a call in a state where it is not allowed names what it was to set,
+/// `refused` ([`Instance::guard_set`]).
+fn with_set(
+    c: Fmi2Component,
+    function: &str,
+    mask: Mask,
+    refused: impl FnOnce(&Instance) -> String,
+    work: impl FnOnce(&mut Instance) -> Result<Status, String>,
+) -> Status {
+    // SAFETY: as in `with`.
+    match unsafe { c.as_mut() } {
+        Some(instance) => instance.guard_set(function, mask, refused, work),
         None => Status::Error,
     }
 }
@@ -233,14 +249,25 @@ macro_rules! getter {
 
 macro_rules! setter {
     ($c:expr, $function:literal, $mask:expr, $vr:expr, $nvr:expr, $values:expr, $set:ident, $convert:expr) => {
-        with($c, $function, $mask, |inst| {
-            let vrs = unsafe { slice($vr, $nvr, "vr") }.map_err(|e| e.to_string())?;
-            let values = unsafe { slice($values, $nvr, "value") }.map_err(|e| e.to_string())?;
-            for (&value, &vr) in values.iter().zip(vrs) {
-                inst.$set(vr, $convert(value)?)?;
-            }
-            Ok(Status::Ok)
-        })
+        with_set(
+            $c,
+            $function,
+            $mask,
+            |inst: &Instance| {
+                // Read only to name what a call in the wrong state was to set (issue 40).
+                let vrs = unsafe { slice($vr, $nvr, "vr") }.unwrap_or(&[]);
+                let first = unsafe { slice($values, $nvr, "value") }.ok().and_then(|v| v.first().copied());
+                inst.to_be_set(vrs, first.map(|v| $convert(v).map_or_else(|e| e, |x| Shown::shown(&x))))
+            },
+            |inst| {
+                let vrs = unsafe { slice($vr, $nvr, "vr") }.map_err(|e| e.to_string())?;
+                let values = unsafe { slice($values, $nvr, "value") }.map_err(|e| e.to_string())?;
+                for (&value, &vr) in values.iter().zip(vrs) {
+                    inst.$set(vr, $convert(value)?)?;
+                }
+                Ok(Status::Ok)
+            },
+        )
     };
 }
 

@@ -8,7 +8,7 @@
 use std::ffi::{c_char, c_int, c_void};
 
 use super::boundary::{out, slice, slice_mut, string, utf8_string};
-use super::instance::{Instance, Version};
+use super::instance::{Instance, Shown, Version};
 pub use super::logger::Fmi3LogMessageCallback;
 use super::logger::{log_with, Logger};
 use super::resource;
@@ -55,6 +55,22 @@ fn with(
     // one thread at a time (FMI 3.0, section 2.2.1).
     match unsafe { c.as_mut() } {
         Some(instance) => instance.guard(function, mask, work),
+        None => Status::Error,
+    }
+}
+
+/// [`with`] for a setter: a call in a state where it is not allowed names what it was to set,
+/// `refused` ([`Instance::guard_set`]).
+fn with_set(
+    c: Fmi3Instance,
+    function: &str,
+    mask: Mask,
+    refused: impl FnOnce(&Instance) -> String,
+    work: impl FnOnce(&mut Instance) -> Result<Status, String>,
+) -> Status {
+    // SAFETY: as in `with`.
+    match unsafe { c.as_mut() } {
+        Some(instance) => instance.guard_set(function, mask, refused, work),
         None => Status::Error,
     }
 }
@@ -282,7 +298,12 @@ macro_rules! getter {
 
 macro_rules! setter {
     ($i:expr, $function:literal, $mask:expr, $vr:expr, $nvr:expr, $values:expr, $nv:expr, $set:ident, $convert:expr) => {
-        with($i, $function, $mask, |inst| {
+        with_set($i, $function, $mask, |inst: &Instance| {
+            // Read only to name what a call in the wrong state was to set (issue 40).
+            let vrs = unsafe { slice($vr, $nvr, "valueReferences") }.unwrap_or(&[]);
+            let first = unsafe { slice($values, $nvr.min($nv), "values") }.ok().and_then(|v| v.first().copied());
+            inst.to_be_set(vrs, first.map(|v| $convert(v).map_or_else(|e| e, |x| Shown::shown(&x))))
+        }, |inst| {
             check_counts($nvr, $nv)?;
             let vrs = unsafe { slice($vr, $nvr, "valueReferences") }.map_err(e)?;
             let values = unsafe { slice($values, $nvr, "values") }.map_err(e)?;

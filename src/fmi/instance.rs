@@ -340,6 +340,43 @@ impl Instance {
         self.guarded(function, allowed, false, work)
     }
 
+    /// [`Instance::guard`] for a setter (issue 40): called in a state where it is not allowed,
+    /// the refusal also names what the call was to set, `refused(self)` (see
+    /// [`Instance::to_be_set`]), not only the function.
+    pub fn guard_set(
+        &mut self,
+        function: &str,
+        allowed: Mask,
+        refused: impl FnOnce(&Self) -> String,
+        work: impl FnOnce(&mut Self) -> Outcome<Status>,
+    ) -> Status {
+        if !allowed.contains(self.state) {
+            let what = refused(self);
+            return self.error(&format!(
+                "{function} is not allowed in state {} (illegal call sequence): {what}",
+                self.state.name()
+            ));
+        }
+        self.guard(function, allowed, work)
+    }
+
+    /// What a refused setter call was to set, for its message: the first of `vrs` by name and
+    /// value reference with `first`, its value as shown ([`Shown`]), and how many more.
+    pub fn to_be_set(&self, vrs: &[u32], first: Option<String>) -> String {
+        let (Some(&vr), Some(value)) = (vrs.first(), first) else {
+            return "no value reference was given".into();
+        };
+        let variable = match self.variables.get(vr as usize) {
+            Some(v) => format!("`{}` (value reference {vr})", v.name),
+            None => format!("unknown value reference {vr}"),
+        };
+        let more = match vrs.len() - 1 {
+            0 => String::new(),
+            n => format!(", nor {n} more value reference(s)"),
+        };
+        format!("{variable} = {value} is not set{more}")
+    }
+
     /// [`Instance::guard`] for `DoStep`, `Terminate` and `ExitInitializationMode`: an error (not an
     /// illegal call sequence, which changes nothing) puts the instance in [`State::Error`].
     pub fn guard_run(
@@ -950,7 +987,7 @@ impl Instance {
 
     /// The per-variable rule inside a setter's allowed states: parameters before
     /// `ExitInitializationMode`, inputs until `Terminate`, nothing else ever.
-    fn check_settable(&self, v: &Variable) -> Outcome<()> {
+    fn check_settable(&self, v: &Variable, value: &dyn Shown) -> Outcome<()> {
         let (allowed, rule) = match v.source {
             Source::Parameter(_) | Source::LogPath | Source::CheckSensitivity => {
                 (super::status::allowed::SET_PARAMETER, "parameters are fixed at ExitInitializationMode")
@@ -961,15 +998,23 @@ impl Instance {
             _ => {
                 let kind = v.causality.name();
                 let article = if kind.starts_with(['a', 'e', 'i', 'o', 'u']) { "an" } else { "a" };
-                return Err(format!("`{}` is {article} {kind} and cannot be set", v.name));
+                return Err(format!(
+                    "`{}` is {article} {kind} and cannot be set: value reference {} = {} is not set",
+                    v.name,
+                    v.vr,
+                    value.shown()
+                ));
             }
         };
         if !allowed.contains(self.state) {
             return Err(format!(
-                "setting `{}` ({}) is not allowed in state {} (illegal call sequence: {rule})",
+                "setting `{}` ({}) is not allowed in state {} (illegal call sequence: {rule}): value reference {} = \
+                 {} is not set",
                 v.name,
                 v.causality.name(),
-                self.state.name()
+                self.state.name(),
+                v.vr,
+                value.shown()
             ));
         }
         Ok(())
@@ -981,7 +1026,7 @@ impl Instance {
     /// support motion (issue 27).
     pub fn set_real(&mut self, vr: u32, value: f64) -> Outcome<()> {
         let v = self.variable(vr, Type::Real)?;
-        self.check_settable(&v)?;
+        self.check_settable(&v, &value)?;
         match v.source {
             // Its own message names the bound, NaN and inf included.
             Source::Motion(k) => check_motion_value(k, value)?,
@@ -1028,7 +1073,9 @@ impl Instance {
                     }
                 }
             }
-            _ => return Err(format!("`{}` cannot be set", v.name)),
+            _ => {
+                return Err(format!("`{}` cannot be set: value reference {vr} = {} is not set", v.name, number(value)))
+            }
         }
         Ok(())
     }
@@ -1036,8 +1083,10 @@ impl Instance {
     /// Writes an Integer / Int32 variable.
     pub fn set_integer(&mut self, vr: u32, value: i32) -> Outcome<()> {
         let v = self.variable(vr, Type::Integer)?;
-        self.check_settable(&v)?;
-        let Source::Parameter(p) = v.source else { return Err(format!("`{}` cannot be set", v.name)) };
+        self.check_settable(&v, &value)?;
+        let Source::Parameter(p) = v.source else {
+            return Err(format!("`{}` cannot be set: value reference {vr} = {value} is not set", v.name));
+        };
         parameters::set(&mut self.scenario, p, f64::from(value)).map_err(|e| e.to_string())?;
         self.simulation = None;
         Ok(())
@@ -1046,7 +1095,7 @@ impl Instance {
     /// Writes a Boolean variable (there is no settable one).
     pub fn set_boolean(&mut self, vr: u32, value: bool) -> Outcome<()> {
         let v = self.variable(vr, Type::Boolean)?;
-        self.check_settable(&v)?;
+        self.check_settable(&v, &value)?;
         match v.source {
             Source::CheckSensitivity => {
                 self.check_sensitivity = value;
@@ -1054,20 +1103,20 @@ impl Instance {
                 self.checks = None;
                 Ok(())
             }
-            _ => Err(format!("`{}` cannot be set", v.name)),
+            _ => Err(format!("`{}` cannot be set: value reference {vr} = {} is not set", v.name, value.shown())),
         }
     }
 
     /// Writes a String variable.
     pub fn set_string(&mut self, vr: u32, value: String) -> Outcome<()> {
         let v = self.variable(vr, Type::String)?;
-        self.check_settable(&v)?;
+        self.check_settable(&v, &value)?;
         match v.source {
             Source::LogPath => {
                 self.log_path = value;
                 Ok(())
             }
-            _ => Err(format!("`{}` cannot be set", v.name)),
+            _ => Err(format!("`{}` cannot be set: value reference {vr} = {} is not set", v.name, value.shown())),
         }
     }
 
@@ -1284,5 +1333,39 @@ impl Instance {
             }
             None => Status::Ok,
         }
+    }
+}
+
+/// A value as the refusal of a setter shows it ([`Instance::to_be_set`]): numbers as the logger
+/// prints them, a string quoted with its control characters escaped and cut at 100 characters.
+pub trait Shown {
+    /// The value for a message.
+    fn shown(&self) -> String;
+}
+
+impl Shown for f64 {
+    fn shown(&self) -> String {
+        number(*self)
+    }
+}
+
+impl Shown for i32 {
+    fn shown(&self) -> String {
+        self.to_string()
+    }
+}
+
+impl Shown for bool {
+    fn shown(&self) -> String {
+        self.to_string()
+    }
+}
+
+impl Shown for String {
+    fn shown(&self) -> String {
+        const MAX: usize = 100;
+        let cut: String = self.chars().take(MAX).collect();
+        let more = if self.chars().nth(MAX).is_some() { "..." } else { "" };
+        format!("{cut:?}{more}")
     }
 }

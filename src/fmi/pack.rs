@@ -612,6 +612,23 @@ pub fn pack_platforms(
     pack_platforms_with(binaries, out_root, generation_tool, None)
 }
 
+/// The FMUs [`pack_platforms`] writes under `out_root`: `fmi2/BeamImpact.fmu` and
+/// `fmi3/BeamImpact.fmu`.
+pub fn fmu_paths(out_root: &Path) -> [PathBuf; 2] {
+    ["fmi2", "fmi3"].map(|version| out_root.join(version).join(format!("{MODEL_IDENTIFIER}.fmu")))
+}
+
+/// Checks both FMUs' outputs under `out_root` and the folders on their way through the output
+/// guard ([`crate::record::output::check_output`]) before either is written: a link at
+/// `fmi3/BeamImpact.fmu` no longer fails only after `fmi2/BeamImpact.fmu` was replaced.
+pub fn check_outputs(out_root: &Path) -> Result<()> {
+    for fmu in fmu_paths(out_root) {
+        let folders = [out_root, fmu.parent().unwrap_or(out_root)];
+        crate::record::output::check_output(&fmu, &folders, "cannot create FMU")?;
+    }
+    Ok(())
+}
+
 /// [`pack_platforms`] with a starting scenario of the FMUs' own (issue 30; `None`: the paper
 /// scenario): packed as `resources/scenario.toml`, its values the descriptions' start values (and
 /// their token its), the reference results and the documentation its.
@@ -713,10 +730,11 @@ pub fn pack_platforms_with(
     };
     let fmi2_entries = assemble(description::fmi2_for(scenario, generation_tool), fmi2_binaries, page(false)?);
     let fmi3_entries = assemble(description::fmi3_for(scenario, generation_tool), fmi3_binaries, page(true)?);
-    // Created only once everything is checked (a refused library leaves no folder).
+    // Created only once everything is checked (a refused library leaves no folder), both
+    // outputs first.
+    check_outputs(out_root)?;
     crate::record::output::create_output_dir(out_root, "cannot create directory")?;
-    let fmi2 = out_root.join("fmi2").join(format!("{MODEL_IDENTIFIER}.fmu"));
-    let fmi3 = out_root.join("fmi3").join(format!("{MODEL_IDENTIFIER}.fmu"));
+    let [fmi2, fmi3] = fmu_paths(out_root);
     write_fmu(&fmi2, &fmi2_entries)?;
     write_fmu(&fmi3, &fmi3_entries)?;
     Ok(vec![fmi2, fmi3])

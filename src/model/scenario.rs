@@ -409,6 +409,11 @@ fn bound(x: f64) -> String {
     }
 }
 
+/// Whether a contact exponent is in its range (else its range's error names it).
+fn within_exponent(exponent: f64) -> bool {
+    (EXPONENT_RANGE.0..=EXPONENT_RANGE.1).contains(&exponent)
+}
+
 /// `min <= value <= max`, finite.
 fn within(name: &'static str, unit: &str, value: f64, min: f64, max: f64) -> Result<()> {
     if value.is_finite() && (min..=max).contains(&value) {
@@ -738,12 +743,22 @@ impl Scenario {
         if u.allowable_shear_stress != 0.0 {
             check(stress("upper.allowable_shear_stress", u.allowable_shear_stress));
         }
-        for (beam, sections, fields) in [
-            ("upper", &u.sections, [u.length, u.mass, u.second_moment, u.section_modulus, u.shear_area]),
-            ("lower", &l.sections, [l.length, l.mass, l.second_moment, l.section_modulus, l.shear_area]),
+        for (beam, elastic_modulus, sections, fields) in [
+            (
+                "upper",
+                u.elastic_modulus,
+                &u.sections,
+                [u.length, u.mass, u.second_moment, u.section_modulus, u.shear_area],
+            ),
+            (
+                "lower",
+                l.elastic_modulus,
+                &l.sections,
+                [l.length, l.mass, l.second_moment, l.section_modulus, l.shear_area],
+            ),
         ] {
             let errors_before = errors.len();
-            errors.extend(section::validation_errors(beam, sections));
+            errors.extend(section::validation_errors(beam, elastic_modulus, sections));
             if sections.is_empty() || errors.len() > errors_before {
                 continue;
             }
@@ -807,6 +822,19 @@ impl Scenario {
         }
         check(within("contact.clearance", "m", c.clearance, 0.0, 10.0));
         check(within("contact.exponent", "", c.exponent, EXPONENT_RANGE.0, EXPONENT_RANGE.1));
+        // The exponent is the power law's: given with the linear law it would be ignored. Its
+        // default (the FMU's start value, what every scenario holds) is no setting.
+        if c.law == LawKind::Linear && c.exponent != ContactBar::default().exponent && within_exponent(c.exponent) {
+            check(Err(Error::invalid(
+                "contact.exponent",
+                format!(
+                    "left at its default {} with contact.law = \"linear\" (F = k delta: the exponent is the power \
+                     law's; set contact.law = \"power\" for F = k delta^n)",
+                    ContactBar::default().exponent
+                ),
+                bound(c.exponent),
+            )));
+        }
         check(within("contact.damping", "s/m", c.damping, 0.0, 1e3));
         if c.law == LawKind::Power && c.given_stiffness.is_none() {
             check(Err(Error::invalid(

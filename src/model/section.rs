@@ -15,6 +15,14 @@ pub const MAX_SECTIONS: usize = 32;
 /// would be too short beside the others for the stepper's steps (the graded meshes' limit).
 pub const MIN_SECTION_FRACTION: f64 = 1e-3;
 
+/// Largest ratio of the stiffest section's bending stiffness EI to the softest's in one beam:
+/// beyond it the beam's natural modes lose their digits (measured on two-section beams, the soft
+/// section at the support: the hinged bridge's rigid-mode check fails from a factor 1e9, the
+/// clamped arrestor's from 1e11, with "the lowest elastic eigenvalue is not positive"). A
+/// thousandth of that, and far beyond a real beam's (a truss's chords and a telescopic tip: 10 to
+/// 100).
+pub const MAX_STIFFNESS_RATIO: f64 = 1e6;
+
 /// One segment of a beam as a scenario file states it (`[[lower.sections]]`, `[[upper.sections]]`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -161,8 +169,10 @@ pub fn totals(sections: &[SectionSpec]) -> (f64, f64) {
 }
 
 /// Every rule a beam's sections break, each naming the section (1-based, from the support) and
-/// its field: `lower.sections[2].second_moment must be > 0 m^4, got -1`.
-pub fn validation_errors(beam: &str, sections: &[SectionSpec]) -> Vec<Error> {
+/// its field: `lower.sections[2].second_moment must be > 0 m^4, got -1`. Sections whose bending
+/// stiffnesses (`elastic_modulus` times their second moments) differ by more than
+/// [`MAX_STIFFNESS_RATIO`] are refused naming the softest and the stiffest with their EI.
+pub fn validation_errors(beam: &str, elastic_modulus: f64, sections: &[SectionSpec]) -> Vec<Error> {
     let mut errors = Vec::new();
     if sections.len() > MAX_SECTIONS {
         errors.push(Error::invalid(
@@ -205,7 +215,51 @@ pub fn validation_errors(beam: &str, sections: &[SectionSpec]) -> Vec<Error> {
             ));
         }
     }
+    if errors.is_empty() {
+        errors.extend(stiffness_ratio_error(beam, elastic_modulus, sections));
+    }
     errors
+}
+
+/// The error of sections too unlike in bending stiffness ([`MAX_STIFFNESS_RATIO`]), naming the
+/// later of the softest and the stiffest section's second moment, and both sections with their EI.
+fn stiffness_ratio_error(beam: &str, elastic_modulus: f64, sections: &[SectionSpec]) -> Option<Error> {
+    let by_moment =
+        |a: &(usize, &SectionSpec), b: &(usize, &SectionSpec)| a.1.second_moment.total_cmp(&b.1.second_moment);
+    let (soft, softest) = sections.iter().enumerate().min_by(by_moment)?;
+    let (stiff, stiffest) = sections.iter().enumerate().max_by(by_moment)?;
+    let ratio = stiffest.second_moment / softest.second_moment;
+    if !(elastic_modulus.is_finite() && elastic_modulus > 0.0) || ratio <= MAX_STIFFNESS_RATIO {
+        return None;
+    }
+    let (named, other) = if stiff > soft { (stiff, soft) } else { (soft, stiff) };
+    Some(Error::invalid(
+        format!("{beam}.sections[{}].second_moment", named + 1),
+        format!(
+            "within a factor {MAX_STIFFNESS_RATIO:e} of {beam}.sections[{}].second_moment = {} m^4 (EI {} N m^2 in \
+             {beam}.sections[{}] against {} N m^2 in {beam}.sections[{}], a factor {}: beyond {MAX_STIFFNESS_RATIO:e} \
+             the beam's natural modes lose their digits)",
+            other + 1,
+            short(sections[other].second_moment),
+            short(elastic_modulus * softest.second_moment),
+            soft + 1,
+            short(elastic_modulus * stiffest.second_moment),
+            stiff + 1,
+            short(ratio)
+        ),
+        sections[named].second_moment,
+    ))
+}
+
+/// `x` in exponent form to at most 5 significant digits, trailing zeros cut (`2.1e-1`, `1e12`).
+fn short(x: f64) -> String {
+    let text = format!("{x:.4e}");
+    match text.split_once('e') {
+        Some((mantissa, exponent)) if mantissa.contains('.') => {
+            format!("{}e{exponent}", mantissa.trim_end_matches('0').trim_end_matches('.'))
+        }
+        _ => text,
+    }
 }
 
 /// Checks a beam's uniform field against what its sections imply (`upper.length` given and

@@ -230,6 +230,32 @@ pub fn create_output_dir(dir: &Path, what: &'static str) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(io)
 }
 
+/// Checks an output before anything of a command is written, creating nothing: `path` as
+/// [`OutputFile::create`] takes it without devices (refused: a symbolic link, a folder, a FIFO, a
+/// socket, a device, a name ending in `/`), and each of `folders`, the folders the command
+/// creates on its way to it, as [`create_output_dir`] does (refused: a symbolic link, a file). A
+/// command with several outputs checks every one first, so that a refused one leaves the others
+/// as they were (`pack`: both FMUs and `GangwayOnVessel.ssp`); each is still guarded when written.
+pub fn check_output(path: &Path, folders: &[&Path], what: &'static str) -> Result<()> {
+    for &folder in folders {
+        let io = |why: &str| Error::Io { action: what, path: shown(folder), source: std::io::Error::other(why) };
+        // `link/` and `link/.` name the link's target: look at the link itself.
+        let folder: PathBuf = folder.components().collect();
+        match std::fs::symlink_metadata(&folder) {
+            Ok(m) if m.file_type().is_symlink() => {
+                return Err(io("it is a symbolic link; give the link's target instead"));
+            }
+            Ok(m) if !m.is_dir() => return Err(io("it is not a folder")),
+            _ => {}
+        }
+    }
+    let io = |source| Error::Io { action: what, path: shown(path), source };
+    match partial_for(path).map_err(io)? {
+        Some(_) => Ok(()),
+        None => Err(io(std::io::Error::other("it is a device, not a regular file"))),
+    }
+}
+
 /// What a path names, to tell whether two paths are one file: the device and inode of an
 /// existing file, or for a file still to be created the device and inode of its folder and its
 /// final name. `None` for a device (`/dev/null` takes any number of outputs) and `-`.

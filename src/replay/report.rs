@@ -995,7 +995,7 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
     let mut text = String::new();
     {
         use std::fmt::Write as _;
-        let _ = writeln!(text, "MCAP log {} ({} bytes)", mcap.display(), data.file_size);
+        let _ = writeln!(text, "MCAP log {} ({} bytes)", crate::record::output::shown(mcap), data.file_size);
         if let (true, Some(reason)) = (data.complete, &data.stopped_early) {
             let _ = writeln!(
                 text,
@@ -1070,7 +1070,7 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
     files.extend(super::mode_figures::write_mode_figures(simulation.model(), simulation.modal(), out_dir)?);
     let mut listing = String::from("\nfigures:\n");
     for f in files {
-        listing.push_str(&format!("  {}\n", f.display()));
+        listing.push_str(&format!("  {}\n", crate::record::output::shown(&f)));
     }
     out.write_all(listing.as_bytes()).map_err(io)?;
     Ok(())

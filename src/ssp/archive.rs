@@ -18,6 +18,13 @@ pub const FILE_NAME: &str = "GangwayOnVessel.ssp";
 /// The largest BeamImpact FMU the archive takes, bytes (ours are 10-30 MB).
 const MAX_FMU: u64 = 1 << 30;
 
+/// Checks `out_dir/GangwayOnVessel.ssp` and `out_dir` through the output guard
+/// ([`crate::record::output::check_output`]), creating nothing: `pack --ssp` checks it before the
+/// FMUs are written, so that a link there no longer fails only after both were replaced.
+pub fn check_output(out_dir: &Path) -> Result<()> {
+    crate::record::output::check_output(&out_dir.join(FILE_NAME), &[out_dir], "cannot create SSP")
+}
+
 /// Writes `out_dir/GangwayOnVessel.ssp` from `ssd_text` (the text of [`ssd::system_structure`],
 /// made before the FMUs are packed so that a description it cannot be written for stops `pack`
 /// early), the BeamImpact FMI 2 FMU at `beam_fmu` and the vessel-motion libraries built for each

@@ -264,6 +264,25 @@ pub fn apply_settings(scenario: &mut Scenario, settings: &[Setting]) -> Result<(
         (false, true) => scenario.impact_angular_velocity = None,
         _ => {}
     }
+    // The contact moved to the bridge's free end here, where the scenario (the paper's, a file's)
+    // keeps elements beyond it: the field set here is at fault, named with its value (issue 40:
+    // `modes --set contact_position=29` blamed upper.elements_beyond_contact, never set).
+    let u = &scenario.upper;
+    if scenario.contact_at_free_end() && u.elements_beyond_contact != 0 && !given("upper.elements_beyond_contact") {
+        let keeps = format!(
+            "while the scenario has upper.elements_beyond_contact = {} (not set here); for the contact at the \
+             bridge's free end also set upper.elements_beyond_contact=auto",
+            u.elements_beyond_contact
+        );
+        if given("contact_position") {
+            let rule = format!("below upper.length = {} m {keeps}", u.length);
+            return Err(Error::invalid("contact_position", rule, scenario.contact_position));
+        }
+        if given("upper.length") {
+            let rule = format!("above contact_position = {} m {keeps}", scenario.contact_position);
+            return Err(Error::invalid("upper.length", rule, u.length));
+        }
+    }
     validate(scenario)
 }
 

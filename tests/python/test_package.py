@@ -209,6 +209,30 @@ def test_hostile_grids_are_refused_before_any_value_is_built(spec, message):
         beam_impact.expand(parse_vary([spec]))
 
 
+def test_linspace_counts_are_bounded_as_the_cli_s():
+    """Issue 40 (part 5) item 8: `linspace(0, 1, 10**9)` had no count limit (it built a billion values:
+    4.7 GB). Its count is now bounded as the CLI's `--vary start:stop:count` is (from 1 to
+    MAX_SCENARIOS, the very limit of the CLI's parser), refused at once in one line naming the limit
+    and the value; within it, linspace gives the CLI's values."""
+    from beam_impact.grid import MAX_SCENARIOS
+
+    started = time.perf_counter()
+    for count, shown in [(MAX_SCENARIOS + 1, "1000001"), (10**9, "1000000000"), (0, "0"), (-3, "-3"),
+                         (2**80, "1208925819614629174706176"), (2.5, "2.5"), (True, "True"), ("10", "'10'")]:
+        with pytest.raises(ValueError) as refused:
+            beam_impact.linspace(0.0, 1.0, count)
+        text = str(refused.value)
+        assert f"from 1 to {MAX_SCENARIOS}" in text and text.endswith(f"got {shown}") and "\n" not in text, text
+    assert time.perf_counter() - started < 5, "refused before any value is built"
+    # The bound is the CLI's own: its parser takes MAX_SCENARIOS values and refuses one more.
+    (values,) = parse_vary([f"drop_height=0:1:{MAX_SCENARIOS}"]).values()
+    assert len(values) == MAX_SCENARIOS
+    with pytest.raises(ValueError, match=f"more than a sweep runs \\({MAX_SCENARIOS} scenarios\\)"):
+        parse_vary([f"drop_height=0:1:{MAX_SCENARIOS + 1}"])
+    assert beam_impact.linspace(0.1, 0.5, 7) == beam_impact.parse_spec("drop_height", "0.1:0.5:7")
+    assert beam_impact.linspace(0.1, 0.5, np.int64(1)) == [0.1]
+
+
 def test_simulate_refuses_runs_it_cannot_finish():
     """Issue 16 item 8: `simulate(fmu, {"duration": 1e6})` ran for hours and `histories=True` on a
     long run ended in a SimulationError with an empty message. Now the stop time is bounded by the

@@ -95,6 +95,11 @@ def test_a_scenario_file_or_its_text(tmp_path):
     ({"duration": 0.01, "max_steps": 100}, "raise the limit with run(..., max_steps=N)"),
     ({"scenario": "no-such-file.toml"}, "cannot read scenario no-such-file.toml"),
     ({"scenario": 'drop_height = "x"'}, "TOML parse error"),
+    # Issue 40 (part 5) item 6: 2**80 raised OverflowError from the native module.
+    ({"series": True, "series_every": 2**80},
+     "series_every must be a whole number from 1 to 18446744073709551615 (2**64 - 1), got 1208925819614629174706176"),
+    ({"series": True, "series_every": 0}, "series_every must be a whole number from 1 to 18446744073709551615"),
+    ({"series": True, "series_every": float("inf")}, "series_every must be a whole number from 1 to"),
 ])
 def test_what_the_cli_refuses_is_a_one_line_value_error(kwargs, message):
     started = time.perf_counter()
