@@ -1,7 +1,7 @@
 //! The pipeline: scenario -> validated model -> stepper -> step results -> recorder.
 //! Time is counted in integer nanoseconds, so communication points and log stamps are exact.
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
@@ -511,7 +511,7 @@ impl<S: Stepper> Simulation<S> {
         if self.stations.is_empty() || !step.is_multiple_of(self.stations.stride) {
             return;
         }
-        let loads = self.correction_loads(self.state.kinematics.displacement.as_slice(), stage, excitation);
+        let loads = self.correction_loads(own(&self.state.kinematics), stage, excitation);
         let state = &mut self.state;
         self.stations.observe(
             &mut self.envelope_work,
@@ -524,8 +524,9 @@ impl<S: Stepper> Simulation<S> {
 
     /// Raises the model's range (every node's deflection and rotation) by the current state.
     fn observe_range(&mut self, stage: Stage, excitation: &Excitation, time: f64) {
-        let q = self.state.kinematics.displacement.as_slice();
-        let loads = self.correction_loads(q, stage, excitation);
+        let k = &self.state.kinematics;
+        let q = k.displacement.as_slice();
+        let loads = self.correction_loads((q, k.velocity.as_slice()), stage, excitation);
         self.range_rows.observe(q, loads.as_ref(), time, &mut self.state.range);
     }
 
@@ -549,12 +550,12 @@ impl<S: Stepper> Simulation<S> {
         if !self.envelope_work.holds_end_of(step - 1, start_ns) {
             let start_excitation = self.excitation_at(start_ns);
             let (q0, v0) = (self.backup.displacement.as_slice(), self.backup.velocity.as_slice());
-            let loads = self.correction_loads(q0, stage, &start_excitation);
+            let loads = self.correction_loads((q0, v0), stage, &start_excitation);
             let load_rates = self.correction_load_rates(&self.backup, stage, &start_excitation);
             let start = StationState { q: q0, v: v0, loads: loads.as_ref(), load_rates: load_rates.as_ref() };
             self.stations.set_start(&mut self.envelope_work, start);
         }
-        let loads = self.correction_loads(self.state.kinematics.displacement.as_slice(), stage, excitation);
+        let loads = self.correction_loads(own(&self.state.kinematics), stage, excitation);
         let load_rates = self.correction_load_rates(&self.state.kinematics, stage, excitation);
         let RunState { kinematics, envelope, envelope_times, .. } = &mut self.state;
         let (q1, v1) = (kinematics.displacement.as_slice(), kinematics.velocity.as_slice());
@@ -585,18 +586,35 @@ impl<S: Stepper> Simulation<S> {
             let mut rates = [0.0; LOADS];
             if stage.is_contact() {
                 let gap_rate = self.modal_gap(kinematics.velocity.as_slice()) + excitation.gap_offset_rate;
-                rates[crate::solver::static_correction::CONTACT] = -self.modal.bar_stiffness * gap_rate;
+                // A nonlinear law's P = G(D, V) moves with the gap's acceleration too.
+                rates[crate::solver::static_correction::CONTACT] = match self.modal.law {
+                    None => -self.modal.bar_stiffness * gap_rate,
+                    Some(_) => {
+                        let gap = self.modal_gap(kinematics.displacement.as_slice()) + excitation.gap_offset;
+                        let acceleration = self.modal_gap(kinematics.acceleration.as_slice());
+                        let law = self.modal.correction.law_load_rate(gap, (gap_rate, acceleration), excitation);
+                        law.unwrap_or(0.0)
+                    }
+                };
             }
             rates
         })
     }
 
-    /// The discarded modes' load coefficients at the state `q` (in `stage` under `excitation`), as
-    /// the stepper's measurements take them; None for a full basis.
-    fn correction_loads(&self, q: &[f64], stage: Stage, excitation: &Excitation) -> Option<[f64; LOADS]> {
+    /// The discarded modes' load coefficients at the state `(q, v)` (in `stage` under
+    /// `excitation`; v read by a damped contact law), as the stepper's measurements take them;
+    /// None for a full basis.
+    fn correction_loads(
+        &self,
+        (q, v): (&[f64], &[f64]),
+        stage: Stage,
+        excitation: &Excitation,
+    ) -> Option<[f64; LOADS]> {
         self.modal.is_truncated().then(|| {
             let gap = self.modal_gap(q) + excitation.gap_offset;
-            self.modal.correction.loads(gap, stage.is_contact(), excitation)
+            let damped = self.modal.law.is_some_and(|law| law.damping > 0.0);
+            let rate = if damped { self.modal_gap(v) + excitation.gap_offset_rate } else { 0.0 };
+            self.modal.correction.loads(gap, rate, stage.is_contact(), excitation)
         })
     }
 
@@ -607,15 +625,15 @@ impl<S: Stepper> Simulation<S> {
         (0..x.len().min(b.len())).map(|i| b[i] * x[i]).sum::<f64>()
     }
 
-    /// Sends `result` with its own coordinates `q` to `recorder`, after telling the stations'
-    /// feed (if a recorder holds it) the step's load coefficients, from which with `q` the log's
-    /// per-step stresses follow.
-    fn record(&self, recorder: &mut dyn Recorder, result: &StepResult, q: &[f64]) -> Result<()> {
+    /// Sends `result` with its own coordinates q (of `kinematics`) to `recorder`, after telling
+    /// the stations' feed (if a recorder holds it) the step's load coefficients, from which with
+    /// q the log's per-step stresses follow.
+    fn record(&self, recorder: &mut dyn Recorder, result: &StepResult, kinematics: &Kinematics) -> Result<()> {
         if let Some(feed) = self.feed.listened() {
             let stage = if result.contact { Stage::Contact } else { Stage::Free };
-            feed.set_loads(self.correction_loads(q, stage, &self.excitation_at(result.time_ns)));
+            feed.set_loads(self.correction_loads(own(kinematics), stage, &self.excitation_at(result.time_ns)));
         }
-        recorder.step(result, q)
+        recorder.step(result, kinematics.displacement.as_slice())
     }
 
     /// Hands the run's envelope so far to the stations' feed, if a recorder holds it (the log
@@ -804,8 +822,18 @@ impl<S: Stepper> Simulation<S> {
             // The time within the run (never past the step's end by round-off).
             let at = (seconds(start.time_ns) + at * dt).min(self.state.result.time);
             match (probe, law) {
+                // With damping the force crests before the largest compression: the largest of
+                // the force's own cubic over the step.
+                (Probe::Gap, Some(law)) if law.damping > 0.0 => {
+                    let gap = (p0[k], end[k], r0[k] * dt, r1[k] * dt);
+                    let accelerations =
+                        (self.stepper.probes(&k0.acceleration)[k], self.stepper.probes(&k1.acceleration)[k]);
+                    let (force, at) =
+                        crate::solver::step_extrema::law_force_extremum(&law, gap, accelerations, dt, fraction);
+                    (force, (seconds(start.time_ns) + at * dt).min(self.state.result.time))
+                }
                 // A nonlinear law's force at the step's largest compression (its elastic part),
-                // or at the step's end with its damping, whichever is larger.
+                // or at the step's end, whichever is larger.
                 (Probe::Gap, Some(law)) => {
                     let end_force = law.force(-end[k], -r1[k]);
                     let inside = law.elastic(value);
@@ -1195,8 +1223,8 @@ impl<S: Stepper> Simulation<S> {
         let advance = self.advance_outputs_to(target_ns, recorder, stop_at_contact_change)?;
         if advance == Advance::Reached && self.output.time_ns > self.state.result.time_ns {
             let record = self.stop_record();
-            let displacement = self.displacement_at(self.output.time_ns)?;
-            self.record(recorder, &record, displacement.as_slice())?;
+            let kinematics = self.kinematics_at(self.output.time_ns)?;
+            self.record(recorder, &record, &kinematics)?;
         }
         Ok(advance)
     }
@@ -1213,28 +1241,32 @@ impl<S: Stepper> Simulation<S> {
     /// The own coordinates at `at_ns` inside the next internal step (its cubic; the exact
     /// advance's own step to it, as [`Self::interpolate`] takes the outputs there), the state left
     /// as it was.
-    fn displacement_at(&mut self, at_ns: u64) -> Result<DVector<f64>> {
+    fn kinematics_at(&mut self, at_ns: u64) -> Result<Kinematics> {
         if self.stepper.adapts_steps() {
             let stage = self.next_stage();
             let mut k = self.state.kinematics.clone();
             let tau = seconds(at_ns - self.state.result.time_ns);
             self.stepper.step(&mut k, stage, tau, &self.excitation_at(at_ns));
-            return Ok(k.displacement);
+            return Ok(k);
         }
         let saved = (self.state.clone(), self.backup.clone());
         let stepped = self.step(u64::MAX, false);
-        let displacement = stepped.map(|_| {
+        let kinematics = stepped.map(|_| {
             let (k0, k1) = (&self.backup, &self.state.kinematics);
             let dt = seconds(self.state.result.time_ns - saved.0.result.time_ns);
             let tau = seconds(at_ns - saved.0.result.time_ns);
             let jerk = (&k1.acceleration - &k0.acceleration) / dt;
-            &k0.displacement
-                + &k0.velocity * tau
-                + &k0.acceleration * (0.5 * tau * tau)
-                + jerk * (tau * tau * tau / 6.0)
+            Kinematics {
+                displacement: &k0.displacement
+                    + &k0.velocity * tau
+                    + &k0.acceleration * (0.5 * tau * tau)
+                    + &jerk * (tau * tau * tau / 6.0),
+                velocity: &k0.velocity + &k0.acceleration * tau + &jerk * (0.5 * tau * tau),
+                acceleration: &k0.acceleration + &jerk * tau,
+            }
         });
         (self.state, self.backup) = saved;
-        displacement
+        kinematics
     }
 
     /// Moves the outputs to the communication point `target_ns` without breaking the internal
@@ -1278,7 +1310,7 @@ impl<S: Stepper> Simulation<S> {
                     return Ok(Advance::Reached);
                 }
             }
-            self.record(recorder, &self.state.result, self.state.kinematics.displacement.as_slice())?;
+            self.record(recorder, &self.state.result, &self.state.kinematics)?;
             if let Some(e) = &event {
                 recorder.contact_event(e)?;
                 if stop_at_contact_change {
@@ -1311,7 +1343,7 @@ impl<S: Stepper> Simulation<S> {
     ) -> Result<Advance> {
         while self.state.result.time_ns < target_ns {
             let event = self.step(target_ns - self.state.result.time_ns, recorder.wants_details())?;
-            self.record(recorder, &self.state.result, self.state.kinematics.displacement.as_slice())?;
+            self.record(recorder, &self.state.result, &self.state.kinematics)?;
             if let Some(e) = &event {
                 recorder.contact_event(e)?;
                 if stop_at_contact_change {
@@ -1493,7 +1525,7 @@ impl<S: Stepper> Simulation<S> {
             stations: probe.as_ref(),
         })?;
         drop(probe);
-        self.record(recorder, &self.state.result, self.state.kinematics.displacement.as_slice())?;
+        self.record(recorder, &self.state.result, &self.state.kinematics)?;
         self.publish_envelope();
         Ok(())
     }
@@ -1906,6 +1938,11 @@ fn nodal_shapes(model: &Model, shapes: &DMatrix<f64>) -> DMatrix<f64> {
 }
 
 /// The support motion as an error names it: "fixed", or each moving coordinate's values.
+/// The displacements and velocities of `kinematics`, as slices.
+fn own(kinematics: &Kinematics) -> (&[f64], &[f64]) {
+    (kinematics.displacement.as_slice(), kinematics.velocity.as_slice())
+}
+
 fn describe_motion(motion: &SupportMotion) -> String {
     if motion.is_rest() {
         return "fixed".into();
@@ -1948,7 +1985,7 @@ mod tests {
             if steps > 0 {
                 sim.stepper.step(&mut k, stage, seconds(steps * h), &sim.excitation_at(at));
             }
-            let loads = sim.correction_loads(k.displacement.as_slice(), stage, &sim.excitation_at(at));
+            let loads = sim.correction_loads(own(&k), stage, &sim.excitation_at(at));
             let mut out = vec![0.0; sim.stations.len()];
             sim.stations.stresses(k.displacement.as_slice(), loads.as_ref(), &mut out);
             out

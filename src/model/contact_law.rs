@@ -91,38 +91,52 @@ impl ContactLaw {
     /// (m/s/N) per newton of contact force (the linear acceleration method's b^T S^-1 b terms).
     /// h(P) = P - force(...) rises monotonically from h(0) <= 0, so the root is unique in
     /// [0, force(delta_0, rate_0)]; Newton's steps inside that bracket, bisection where one
-    /// leaves it, to the last bit.
+    /// leaves it, to the last bit. [`Self::solve_in_series`] without a residual flexibility.
     pub fn solve(&self, delta_0: f64, a: f64, rate_0: f64, r: f64) -> f64 {
-        let at = |p: f64| (delta_0 - a * p, rate_0 - r * p);
-        let upper = {
-            let (d, v) = at(0.0);
-            self.force(d, v)
-        };
+        self.solve_in_series(delta_0, a, rate_0, r, 0.0)
+    }
+
+    /// [`Self::solve`] for the law in series with a residual flexibility `f_r` (m/N, >= 0): the
+    /// static response b^T R b of a truncated basis's discarded modes at the contact
+    /// ([`crate::solver::truncation`]). The kept modes' compression D = `delta_0` - a P and its
+    /// rate V = `rate_0` - r P split between the contact and the residual spring: the contact's
+    /// own compression is x = D - f_r P, and its rate the quasi-static share
+    /// x' = V / (1 + f_r n k x^(n-1)) (the residual spring follows the elastic force; the
+    /// dropped term f_r k x^n c x'' is of relative order f_r c P / T_contact, below 1e-4 for
+    /// the examples). With f_r = 0 this is the law itself. h(P) = P - force(x, x') is bracketed
+    /// from h(0) <= 0 (the bracket widened if the damping's share makes h fall at its end).
+    pub fn solve_in_series(&self, delta_0: f64, a: f64, rate_0: f64, r: f64, f_r: f64) -> f64 {
+        let a_total = a + f_r;
+        let upper = self.series_terms(delta_0, rate_0, f_r).force;
         if upper <= 0.0 || !upper.is_finite() {
             return if upper.is_finite() { 0.0 } else { upper };
         }
+        let h = |p: f64| {
+            let t = self.series_terms(delta_0 - a_total * p, rate_0 - r * p, f_r);
+            (p - t.force, t)
+        };
         let (mut lo, mut hi) = (0.0, upper);
-        let mut p = upper;
+        // With a residual flexibility the damping's share can make h dip past the elastic bound
+        // (by O(f_r^2)): widen the bracket until h(hi) >= 0.
+        let mut widen = 0;
+        while h(hi).0 < 0.0 && widen < 60 {
+            lo = hi;
+            hi *= 2.0;
+            widen += 1;
+        }
+        let mut p = hi;
         for _ in 0..200 {
-            let (d, v) = at(p);
-            // One power per iteration: the force and its slope from the elastic part.
-            let e = self.elastic(d);
-            let force = (e * (1.0 + self.damping * v)).max(0.0);
-            let h = p - force;
-            if h > 0.0 {
+            let (value, t) = h(p);
+            if value > 0.0 {
                 hi = p;
-            } else if h < 0.0 {
+            } else if value < 0.0 {
                 lo = p;
             } else {
                 return p;
             }
-            // dh/dP = 1 + a dF/ddelta + r dF/drate (where the force is positive).
-            let slope = if d > 0.0 && force > 0.0 {
-                1.0 + a * self.exponent * e / d * (1.0 + self.damping * v) + r * e * self.damping
-            } else {
-                1.0
-            };
-            let newton = p - h / slope;
+            // dh/dP = 1 + (a + f_r) dF/dx + r dF/dV (where the force is positive).
+            let slope = if t.force > 0.0 { 1.0 + a_total * t.by_compression + r * t.by_rate } else { 1.0 };
+            let newton = p - value / slope;
             let next = if newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
             if next == p || hi - lo <= f64::EPSILON * hi {
                 return next;
@@ -130,6 +144,52 @@ impl ContactLaw {
             p = next;
         }
         p
+    }
+
+    /// The force and its partial derivatives at the contact's own compression x (m) under the
+    /// kept modes' compression rate `rate` (m/s), in series with `f_r` (see
+    /// [`Self::solve_in_series`]).
+    fn series_terms(&self, x: f64, rate: f64, f_r: f64) -> SeriesTerms {
+        if x <= 0.0 {
+            return SeriesTerms::default();
+        }
+        let (n, c) = (self.exponent, self.damping);
+        let e = self.elastic(x);
+        // The elastic tangent n k x^(n-1) and its slope n (n - 1) k x^(n-2).
+        let tangent = n * e / x;
+        let curvature = (n - 1.0) * tangent / x;
+        let share = 1.0 + f_r * tangent;
+        let own_rate = rate / share;
+        let force = e * (1.0 + c * own_rate);
+        if force <= 0.0 {
+            return SeriesTerms::default();
+        }
+        SeriesTerms {
+            force,
+            by_compression: tangent * (1.0 + c * own_rate) - e * c * rate * f_r * curvature / (share * share),
+            by_rate: e * c / share,
+        }
+    }
+
+    /// The force P = G(D, V) of the law in series with `f_r` at the kept modes' compression `D`
+    /// and rate `V` ([`Self::solve_in_series`] with a = r = 0), and its partial derivatives
+    /// G_D = P_x / (1 + f_r P_x), G_V = P_V / (1 + f_r P_x) (from D - x - f_r P(x, V) = 0).
+    pub fn in_series(&self, delta: f64, rate: f64, f_r: f64) -> SeriesForce {
+        let force = self.solve_in_series(delta, 0.0, rate, 0.0, f_r);
+        if force <= 0.0 {
+            return SeriesForce::default();
+        }
+        let x = delta - f_r * force;
+        let t = self.series_terms(x, rate, f_r);
+        let scale = 1.0 / (1.0 + f_r * t.by_compression);
+        let e = self.elastic(x);
+        let own_rate = if x > 0.0 { rate / (1.0 + f_r * self.exponent * e / x) } else { rate };
+        SeriesForce {
+            force,
+            by_compression: t.by_compression * scale,
+            by_rate: t.by_rate * scale,
+            dissipation: (force - e) * own_rate,
+        }
     }
 
     /// The largest tangent stiffness n k delta^(n-1) the contact can reach when `energy` J is
@@ -140,6 +200,39 @@ impl ContactLaw {
         let n = self.exponent;
         let delta = libm::pow((n + 1.0) * energy.max(0.0) / self.stiffness, 1.0 / (n + 1.0));
         (n * self.stiffness * libm::pow(delta, n - 1.0)).max(self.stiffness * 1e-12)
+    }
+}
+
+/// The law's force at the contact's own compression and its partial derivatives (private to
+/// the solve).
+#[derive(Clone, Copy, Debug, Default)]
+struct SeriesTerms {
+    force: f64,
+    /// dP/dx at the kept modes' rate, N/m.
+    by_compression: f64,
+    /// dP/dV, N s/m.
+    by_rate: f64,
+}
+
+/// The contact force as a function of the kept modes' compression D and its rate V
+/// ([`ContactLaw::in_series`]), with its partial derivatives (all 0 without force).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SeriesForce {
+    /// P, N (>= 0).
+    pub force: f64,
+    /// dP/dD, N/m.
+    pub by_compression: f64,
+    /// dP/dV, N s/m.
+    pub by_rate: f64,
+    /// The power the damping dissipates, (P - k x^n) x' (x the contact's own compression, x' its
+    /// quasi-static rate), W.
+    pub dissipation: f64,
+}
+
+impl SeriesForce {
+    /// dP/dt from the rates of D and V, N/s.
+    pub fn rate(&self, delta_rate: f64, rate_rate: f64) -> f64 {
+        self.by_compression * delta_rate + self.by_rate * rate_rate
     }
 }
 

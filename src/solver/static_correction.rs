@@ -4,6 +4,7 @@
 //! [`super::truncation`] builds it from a `ModalSystem`.
 
 use super::kinematics::Excitation;
+use crate::model::contact_law::ContactLaw;
 use crate::model::system::PROBES;
 use crate::model::REACTIONS;
 
@@ -45,6 +46,10 @@ pub struct StaticCorrection {
     pub dofs: Vec<[f64; LOADS]>,
     /// The physical contact bar's stiffness k_c, N/m (the stepper's is k_eff).
     pub bar_stiffness: f64,
+    /// A nonlinear contact law (issue 28), in series with the residual flexibility
+    /// f_r = b^T R b at the contact: its force follows [`ContactLaw::in_series`] instead of the
+    /// bar's k_eff.
+    pub law: Option<ContactLaw>,
 }
 
 /// The static correction's part of a state's measurements.
@@ -71,10 +76,11 @@ impl StaticCorrection {
     }
 
     /// The correction for a state whose kept modes give the gap `modal_gap` = b^T Phi_k q (with the
-    /// supports' offset), in the given stage, under `excitation`.
-    pub fn evaluate(&self, modal_gap: f64, contact: bool, excitation: &Excitation) -> Correction {
+    /// supports' offset) closing at `modal_rate` = b^T Phi_k q' + d' (read by a damped law only),
+    /// in the given stage, under `excitation`.
+    pub fn evaluate(&self, modal_gap: f64, modal_rate: f64, contact: bool, excitation: &Excitation) -> Correction {
         let gram = &self.gram;
-        let loads = self.loads(modal_gap, contact, excitation);
+        let loads = self.loads(modal_gap, modal_rate, contact, excitation);
         let quadratic = |g: &[[f64; LOADS]; LOADS]| {
             let mut sum = 0.0;
             for a in 0..LOADS {
@@ -98,18 +104,34 @@ impl StaticCorrection {
 
     /// [`Self::evaluate`]'s load coefficients alone (the probes' and stresses' correction, without
     /// the energies' quadratic forms).
-    pub fn loads(&self, modal_gap: f64, contact: bool, excitation: &Excitation) -> [f64; LOADS] {
+    pub fn loads(&self, modal_gap: f64, modal_rate: f64, contact: bool, excitation: &Excitation) -> [f64; LOADS] {
         let gram = &self.gram;
         let mut loads = external_loads(excitation);
         let shifted = modal_gap + row_dot(&gram[CONTACT], &loads);
         // In contact F_c = k_c gap with gap = shifted - F_c f_r: F_c = k_c shifted / (1 + k_c f_r).
-        let force = if contact {
-            self.bar_stiffness * shifted / (1.0 + self.bar_stiffness * gram[CONTACT][CONTACT])
-        } else {
-            0.0
+        let force = match (contact, self.law) {
+            (false, _) => 0.0,
+            (true, None) => self.bar_stiffness * shifted / (1.0 + self.bar_stiffness * gram[CONTACT][CONTACT]),
+            (true, Some(law)) => -law.in_series(-shifted, -modal_rate, gram[CONTACT][CONTACT]).force,
         };
         loads[CONTACT] = -force;
         loads
+    }
+
+    /// The rate of a nonlinear law's contact load P = G(D, V) (N/s; `None` for the linear bar) at
+    /// the kept modes' gap `modal_gap` (with the supports' offset), its rate `modal_rate` and
+    /// acceleration `modal_acceleration` (without the supports' offset's: the supports' jerk is
+    /// not modelled): G_D D' + G_V V' with D = -gap, V = -rate.
+    pub fn law_load_rate(
+        &self,
+        modal_gap: f64,
+        (modal_rate, modal_acceleration): (f64, f64),
+        excitation: &Excitation,
+    ) -> Option<f64> {
+        let law = self.law?;
+        let shifted = modal_gap + self.gap_shift(excitation);
+        let force = law.in_series(-shifted, -modal_rate, self.gram[CONTACT][CONTACT]);
+        Some(force.rate(-modal_rate, -modal_acceleration))
     }
 
     /// Adds the static part R f to probe values computed from the kept modes.

@@ -45,6 +45,34 @@ pub fn cubic_extremum(p0: f64, p1: f64, d0: f64, d1: f64, until: f64) -> (f64, f
     best
 }
 
+/// The largest force of a damped contact `law` over s in [0, `until`] of a step of `dt` s: the
+/// cubic through the force's values and rates at the step's ends, from the gap's values, rates
+/// (times the step: `p0`, `p1`, `d0`, `d1`) and accelerations (`a0`, `a1`, m/s^2) there:
+/// P' = k n x^(n-1) x' (1 + c x') + k x^n c x'' with x = -gap. With damping the force crests
+/// before the largest compression, inside a long step. Returns the force, N, and the fraction of
+/// the step where it is reached.
+pub fn law_force_extremum(
+    law: &crate::model::contact_law::ContactLaw,
+    (p0, p1, d0, d1): (f64, f64, f64, f64),
+    (a0, a1): (f64, f64),
+    dt: f64,
+    until: f64,
+) -> (f64, f64) {
+    let end = |gap: f64, rate: f64, acceleration: f64| {
+        let (x, v) = (-gap, -rate);
+        let force = law.force(x, v);
+        if force <= 0.0 || x <= 0.0 {
+            return (force, 0.0);
+        }
+        let e = law.elastic(x);
+        let rate = law.exponent * e / x * v * (1.0 + law.damping * v) - e * law.damping * acceleration;
+        (force, rate)
+    };
+    let (f0, g0) = end(p0, d0 / dt, a0);
+    let (f1, g1) = end(p1, d1 / dt, a1);
+    cubic_extremum(f0, f1, g0 * dt, g1 * dt, until)
+}
+
 #[cfg(test)]
 mod tests {
     use super::cubic_extremum;

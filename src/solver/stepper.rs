@@ -13,6 +13,8 @@ use super::contact::Stage;
 use super::exact::{CubicStep, ModeStep};
 use super::kinematics::{Energies, Excitation, Kinematics, Stepper, SupportAndTips};
 use super::modal::ModalSystem;
+use super::static_correction::CONTACT;
+use crate::model::contact_law::SeriesForce;
 use crate::model::system::PROBES;
 use crate::model::{Model, Probe, REACTIONS};
 
@@ -54,6 +56,9 @@ pub struct ModalStepper {
     /// Work vectors: z of Eq. (8) and D^-1 f.
     z: DVector<f64>,
     y: DVector<f64>,
+    /// A third work vector: each mode's share of the end's gap acceleration in a nonlinear law's
+    /// exact contact step.
+    w: DVector<f64>,
     /// Exact modal advance (the converged method with the linear bar) instead of Eqs. (7)-(11).
     exact: bool,
     /// Measurements take the energy terms (see [`Stepper::keep_energies`]).
@@ -117,6 +122,17 @@ struct BarSolve {
     bg: f64,
     av: f64,
     bv: f64,
+    /// The end gap's and its rate's response to the end force through the chord, m/N, m/(N s).
+    ramp: f64,
+    vramp: f64,
+    /// The end gap acceleration b^T a1's response to the end force (its own -b^T b and the
+    /// modes' -c v1 - omega^2 q1), to alpha and to beta, 1/(kg): a nonlinear law's step
+    /// ([`ModalStepper::law_contact_step`]).
+    af: f64,
+    aa: f64,
+    ab: f64,
+    /// b^T b, 1/kg.
+    bb: f64,
     m11: f64,
     m12: f64,
     m21: f64,
@@ -127,14 +143,21 @@ struct BarSolve {
 impl BarSolve {
     fn new(s: &ModalSystem, dt: f64, modes: &[ModeStep], cubic: &[CubicStep]) -> BarSolve {
         let (mut fr, mut vr, mut f2, mut f3, mut v2, mut v3) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-        for ((m, c), b) in modes.iter().zip(cubic).zip(s.contact.iter()) {
+        // sum b^2 (c v + omega^2 q) of the ramp's, the s^2 and the s^3 responses, and b^T b.
+        let (mut ar, mut a2, mut a3, mut bb) = (0.0, 0.0, 0.0, 0.0);
+        for (i, ((m, c), b)) in modes.iter().zip(cubic).zip(s.contact.iter()).enumerate() {
             let b2 = b * b;
+            let (w2, damping) = (s.omega2[i], s.damping[i]);
             fr += b2 * m.q[3];
             vr += b2 * m.v[3];
             f2 += b2 * c.q[0];
             f3 += b2 * c.q[1];
             v2 += b2 * c.v[0];
             v3 += b2 * c.v[1];
+            ar += b2 * (damping * m.v[3] + w2 * m.q[3]);
+            a2 += b2 * (damping * c.v[0] + w2 * c.q[0]);
+            a3 += b2 * (damping * c.v[1] + w2 * c.q[1]);
+            bb += b2;
         }
         let (ramp, vramp) = (fr / dt, vr / dt);
         // The end gap (rate) per alpha and per beta: -alpha s through the ramp, and the s^2, s^3
@@ -146,7 +169,11 @@ impl BarSolve {
         let m12 = -k * bg;
         let m21 = dt * k * (vramp + av + bv);
         let m22 = 1.0 - dt * k * bv;
-        BarSolve { ag, bg, av, bv, m11, m12, m21, m22, determinant: m11 * m22 - m12 * m21 }
+        // The end acceleration a1 = f1 - c v1 - omega^2 q1 with f1 = F - b P1: per P1 its own -b^T b
+        // and the ramp's response; per alpha and beta the chord's and the cubic's.
+        let af = -bb + ar / dt;
+        let (aa, ab) = (-(2.0 * a2 - a3 - ar / dt), -(a2 - a3));
+        BarSolve { ag, bg, av, bv, ramp, vramp, af, aa, ab, bb, m11, m12, m21, m22, determinant: m11 * m22 - m12 * m21 }
     }
 }
 
@@ -241,6 +268,7 @@ impl ModalStepper {
             load_excitation: None,
             z: DVector::zeros(n),
             y: DVector::zeros(n),
+            w: DVector::zeros(n),
             exact: false,
             energies: true,
             exact_cache: std::array::from_fn(|_| ExactStage::default()),
@@ -251,9 +279,9 @@ impl ModalStepper {
     }
 
     /// The same stepper advancing each mode exactly ([`super::exact`]) when `exact` (the
-    /// converged method with the linear bar; a nonlinear law keeps Eqs. (7)-(11)).
+    /// converged method), whatever the contact law.
     pub fn with_exact(mut self, exact: bool) -> ModalStepper {
-        self.exact = exact && self.system.law.is_none();
+        self.exact = exact;
         if self.exact {
             let s = &self.system;
             self.fourth_derivative = nalgebra::DMatrix::from_fn(s.dofs(), PROBES, |i, k| {
@@ -358,6 +386,32 @@ fn contact_free_response(
         let r = (load[i] - f0) * inv_dt;
         gap[i] = b[i] * (c[0][i] * q[i] + c[1][i] * v[i] + c[2][i] * f0 + c[3][i] * r);
         rate[i] = b[i] * (c[4][i] * q[i] + c[5][i] * v[i] + c[6][i] * f0 + c[7][i] * r);
+    }
+}
+
+/// [`contact_free_response`] with each mode's share of the end's gap acceleration too,
+/// b_i (F_i - c_i v_i - omega_i^2 q_i) (`acceleration[i]`; a nonlinear law's step).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn contact_free_response_accelerated(
+    m: &ModeArrays,
+    b: &[f64],
+    columns: &[Vec<f64>; 12],
+    inv_dt: f64,
+    (gap, rate, acceleration): (&mut [f64], &mut [f64], &mut [f64]),
+) {
+    let n = m.q.len();
+    let (q, v, a) = (&m.q[..n], &m.v[..n], &m.a[..n]);
+    let (load, omega2, damping, b) = (&m.load[..n], &m.omega2[..n], &m.damping[..n], &b[..n]);
+    let (gap, rate, acceleration) = (&mut gap[..n], &mut rate[..n], &mut acceleration[..n]);
+    let c: [&[f64]; 8] = std::array::from_fn(|k| &columns[k][..n]);
+    for i in 0..n {
+        let f0 = a[i] + damping[i] * v[i] + omega2[i] * q[i];
+        let r = (load[i] - f0) * inv_dt;
+        let q1 = c[0][i] * q[i] + c[1][i] * v[i] + c[2][i] * f0 + c[3][i] * r;
+        let v1 = c[4][i] * q[i] + c[5][i] * v[i] + c[6][i] * f0 + c[7][i] * r;
+        gap[i] = b[i] * q1;
+        rate[i] = b[i] * v1;
+        acceleration[i] = b[i] * (load[i] - damping[i] * v1 - omega2[i] * q1);
     }
 }
 
@@ -494,6 +548,9 @@ impl ModalStepper {
 
     /// Eqs. (7)-(11) for one step.
     fn linear_acceleration_step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, excitation: &Excitation) {
+        // The damping's work is the rate's trapezoid (also between the exact advance's free steps).
+        self.last_dissipation = None;
+        self.last_force_error = None;
         let contact = stage.is_contact();
         let s = &self.system;
         // S^-1 is recomputed (O(n)) only when the stage's step size changes.
@@ -530,7 +587,8 @@ impl ModalStepper {
             // A nonlinear law (issue 28): a+ = D^-1 (f + b P) with the step-end compression force
             // P = P(delta+, delta+'), where delta+ = -(b^T q+ + s + d) and its rate fall by
             // dt^2/6 b^T D^-1 b and dt/2 b^T D^-1 b per newton: one scalar equation
-            // (ContactLaw::solve), the rank-one structure kept. (Nonlinear laws use the full basis.)
+            // (ContactLaw::solve_in_series), the rank-one structure kept; a truncated basis puts
+            // its residual flexibility f_r = b^T R b in series with the law.
             let mut bz = 0.0;
             let mut by = 0.0;
             let mut bw = 0.0;
@@ -541,7 +599,8 @@ impl ModalStepper {
             }
             let delta = -(bz + self.shift + gap_offset + dt2_6 * by);
             let rate = -(bw + excitation.gap_offset_rate + dt_2 * by);
-            let force = law.solve(delta, dt2_6 * inv.flexibility, rate, dt_2 * inv.flexibility);
+            let f_r = s.correction.gram[CONTACT][CONTACT];
+            let force = law.solve_in_series(delta, dt2_6 * inv.flexibility, rate, dt_2 * inv.flexibility, f_r);
             let corrected = &inv.corrected.as_slice()[..n];
             for i in 0..n {
                 y[i] += force * corrected[i];
@@ -589,7 +648,10 @@ impl ModalStepper {
         self.exact_cache[slot].hits += 1;
         if stage.is_contact() {
             self.exact_cache[slot].prepare_contact(s);
-            self.contact_step(state, slot, dt, excitation);
+            match s.law {
+                Some(law) => self.law_contact_step(state, slot, dt, excitation, law),
+                None => self.contact_step(state, slot, dt, excitation),
+            }
             return;
         }
         let n = state.displacement.len();
@@ -664,6 +726,152 @@ impl ModalStepper {
         self.last_force_error = Some(u0.abs().max(u1.abs()) / 16.0);
     }
 
+    /// One exact step in contact under a nonlinear law (issue 40): as [`Self::contact_step`], the
+    /// contact force a cubic through its values and rates at the step's ends, but the end's force
+    /// and rate follow the law, P1 = G(D1, V1) and P1' = G_D V1 - G_V A1
+    /// ([`crate::model::contact_law::ContactLaw::in_series`]: the law in series with the basis's
+    /// residual flexibility; D the kept modes' compression, V its rate, A the gap's acceleration),
+    /// where D1, V1 and A1 are affine in (P1, P1') through each mode's exact response
+    /// ([`BarSolve`]): two scalar equations, solved by Newton's method (the Jacobian by
+    /// differences, the step halved where the residual would grow; about four iterations a step
+    /// on the examples), O(1) on top of the bar's
+    /// O(n). The start's force and rate are the same functions of the start's state. The
+    /// contact's damping dissipates the trapezoid of its power (P - k x^n) x' over the step; the
+    /// error estimate is the bar's, the force's second derivative at each end from G along the
+    /// state (a central difference of P' over 1e-4 of the step).
+    fn law_contact_step(
+        &mut self,
+        state: &mut Kinematics,
+        slot: usize,
+        dt: f64,
+        excitation: &Excitation,
+        law: crate::model::contact_law::ContactLaw,
+    ) {
+        let s = &self.system;
+        let coefficients = &self.exact_cache[slot];
+        let bar = coefficients.bar;
+        let n = state.displacement.len();
+        let b = &s.contact.as_slice()[..n];
+        let inv_dt = 1.0 / dt;
+        let f_r = s.correction.gram[CONTACT][CONTACT];
+        let (offset, offset_rate) = (self.shift + excitation.gap_offset, excitation.gap_offset_rate);
+        let gap_terms = &mut self.z.as_mut_slice()[..n];
+        let rate_terms = &mut self.y.as_mut_slice()[..n];
+        let acceleration_terms = &mut self.w.as_mut_slice()[..n];
+        let mut m = ModeArrays::new(state, &self.load, s);
+        let terms = (&mut *gap_terms, &mut *rate_terms, &mut *acceleration_terms);
+        contact_free_response_accelerated(&m, b, &coefficients.columns, inv_dt, terms);
+        let (mut gap, mut gap_rate, mut gap_acceleration) = (0.0, 0.0, 0.0);
+        let (mut start_gap, mut start_rate, mut start_acceleration, mut start_turn) = (0.0, 0.0, 0.0, 0.0);
+        for i in 0..n {
+            gap += gap_terms[i];
+            gap_rate += rate_terms[i];
+            gap_acceleration += acceleration_terms[i];
+            start_gap += b[i] * m.q[i];
+            start_rate += b[i] * m.v[i];
+            start_acceleration += b[i] * m.a[i];
+            start_turn += b[i] * (m.damping[i] * m.a[i] + m.omega2[i] * m.v[i]);
+        }
+        // The bar's sign convention: F = -P (negative in compression); D' = V, V' = -A.
+        let (d0, v0) = (-(start_gap + offset - dt * offset_rate), -(start_rate + offset_rate));
+        let g0 = law.in_series(d0, v0, f_r);
+        let p0 = -g0.force;
+        let p0_rate = -g0.rate(v0, -start_acceleration);
+        let p0_step = dt * p0_rate;
+        let start = p0_step + p0;
+        // The end's D, V and A for an end force and Y = dt F1'.
+        let end = |force: f64, force_step: f64| {
+            let (alpha, beta) = (start - force, force_step - (force - p0));
+            let g = gap + offset - bar.ramp * force + bar.ag * alpha + bar.bg * beta;
+            let gv = gap_rate + offset_rate - bar.vramp * force + bar.av * alpha + bar.bv * beta;
+            let ga = gap_acceleration + bar.af * force + bar.aa * alpha + bar.ab * beta;
+            (-g, -gv, ga)
+        };
+        let residual = |force: f64, force_step: f64| {
+            let (d, v, a) = end(force, force_step);
+            let g = law.in_series(d, v, f_r);
+            (force + g.force, force_step + dt * g.rate(v, -a), g)
+        };
+        // From the start's Taylor expansion (never pulling).
+        let (mut force, mut force_step) = (start.min(0.0), p0_step);
+        let (mut r1, mut r2, mut g) = residual(force, force_step);
+        for _ in 0..50 {
+            // The Jacobian by differences of 1e-7 of the force's scale (G's partial derivatives
+            // move over a long step: with them frozen Newton's method converges only linearly).
+            let scale = force.abs().max(force_step.abs()).max(p0.abs()).max(f64::MIN_POSITIVE);
+            let h = 1e-7 * scale;
+            let (e11, e21, _) = residual(force + h, force_step);
+            let (e12, e22, _) = residual(force, force_step + h);
+            let (j11, j21) = ((e11 - r1) / h, (e21 - r2) / h);
+            let (j12, j22) = ((e12 - r1) / h, (e22 - r2) / h);
+            let determinant = j11 * j22 - j12 * j21;
+            let df = -(r1 * j22 - j12 * r2) / determinant;
+            let dy = -(j11 * r2 - j21 * r1) / determinant;
+            if !(df.is_finite() && dy.is_finite()) {
+                break;
+            }
+            // Converged when Newton's correction is at the force's round-off.
+            let small = df.abs().max(dy.abs()) <= 1e-13 * scale;
+            let norm = r1.abs().max(r2.abs());
+            let mut t = 1.0;
+            let accepted = loop {
+                let (f_try, y_try) = (force + t * df, force_step + t * dy);
+                let (a1, a2, g_try) = residual(f_try, y_try);
+                if small || a1.abs().max(a2.abs()) < norm {
+                    break Some((f_try, y_try, a1, a2, g_try));
+                }
+                t *= 0.5;
+                if t < 1e-3 {
+                    break None;
+                }
+            };
+            // No decrease: the residual is at round-off.
+            let Some(next) = accepted else { break };
+            (force, force_step, r1, r2, g) = next;
+            if small {
+                break;
+            }
+        }
+        let change = force - p0;
+        let (alpha, beta) = (p0_step - change, force_step - change);
+        let (g2, g3) = (2.0 * alpha + beta, -(alpha + beta));
+        let work = gap_terms;
+        let bar_force = BarForce { force, alpha, g2, g3 };
+        contact_advance(&mut m, b, &coefficients.columns, &coefficients.cubic_columns, dt, bar_force, work);
+        let (mut end_acceleration, mut end_turn, mut dissipated) = (0.0, 0.0, 0.0);
+        for i in 0..n {
+            end_acceleration += b[i] * m.a[i];
+            end_turn += b[i] * (m.damping[i] * m.a[i] + m.omega2[i] * m.v[i]);
+            dissipated += work[i];
+        }
+        // The rates of the force's rate and of the damping's power along the state at (D, V, A)
+        // with the gap's jerk J: P'' and W'.
+        let second = |d: f64, v: f64, a: f64, jerk: f64| {
+            let h = 1e-4 * dt;
+            let at = |t: f64| {
+                let (dd, vv, aa) = (d + t * v - 0.5 * t * t * a, v - t * a, a + t * jerk);
+                let g = law.in_series(dd, vv, f_r);
+                (g.rate(vv, -aa), g.dissipation)
+            };
+            let ((p_plus, w_plus), (p_minus, w_minus)) = (at(h), at(-h));
+            ((p_plus - p_minus) / (2.0 * h), (w_plus - w_minus) / (2.0 * h))
+        };
+        // The gap's jerk: b^T (F' - c a - omega^2 v) with F' = -b P' (the load constant over the step).
+        let start_jerk = -bar.bb * p0_rate - start_turn;
+        let end_jerk = -bar.bb * (force_step * inv_dt) - end_turn;
+        let (d1, v1, _) = end(force, force_step);
+        let (second0, power_rate0) = second(d0, v0, start_acceleration, start_jerk);
+        let (second1, power_rate1) = second(d1, v1, end_acceleration, end_jerk);
+        // The contact's damping: its power's trapezoid with the end correction (Euler-Maclaurin,
+        // exact for a cubic).
+        let power = 0.5 * dt * (g0.dissipation + g.dissipation) + dt * dt / 12.0 * (power_rate0 - power_rate1);
+        self.last_dissipation = Some(dissipated + power);
+        let (curvature0, curvature1) = (-dt * dt * second0, -dt * dt * second1);
+        let u0 = 0.5 * (curvature0 - (6.0 * change - 4.0 * p0_step - 2.0 * force_step));
+        let u1 = 0.5 * (curvature1 - (-6.0 * change + 2.0 * p0_step + 4.0 * force_step));
+        self.last_force_error = Some(u0.abs().max(u1.abs()) / 16.0);
+    }
+
     /// The probes and energies of the state just reached, as lane-wise sums (vectorised; the
     /// order of the additions differs from a plain loop only by round-off).
     fn measure_state(&self, state: &Kinematics, stage: Stage, excitation: &Excitation) -> ([f64; PROBES], Energies) {
@@ -676,7 +884,8 @@ impl ModalStepper {
         probes[Probe::Gap as usize] += excitation.gap_offset;
         if !self.energies {
             if s.is_truncated() {
-                let loads = s.correction.loads(probes[Probe::Gap as usize], stage.is_contact(), excitation);
+                let rate = self.law_rate(state, stage, excitation);
+                let loads = s.correction.loads(probes[Probe::Gap as usize], rate, stage.is_contact(), excitation);
                 s.correction.correct_probes_by(&mut probes, &loads);
             }
             return (probes, e);
@@ -699,15 +908,50 @@ impl ModalStepper {
         }
         e.dissipation_rate = sums.dissipation;
         if s.is_truncated() {
-            apply_correction(s, &mut probes, &mut e, stage.is_contact(), excitation);
+            let rate = self.law_rate(state, stage, excitation);
+            apply_correction(s, &mut probes, &mut e, (stage.is_contact(), rate), excitation);
         }
         (probes, e)
+    }
+
+    /// A nonlinear law's contact force at `state` in contact, with its partial derivatives
+    /// ([`crate::model::contact_law::ContactLaw::in_series`] with the basis's residual
+    /// flexibility and static gap shift; both 0 for the full basis); `None` for the linear bar
+    /// or out of contact.
+    fn law_force(&self, state: &Kinematics, stage: Stage, excitation: &Excitation) -> Option<SeriesForce> {
+        let s = &self.system;
+        let law = s.law.filter(|_| stage.is_contact())?;
+        let gap = self.probes(&state.displacement)[Probe::Gap as usize]
+            + excitation.gap_offset
+            + s.correction.gap_shift(excitation);
+        let rate = self.probes(&state.velocity)[Probe::Gap as usize] + excitation.gap_offset_rate;
+        Some(law.in_series(-gap, -rate, s.correction.gram[CONTACT][CONTACT]))
+    }
+
+    /// The kept modes' gap rate b^T Phi_k q' + d' of `state` where the static correction reads it
+    /// (a nonlinear law with damping, in contact), else 0.
+    fn law_rate(&self, state: &Kinematics, stage: Stage, excitation: &Excitation) -> f64 {
+        match self.system.law {
+            Some(law) if law.damping > 0.0 && stage.is_contact() => {
+                let n = state.velocity.len().min(self.probe_columns.nrows());
+                let column = self.probe_columns.column(Probe::Gap as usize);
+                dot(&column.as_slice()[..n], &state.velocity.as_slice()[..n]) + excitation.gap_offset_rate
+            }
+            _ => 0.0,
+        }
     }
 }
 
 /// Adds the discarded modes' static response to measurements taken from the kept modes.
-fn apply_correction(s: &ModalSystem, probes: &mut [f64; PROBES], e: &mut Energies, contact: bool, ex: &Excitation) {
-    let c = s.correction.evaluate(probes[Probe::Gap as usize], contact, ex);
+/// `contact`: the stage and the kept modes' gap rate ([`ModalStepper::law_rate`]).
+fn apply_correction(
+    s: &ModalSystem,
+    probes: &mut [f64; PROBES],
+    e: &mut Energies,
+    (contact, rate): (bool, f64),
+    ex: &Excitation,
+) {
+    let c = s.correction.evaluate(probes[Probe::Gap as usize], rate, contact, ex);
     s.correction.correct_probes(probes, &c);
     e.beam_strain += c.strain;
     e.upper_strain += c.upper_strain;
@@ -770,10 +1014,14 @@ impl Stepper for ModalStepper {
     }
 
     fn equilibrium_acceleration(&mut self, state: &mut Kinematics, stage: Stage, excitation: &Excitation) {
-        // In modal coordinates M = I: a = F - diag(omega^2) q - diag(c) v - kappa b (b . q + s + d).
+        // In modal coordinates M = I: a = F - diag(omega^2) q - diag(c) v - kappa b (b . q + s + d),
+        // or + b P for a nonlinear law.
+        let law = self.law_force(state, stage, excitation);
         let s = &self.system;
         let load = s.load(excitation);
-        let bar = if stage.is_contact() {
+        let bar = if let Some(law) = law {
+            -law.force
+        } else if stage.is_contact() {
             s.bar_stiffness
                 * (s.contact.dot(&state.displacement) + s.correction.gap_shift(excitation) + excitation.gap_offset)
         } else {
@@ -802,8 +1050,16 @@ impl Stepper for ModalStepper {
         let s = &self.system;
         if s.is_truncated() && stage.is_contact() {
             // The static correction's contact load -F_c = -k_eff (b . q + s + d) moves at
-            // -k_eff (b . v + d').
-            let load_rate = -s.bar_stiffness * rates[Probe::Gap as usize];
+            // -k_eff (b . v + d'); a nonlinear law's P = G(D, V) at G_D D' + G_V V' (D and V the
+            // kept modes' compression and its rate, V' = -(b . a) without the supports' jerk).
+            let load_rate = if s.law.is_some() {
+                let gap = self.probes(&state.displacement)[Probe::Gap as usize] + excitation.gap_offset;
+                let acceleration = self.probes(&state.acceleration)[Probe::Gap as usize];
+                let law_rate = s.correction.law_load_rate(gap, (rates[Probe::Gap as usize], acceleration), excitation);
+                law_rate.unwrap_or(0.0)
+            } else {
+                -s.bar_stiffness * rates[Probe::Gap as usize]
+            };
             for (rate, row) in rates.iter_mut().zip(&s.correction.probes) {
                 *rate += row[super::static_correction::CONTACT] * load_rate;
             }
@@ -841,7 +1097,8 @@ impl Stepper for ModalStepper {
         if s.is_truncated() {
             // The discarded modes' static displacement loads the supports through their stiffness rows.
             let gap = self.probe_columns.column(Probe::Gap as usize).dot(&state.displacement) + excitation.gap_offset;
-            let c = s.correction.evaluate(gap, stage.is_contact(), excitation);
+            let rate = self.law_rate(state, stage, excitation);
+            let c = s.correction.evaluate(gap, rate, stage.is_contact(), excitation);
             for (k, sum) in sums.iter_mut().take(REACTIONS).enumerate() {
                 *sum += s.correction.reaction(k, &c);
             }

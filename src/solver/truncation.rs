@@ -19,6 +19,12 @@
 //! gravity's -F_g^T R f add up to 1/2 k_eff (b^T Phi_k q + s)^2 up to a constant, the potential of
 //! the truncated equations of motion. Statics are exact whatever the cut (a test checks the
 //! cantilever's P L^3 / 3 E I with two modes kept).
+//!
+//! A nonlinear contact law (a power law, Hunt-Crossley damping; issue 40) takes the same basis:
+//! the discarded modes' static response to the contact force P is the residual spring f_r in
+//! series with the law, so the contact's own compression is delta = -(b^T Phi_k q + s + d) - f_r P,
+//! still one monotone scalar equation per step ([`crate::model::contact_law::ContactLaw::solve_in_series`]),
+//! and out of contact the law plays no part: the same basis, correction and steps as the bar's.
 
 use nalgebra::{DMatrix, DVector};
 
@@ -49,11 +55,6 @@ impl ModalSystem {
     /// its cut-off, or the full basis.
     pub fn for_run(self, model: &Model) -> Result<ModalSystem> {
         let s = &model.scenario;
-        // A nonlinear contact law is solved on the full basis (the static correction of the
-        // discarded modes is written for the linear bar).
-        if s.contact.nonlinear_law().is_some() {
-            return Ok(self);
-        }
         let cutoff = (s.method == Method::Converged && s.modal_cutoff > 0.0).then_some(s.modal_cutoff);
         let limits = [graded::spurious_limit(&model.lower), graded::spurious_limit(&model.upper)];
         if limits == [None, None] {
@@ -100,6 +101,7 @@ impl ModalSystem {
             bar_stiffness: self.bar_stiffness,
             stations: vec![[0.0; LOADS]; self.stations.nrows()],
             dofs: vec![[0.0; LOADS]; self.full_dofs],
+            law: self.law,
             ..StaticCorrection::default()
         };
         // Each physical DOF's row of the discarded modes' shapes (the block-diagonal basis: a

@@ -143,6 +143,63 @@ pub fn contact_law_benchmark(runs: usize) -> Result<String> {
         let _ =
             writeln!(out, "  {what}: {:8.2} ms  {n} steps  {ns:6.0} ns/step  x{:.2}", d.as_secs_f64() * 1e3, ns / base);
     }
+    out += &converged_contact_law_benchmark(runs)?;
+    Ok(out)
+}
+
+/// The contact laws side by side in the converged method (issue 40), the default scenario for 3 s:
+/// the paper's linear bar, a linear bar as soft as the elastomer buffer (its 475 kN at 20 mm),
+/// `examples/hertz-buffer.toml` (n = 1.3, Hunt-Crossley c = 0.2), a Hertz law (n = 3/2) and a
+/// linear law with damping c = 0.2 (both with the buffer's 475 kN at 20 mm): the printed rung's
+/// time and steps (median of `runs`), and the whole answer's wall time (`answer::run`: the four
+/// runs on the available cores), each against the paper's bar.
+pub fn converged_contact_law_benchmark(runs: usize) -> Result<String> {
+    use crate::model::contact_law::LawKind;
+    let mut out = String::new();
+    let base = Scenario::default();
+    let buffer = Scenario::from_toml(include_str!("../../examples/hertz-buffer.toml"), "examples/hertz-buffer.toml")?;
+    let law = |kind: LawKind, exponent: f64, stiffness: f64, damping: f64| {
+        let mut s = base.clone();
+        s.contact.law = kind;
+        s.contact.exponent = exponent;
+        s.contact.given_stiffness = Some(stiffness);
+        s.contact.damping = damping;
+        s
+    };
+    let cases = [
+        ("paper's linear bar (2.8e10 N/m)       ", base.clone()),
+        ("soft linear bar (buffer's 2.4e7 N/m)  ", law(LawKind::Linear, 1.0, 4.75e5 / 0.02, 0.0)),
+        ("hertz-buffer example (n 1.3, c 0.2)   ", buffer),
+        ("Hertz n = 3/2 (buffer's rate)         ", law(LawKind::Power, 1.5, 4.75e5 / 0.02f64.powf(1.5), 0.0)),
+        ("linear law, c 0.2 (buffer's rate)     ", law(LawKind::Linear, 1.0, 4.75e5 / 0.02, 0.2)),
+    ];
+    let answer = |s: &Scenario| -> Result<Duration> {
+        let mut samples = Vec::with_capacity(runs.max(1));
+        for _ in 0..runs.max(1) {
+            let start = Instant::now();
+            crate::answer::run(s, &mut NullRecorder, Default::default())?;
+            samples.push(start.elapsed());
+        }
+        Ok(median(samples))
+    };
+    let _ = writeln!(out, "contact laws, converged method (default scenario, 3 s, median of {runs} runs):");
+    let mut reference = None;
+    for (what, s) in cases {
+        // One untimed run first (cold caches).
+        Simulation::new(&s)?.run(&mut NullRecorder)?;
+        let (printed, steps) = time_run(|| Simulation::new(&s), runs)?;
+        let whole = answer(&s)?;
+        let (p0, w0) = *reference.get_or_insert((printed, whole));
+        let ms = |d: Duration| d.as_secs_f64() * 1e3;
+        let _ = writeln!(
+            out,
+            "  {what}: printed rung {:8.2} ms  {steps:6} steps  x{:.2};  answer {:8.1} ms  x{:.2}",
+            ms(printed),
+            printed.as_secs_f64() / p0.as_secs_f64(),
+            ms(whole),
+            whole.as_secs_f64() / w0.as_secs_f64()
+        );
+    }
     Ok(out)
 }
 
