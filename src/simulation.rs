@@ -1633,7 +1633,7 @@ impl<S: Stepper> Simulation<S> {
     /// against the scenario's `energy_tolerance`; and fixed time steps above the energy-safe limit.
     ///
     /// A run that leaves the linear model's range anywhere along either beam is not trusted, with
-    /// the reason ([`Self::range_reasons`]).
+    /// the reason ([`Self::model_range`]).
     pub fn quality(&self) -> Quality {
         let s = &self.model.scenario;
         let state = &self.state;
@@ -1655,7 +1655,8 @@ impl<S: Stepper> Simulation<S> {
 
     /// The model's range so far: every node's largest deflection and rotation, the arrestor's
     /// tip deflection within the steps (its peak), and each beam's largest strain from its stress
-    /// envelope, against [`SMALL_DEFLECTION`], [`SMALL_ROTATION`] and [`ELASTIC_STRAIN`].
+    /// envelope, against [`crate::solver::model_range::SMALL_DEFLECTION`],
+    /// [`crate::solver::model_range::SMALL_ROTATION`] and [`crate::solver::model_range::ELASTIC_STRAIN`].
     pub fn model_range(&self) -> RangeCheck {
         let s = &self.model.scenario;
         let mut range = self.state.range;
