@@ -1596,10 +1596,11 @@ impl<S: Stepper> Simulation<S> {
     }
 
     /// Refuses a run of `duration_ns` that would need more than `max_steps` internal steps (at
-    /// the smaller of the two time steps): an error naming the duration, the step and the count.
-    pub fn check_step_count(&self, duration_ns: u64, max_steps: u64) -> Result<()> {
+    /// the smaller of the two time steps): an error naming the duration, the step and the count;
+    /// else the count ([`Self::step_estimate`]).
+    pub fn check_step_count(&self, duration_ns: u64, max_steps: u64) -> Result<u64> {
         let step_ns = self.plan.free_ns.min(self.plan.contact_ns).max(1);
-        let steps = duration_ns.div_ceil(step_ns);
+        let steps = self.step_estimate(duration_ns);
         if steps > max_steps {
             return Err(Error::invalid(
                 "duration",
@@ -1613,7 +1614,14 @@ impl<S: Stepper> Simulation<S> {
                 seconds(duration_ns),
             ));
         }
-        Ok(())
+        Ok(steps)
+    }
+
+    /// The most internal steps a run of `duration_ns` takes by its plan: the duration over the
+    /// smaller of the two time steps (the exact advance's steps are the plan's or longer; located
+    /// stage changes and communication points add a few).
+    pub fn step_estimate(&self, duration_ns: u64) -> u64 {
+        duration_ns.div_ceil(self.plan.free_ns.min(self.plan.contact_ns).max(1))
     }
 
     /// Limits the run to `max_steps` internal steps in all, checked before each step: a run whose

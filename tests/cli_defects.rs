@@ -160,3 +160,21 @@ fn a_setting_at_odds_with_the_scenario_is_the_one_named() {
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
 }
+
+/// Issue 40: a run whose plan is large says so before it starts, and where no terminal shows the
+/// progress bar (a pipe, as here) a run still going after two seconds says how far it is. The
+/// paper method at 5e-7 s steps for 3 s: 6 million steps, about 4 s of stepping on this machine
+/// (0.7 us a step), so the progress line is due whatever the machine's speed within 2x.
+#[test]
+fn a_long_run_says_its_size_before_and_its_progress_after_two_seconds() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_beam-impact"))
+        .args(["run", "--no-mcap", "--set", "method=paper", "--set", "step_free=5e-7", "--set", "step_contact=5e-7"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(stderr.contains("note: this run may take up to 6000000 internal steps (3 s"), "{stderr}");
+    let progress =
+        stderr.lines().find(|l| l.contains(" of 3.0000 s simulated (")).unwrap_or_else(|| panic!("{stderr}"));
+    assert!(progress.ends_with(" s elapsed"), "{progress}");
+}

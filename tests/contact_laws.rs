@@ -194,6 +194,7 @@ fn nonlinear_laws_on_the_truncated_basis_keep_the_full_bases_peaks() {
     hertz.contact.damping = 0.0;
     let mut damped_linear = buffer.clone();
     damped_linear.contact.law = LawKind::Linear;
+    damped_linear.contact.exponent = 1.0;
     damped_linear.contact.given_stiffness = Some(4.75e5 / 0.02);
     for (name, s) in [("buffer", buffer), ("hertz", hertz), ("damped linear", damped_linear)] {
         let truncated_sim = Simulation::new(&s).unwrap();

@@ -153,6 +153,8 @@ fn an_exponent_with_the_linear_law_is_refused() {
     assert!(message.contains("contact.law") && message.contains("got 1.2"), "{message}");
     // The default exponent stated, and any exponent with the power law, are accepted.
     assert!(Scenario::from_toml("[contact]\nexponent = 1.5\n", "x.toml").is_ok());
+    // 1 is the linear law's own exponent (F = k delta^1): no setting ignored.
+    assert!(Scenario::from_toml("[contact]\nexponent = 1.0\n", "x.toml").is_ok());
     let power = "[contact]\nlaw = \"power\"\nexponent = 2.0\nstiffness = 1e9\n";
     assert!(Scenario::from_toml(power, "x.toml").is_ok());
 }

@@ -37,7 +37,14 @@ pub fn run(args: &RunArgs) -> Result<bool> {
         .unwrap_or_else(|| beam_impact::studies::sweep::default_log(args.file.as_deref(), &settings, &scenario));
     let paper = scenario.is_paper();
     let started = Instant::now();
-    beam_impact::one_run::check(&scenario, args.max_steps)?;
+    let planned_steps = beam_impact::one_run::check(&scenario, args.max_steps)?;
+    if planned_steps > beam_impact::one_run::LARGE_RUN_STEPS {
+        super::common::note(&format!(
+            "beam-impact: note: this run may take up to {planned_steps} internal steps ({} s at its smaller time \
+             step), and its checks as many again: progress follows",
+            scenario.duration
+        ));
+    }
     // No two of the files name one (device and inode, or folder and name for a new file), and
     // every output is open before the run, so that a bad path fails at once, not after it; the
     // JSON is written beside and renamed into place at the end, so a failed run leaves the user's
@@ -190,11 +197,23 @@ fn speed(x: f64) -> String {
     }
 }
 
-/// Shows a progress bar (on a terminal) while passing every step on to the real recorder.
+/// Shows a progress bar (on a terminal) while passing every step on to the real recorder; where
+/// no terminal shows it (a pipe, a CI log), a run still going after [`QUIET_FOR`] says how far it
+/// is, one line every [`PROGRESS_EVERY`].
 pub struct Progress<'a> {
     inner: &'a mut (dyn Recorder + Send),
     bar: ProgressBar,
+    started: Instant,
+    /// When the last progress line was written (None: none yet).
+    said: Option<Instant>,
+    end_ns: u64,
 }
+
+/// How long a run goes without a word where no progress bar shows.
+const QUIET_FOR: std::time::Duration = std::time::Duration::from_secs(2);
+
+/// How often a long run's progress line is repeated.
+const PROGRESS_EVERY: std::time::Duration = std::time::Duration::from_secs(10);
 
 impl<'a> Progress<'a> {
     fn new(inner: &'a mut (dyn Recorder + Send), end_ns: u64) -> Self {
@@ -203,7 +222,26 @@ impl<'a> Progress<'a> {
             ProgressStyle::with_template("{bar:40} {pos}/{len} ms simulated, {elapsed} ({eta} left)")
                 .unwrap_or_else(|_| ProgressStyle::default_bar()),
         );
-        Progress { inner, bar }
+        Progress { inner, bar, started: Instant::now(), said: None, end_ns }
+    }
+
+    /// The progress line of a long run where the bar does not show.
+    fn say_progress(&mut self, result: &StepResult) {
+        let now = Instant::now();
+        let due = match self.said {
+            None => now.duration_since(self.started) >= QUIET_FOR,
+            Some(at) => now.duration_since(at) >= PROGRESS_EVERY,
+        };
+        if due {
+            self.said = Some(now);
+            super::common::note(&format!(
+                "beam-impact: {:.4} of {:.4} s simulated ({} internal steps), {:.0} s elapsed",
+                result.time,
+                self.end_ns as f64 * 1e-9,
+                result.step,
+                now.duration_since(self.started).as_secs_f64()
+            ));
+        }
     }
 }
 
@@ -214,6 +252,9 @@ impl Recorder for Progress<'_> {
     fn step(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()> {
         if result.step.is_multiple_of(1000) {
             self.bar.set_position(result.time_ns / 1_000_000);
+        }
+        if result.step.is_multiple_of(64) && self.bar.is_hidden() {
+            self.say_progress(result);
         }
         self.inner.step(result, modal_coordinates)
     }

@@ -823,13 +823,15 @@ impl Scenario {
         check(within("contact.clearance", "m", c.clearance, 0.0, 10.0));
         check(within("contact.exponent", "", c.exponent, EXPONENT_RANGE.0, EXPONENT_RANGE.1));
         // The exponent is the power law's: given with the linear law it would be ignored. Its
-        // default (the FMU's start value, what every scenario holds) is no setting.
-        if c.law == LawKind::Linear && c.exponent != ContactBar::default().exponent && within_exponent(c.exponent) {
+        // default (the FMU's start value, what every scenario holds) is no setting, and 1 is the
+        // linear law's own (F = k delta^1).
+        let linear_exponent = c.exponent == ContactBar::default().exponent || c.exponent == 1.0;
+        if c.law == LawKind::Linear && !linear_exponent && within_exponent(c.exponent) {
             check(Err(Error::invalid(
                 "contact.exponent",
                 format!(
-                    "left at its default {} with contact.law = \"linear\" (F = k delta: the exponent is the power \
-                     law's; set contact.law = \"power\" for F = k delta^n)",
+                    "left at its default {} (or 1) with contact.law = \"linear\" (F = k delta: the exponent is the \
+                     power law's; set contact.law = \"power\" for F = k delta^n)",
                     ContactBar::default().exponent
                 ),
                 bound(c.exponent),
