@@ -466,8 +466,10 @@ impl<S: Stepper> Simulation<S> {
         let impact = Impact {
             angular_velocity: Pitching::of(&model.scenario, model.scenario.gravity + motion.accelerations()[0])
                 .angular_velocity,
-            closing_speed: -((model.probes.row(Probe::Gap as usize) * &physical.velocity)[0]
-                + motion.gap_offset_rate(model.scenario.lower.length)),
+            // 0 - x, not -x: a zero closing speed is +0 (the JSON and the FMU output read "-0").
+            closing_speed: 0.0
+                - ((model.probes.row(Probe::Gap as usize) * &physical.velocity)[0]
+                    + motion.gap_offset_rate(model.scenario.lower.length)),
         };
         let mut simulation = Simulation {
             model,

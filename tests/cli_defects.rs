@@ -178,3 +178,28 @@ fn a_long_run_says_its_size_before_and_its_progress_after_two_seconds() {
         stderr.lines().find(|l| l.contains(" of 3.0000 s simulated (")).unwrap_or_else(|| panic!("{stderr}"));
     assert!(progress.ends_with(" s elapsed"), "{progress}");
 }
+
+/// Issue 40: a run in which the bodies never touch says so (it printed "Contact: 0 windows" beside
+/// "first sustained contact (t = 0 .. end of run)" and a design PASS).
+#[test]
+fn a_run_without_contact_says_the_beams_never_touch() {
+    let out = beam_impact()
+        .args(["run", "--no-mcap", "--set", "contact.clearance=0.5", "--set", "duration=0.05"])
+        .output()
+        .unwrap();
+    let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    assert!(out.status.success(), "{stderr}");
+    assert!(stdout.contains("Contact: none (the beams never touch in the run)"), "{stdout}");
+    assert!(!stdout.contains("first sustained contact (t = 0 .. end of run)"), "{stdout}");
+    assert!(stderr.contains("no contact: the beams never touch in the run (t = 0 .. 0.0500 s)"), "{stderr}");
+}
+
+/// Issue 40: a yield stress so small that every utilisation overflows ("over 1e308 %" on the
+/// yield line) is refused by name; 1 kPa, below any solid's, is the smallest taken.
+#[test]
+fn a_yield_stress_below_any_solid_s_is_refused() {
+    let out = beam_impact().args(["run", "--no-mcap", "--set", "lower.yield_stress=1e-300"]).output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("lower.yield_stress must be between 1000 and 1e12 Pa (0: none), got 1e-300"), "{stderr}");
+}
