@@ -32,7 +32,9 @@ class RunResult(dict):
     - `design`: the design check (`pass`, `utilisation`)
     - `series`: the steps as a pandas.DataFrame (`run(..., series=True)`; the columns of
       `load_log(...).dataframe()`), else None
-    - `log_path`: the log written (None without `log=`), `warnings`: lines the run printed on the CLI
+    - `log_path`: the log written (None without `log=`), `warnings`: the lines the CLI prints as
+      warnings (`results not trusted: ...` per reason, motion rows, a log cut short), each also
+      given to Python's `warnings.warn` (RuntimeWarning)
     """
 
     series: Any = None
@@ -160,7 +162,9 @@ def run(scenario: Any = None, *, fields: dict | None = None, log: "str | os.Path
         raise SimulationError(str(e)) from None
     result = RunResult(json.loads(doc))
     result.warnings = list(warnings)
-    for line in result.warnings:  # what the CLI prints as a warning (motion rows, a log cut short)
+    # What the CLI prints as a warning: motion rows, a log cut short, each reason a run is not
+    # trusted ("results not trusted: ...").
+    for line in result.warnings:
         _warnings.warn(line, RuntimeWarning, stacklevel=2)
     result.log_path = log_path
     if steps is not None:

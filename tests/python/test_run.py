@@ -309,3 +309,17 @@ def test_a_run_outside_the_model_is_not_trusted_in_python():
     assert result.trusted is False
     assert result["quality"]["checks"]["model_range"]["pass"] is False
     assert any(r.startswith("small deflection: the arrestor") for r in result.reasons), result.reasons
+
+
+def test_an_untrusted_run_s_warnings_are_the_cli_s(tmp_path):
+    """Issue 41: `RunResult.warnings` holds the lines the CLI prints as warnings for an untrusted
+    run (`results not trusted: REASON`, one per reason), each also a RuntimeWarning."""
+    done = subprocess.run([binary(), "run", "--no-mcap", "--set", "drop_height=0", "--set",
+                           "impact_angular_velocity=3"], capture_output=True, text=True, cwd=tmp_path)
+    cli = [line.removeprefix("beam-impact: warning: ") for line in done.stderr.splitlines()
+           if line.startswith("beam-impact: warning: results not trusted: ")]
+    assert cli
+    with pytest.warns(RuntimeWarning) as caught:
+        result = beam_impact.run(drop_height=0, impact_angular_velocity=3)
+    assert [w for w in result.warnings if w.startswith("results not trusted: ")] == cli
+    assert {str(w.message) for w in caught} >= set(cli)

@@ -181,3 +181,9 @@ def test_wheel_check_passes_the_wheel_and_refuses_altered_copies(tmp_path):
 
     done = wheel_check(wheel, fmus="all")
     assert done.returncode == 1 and "binaries/win64/BeamImpact.dll" in done.stderr
+
+
+def test_the_wheel_is_typed():
+    """Issue 41: the package says it carries inline types (PEP 561), so mypy and pyright read them."""
+    with zipfile.ZipFile(the_wheel()) as archive:
+        assert "beam_impact/py.typed" in archive.namelist()

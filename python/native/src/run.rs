@@ -241,6 +241,8 @@ pub fn run<'py>(
     if let Some(reason) = outputs.stopped_early() {
         warnings.push(reason.to_string());
     }
+    // The CLI's warnings of an untrusted run, one line per reason (issue 41).
+    warnings.extend(answer.quality.reasons.iter().map(|r| format!("results not trusted: {r}")));
     let doc = beam_impact::run_document::document(&as_given, &answer, started.elapsed().as_secs_f64())
         .and_then(|d| serde_json::to_string(&d).map_err(|e| Error::Other(format!("JSON: {e}"))))
         .map_err(|e| PyRuntimeError::new_err(crate::one_line(&e.to_string())))?;
