@@ -13,7 +13,7 @@ Heavy imports (fmpy, dask, pandas) happen inside the functions, so `import beam_
 """
 
 from .dask_sweep import sweep
-from .fmu import FmuFile, SimulationError, fmu_path, simulate
+from .fmu import FmuFile, ScenarioError, SimulationError, fmu_path, simulate
 from .grid import expand, linspace, parse_spec, parse_vary
 from .log import Log, LogError, load_log
 from .native_run import RunResult, run
@@ -23,6 +23,7 @@ __all__ = [
     "Log",
     "LogError",
     "RunResult",
+    "ScenarioError",
     "SimulationError",
     "expand",
     "fmu_path",

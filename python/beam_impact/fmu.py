@@ -98,6 +98,12 @@ class SimulationError(RuntimeError):
     """A run the FMU refused or could not finish; the message is the FMU's own (its logger's)."""
 
 
+class ScenarioError(SimulationError, ValueError):
+    """A scenario, field, value or limit refused before anything runs, in one line naming the field
+    and the value, whatever the door (`run`, `simulate`, `sweep`): a ValueError, and a
+    SimulationError as `simulate`'s refusals always were."""
+
+
 @dataclass(frozen=True)
 class FmuFile:
     """An FMU's bytes, the unit shipped to a cluster's workers (scattered once to each)."""
@@ -179,7 +185,7 @@ def _start_values(parameters: dict[str, Any], names: set) -> tuple[dict[str, Any
     for key, value in parameters.items():
         if key in BOOLEAN_PARAMETERS:
             if not isinstance(value, bool):
-                raise SimulationError(f"{key} takes True or False, got {value!r}")
+                raise ScenarioError(f"{key} takes True or False, got {value!r}")
             values[key] = value
             continue
         v = parse_value(key, value)
@@ -187,10 +193,10 @@ def _start_values(parameters: dict[str, Any], names: set) -> tuple[dict[str, Any
             duration = v
             continue
         if key not in names:
-            raise SimulationError(f"unknown parameter `{key}`: the FMU has no variable of that name")
+            raise ScenarioError(f"unknown parameter `{key}`: the FMU has no variable of that name")
         if key in INTEGER_FIELDS:
             if not (v.is_integer() and 0 <= v <= _INT_MAX):
-                raise SimulationError(f"{key} must be a whole number >= 0 (0: auto where allowed), got {v:g}")
+                raise ScenarioError(f"{key} must be a whole number >= 0 (0: auto where allowed), got {v:g}")
             v = int(v)
         values[key] = v
     return values, duration
@@ -348,13 +354,13 @@ def _check_steps(start: dict[str, Any], stop_time: float, max_steps: int | None)
 
     limit = _native.MAX_STEPS if max_steps is None else max_steps
     if not (isinstance(limit, int) and 0 < limit < 2**64):
-        raise SimulationError(f"max_steps must be a whole number > 0, got {max_steps!r}")
+        raise ScenarioError(f"max_steps must be a whole number > 0, got {max_steps!r}")
     values = {k: float(v) for k, v in start.items() if k not in BOOLEAN_PARAMETERS and isinstance(v, (int, float))}
     try:
         _native.check_run(values, float(stop_time), limit)
     except ValueError as e:
         message = " ".join(str(e).split()).replace("with --max-steps", "with simulate(..., max_steps=N)")
-        raise SimulationError(message[:600] + ("..." if len(message) > 600 else "")) from None
+        raise ScenarioError(message[:600] + ("..." if len(message) > 600 else "")) from None
 
 
 def simulate(
@@ -404,7 +410,7 @@ def simulate(
     if duration is not None:
         stop_time = duration
     if not 0 < stop_time <= 1e6:
-        raise SimulationError(f"stop time must be > 0 s and at most 1e6 s (the FMU's limit), got {stop_time}")
+        raise ScenarioError(f"stop time must be > 0 s and at most 1e6 s (the FMU's limit), got {stop_time}")
     _check_steps(start, stop_time, max_steps)
     start["log.path"] = log_text
     if output_interval is None:

@@ -14,6 +14,7 @@ go in a dict (`fields={"lower.damping_ratio": 0.02}`); both may be given (a name
 
 from __future__ import annotations
 
+import errno
 import json
 import os
 import warnings as _warnings
@@ -68,6 +69,37 @@ class RunResult(dict):
     @property
     def design(self) -> dict:
         return self["design"]
+
+    #: The converged peaks a short repr shows: (key, label, scale, unit).
+    SHOWN = (("lower.tip_deflection", "w_a", 1.0, "m"), ("lower.clamp_bending_stress", "sigma_a", 1e-6, "MPa"),
+             ("lower.clamp_shear_stress", "tau_a", 1e-6, "MPa"),
+             ("upper.contact_bending_stress", "sigma_b", 1e-6, "MPa"), ("contact.force", "F_c", 1e-3, "kN"))
+
+    def _shown(self) -> list:
+        peaks = self.get("summary", {}).get("converged_peaks", {})
+        return [(label, peaks[key] * scale, unit) for key, label, scale, unit in self.SHOWN
+                if isinstance(peaks.get(key), (int, float))]
+
+    def __repr__(self) -> str:
+        """One line (the whole document is the dict's, `dict(result)`): the verdicts and the five
+        converged peaks. Echoing a result in a notebook printed 34 KB."""
+        verdict = "trusted" if self.get("quality", {}).get("trusted") else "NOT TRUSTED"
+        design = "PASS" if self.get("design", {}).get("pass") else "FAIL"
+        peaks = ", ".join(f"{label} {value:.4g} {unit}" for label, value, unit in self._shown())
+        return f"<RunResult {verdict}, design {design}: {peaks}; {len(self)} keys>"
+
+    def _repr_html_(self) -> str:
+        """A notebook's view: the verdicts and the converged peaks as a small table."""
+        from html import escape
+
+        rows = "".join(f"<tr><td>{escape(label)}</td><td>{value:.6g}</td><td>{escape(unit)}</td></tr>"
+                       for label, value, unit in self._shown())
+        verdict = "trusted" if self.get("quality", {}).get("trusted") else "NOT TRUSTED"
+        design = "PASS" if self.get("design", {}).get("pass") else "FAIL"
+        reasons = "".join(f"<li>{escape(r)}</li>" for r in self.get("quality", {}).get("reasons", []))
+        return (f"<div><b>RunResult</b>: {verdict}, design {design}"
+                f"<table><tr><th>converged peak</th><th>value</th><th>unit</th></tr>{rows}</table>"
+                + (f"<ul>{reasons}</ul>" if reasons else "") + "</div>")
 
 
 def field_pairs(fields: dict | None, keywords: dict) -> list:
@@ -137,18 +169,21 @@ def run(scenario: Any = None, *, fields: dict | None = None, log: "str | os.Path
     `check_sensitivity`: run the reproducibility twin (as the CLI does; False halves the stepping
     of the checks and leaves `sensitivity_spread` null).
 
-    ValueError with the CLI's one-line message for a scenario, field, value, path or step count it
-    refuses, before anything runs; KeyboardInterrupt on Ctrl-C (the run stops between steps; its
+    ScenarioError (a ValueError) with the CLI's one-line message for a scenario, field, value, path
+    or step count it refuses, before anything runs; FileNotFoundError for a scenario file that does
+    not exist; KeyboardInterrupt on Ctrl-C (the run stops between steps; its
     log then ends at that step, without the answer: `load_log(...).answer` is None);
     SimulationError when the run fails."""
     from . import _native
-    from .fmu import SimulationError
+    from .fmu import ScenarioError, SimulationError
 
     path, text = scenario_source(scenario)
+    if path is not None and not os.path.lexists(path):
+        raise FileNotFoundError(errno.ENOENT, f"cannot read scenario {path}: no such file", path)
     pairs = field_pairs(fields, field_keywords)
     limit = _native.MAX_STEPS if max_steps is None else max_steps
     if isinstance(limit, bool) or not isinstance(limit, int) or not 0 < limit < 2**64:
-        raise ValueError(f"max_steps must be a whole number > 0, got {max_steps!r}")
+        raise ScenarioError(f"max_steps must be a whole number > 0, got {max_steps!r}")
     every = series_every_of(series_every)
     log_text = None if log is None else os.fsdecode(os.fspath(log))
     try:
@@ -157,7 +192,7 @@ def run(scenario: Any = None, *, fields: dict | None = None, log: "str | os.Path
             max_steps=limit, sensitivity=bool(check_sensitivity), observed_order=True)
     except ValueError as e:
         # The crate's line names the CLI's option; here it is this function's keyword.
-        raise ValueError(str(e).replace("with --max-steps", "with run(..., max_steps=N)")) from None
+        raise ScenarioError(str(e).replace("with --max-steps", "with run(..., max_steps=N)")) from None
     except RuntimeError as e:
         raise SimulationError(str(e)) from None
     result = RunResult(json.loads(doc))

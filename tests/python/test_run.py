@@ -93,7 +93,6 @@ def test_a_scenario_file_or_its_text(tmp_path):
     ({"duration": 1e6}, "at most 100000000 steps"),
     ({"duration": 0.01, "max_steps": 100}, "this run needs 424 steps (the automatic step"),
     ({"duration": 0.01, "max_steps": 100}, "raise the limit with run(..., max_steps=N)"),
-    ({"scenario": "no-such-file.toml"}, "cannot read scenario no-such-file.toml"),
     ({"scenario": 'drop_height = "x"'}, "TOML parse error"),
     # Issue 40 (part 5) item 6: 2**80 raised OverflowError from the native module.
     ({"series": True, "series_every": 2**80},
@@ -323,3 +322,30 @@ def test_an_untrusted_run_s_warnings_are_the_cli_s(tmp_path):
         result = beam_impact.run(drop_height=0, impact_angular_velocity=3)
     assert [w for w in result.warnings if w.startswith("results not trusted: ")] == cli
     assert {str(w.message) for w in caught} >= set(cli)
+
+
+def test_one_exception_type_for_a_refused_field_in_every_door_and_file_not_found_for_a_missing_file(tmp_path):
+    """Issue 41: a bad field is a ScenarioError (a ValueError, and the SimulationError `simulate`
+    always raised) from `run` and from `simulate` alike; a missing scenario file is a
+    FileNotFoundError naming it."""
+    with pytest.raises(beam_impact.ScenarioError, match="damping_ratio must be >= 0, got -1"):
+        beam_impact.run(damping_ratio=-1)
+    with pytest.raises(beam_impact.ScenarioError, match="drop_height must be >= 0 m, got -1"):
+        beam_impact.simulate(beam_impact.fmu_path("fmi3"), {"drop_height": -1})
+    assert issubclass(beam_impact.ScenarioError, ValueError)
+    assert issubclass(beam_impact.ScenarioError, beam_impact.SimulationError)
+    with pytest.raises(FileNotFoundError, match="cannot read scenario no-such-file.toml") as missing:
+        beam_impact.run("no-such-file.toml")
+    assert missing.value.filename == "no-such-file.toml"
+
+
+def test_a_result_echoes_in_one_line_and_a_small_html_table():
+    """Issue 41: echoing a result in a notebook dumped 34 KB; its repr is one line with the verdicts
+    and the converged peaks, its `_repr_html_` a small table (the document stays the dict)."""
+    result = beam_impact.run(duration=0.05)
+    text = repr(result)
+    assert text.startswith("<RunResult trusted, design PASS: w_a ") and "\n" not in text and len(text) < 300, text
+    assert "sigma_b " in text and "F_c " in text
+    html = result._repr_html_()
+    assert html.count("<tr>") == 6 and len(html) < 2000, html
+    assert dict(result)["summary"]["converged_peaks"]["contact.force"] > 0
