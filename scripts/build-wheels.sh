@@ -128,15 +128,20 @@ done
 
 # The FMUs go into the package's source folder for maturin (which packs python/beam_impact as
 # it finds it; /python/beam_impact/fmus/ is ignored by git) and are removed again on exit.
+# The example scenarios (and the motion file one names) go in beside them, for
+# `beam_impact.examples()` from a wheel (/python/beam_impact/examples/ is ignored by git too).
 FMUS=$ROOT/python/beam_impact/fmus
-cleanup() { rm -rf "$FMUS"; }
+EXAMPLES=$ROOT/python/beam_impact/examples
+cleanup() { rm -rf "$FMUS" "$EXAMPLES"; }
 trap cleanup EXIT
 trap 'cleanup; exit 130' INT TERM
-rm -rf "$FMUS"
+rm -rf "$FMUS" "$EXAMPLES"
 for fmi in fmi2 fmi3; do
     mkdir -p "$FMUS/$fmi"
     cp "$FMU_DIR/$fmi/BeamImpact.fmu" "$FMUS/$fmi/BeamImpact.fmu"
 done
+mkdir -p "$EXAMPLES"
+cp "$ROOT"/examples/*.toml "$ROOT"/examples/*.csv "$EXAMPLES/"
 
 VERSION=$(sed -n 's/^version = "\(.*\)"$/\1/p' "$ROOT/python/pyproject.toml" | head -1)
 BUILT=""

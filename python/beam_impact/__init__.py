@@ -13,6 +13,7 @@ Heavy imports (fmpy, dask, pandas) happen inside the functions, so `import beam_
 """
 
 from .dask_sweep import sweep
+from .example_files import examples
 from .fmu import FmuFile, ScenarioError, SimulationError, fmu_path, simulate
 from .grid import expand, linspace, parse_spec, parse_vary
 from .log import Log, LogError, load_log
@@ -25,6 +26,7 @@ __all__ = [
     "RunResult",
     "ScenarioError",
     "SimulationError",
+    "examples",
     "expand",
     "fmu_path",
     "linspace",

@@ -462,3 +462,11 @@ def test_fmu_path_takes_beam_impact_fmu_dir(monkeypatch):
     monkeypatch.setenv("BEAM_IMPACT_FMU_DIR", str(FMU_DIR))
     assert beam_impact.fmu_path() == str(FMU_DIR / "fmi2" / "BeamImpact.fmu")
     assert beam_impact.fmu_path("fmi3") == str(FMU_DIR / "fmi3" / "BeamImpact.fmu")
+
+
+def test_examples_are_the_repository_s_scenarios_from_a_checkout():
+    """Issue 41: `beam_impact.examples()` names every example scenario of the checkout (a wheel's
+    own copy is checked in tests/python/test_wheel.py)."""
+    found = beam_impact.examples()
+    assert sorted(found) == sorted(p.name for p in (Path(__file__).resolve().parents[2] / "examples").glob("*.toml"))
+    assert all(Path(p).is_file() for p in found.values())

@@ -187,3 +187,21 @@ def test_the_wheel_is_typed():
     """Issue 41: the package says it carries inline types (PEP 561), so mypy and pyright read them."""
     with zipfile.ZipFile(the_wheel()) as archive:
         assert "beam_impact/py.typed" in archive.namelist()
+
+
+def test_the_wheel_carries_the_example_scenarios(installed, tmp_path):
+    """Issue 41: `beam_impact.examples()` from a wheel install gives the repository's example
+    scenarios from inside the fresh venv, and one that names a motion file runs from there."""
+    python, venv, env, wheel = installed
+    probe = ("import beam_impact\n"
+             "e = beam_impact.examples()\n"
+             "print(e['arrestor.toml']); print(sorted(e))\n"
+             "r = beam_impact.run(e['vessel.toml'], duration=0.01, check_sensitivity=False)\n"
+             "print(r['summary']['time'])\n")
+    done = subprocess.run([str(python), "-c", probe], cwd=tmp_path, env=env, capture_output=True, text=True,
+                          timeout=TIMEOUT)
+    assert done.returncode == 0, done.stderr
+    arrestor, names, time = done.stdout.splitlines()
+    assert str(Path(arrestor).resolve()).startswith(str(venv.resolve())), arrestor
+    assert names == repr(sorted(p.name for p in (ROOT / "examples").glob("*.toml")))
+    assert float(time) == pytest.approx(0.01)
