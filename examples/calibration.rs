@@ -19,7 +19,7 @@
 use std::path::{Path, PathBuf};
 
 use beam_impact::answer::{self, Answer, PEAK_NAMES, PEAK_SYMBOLS};
-use beam_impact::model::{parameters, Method, TimeStep};
+use beam_impact::model::{Method, TimeStep};
 use beam_impact::record::NullRecorder;
 use beam_impact::results::Peaks;
 use beam_impact::{Scenario, Simulation};
@@ -109,12 +109,17 @@ fn fixture_path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures").join(name)
 }
 
-/// The default scenario with a fixture row's settings (field name -> value).
+/// The default scenario, or the row's scenario file, with a fixture row's settings (field name ->
+/// value, as `--set` takes them).
 fn scenario(settings: &Value) -> Res<Scenario> {
-    let mut s = Scenario::default();
-    for (key, value) in settings.as_object().into_iter().flatten() {
-        parameters::set(&mut s, parameters::find(key)?, value.as_f64().unwrap_or(f64::NAN))?;
-    }
+    let mut s = match settings.get("file").and_then(Value::as_str) {
+        Some(file) => {
+            let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(file);
+            Scenario::from_toml(&std::fs::read_to_string(&path)?, file)?
+        }
+        None => Scenario::default(),
+    };
+    beam_impact::studies::sweep::apply_fixture_settings(&mut s, settings)?;
     Ok(s)
 }
 

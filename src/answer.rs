@@ -479,6 +479,29 @@ pub fn discretisation_figure(fine: f64, medium: f64) -> f64 {
     SAFETY_FACTOR * relative(medium, fine) / (libm::exp2(FORMAL_ORDER) - 1.0)
 }
 
+/// The smallest discretisation figure of a converged run's peak that is not zero: the printed
+/// rung's error that its rungs share is invisible to their change, and the references that
+/// calibrate the figure are themselves known to 0.3 % (56 and 112 elements of the full basis
+/// agreeing within it, `tests/fixtures/converged_references.json`). Measured on that fixture
+/// (issue 40 part 2), the errors the change missed: first-contact sigma_a of drop 0.3 / contact 16
+/// / damping 0.01 0.22 % under a figure of 0.17 %, the tapered arrestor's sigma_b 0.19 % under
+/// 0.05 %, the paper scenario's sigma_b 0.14 % under 5e-3 % (the rungs' truncations of the
+/// bridge's moment at its contact node, alike); every peak of every row is within its figure or
+/// flagged once no figure is below 0.3 %. Below the 1 % tolerance, so it flags nothing
+/// by itself: a figure of 0.30 % reads "within the accuracy the answer is checked to".
+pub const FIGURE_FLOOR: f64 = 3e-3;
+
+/// [`discretisation_figure`], never below [`FIGURE_FLOOR`] unless the peak is zero on both rungs
+/// (the bridge's moment at its free end, a rigid support's arrestor: exact).
+pub fn floored_figure(fine: f64, medium: f64) -> f64 {
+    let figure = discretisation_figure(fine, medium);
+    if fine == 0.0 && medium == 0.0 {
+        figure
+    } else {
+        figure.max(FIGURE_FLOOR)
+    }
+}
+
 /// The discretisation figures of the printed run's whole-run and first-contact peaks
 /// (`printed`: [whole, first]) against the check run's (`check`, the same): the paper method's
 /// change against the converged answer; the converged method's [`discretisation_figure`], with
@@ -500,7 +523,7 @@ pub fn peak_figures(paper: bool, damping_ratio: f64, printed: [&Peaks; 2], check
         );
     }
     let whole = per_peak(|k| {
-        let figure = discretisation_figure(fine_whole[k], medium_whole[k]);
+        let figure = floored_figure(fine_whole[k], medium_whole[k]);
         if damping_ratio < LATE_PEAK_CALIBRATED_FROM && fine_whole[k] > fine_first[k] {
             figure.max(relative(medium_whole[k], fine_whole[k]))
         } else {
@@ -512,7 +535,7 @@ pub fn peak_figures(paper: bool, damping_ratio: f64, printed: [&Peaks; 2], check
         if fine_first[k] == fine_whole[k] && medium_first[k] < medium_whole[k] {
             whole_figures[k]
         } else {
-            discretisation_figure(fine_first[k], medium_first[k])
+            floored_figure(fine_first[k], medium_first[k])
         }
     });
     (whole, first)
@@ -577,7 +600,7 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
     let envelope_discretisation_error: [Option<f64>; 4] = match check {
         Some((c, _)) if !paper => {
             let coarse = c.envelope.peak_values();
-            std::array::from_fn(|k| both(envelope_values[k], coarse[k], discretisation_figure))
+            std::array::from_fn(|k| both(envelope_values[k], coarse[k], floored_figure))
         }
         Some((c, _)) => {
             let converged = c.envelope.peak_values();

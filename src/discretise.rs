@@ -14,6 +14,31 @@ use crate::solver::ModalSystem;
 /// cut-offs follow the frequencies of the mesh's longer elements, never those of a sub-millimetre
 /// overhang.
 pub fn reference_frequency(scenario: &Scenario) -> Result<f64> {
+    Ok(reference_mesh(scenario)?.mesh)
+}
+
+/// What the automatic cut-offs scale with, rad/s, from the paper's mesh (7 + 7/7 elements):
+/// `mesh`, its highest resolved frequency ([`reference_frequency`]); `contact`, the contact's own
+/// frequency on it ([`contact_frequency`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReferenceFrequencies {
+    /// The highest natural frequency of either beam on the paper's mesh (its graded beams' short
+    /// elements' own modes left out), rad/s.
+    pub mesh: f64,
+    /// The contact's own frequency sqrt(k_c / m_struck) on the paper's mesh, rad/s.
+    pub contact: f64,
+}
+
+impl ReferenceFrequencies {
+    /// The frequency the ladder's cut-off factors multiply, rad/s: the larger of the mesh's
+    /// ([`light_damping_factor`] x `mesh`) and the contact's ([`CONTACT_CUTOFF`] x `contact`).
+    pub fn automatic(&self, scenario: &Scenario) -> f64 {
+        (light_damping_factor(scenario) * self.mesh).max(CONTACT_CUTOFF * self.contact)
+    }
+}
+
+/// The paper mesh's [`ReferenceFrequencies`] of a scenario.
+pub fn reference_mesh(scenario: &Scenario) -> Result<ReferenceFrequencies> {
     let mut coarse = scenario.clone();
     coarse.method = Method::Paper;
     set_elements(&mut coarse, [PAPER_ELEMENTS; 3]);
@@ -21,7 +46,71 @@ pub fn reference_frequency(scenario: &Scenario) -> Result<f64> {
     let modal = ModalSystem::new(&model).map_err(|e| {
         crate::Error::Other(format!("the automatic cut-off's reference mesh ({}): {e}", describe(&coarse)))
     })?;
-    Ok(modal.resolved_omega_max(&model))
+    let mesh = modal.resolved_omega_max(&model);
+    Ok(ReferenceFrequencies { mesh, contact: contact_frequency_of(&model, &modal, mesh) })
+}
+
+/// The automatic cut-off at the printed rung as a multiple of the contact's own frequency
+/// ([`contact_frequency`]). Measured on the contact at the bridge's free end (linear bar, struck
+/// at 0.1 rad/s, no gravity; `free-end` in `tests/fixtures/converged_references.json`; omega_c =
+/// 14 176 rad/s on 56 elements, 15 584 on the paper's mesh): the printed F_c against the full basis
+/// on the same 56-element mesh is 9.3 % high at 0.86 omega_c (the mesh's cut-off alone, 12 131
+/// rad/s), 4.1 % at 2, 1.8 % at 2.5, 0.59 % at 3, 0.13 % at 3.5 and 4, 0.03 % at 5, 0.07 % at 6,
+/// 2e-3 % at 8. At 6 the printed rung is within 0.1 % and the check rung (3 omega_c) within
+/// 0.6 %, converging faster than the figure's formal order 2 (0.59 -> 0.07 %, a factor 8 where
+/// order 2 gives 4), so the figure, 0.42 of the change between them, bounds the printed error.
+/// Every other fixture scenario's mesh cut-off is already above 6 omega_c (the paper scenario:
+/// 43 713 rad/s, 6.4 omega_c; rigid support: 8.5; contact 10 m: 10.5), so their answers and cost
+/// are unchanged.
+pub const CONTACT_CUTOFF: f64 = 6.0;
+
+/// The contact's own frequency, rad/s, on the mesh of `elements` per segment (`"auto"` counts only;
+/// the full basis): omega_c = sqrt(k_c / m_struck(omega_c)), where k_c is the contact's rate (the
+/// bar's, or a nonlinear law's largest tangent stiffness, as the coupled modes take it) and
+/// m_struck(omega) = 1 / sum over the modes of both beams up to omega of (Phi^T b)_i^2, the struck
+/// points' mass in series as the modes below omega see it (b the contact vector, the gap's
+/// functional: the arrestor's and the bridge's point masses add as 1/m_a + 1/m_b). A point of a beam
+/// has less mass the higher the frequency (the mass within a bending wavelength, ~ omega^-1/2): the
+/// smallest fixed point of sqrt(k_c sum_{omega_i <= omega} c_i^2) = omega is where the contact's
+/// spring rings against that mass. It is a property of the beams, not of the mesh (the free-end
+/// scenario: 15 584 / 13 565 / 14 239 / 14 176 / 14 171 rad/s on 7 / 14 / 28 / 56 / 112 elements
+/// per segment). Against a stiff contact at a light point (the bridge's free end) it is above what
+/// the paper mesh's highest frequency is (14 176 against 12 131 rad/s); the paper scenario's is
+/// 6 858 rad/s against 43 713.
+pub fn contact_frequency(scenario: &Scenario, elements: u32) -> Result<f64> {
+    let mut s = scenario.clone();
+    s.method = Method::Paper;
+    set_elements(&mut s, [elements; 3]);
+    let model = Model::new(&s)?;
+    let modal = ModalSystem::new(&model)?;
+    Ok(contact_frequency_of(&model, &modal, modal.resolved_omega_max(&model)))
+}
+
+/// [`contact_frequency`] on a model's modes, those above `resolved` (a graded beam's short
+/// elements' own) left out.
+fn contact_frequency_of(model: &Model, modal: &ModalSystem, resolved: f64) -> f64 {
+    let omega: Vec<f64> = modal.lower.omega.iter().chain(modal.upper.omega.iter()).copied().collect();
+    let (omega, contact): (Vec<f64>, Vec<f64>) =
+        omega.iter().zip(modal.contact.iter()).filter(|(w, _)| **w <= resolved).map(|(w, c)| (*w, *c)).unzip();
+    struck_frequency(&omega, &contact, model.bar_stiffness)
+}
+
+/// The smallest fixed point of omega = sqrt(k sum_{omega_i <= omega} c_i^2) (see
+/// [`contact_frequency`]): modes taken in ascending frequency until the next one lies above what
+/// the ones taken ring at with the spring k.
+pub fn struck_frequency(omega: &[f64], contact: &[f64], k: f64) -> f64 {
+    let mut order: Vec<usize> = (0..omega.len()).collect();
+    order.sort_by(|&a, &b| omega[a].total_cmp(&omega[b]));
+    let mut sum = 0.0;
+    for (j, &i) in order.iter().enumerate() {
+        sum += contact[i] * contact[i];
+        let ring = (k * sum).sqrt();
+        match order.get(j + 1) {
+            Some(&next) if omega[next] <= ring => {}
+            _ => return ring.max(omega[i]),
+        }
+    }
+    0.0
 }
 
 /// A resolved scenario's mesh as the tables print it: `7 + 7/1 elements`.
@@ -141,7 +230,7 @@ fn rung(scenario: &Scenario, index: usize, divisor: u32) -> Result<Scenario> {
     balance_segments(&mut s, auto);
     if s.modal_cutoff == 0.0 {
         s.validate()?;
-        s.modal_cutoff = r.cutoff_factor * light_damping_factor(scenario) * reference_frequency(scenario)?;
+        s.modal_cutoff = r.cutoff_factor * reference_mesh(scenario)?.automatic(scenario);
     }
     Ok(s)
 }
@@ -166,5 +255,37 @@ mod tests {
         let paper = Scenario::paper();
         assert_eq!(printed(&paper).unwrap(), paper);
         assert_eq!(check(&paper).unwrap().method, Method::Converged);
+    }
+
+    /// A point mass m on a spring k: one rigid-body mode of modal amplitude 1/sqrt(m) at the
+    /// contact, so the contact's frequency is sqrt(k/m) exactly; a second mode above it is left
+    /// out, one below it joins the struck mass.
+    #[test]
+    fn the_struck_frequency_of_a_mass_on_a_spring_is_sqrt_k_over_m() {
+        let (k, m) = (4.0e6_f64, 100.0_f64);
+        let c = 1.0 / m.sqrt();
+        // To round-off: c^2 k is k / m within a few ulps.
+        let close = |got: f64, want: f64| assert!((got - want).abs() <= 1e-12 * want, "{got} vs {want}");
+        close(struck_frequency(&[0.0], &[c], k), (k / m).sqrt());
+        close(struck_frequency(&[0.0, 1e6], &[c, 1.0], k), (k / m).sqrt());
+        close(struck_frequency(&[0.0, 10.0], &[c, c], k), (k * 2.0 / m).sqrt());
+    }
+
+    /// Issue 40 part 2: the contact at the bridge's free end rings at 14 176 rad/s (56 elements;
+    /// 15 584 on the paper mesh), above the paper mesh's highest frequency (12 131): the printed
+    /// rung's automatic cut-off is [`CONTACT_CUTOFF`] times the contact's; the paper scenario's
+    /// (6 954 rad/s, 6.3 x below its mesh's 43 713) stays the mesh's.
+    #[test]
+    fn the_automatic_cut_off_follows_the_contact_where_it_rings_above_the_mesh() {
+        let mut end = Scenario { contact_position: 29.0, ..Scenario::default() };
+        end.upper.elements_beyond_contact = 0;
+        let r = reference_mesh(&end).unwrap();
+        assert!(r.contact > r.mesh, "{r:?}");
+        assert!((r.contact / contact_frequency(&end, 56).unwrap() - 1.0).abs() < 0.15, "{r:?}");
+        assert_eq!(printed(&end).unwrap().modal_cutoff, CONTACT_CUTOFF * r.contact);
+        let paper = Scenario::default();
+        let r = reference_mesh(&paper).unwrap();
+        assert!(CONTACT_CUTOFF * r.contact < r.mesh, "{r:?}");
+        assert_eq!(printed(&paper).unwrap().modal_cutoff, r.mesh);
     }
 }

@@ -72,7 +72,10 @@ pub const PAPER_ELEMENTS: u32 = 7;
 /// One rung of the automatic discretisation: elements per segment (the arrestor, the bridge up to
 /// the contact node, the bridge beyond it) and the modal cut-off as a multiple of the scenario's
 /// reference frequency (the highest natural frequency of either beam on the paper's 7-element
-/// mesh, out of contact: 43 710 rad/s for the paper scenario).
+/// mesh, out of contact: 43 710 rad/s for the paper scenario; doubled for light damping; or, where
+/// larger, 6 times the contact's own frequency sqrt(k_c / m_struck), which a stiff contact at a
+/// light point such as the bridge's free end puts above the mesh's: see
+/// `crate::discretise::ReferenceFrequencies`).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Rung {
     /// Elements per segment.

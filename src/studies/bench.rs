@@ -400,15 +400,7 @@ pub fn fixture_verdicts() -> Result<String> {
                 Scenario::from_toml(text, file)?
             }
         };
-        for (field, value) in [
-            (&mut s.drop_height, settings.get("drop_height")),
-            (&mut s.contact_position, settings.get("contact_position")),
-            (&mut s.damping_ratio, settings.get("damping_ratio")),
-        ] {
-            if let Some(v) = value.and_then(Value::as_f64) {
-                *field = v;
-            }
-        }
+        crate::studies::sweep::apply_fixture_settings(&mut s, settings)?;
         if row.get("112").is_none() && s.damping_ratio < crate::model::discretisation::LIGHT_DAMPING {
             continue;
         }
@@ -429,7 +421,7 @@ pub fn fixture_verdicts() -> Result<String> {
                     known = false;
                     continue;
                 };
-                let error = (values.as_array()[k] - reference).abs() / reference.abs();
+                let error = crate::answer::relative(values.as_array()[k], reference);
                 if error > s.discretisation_tolerance {
                     within = false;
                     false_greens += usize::from(a.quality.trusted);

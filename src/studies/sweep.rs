@@ -236,6 +236,22 @@ pub fn validate(scenario: &Scenario) -> Result<()> {
     }
 }
 
+/// Applies a reference fixture row's settings, a JSON object of field names and values (numbers,
+/// or the words `--set` takes: `"rigid"`, `"power"`), as `--set KEY=VALUE` would, and validates
+/// the result ([`apply_settings`]). The key `file`, the scenario file a row starts from, is the
+/// caller's.
+pub fn apply_fixture_settings(scenario: &mut Scenario, settings: &serde_json::Value) -> Result<()> {
+    let mut parsed = Vec::new();
+    for (key, value) in settings.as_object().into_iter().flatten().filter(|(k, _)| *k != "file") {
+        let text = match value {
+            serde_json::Value::String(word) => word.clone(),
+            other => other.to_string(),
+        };
+        parsed.push(parse_setting(&format!("{key}={text}"))?);
+    }
+    apply_settings(scenario, &parsed)
+}
+
 /// Applies the settings in order (a later one wins) and validates the result.
 pub fn apply_settings(scenario: &mut Scenario, settings: &[Setting]) -> Result<()> {
     for s in settings {
