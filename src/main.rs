@@ -19,16 +19,16 @@ fn main() -> ExitCode {
     std::panic::set_hook(Box::new(|info| {
         cli::common::note(&format!("beam-impact: internal error: {info}"));
     }));
-    let cli = match Cli::try_parse() {
+    // `beam-impact sweeep` is a mistyped subcommand, not a scenario file named `sweeep`.
+    let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
+    if let Some(e) = cli::usage::mistyped_subcommand(&args) {
+        return usage_error(&e);
+    }
+    let cli = match Cli::try_parse_from(&args) {
         Ok(cli) => cli,
-        // Help and version print as clap prints them; a usage error is one bounded line like
-        // every other error (it echoed a 120 KB argument three times over seven lines).
+        // Help and version print as clap prints them, to standard output.
         Err(e) if !e.use_stderr() => e.exit(),
-        Err(e) => {
-            let text = e.to_string();
-            cli::common::note(&format!("beam-impact: {}", bounded_line(text.trim().trim_start_matches("error: "))));
-            return ExitCode::from(2);
-        }
+        Err(e) => return usage_error(&e),
     };
     match cli::execute(cli.command.unwrap_or(Command::Run(cli.run))) {
         Ok(Outcome::Done) => ExitCode::SUCCESS,
@@ -38,4 +38,12 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// A usage error (an unknown option or subcommand, a missing or bad value): clap's lines as clap
+/// writes them, its `tip:` and `Usage:` included, each over-long word cut (a 120 KB argument was
+/// echoed three times), exit code 2. Errors of the input are one line each (above).
+fn usage_error(e: &clap::Error) -> ExitCode {
+    cli::common::note(&cli::usage::bounded_usage(&e.to_string()));
+    ExitCode::from(2)
 }

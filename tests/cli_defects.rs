@@ -203,3 +203,95 @@ fn a_yield_stress_below_any_solid_s_is_refused() {
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("lower.yield_stress must be between 1000 and 1e12 Pa (0: none), got 1e-300"), "{stderr}");
 }
+
+/// Issue 41: a mistyped subcommand is named as one, with clap's suggestion, exit code 2 (the bare
+/// `beam-impact FILE` took `sweeep` for a scenario file: "cannot read scenario sweeep"). A file of
+/// that name that exists is still the scenario, and a word far from every subcommand still a
+/// missing file.
+#[test]
+fn a_mistyped_subcommand_is_named_with_its_suggestion() {
+    let dir = tempfile::tempdir().unwrap();
+    for (args, typed, suggested) in [
+        (vec!["sweeep"], "sweeep", "sweep"),
+        (vec!["verfy", "--set", "drop_height=1"], "verfy", "verify"),
+        (vec!["sweep_", "--vary", "drop_height=1,2", "--out", "x.csv"], "sweep_", "sweep"),
+    ] {
+        let out = beam_impact().args(&args).current_dir(dir.path()).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let stderr = String::from_utf8(out.stderr).unwrap();
+        assert!(stderr.starts_with(&format!("error: unrecognized subcommand '{typed}'\n")), "{stderr}");
+        assert!(stderr.contains(&format!("tip: a similar subcommand exists: '{suggested}'")), "{stderr}");
+        assert!(stderr.contains("Usage: beam-impact"), "{stderr}");
+        assert!(out.stdout.is_empty());
+    }
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "nothing written");
+    let far = beam_impact().arg("zzqq").current_dir(dir.path()).output().unwrap();
+    assert_eq!(far.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&far.stderr).contains("cannot read scenario zzqq"));
+    std::fs::write(dir.path().join("sweeep"), "duration = 0.005\n").unwrap();
+    let file = beam_impact().args(["sweeep", "--no-mcap"]).current_dir(dir.path()).output().unwrap();
+    assert!(file.status.success(), "an existing file is the scenario: {}", String::from_utf8_lossy(&file.stderr));
+}
+
+/// Issue 41: a usage error is clap's message as clap prints it, several lines with its `tip:` and
+/// `Usage:` (main.rs joined them into one line), and bounded: a 120 KB argument, echoed three
+/// times, is cut inside each line (before the bound was one line). Help still prints in full.
+#[test]
+fn usage_errors_keep_clap_lines_and_stay_bounded() {
+    let out = beam_impact().args(["run", "--strct"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let text = String::from_utf8(out.stderr).unwrap();
+    assert!(text.lines().count() >= 5, "{text}");
+    assert!(text.starts_with("error: unexpected argument '--strct' found\n"), "{text}");
+    assert!(text.contains("tip: a similar argument exists: '--strict'"), "{text}");
+    assert!(text.lines().any(|l| l.starts_with("Usage: beam-impact run")), "{text}");
+    let long = format!("--{}", "x".repeat(120_000));
+    for args in [vec!["run", long.as_str()], vec!["sweep", "--vary", "drop_height=1"], vec!["sweep", long.as_str()]] {
+        let out = beam_impact().args(&args).output().unwrap();
+        assert_eq!(out.status.code(), Some(2));
+        let text = String::from_utf8(out.stderr).unwrap();
+        assert!(text.lines().count() >= 3, "{text}");
+        assert!(text.lines().any(|l| l.starts_with("Usage: beam-impact")), "{text}");
+        assert!(text.len() < 2000, "{} bytes", text.len());
+    }
+    let help = beam_impact().args(["run", "--help"]).output().unwrap();
+    assert!(help.status.success() && String::from_utf8_lossy(&help.stdout).lines().count() > 5);
+}
+
+/// Issue 41: `completions SHELL` prints the shell's completion script, naming every subcommand,
+/// for each shell clap_complete knows; an unknown shell is a usage error.
+#[test]
+fn completions_print_a_script_naming_the_subcommands() {
+    let out = beam_impact().args(["completions", "bash"]).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let script = String::from_utf8(out.stdout).unwrap();
+    assert!(script.contains("complete -F") && script.contains("beam-impact"), "{script}");
+    for name in ["run", "scenario", "damping", "modes", "pack", "report", "bench", "verify", "sweep", "completions"] {
+        assert!(script.contains(&format!("beam__impact,{name})")), "{name} missing from the bash script");
+    }
+    for option in ["--strict", "--json", "--vary", "--set"] {
+        assert!(script.contains(option), "{option} missing from the bash script");
+    }
+    for shell in ["zsh", "fish", "elvish", "powershell"] {
+        let out = beam_impact().args(["completions", shell]).output().unwrap();
+        assert!(out.status.success() && String::from_utf8_lossy(&out.stdout).contains("sweep"), "{shell}");
+    }
+    let bad = beam_impact().args(["completions", "tcsh"]).output().unwrap();
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("possible values: bash"));
+}
+
+/// Issue 41: `run --help` says what `--strict` checks (it named the energy balance alone; it
+/// exits 3 whenever the run is not trusted) and that `--json -` is standard output.
+#[test]
+fn run_help_says_what_strict_checks_and_json_to_standard_output() {
+    let out = beam_impact().args(["run", "--help"]).output().unwrap();
+    assert!(out.status.success());
+    let help = String::from_utf8(out.stdout).unwrap();
+    let strict = help.split("--strict").nth(1).unwrap().split("\n      --").next().unwrap();
+    for check in ["energy_tolerance", "discretisation_tolerance", "twin run", "yield_stress", "model's range"] {
+        assert!(strict.contains(check), "--strict's help does not name {check:?}: {strict}");
+    }
+    let json = help.split("--json <FILE>").nth(1).unwrap().split("\n      --").next().unwrap();
+    assert!(json.contains("`-`: to standard output"), "{json}");
+}

@@ -403,3 +403,22 @@ fn every_scenario_a_page_shows_is_read_by_the_program() {
     }
     assert!(shown >= 2, "{shown} scenarios shown");
 }
+
+/// Issue 41: docs/cli.md lists every subcommand `beam-impact --help` lists (`completions` was
+/// missing from it), each as `beam-impact NAME` in its table of commands.
+#[test]
+fn the_cli_page_lists_every_subcommand() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_beam-impact")).arg("--help").output().unwrap();
+    assert!(out.status.success());
+    let help = String::from_utf8(out.stdout).unwrap();
+    let commands = help.split("Commands:\n").nth(1).unwrap().split("\n\n").next().unwrap();
+    let names: Vec<&str> =
+        commands.lines().filter_map(|l| l.split_whitespace().next()).filter(|n| *n != "help").collect();
+    assert!(names.contains(&"sweep") && names.contains(&"completions"), "{names:?}");
+    let page = std::fs::read_to_string(root().join("docs/cli.md")).unwrap();
+    for name in names {
+        let listed =
+            page.lines().any(|l| l.starts_with("| `beam-impact") && l.contains(&format!("`beam-impact {name}")));
+        assert!(listed, "docs/cli.md's table of commands does not list `beam-impact {name}`");
+    }
+}

@@ -138,14 +138,25 @@ pub enum Command {
     /// parallel without logs; one CSV row per scenario (peaks, peak times, energy approach,
     /// largest energy residual, trust verdict, error).
     Sweep(SweepArgs),
+    /// Print the completion script of a shell to standard output: `beam-impact completions bash >
+    /// ~/.local/share/bash-completion/completions/beam-impact`, `completions zsh > ~/.zfunc/_beam-impact`,
+    /// `completions fish > ~/.config/fish/completions/beam-impact.fish`.
+    Completions {
+        /// The shell: bash, zsh, fish, elvish or powershell.
+        #[arg(value_enum)]
+        shell: clap_complete::Shell,
+    },
 }
 
 #[derive(Args)]
 pub struct RunArgs {
-    /// Scenario file (TOML); missing fields take the paper's values. Default: the paper scenario.
+    /// Scenario file (TOML); missing fields take the default scenario's values (the paper's beams,
+    /// the converged method). Default: the paper scenario
+    /// with its method (with --set: the default scenario, as `beam-impact scenario` prints it).
     pub file: Option<PathBuf>,
-    /// Write the summary as JSON to this file.
-    #[arg(long)]
+    /// Write the summary as JSON to this file; `-`: to standard output, instead of the tables (the
+    /// warnings stay on standard error).
+    #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
     /// Record every step to this MCAP file [default: paper.mcap; with --set: <stem>-set-<hash>.mcap].
     #[arg(long, conflicts_with = "no_mcap")]
@@ -153,8 +164,11 @@ pub struct RunArgs {
     /// Do not record.
     #[arg(long)]
     pub no_mcap: bool,
-    /// Exit with code 3 when the run is not trusted (its energy residual is above the scenario's
-    /// `energy_tolerance`).
+    /// Exit with code 3 when the run is not trusted: when any check that ran fails (the energy
+    /// balance against `energy_tolerance`; the peaks' discretisation figure and their spread
+    /// against the twin run, against `discretisation_tolerance`; the largest stress against
+    /// `yield_stress`, when given; the model's range: deflections, rotations and strains against
+    /// the small-deflection, linear-elastic limits). Without it such a run warns and exits 0.
     #[arg(long)]
     pub strict: bool,
     /// Stop the MCAP log at this size, bytes (the run goes on unrecorded, with a warning).

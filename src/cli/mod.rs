@@ -5,12 +5,14 @@
 pub mod args;
 mod bench;
 pub mod common;
+mod completions;
 mod damping;
 mod modes;
 mod pack;
 mod report;
 mod run;
 mod sweep;
+pub mod usage;
 mod verify;
 mod vessel_build;
 
@@ -56,5 +58,6 @@ pub fn execute(command: Command) -> Result<Outcome> {
             done(verify::verify(file.as_deref(), &set, json.as_deref(), tolerance))
         }
         Command::Sweep(args) => done(sweep::sweep(&args)),
+        Command::Completions { shell } => done(completions::completions(shell)),
     }
 }
