@@ -560,7 +560,8 @@ pub fn table_for(defaults: &Scenario) -> Vec<Variable> {
         Some(false),
         None,
         "Every check the FMU runs passes so far: energy balance, discretisation (the coarser rungs run in \
-         lockstep), yield"
+         lockstep), the twin's spread, yield, and the model's range (every node's deflection and rotation, each \
+         beam's strain)"
             .into(),
         None,
         Source::Trusted,
