@@ -27,8 +27,9 @@ class RunResult(dict):
     `scenario_as_given`, `summary`, `quality`, `design`, `discretisation`, `impact`,
     `merged_contact_windows`, `units`, `wall_time_s`), with shortcuts:
 
-    - `peaks`, `peak_times`: `summary.peaks` / `summary.peak_times` (FMU names and former ones; SI)
-    - `converged_peaks`: `summary.converged_peaks`
+    - `peaks`, `peak_times`: `summary.peaks` / `summary.peak_times` by the FMU's names, one per
+      quantity (the document also holds the former names until 0.2.0); SI
+    - `converged_peaks`: `summary.converged_peaks`, the same way
     - `quality`, `trusted`, `reasons`: the checks, the verdict and why not trusted (lines)
     - `design`: the design check (`pass`, `utilisation`)
     - `series`: the steps as a pandas.DataFrame (`run(..., series=True)`; the columns of
@@ -42,17 +43,23 @@ class RunResult(dict):
     log_path: str | None = None
     warnings: tuple = ()
 
+    @staticmethod
+    def _one_name_each(values: dict) -> dict:
+        """The FMU's dotted names only: the document keeps each former name (`contact_force`)
+        beside its dotted one until 0.2.0, a shortcut gives one name per quantity (issue 41)."""
+        return {k: v for k, v in values.items() if "." in k}
+
     @property
     def peaks(self) -> dict:
-        return self["summary"]["peaks"]
+        return self._one_name_each(self["summary"]["peaks"])
 
     @property
     def peak_times(self) -> dict:
-        return self["summary"]["peak_times"]
+        return self._one_name_each(self["summary"]["peak_times"])
 
     @property
     def converged_peaks(self) -> dict:
-        return self["summary"]["converged_peaks"]
+        return self._one_name_each(self["summary"]["converged_peaks"])
 
     @property
     def quality(self) -> dict:

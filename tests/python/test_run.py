@@ -349,3 +349,17 @@ def test_a_result_echoes_in_one_line_and_a_small_html_table():
     html = result._repr_html_()
     assert html.count("<tr>") == 6 and len(html) < 2000, html
     assert dict(result)["summary"]["converged_peaks"]["contact.force"] > 0
+
+
+def test_the_peaks_shortcut_gives_one_name_per_quantity():
+    """Issue 41: `.peaks` held 15 keys in three naming schemes for its quantities; the shortcuts
+    give the FMU's dotted names only, each the document's value (which keeps the former names)."""
+    result = beam_impact.run(duration=0.05)
+    for shortcut, key in ((result.peaks, "peaks"), (result.peak_times, "peak_times"),
+                          (result.converged_peaks, "converged_peaks")):
+        document = result["summary"][key]
+        assert shortcut and all("." in name for name in shortcut), shortcut
+        assert all(document[name] == value for name, value in shortcut.items())
+        assert set(document) - set(shortcut) == {name for name in document if "." not in name}
+    assert "contact.force" in result.peaks and "contact_force" not in result.peaks
+    assert "contact_force" in result["summary"]["peaks"]
