@@ -507,29 +507,28 @@ impl<S: Stepper> Simulation<S> {
         (self.envelope_work.asked, self.envelope_work.skipped)
     }
 
-    /// Raises the stress envelope by the current state (in `stage` under `excitation`, at `time` s).
-    fn observe_envelope(&mut self, stage: Stage, excitation: &Excitation, time: f64, step: u64) {
+    /// Raises the stress envelope by the current state, whose correction load coefficients are
+    /// `loads` ([`Self::correction_loads`]), at `time` s.
+    fn observe_envelope(&mut self, loads: Option<&[f64; LOADS]>, time: f64, step: u64) {
         self.envelope_work.release_end();
         if self.stations.is_empty() || !step.is_multiple_of(self.stations.stride) {
             return;
         }
-        let loads = self.correction_loads(own(&self.state.kinematics), stage, excitation);
         let state = &mut self.state;
         self.stations.observe(
             &mut self.envelope_work,
             state.kinematics.displacement.as_slice(),
-            loads.as_ref(),
+            loads,
             time,
             Running { max: &mut state.envelope, times: &mut state.envelope_times },
         );
     }
 
-    /// Raises the model's range (every node's deflection and rotation) by the current state.
-    fn observe_range(&mut self, stage: Stage, excitation: &Excitation, time: f64) {
-        let k = &self.state.kinematics;
-        let q = k.displacement.as_slice();
-        let loads = self.correction_loads((q, k.velocity.as_slice()), stage, excitation);
-        self.range_rows.observe(q, loads.as_ref(), time, &mut self.state.range);
+    /// Raises the model's range (every node's deflection and rotation) by the current state,
+    /// whose correction load coefficients are `loads`.
+    fn observe_range(&mut self, loads: Option<&[f64; LOADS]>, time: f64) {
+        let q = self.state.kinematics.displacement.as_slice();
+        self.range_rows.observe(q, loads, time, &mut self.state.range);
     }
 
     /// Raises the stress envelope over the exact advance's contact step just taken (from
@@ -538,16 +537,18 @@ impl<S: Stepper> Simulation<S> {
     /// cubic over them), and a station's crest between two ends would be missed. Other steps
     /// (and every `stride`-th step of a large model's envelope) take the end alone
     /// ([`Self::observe_envelope`]).
+    /// The end state's correction load coefficients are `loads`.
     fn observe_envelope_over_step(
         &mut self,
         stage: Stage,
         excitation: &Excitation,
         (start_ns, end_ns): (u64, u64),
         step: u64,
+        loads: Option<&[f64; LOADS]>,
     ) {
         let stride = self.stations.stride;
         if !(stage.is_contact() && self.stepper.adapts_steps() && stride == 1) || self.stations.is_empty() {
-            return self.observe_envelope(stage, excitation, seconds(end_ns), step);
+            return self.observe_envelope(loads, seconds(end_ns), step);
         }
         if !self.envelope_work.holds_end_of(step - 1, start_ns) {
             let start_excitation = self.excitation_at(start_ns);
@@ -557,11 +558,10 @@ impl<S: Stepper> Simulation<S> {
             let start = StationState { q: q0, v: v0, loads: loads.as_ref(), load_rates: load_rates.as_ref() };
             self.stations.set_start(&mut self.envelope_work, start);
         }
-        let loads = self.correction_loads(own(&self.state.kinematics), stage, excitation);
         let load_rates = self.correction_load_rates(&self.state.kinematics, stage, excitation);
         let RunState { kinematics, envelope, envelope_times, .. } = &mut self.state;
         let (q1, v1) = (kinematics.displacement.as_slice(), kinematics.velocity.as_slice());
-        let end = StationState { q: q1, v: v1, loads: loads.as_ref(), load_rates: load_rates.as_ref() };
+        let end = StationState { q: q1, v: v1, loads, load_rates: load_rates.as_ref() };
         let start = (self.backup.displacement.as_slice(), self.backup.velocity.as_slice());
         self.stations.observe_step(
             &mut self.envelope_work,
@@ -649,8 +649,10 @@ impl<S: Stepper> Simulation<S> {
     fn evaluate_initial(&mut self) {
         let excitation = self.excitation_at(0);
         let (probes, energies) = self.stepper.measure(&self.state.kinematics, Stage::Free, &excitation);
-        self.observe_envelope(Stage::Free, &excitation, 0.0, 0);
-        self.observe_range(Stage::Free, &excitation, 0.0);
+        // The state's correction load coefficients, once for the envelope and the range.
+        let loads = self.correction_loads(own(&self.state.kinematics), Stage::Free, &excitation);
+        self.observe_envelope(loads.as_ref(), 0.0, 0);
+        self.observe_range(loads.as_ref(), 0.0);
         let mut result = self.outputs(&probes, Stage::Free, 0, 0.0);
         self.set_support_and_tips(&mut result, &self.state.kinematics, &excitation);
         self.state.inertial_potential = energies.inertial_potential;
@@ -1003,8 +1005,10 @@ impl<S: Stepper> Simulation<S> {
         }
         self.state.gap = probes[Probe::Gap as usize];
         let span = (previous.time_ns, previous.time_ns + step_ns);
-        self.observe_envelope_over_step(stage, &excitation, span, previous.step + 1);
-        self.observe_range(stage, &excitation, seconds(span.1));
+        // The end state's correction load coefficients, once for the envelope and the range.
+        let loads = self.correction_loads(own(&self.state.kinematics), stage, &excitation);
+        self.observe_envelope_over_step(stage, &excitation, span, previous.step + 1, loads.as_ref());
+        self.observe_range(loads.as_ref(), seconds(span.1));
         let rate = self.gap_rate(&self.state.kinematics, stage, &excitation);
         energies.dissipation_rate += self.contact_dissipation_rate(self.state.gap, rate, stage);
         let mut result = self.outputs(&probes, stage, previous.time_ns + step_ns, rate);
@@ -1257,15 +1261,7 @@ impl<S: Stepper> Simulation<S> {
             let (k0, k1) = (&self.backup, &self.state.kinematics);
             let dt = seconds(self.state.result.time_ns - saved.0.result.time_ns);
             let tau = seconds(at_ns - saved.0.result.time_ns);
-            let jerk = (&k1.acceleration - &k0.acceleration) / dt;
-            Kinematics {
-                displacement: &k0.displacement
-                    + &k0.velocity * tau
-                    + &k0.acceleration * (0.5 * tau * tau)
-                    + &jerk * (tau * tau * tau / 6.0),
-                velocity: &k0.velocity + &k0.acceleration * tau + &jerk * (0.5 * tau * tau),
-                acceleration: &k0.acceleration + &jerk * tau,
-            }
+            linear_acceleration_within(k0, k1, dt, tau)
         });
         (self.state, self.backup) = saved;
         kinematics
@@ -1405,15 +1401,7 @@ impl<S: Stepper> Simulation<S> {
             k
         } else {
             let (k0, k1) = (&self.backup, &self.state.kinematics);
-            let jerk = (&k1.acceleration - &k0.acceleration) / dt;
-            Kinematics {
-                displacement: &k0.displacement
-                    + &k0.velocity * tau
-                    + &k0.acceleration * (0.5 * tau * tau)
-                    + &jerk * (tau * tau * tau / 6.0),
-                velocity: &k0.velocity + &k0.acceleration * tau + &jerk * (0.5 * tau * tau),
-                acceleration: &k0.acceleration + &jerk * tau,
-            }
+            linear_acceleration_within(k0, k1, dt, tau)
         };
         let (start, end) = (&before.result, &self.state.result);
         let excitation = self.excitation_at(at_ns);
@@ -1645,6 +1633,11 @@ impl<S: Stepper> Simulation<S> {
     /// A run that leaves the linear model's range anywhere along either beam is not trusted, with
     /// the reason ([`Self::model_range`]).
     pub fn quality(&self) -> Quality {
+        self.quality_within(&self.model_range())
+    }
+
+    /// [`Self::quality`] with the model's range `range` ([`Self::model_range`]) already taken.
+    fn quality_within(&self, range: &RangeCheck) -> Quality {
         let s = &self.model.scenario;
         let state = &self.state;
         let mut quality = Quality::assess(
@@ -1655,7 +1648,7 @@ impl<S: Stepper> Simulation<S> {
             s.energy_tolerance,
             self.plan.advisories(s, &self.modal),
         );
-        let reasons = self.range_reasons();
+        let reasons = range.reasons();
         if !reasons.is_empty() {
             quality.trusted = false;
             quality.reasons.extend(reasons);
@@ -1668,6 +1661,11 @@ impl<S: Stepper> Simulation<S> {
     /// envelope, against [`crate::solver::model_range::SMALL_DEFLECTION`],
     /// [`crate::solver::model_range::SMALL_ROTATION`] and [`crate::solver::model_range::ELASTIC_STRAIN`].
     pub fn model_range(&self) -> RangeCheck {
+        self.model_range_of(&self.envelope())
+    }
+
+    /// [`Self::model_range`] with the run's stress envelope `envelope` ([`Self::envelope`]).
+    fn model_range_of(&self, envelope: &crate::results::StressEnvelope) -> RangeCheck {
         let s = &self.model.scenario;
         let mut range = self.state.range;
         let (peaks, times) = self.last_peaks();
@@ -1679,7 +1677,6 @@ impl<S: Stepper> Simulation<S> {
                 time: times.lower_tip_deflection,
             };
         }
-        let envelope = self.envelope();
         let strain = |beam: &crate::results::BeamEnvelope, modulus: f64| -> Option<StrainPeak> {
             let bending = beam.bending.peak().map(|p| (p.value, p.position, p.time, "bending"));
             let shear = beam.shear.peak().map(|p| (3f64.sqrt() * p.value, p.position, p.time, "shear"));
@@ -1701,11 +1698,6 @@ impl<S: Stepper> Simulation<S> {
             upper_strain: strain(&envelope.upper, s.upper.elastic_modulus),
             lengths: [s.lower.length, s.upper.length],
         }
-    }
-
-    /// One reason per range quantity beyond its limit.
-    fn range_reasons(&self) -> Vec<String> {
-        self.model_range().reasons()
     }
 
     /// The run state, for saving (FMU state, rollback).
@@ -1804,6 +1796,9 @@ impl<S: Stepper> Simulation<S> {
         let s = &self.state;
         // A stop point inside the next internal step (see `finish_at`) is the run's last record.
         let last = if self.output.time_ns > s.result.time_ns { self.stop_record() } else { s.result };
+        // The envelope and the range once, for the summary and its quality.
+        let envelope = self.envelope();
+        let model_range = self.model_range_of(&envelope);
         Summary {
             steps: last.step,
             time: last.time,
@@ -1815,13 +1810,13 @@ impl<S: Stepper> Simulation<S> {
             max_energy_residual: s.max_residual,
             energy_method: self.energy_method,
             modes: self.mode_table(5),
-            quality: self.quality(),
+            quality: self.quality_within(&model_range),
             first_contact_peaks: s.first_contact.peaks,
             first_contact_end: s.first_contact.end(),
             time_steps: TimeSteps { free: seconds(self.plan.free_ns), contact: seconds(self.plan.contact_ns) },
             impact: self.impact,
-            envelope: self.envelope(),
-            model_range: self.model_range(),
+            envelope,
+            model_range,
         }
     }
 
@@ -1933,6 +1928,21 @@ fn range_rows(model: &Model, modal: &ModalSystem, shapes: &DMatrix<f64>, in_mode
         elastic -= projection;
     }
     RangeRows::new(model, &total, &elastic, model.lower.dofs(), &[])
+}
+
+/// The state `tau` s into a linear-acceleration step of `dt` s from `k0` to `k1`: the
+/// acceleration linear over the step (Eq. 11's assumption), so the displacement cubic and the
+/// velocity quadratic.
+fn linear_acceleration_within(k0: &Kinematics, k1: &Kinematics, dt: f64, tau: f64) -> Kinematics {
+    let jerk = (&k1.acceleration - &k0.acceleration) / dt;
+    Kinematics {
+        displacement: &k0.displacement
+            + &k0.velocity * tau
+            + &k0.acceleration * (0.5 * tau * tau)
+            + &jerk * (tau * tau * tau / 6.0),
+        velocity: &k0.velocity + &k0.acceleration * tau + &jerk * (0.5 * tau * tau),
+        acceleration: &k0.acceleration + &jerk * tau,
+    }
 }
 
 /// Rows: every node of the arrestor, then of the bridge; columns: global modal coordinates.
