@@ -196,16 +196,18 @@ def test_ctrl_c_stops_a_long_run_between_steps(tmp_path):
 
 
 CTRL_C_SWEEP = """
-import sys, time
+import sys, threading, time
 import dask, pandas  # imported before the signal can come (seconds on a loaded machine)
 import beam_impact
 from beam_impact import dask_sweep
 
 row = dask_sweep.run_row_native
+said = threading.Lock()  # two rows start at once: one line, never "runningrunning"
 
 
 def announced(*args, **kwargs):
-    print("running", flush=True)  # a row has started: the signal may come
+    with said:
+        print("running", flush=True)  # a row has started: the signal may come
     return row(*args, **kwargs)
 
 
