@@ -58,6 +58,12 @@ impl Recorder for FinishLater<'_> {
     fn step(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()> {
         self.inner.step(result, modal_coordinates)
     }
+    fn sample_interval_ns(&self) -> u64 {
+        self.inner.sample_interval_ns()
+    }
+    fn sample(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()> {
+        self.inner.sample(result, modal_coordinates)
+    }
     fn contact_event(&mut self, event: &ContactEvent) -> Result<()> {
         self.inner.contact_event(event)
     }

@@ -286,6 +286,11 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     range_rows: std::sync::Arc<RangeRows>,
     /// The most internal steps the run may take, checked at every step (issue 40).
     max_steps: u64,
+    /// The instants inside the latest internal step at which a running peak was raised, ns (the
+    /// exact advance: [`Self::exact_extremes`]); the log records the state at each (issue 41).
+    peak_instants: Vec<u64>,
+    /// The same for the outputs at a point inside the next internal step ([`Self::interpolate`]).
+    output_peak_instants: Vec<u64>,
 }
 
 impl Simulation<ModalStepper> {
@@ -489,6 +494,8 @@ impl<S: Stepper> Simulation<S> {
             feed: FeedEnd::default(),
             range_rows: std::sync::Arc::new(range_rows),
             max_steps: crate::model::scenario::MAX_STEPS,
+            peak_instants: Vec::new(),
+            output_peak_instants: Vec::new(),
         };
         simulation.evaluate_initial();
         Ok(simulation)
@@ -853,6 +860,119 @@ impl<S: Stepper> Simulation<S> {
         (extremes, r1)
     }
 
+    /// The exact advance's in-step extremes made values of its own solution (issue 41): the
+    /// cubic through a step's ends locates each output's largest |value| inside the step, and
+    /// where that raises a peak (the run's, or the first sustained contact's while it lasts) the
+    /// output is taken from the exact advance's own step to that instant, to the nanosecond,
+    /// moved by one Newton step on the output's own rate and curvature there (kept if larger),
+    /// or the step's end `end` ((ns, its peak values)) where that is larger. So a printed peak is
+    /// a value the solution takes at its printed time, which the log records (each instant is
+    /// added to `instants`), and no other instant's value exceeds it by more than the
+    /// nanosecond's rounding (|f''| dt^2 / 2: 1e-11 of it at 1e4 rad/s). The linear acceleration
+    /// method's cubic is its own solution inside the step: its extremes stand.
+    fn exact_extremes(
+        &mut self,
+        start: &StepResult,
+        (end_ns, ends): (u64, [f64; 5]),
+        stage: Stage,
+        extremes: &mut [(f64, f64); 5],
+        instants: &mut Vec<u64>,
+    ) {
+        if !self.stepper.adapts_steps() {
+            return;
+        }
+        let first = &self.state.first_contact;
+        let open = first.end().is_none();
+        let (running, first_peaks) = (start.peaks.as_array(), first.peaks.as_array());
+        let damped_law = self.modal.law.is_some_and(|l| l.damping > 0.0) && stage.is_contact();
+        let inside = |t: f64| t > start.time_ns as f64 && t < end_ns as f64;
+        // The instants evaluated in this step, with their peak values (outputs share instants).
+        let mut taken: Vec<(u64, [f64; 5], Kinematics)> = Vec::new();
+        for k in 0..5 {
+            let (value, at) = extremes[k];
+            let floor = if open { running[k].min(first_peaks[k]) } else { running[k] };
+            let at_ns = (at * 1e9).round();
+            if !(value > floor && inside(at_ns)) {
+                continue;
+            }
+            let mut best = self.values_at(start, at_ns as u64, stage, &mut taken);
+            // One Newton step towards the output's own extremum (not for a damped law's force,
+            // whose crest is not the gap's).
+            let probe = PEAK_PROBES[k] as usize;
+            if !(k == 4 && damped_law) {
+                let kinematics = &taken.iter().find(|(t, ..)| *t == best.0).expect("just evaluated").2;
+                let excitation = self.excitation_at(best.0);
+                let rate = self.stepper.rates(kinematics, stage, &excitation)[probe];
+                let curvature = self.stepper.probes(&kinematics.acceleration)[probe];
+                let moved = (best.0 as f64 - rate / curvature * 1e9).round();
+                if curvature != 0.0 && moved.is_finite() && inside(moved) && moved as u64 != best.0 {
+                    let other = self.values_at(start, moved as u64, stage, &mut taken);
+                    if other.1[k] > best.1[k] {
+                        best = other;
+                    }
+                }
+            }
+            let (at_ns, values) = best;
+            extremes[k] = if values[k] >= ends[k] { (values[k], seconds(at_ns)) } else { (ends[k], seconds(end_ns)) };
+            if values[k] >= ends[k] && !instants.contains(&at_ns) {
+                instants.push(at_ns);
+            }
+        }
+    }
+
+    /// The peak values at `at_ns` inside the step from `start` ([`Self::point`]), from `taken` if
+    /// evaluated already (else evaluated and kept there).
+    fn values_at(
+        &mut self,
+        start: &StepResult,
+        at_ns: u64,
+        stage: Stage,
+        taken: &mut Vec<(u64, [f64; 5], Kinematics)>,
+    ) -> (u64, [f64; 5]) {
+        if let Some((t, v, _)) = taken.iter().find(|(t, ..)| *t == at_ns) {
+            return (*t, *v);
+        }
+        let (row, kinematics) = self.point(start, at_ns, stage);
+        let values = peak_values(&row);
+        taken.push((at_ns, values, kinematics));
+        (at_ns, values)
+    }
+
+    /// The own coordinates at `at_ns` inside the step just taken from `self.backup` (at
+    /// `start_ns`, in `stage`) to the current state: the exact advance's own step to the point,
+    /// else the linear acceleration's cubic displacement and quadratic velocity (the method's
+    /// solution inside its step).
+    fn point_kinematics(&mut self, start_ns: u64, at_ns: u64, stage: Stage) -> Kinematics {
+        let tau = seconds(at_ns - start_ns);
+        if self.stepper.adapts_steps() {
+            let mut k = self.backup.clone();
+            self.stepper.step_aside(&mut k, stage, tau, &self.excitation_at(at_ns));
+            k
+        } else {
+            let dt = seconds(self.state.result.time_ns - start_ns);
+            linear_acceleration_within(&self.backup, &self.state.kinematics, dt, tau)
+        }
+    }
+
+    /// The outputs of `kinematics` at `at_ns` in `stage`, without support reactions, energies or
+    /// peaks.
+    fn point_outputs(&self, kinematics: &Kinematics, at_ns: u64, stage: Stage) -> StepResult {
+        let excitation = self.excitation_at(at_ns);
+        let (probes, _) = self.stepper.measure(kinematics, stage, &excitation);
+        let rate = self.gap_rate(kinematics, stage, &excitation);
+        let mut result = self.outputs(&probes, stage, at_ns, rate);
+        result.time_ns = at_ns;
+        result.time = seconds(at_ns);
+        result
+    }
+
+    /// The outputs and own coordinates at `at_ns` inside the step just taken from `self.backup`
+    /// (the state of `start`, in `stage`): [`Self::point_kinematics`], [`Self::point_outputs`].
+    fn point(&mut self, start: &StepResult, at_ns: u64, stage: Stage) -> (StepResult, Kinematics) {
+        let kinematics = self.point_kinematics(start.time_ns, at_ns, stage);
+        (self.point_outputs(&kinematics, at_ns, stage), kinematics)
+    }
+
     /// The next internal step in `stage`, ns: the plan's, or with the exact advance the plan's
     /// times 2^level: out of contact as the modes' amplitudes allow, in contact as the force's
     /// smoothness allows: see `adapt_step`).
@@ -1040,7 +1160,12 @@ impl<S: Stepper> Simulation<S> {
         let within_step = if self.polynomial_peaks() {
             // Once the first contact's peaks are settled, only the run's own can rise.
             let floors = self.state.first_contact.end().is_some().then(|| previous.peaks.as_array());
-            let (extremes, rates) = self.step_extremes(&previous, &probes, stage, 1.0, floors);
+            let (mut extremes, rates) = self.step_extremes(&previous, &probes, stage, 1.0, floors);
+            let ends = peak_values(&result);
+            self.peak_instants.clear();
+            let mut instants = std::mem::take(&mut self.peak_instants);
+            self.exact_extremes(&previous, (result.time_ns, ends), stage, &mut extremes, &mut instants);
+            self.peak_instants = instants;
             self.step_end = Some(StepEnd { time_ns: result.time_ns, step: result.step, stage, probes, rates });
             Some(extremes)
         } else {
@@ -1228,6 +1353,18 @@ impl<S: Stepper> Simulation<S> {
         }
         let advance = self.advance_outputs_to(target_ns, recorder, stop_at_contact_change)?;
         if advance == Advance::Reached && self.output.time_ns > self.state.result.time_ns {
+            if self.samples_for(recorder) {
+                // The dense output before the stop point, inside the step it breaks: that step
+                // taken again (as the point was interpolated on it), then left untaken.
+                let saved = (self.state.clone(), self.backup.clone(), self.step_end);
+                let instants = self.output_peak_instants.clone();
+                let peaks = (self.output.peaks, self.output_peak_times);
+                let sent = self
+                    .step(u64::MAX, false)
+                    .and_then(|_| self.record_samples(recorder, &saved.0, self.output.time_ns, &instants, peaks));
+                (self.state, self.backup, self.step_end) = saved;
+                sent?;
+            }
             let record = self.stop_record();
             let kinematics = self.kinematics_at(self.output.time_ns)?;
             self.record(recorder, &record, &kinematics)?;
@@ -1297,7 +1434,7 @@ impl<S: Stepper> Simulation<S> {
             let stage = self.next_stage();
             let start_ns = self.state.result.time_ns;
             let full_step_fits = start_ns + self.next_step_ns(stage) <= target_ns;
-            let saved = (!full_step_fits).then(|| self.state.clone());
+            let saved = (!full_step_fits || self.samples_for(recorder)).then(|| self.state.clone());
             let event = self.step(u64::MAX, recorder.wants_details())?;
             if let Some(saved) = saved {
                 if self.state.result.time_ns > target_ns {
@@ -1307,8 +1444,11 @@ impl<S: Stepper> Simulation<S> {
                     self.state.output_ns = target_ns;
                     return Ok(Advance::Reached);
                 }
+                let sampled = self.samples_for(recorder).then_some(&saved);
+                self.record_step(recorder, sampled)?;
+            } else {
+                self.record(recorder, &self.state.result, &self.state.kinematics)?;
             }
-            self.record(recorder, &self.state.result, &self.state.kinematics)?;
             if let Some(e) = &event {
                 recorder.contact_event(e)?;
                 if stop_at_contact_change {
@@ -1340,8 +1480,9 @@ impl<S: Stepper> Simulation<S> {
         stop_at_contact_change: bool,
     ) -> Result<Advance> {
         while self.state.result.time_ns < target_ns {
+            let before = self.samples_for(recorder).then(|| self.state.clone());
             let event = self.step(target_ns - self.state.result.time_ns, recorder.wants_details())?;
-            self.record(recorder, &self.state.result, &self.state.kinematics)?;
+            self.record_step(recorder, before.as_ref())?;
             if let Some(e) = &event {
                 recorder.contact_event(e)?;
                 if stop_at_contact_change {
@@ -1391,54 +1532,30 @@ impl<S: Stepper> Simulation<S> {
     /// dissipation are booked up to the point as the step books them; the peaks stay those of
     /// the whole internal steps taken so far.
     fn interpolate(&mut self, before: &RunState, at_ns: u64, stage: Stage) -> (StepResult, Peaks) {
-        let dt = seconds(self.state.result.time_ns - before.result.time_ns);
-        let tau = seconds(at_ns - before.result.time_ns);
-        let kinematics = if self.stepper.adapts_steps() {
-            // The exact advance's steps are long (up to 2^MAX_STEP_LEVEL of the plan's) and its
-            // modes turn many times within one: the point's state is the exact advance to it.
-            let mut k = self.backup.clone();
-            self.stepper.step(&mut k, stage, tau, &self.excitation_at(at_ns));
-            k
-        } else {
-            let (k0, k1) = (&self.backup, &self.state.kinematics);
-            linear_acceleration_within(k0, k1, dt, tau)
-        };
-        let (start, end) = (&before.result, &self.state.result);
-        let excitation = self.excitation_at(at_ns);
-        let (probes, mut energies) = self.stepper.measure(&kinematics, stage, &excitation);
-        let rate = self.gap_rate(&kinematics, stage, &excitation);
-        energies.dissipation_rate += self.contact_dissipation_rate(probes[Probe::Gap as usize], rate, stage);
-        let mut result = self.outputs(&probes, stage, at_ns, rate);
-        self.set_support_and_tips(&mut result, &kinematics, &excitation);
-        result.time_ns = at_ns;
-        // The work and the dissipation up to the point, booked as the step books them.
-        let dissipated = 0.5 * tau * (before.dissipation_rate + energies.dissipation_rate);
-        result.energy = self.energy_account(before, &result, stage, probes[Probe::Gap as usize], &energies, dissipated);
+        let (mut result, _) = self.point_record(before, at_ns, stage, None);
+        let start = before.result;
         result.step = start.step;
-        result.time = seconds(at_ns);
-        result.step_size = dt;
-        result.peaks = start.peaks;
         let mut times = before.peak_times;
+        self.output_peak_instants.clear();
         if self.polynomial_peaks() {
             // The running peaks up to the point: the largest |value| over the step's first part too,
             // so that a peak output is never below an output at a communication point.
-            let end_excitation = self.excitation_at(end.time_ns);
+            let end_ns = self.state.result.time_ns;
+            let fraction = seconds(at_ns - start.time_ns) / seconds(end_ns - start.time_ns);
+            let end_excitation = self.excitation_at(end_ns);
             let (end, _) = self.stepper.measure(&self.state.kinematics, stage, &end_excitation);
-            let (extremes, _) = self.step_extremes(start, &end, stage, tau / dt, None);
+            let (mut extremes, _) = self.step_extremes(&start, &end, stage, fraction, None);
             // The exact advance's point is its own value, not the cubic's: a peak is never below
             // an output.
+            let own = peak_values(&result);
+            let mut instants = std::mem::take(&mut self.output_peak_instants);
+            self.exact_extremes(&start, (at_ns, own), stage, &mut extremes, &mut instants);
+            self.output_peak_instants = instants;
             let at = seconds(at_ns);
-            let own = [
-                result.lower_tip_deflection,
-                result.lower_clamp_bending_stress,
-                result.lower_clamp_shear_stress,
-                result.upper_contact_bending_stress,
-                result.contact_force,
-            ];
             let peaks = result.peaks.as_mut_array();
             let when = times.as_mut_array();
             for k in 0..5 {
-                for (value, time) in [extremes[k], (own[k].abs(), at)] {
+                for (value, time) in [extremes[k], (own[k], at)] {
                     if value > *peaks[k] {
                         // Never past the point by the cubic's round-off.
                         (*peaks[k], *when[k]) = (value, time.min(at));
@@ -1447,6 +1564,111 @@ impl<S: Stepper> Simulation<S> {
             }
         }
         (result, times)
+    }
+
+    /// The record of the state at `at_ns` inside the step just taken from `before` (whose
+    /// kinematics are `self.backup`) to the current state, in `stage`: [`Self::point`]'s outputs
+    /// with the support reactions and tip velocities, and the energy account with the work and
+    /// the dissipation booked up to the point as the step books them; its peaks are `before`'s
+    /// and its `step_size` the whole step's.
+    fn point_record(
+        &mut self,
+        before: &RunState,
+        at_ns: u64,
+        stage: Stage,
+        given: Option<Kinematics>,
+    ) -> (StepResult, Kinematics) {
+        let dt = seconds(self.state.result.time_ns - before.result.time_ns);
+        let tau = seconds(at_ns - before.result.time_ns);
+        let kinematics = given.unwrap_or_else(|| self.point_kinematics(before.result.time_ns, at_ns, stage));
+        let mut result = self.point_outputs(&kinematics, at_ns, stage);
+        let excitation = self.excitation_at(at_ns);
+        let (probes, mut energies) = self.stepper.measure(&kinematics, stage, &excitation);
+        let rate = self.gap_rate(&kinematics, stage, &excitation);
+        energies.dissipation_rate += self.contact_dissipation_rate(probes[Probe::Gap as usize], rate, stage);
+        self.set_support_and_tips(&mut result, &kinematics, &excitation);
+        let dissipated = 0.5 * tau * (before.dissipation_rate + energies.dissipation_rate);
+        result.energy = self.energy_account(before, &result, stage, probes[Probe::Gap as usize], &energies, dissipated);
+        result.step = before.result.step;
+        result.step_size = dt;
+        result.peaks = before.result.peaks;
+        (result, kinematics)
+    }
+
+    /// Whether `recorder` gets the dense output inside each internal step (issue 41): it asks
+    /// for a sample interval and the run is the converged method's, whose steps are long and
+    /// whose peaks lie inside them (the paper method's log keeps its own step ends, one at least
+    /// every sample interval: the recorder decimates them).
+    fn samples_for(&self, recorder: &dyn Recorder) -> bool {
+        recorder.sample_interval_ns() > 0 && self.polynomial_peaks()
+    }
+
+    /// Sends `recorder` the dense output inside the step just taken from `before` (issue 41):
+    /// the state at every multiple of its sample interval and at every instant in `instants`
+    /// (where a running peak was raised), in time order, before `until_ns`. Each sample's peaks
+    /// are the run's up to its time: `before`'s, raised by `peaks` (the step's, with their times)
+    /// where they were reached by then.
+    fn record_samples(
+        &mut self,
+        recorder: &mut dyn Recorder,
+        before: &RunState,
+        until_ns: u64,
+        instants: &[u64],
+        (peaks, peak_times): (Peaks, Peaks),
+    ) -> Result<()> {
+        let interval = recorder.sample_interval_ns();
+        let start_ns = before.result.time_ns;
+        let stage = contact::stage(before.gap);
+        let mut times: Vec<u64> = instants.iter().copied().filter(|&t| t > start_ns && t < until_ns).collect();
+        let mut grid = (start_ns / interval + 1).saturating_mul(interval);
+        while grid < until_ns {
+            times.push(grid);
+            grid = grid.saturating_add(interval);
+        }
+        times.sort_unstable();
+        times.dedup();
+        let (values, when) = (peaks.as_array(), peak_times.as_array());
+        // The grid's samples follow each other by exact steps of the interval (whose
+        // coefficients the stepper keeps), each peak's instant from the step's start as
+        // [`Self::exact_extremes`] took it (the printed value, to the bit).
+        let mut walker = (start_ns, self.backup.clone());
+        for at_ns in times {
+            let given = if self.stepper.adapts_steps() && !instants.contains(&at_ns) {
+                let excitation = self.excitation_at(at_ns);
+                self.stepper.step_aside(&mut walker.1, stage, seconds(at_ns - walker.0), &excitation);
+                walker.0 = at_ns;
+                Some(walker.1.clone())
+            } else {
+                None
+            };
+            let (mut row, kinematics) = self.point_record(before, at_ns, stage, given);
+            row.step = before.result.step + 1;
+            row.step_size = seconds(at_ns - start_ns);
+            let at = seconds(at_ns);
+            for (k, peak) in row.peaks.as_mut_array().into_iter().enumerate() {
+                if when[k] > seconds(start_ns) && when[k] <= at {
+                    *peak = peak.max(values[k]);
+                }
+            }
+            if let Some(feed) = self.feed.listened() {
+                feed.set_loads(self.correction_loads(own(&kinematics), stage, &self.excitation_at(at_ns)));
+            }
+            recorder.sample(&row, kinematics.displacement.as_slice())?;
+        }
+        Ok(())
+    }
+
+    /// Records the internal step just taken from `before` (when the recorder takes samples: see
+    /// [`Self::samples_for`]): its dense output, then its end.
+    fn record_step(&mut self, recorder: &mut dyn Recorder, before: Option<&RunState>) -> Result<()> {
+        if let Some(before) = before {
+            let instants = std::mem::take(&mut self.peak_instants);
+            let peaks = (self.state.result.peaks, self.state.peak_times);
+            let sent = self.record_samples(recorder, before, self.state.result.time_ns, &instants, peaks);
+            self.peak_instants = instants;
+            sent?;
+        }
+        self.record(recorder, &self.state.result, &self.state.kinematics)
     }
 
     /// The energy account at `reached` after `before`'s latest step (a whole step's end, or a
@@ -1864,11 +2086,14 @@ impl<S: Stepper> Simulation<S> {
         let mut lower = BeamEnvelope { bending: take(&st.lower.bending), shear: take(&st.lower.shear) };
         let mut upper = BeamEnvelope { bending: take(&st.upper.bending), shear: take(&st.upper.shear) };
         // The paper's three points are stations too, the same functionals: their peaks, resolved
-        // within the steps by the probes' cubic (up to the outputs' point), raise them.
+        // within the steps by the probes' cubic (up to the outputs' point), raise them; the exact
+        // advance's peaks are its solution's own values where the cubic found them (issue 41,
+        // [`Self::exact_extremes`]), which the stations' cubic may overshoot: they stand there.
         let (peaks, times) = self.last_peaks();
         let (peaks, times) = (&peaks, &times);
+        let exact = self.stepper.adapts_steps();
         let raise = |e: &mut StationEnvelope, k: usize, value: f64, time: f64| {
-            if k < e.max.len() && value > e.max[k] {
+            if k < e.max.len() && (value > e.max[k] || exact) {
                 (e.max[k], e.times[k]) = (value, time);
             }
         };
@@ -1933,6 +2158,21 @@ fn range_rows(model: &Model, modal: &ModalSystem, shapes: &DMatrix<f64>, in_mode
 /// The state `tau` s into a linear-acceleration step of `dt` s from `k0` to `k1`: the
 /// acceleration linear over the step (Eq. 11's assumption), so the displacement cubic and the
 /// velocity quadratic.
+/// The probe of each peak output, in the order of [`Peaks::as_array`] (the contact force's: the gap).
+const PEAK_PROBES: [Probe; 5] =
+    [Probe::LowerTipDeflection, Probe::ClampMoment, Probe::ClampShear, Probe::UpperContactMoment, Probe::Gap];
+
+/// The |value| of each peak output of `result`, in the order of [`Peaks::as_array`].
+fn peak_values(result: &StepResult) -> [f64; 5] {
+    [
+        result.lower_tip_deflection.abs(),
+        result.lower_clamp_bending_stress.abs(),
+        result.lower_clamp_shear_stress.abs(),
+        result.upper_contact_bending_stress.abs(),
+        result.contact_force.abs(),
+    ]
+}
+
 fn linear_acceleration_within(k0: &Kinematics, k1: &Kinematics, dt: f64, tau: f64) -> Kinematics {
     let jerk = (&k1.acceleration - &k0.acceleration) / dt;
     Kinematics {

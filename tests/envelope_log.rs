@@ -48,20 +48,33 @@ fn lists(e: &StressEnvelope) -> [&StationEnvelope; 4] {
     [&e.lower.bending, &e.lower.shear, &e.upper.bending, &e.upper.shear]
 }
 
-/// A rebuilt envelope against the run's `run`: never above it (beyond single precision, 1e-6 of
-/// the beam's largest stress), below it by at most 3e-2 of the beam's largest: a station's crest
-/// inside a long contact step (the bar's force a cubic over it) is in the run's envelope, not in
-/// the recorded step ends (measured on these runs: 2.2e-2 at most, shear stations beside the
-/// contact; 1.0e-2 bending), positions and allowables equal.
+/// A rebuilt envelope against the run's `run`: below it by at most 3e-2 of the beam's largest
+/// stress (a station's crest between two recorded rows is in the run's envelope, not in the
+/// rows: measured on these runs before the dense output, 2.2e-2 at most, shear stations beside
+/// the contact; 1.0e-2 bending), positions and allowables equal; and above it by at most
+/// [`ENVELOPE_CUBIC_MISS`] of the beam's largest: the run's envelope takes each station's crest
+/// inside a step from the cubic through the step's ends, while the log's dense output (issue 41)
+/// records the exact solution, which the cubic undershoots at stations with fast content.
 fn assert_rebuilt(rebuilt: &StressEnvelope, run: &StressEnvelope, what: &str) {
     for (k, ((x, y), scale)) in lists(rebuilt).into_iter().zip(lists(run)).zip(largest(run)).enumerate() {
         assert_eq!(x.positions, y.positions, "{what}: list {k}");
         assert_eq!(x.allowable, y.allowable, "{what}: list {k}");
         for (i, (u, v)) in x.max.iter().zip(&y.max).enumerate() {
-            assert!(u - v <= 1e-6 * scale && v - u <= 3e-2 * scale, "{what}: list {k} station {i}: {u} vs {v}");
+            assert!(
+                u - v <= ENVELOPE_CUBIC_MISS * scale && v - u <= 3e-2 * scale,
+                "{what}: list {k} station {i}: {u} vs {v} ({:.2e} of the largest)",
+                (u - v) / scale
+            );
         }
     }
 }
+
+/// The envelope's in-step cubic below the exact solution at a station, as a fraction of the
+/// beam's largest stress: measured 2.3e-3 (the tapered arrestor's second shear station, 61.67
+/// against 61.50 MPa) and 3.1e-3 (the three-section gangway's bridge, bending station 98, 249.94
+/// against 248.85 MPa), with single precision's 1e-6 on top. A limit of the envelope's in-step
+/// estimate the dense output showed (issue 41's note), not of the log.
+const ENVELOPE_CUBIC_MISS: f64 = 5e-3;
 
 /// What the recorded stresses of `data` must rebuild: the run's envelope `run`, raised by the last
 /// recorded row when the run ended inside an internal step (the converged method records that
@@ -237,7 +250,8 @@ pub fn recorded_run(
 /// steps where a peak rises or contact changes, the last); the attachment is the whole run's.
 #[test]
 fn decimation_keeps_the_stresses_of_the_recorded_steps_and_the_whole_envelope() {
-    let options = RecorderOptions { record_every: 50, scene_interval_ns: 0, ..RecorderOptions::default() };
+    let options =
+        RecorderOptions { record_every: 50, sample_interval_ns: 0, scene_interval_ns: 0, ..RecorderOptions::default() };
     let (bytes, run) = recorded_run(1.0, options, &|_| {});
     let data = read_log_bytes(&bytes, Path::new("decimated.mcap")).unwrap();
     assert_eq!(data.stations.steps, data.steps.iter().map(|r| r.step).collect::<Vec<_>>());

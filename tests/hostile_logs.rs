@@ -158,7 +158,12 @@ fn a_stored_scenario_beyond_the_limits_is_refused_before_any_model_is_built() {
 fn a_rollback_heavy_log_reads_every_rollback() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("rollbacks.mcap");
-    let options = beam_impact::record::mcap::RecorderOptions { scene_interval_ns: 0, ..Default::default() };
+    // Every step a row (the synthetic steps are no run's: no dense output).
+    let options = beam_impact::record::mcap::RecorderOptions {
+        scene_interval_ns: 0,
+        sample_interval_ns: 0,
+        ..Default::default()
+    };
     synthetic_log(&path, &beam_impact::Scenario::default(), 160_000, true, options);
     let log = beam_impact::replay::report::read_log(&path).unwrap();
     assert!(log.complete, "{:?}", log.problem);

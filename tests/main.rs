@@ -47,6 +47,7 @@ mod fuzz_state;
 mod hostile_logs;
 mod hostile_motion;
 mod hostile_outputs;
+mod log_peaks;
 mod mcap_format2;
 mod mcap_killed;
 mod mcap_layout;

@@ -67,7 +67,7 @@ fn decimation_keeps_step_0_the_last_step_contact_changes_and_every_peak() {
     let path = dir.path().join("every10.mcap");
     // 1.5 s: the first sustained contact (to 0.75 s, where the peaks rise) and the bounces after.
     let scenario = Scenario { duration: 1.5, ..Scenario::paper() };
-    let options = RecorderOptions { record_every: 10, ..Default::default() };
+    let options = RecorderOptions { record_every: 10, sample_interval_ns: 0, ..Default::default() };
     let (memory, simulation) = record(&scenario, &path, options);
     let log = read_log(&path).unwrap();
     assert!(log.complete);

@@ -25,7 +25,9 @@ fn paper_run_log_holds_every_step_and_rebuilds_the_summary() {
     let scenario = Scenario::paper();
     let mut simulation = Simulation::new(&scenario).unwrap();
     let mut memory = MemoryRecorder::default();
-    let mut mcap = McapRecorder::create(&path).unwrap();
+    // A log of every internal step (without the dense output, issue 41).
+    let every_step = RecorderOptions { sample_interval_ns: 0, ..RecorderOptions::default() };
+    let mut mcap = McapRecorder::with_options(&path, every_step).unwrap();
     let summary = simulation.run(&mut Tee(&mut memory, &mut mcap)).unwrap();
 
     let log = read_log(&path).unwrap();
@@ -137,7 +139,8 @@ fn rolled_back_steps_are_superseded_in_the_log() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("rollback.mcap");
     let scenario = Scenario { duration: 1.0, ..Scenario::paper() };
-    let mut recorder = McapRecorder::create(&path).unwrap();
+    let every_step = RecorderOptions { sample_interval_ns: 0, ..RecorderOptions::default() };
+    let mut recorder = McapRecorder::with_options(&path, every_step).unwrap();
     let mut simulation = Simulation::new(&scenario).unwrap();
     simulation.start_recording(&mut recorder).unwrap();
     simulation.advance_to(400_000_000, &mut recorder, false).unwrap();
@@ -165,6 +168,41 @@ fn rolled_back_steps_are_superseded_in_the_log() {
     let summary = summary_from_log(&data, &Simulation::new(&scenario).unwrap()).unwrap();
     assert_eq!(summary.peaks, reference.peaks);
     assert_eq!(summary.contact_windows, reference.contact_windows);
+}
+
+/// A rolled-back run's log with the dense output (issue 41): the converged method's samples of
+/// the superseded branch go with it, and the log reads as the straight run's, row for row.
+#[test]
+fn rolled_back_samples_are_superseded_in_the_log() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = Scenario { duration: 0.6, ..Scenario::default() };
+    let path = dir.path().join("rollback.mcap");
+    let mut recorder = McapRecorder::create(&path).unwrap();
+    let mut simulation = Simulation::new(&scenario).unwrap();
+    simulation.start_recording(&mut recorder).unwrap();
+    simulation.advance_outputs_to(200_000_000, &mut recorder, false).unwrap();
+    let saved = simulation.state().clone();
+    simulation.advance_outputs_to(500_000_000, &mut recorder, false).unwrap();
+    simulation.restore(saved).unwrap();
+    recorder.rollback(simulation.result()).unwrap();
+    simulation.finish_at(600_000_000, &mut recorder, false).unwrap();
+    recorder.finish().unwrap();
+
+    let straight_path = dir.path().join("straight.mcap");
+    let mut straight_recorder = McapRecorder::create(&straight_path).unwrap();
+    let mut straight = Simulation::new(&scenario).unwrap();
+    straight.start_recording(&mut straight_recorder).unwrap();
+    straight.advance_outputs_to(200_000_000, &mut straight_recorder, false).unwrap();
+    straight.finish_at(600_000_000, &mut straight_recorder, false).unwrap();
+    straight_recorder.finish().unwrap();
+
+    let (data, reference) = (read_log(&path).unwrap(), read_log(&straight_path).unwrap());
+    assert_eq!(data.rollbacks, 1);
+    assert!(reference.steps.len() > 6000, "{} rows: the dense output every 0.1 ms", reference.steps.len());
+    assert_eq!(data.steps.len(), reference.steps.len());
+    assert!(data.steps == reference.steps, "the rows read back differ from the straight run's");
+    assert_eq!(data.stations.times_ns, reference.stations.times_ns);
+    assert_eq!(data.stations.values, reference.stations.values);
 }
 
 /// Issue 16 item 9: the size cap was checked on the log's path, so renaming the log mid-run

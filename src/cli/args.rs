@@ -177,11 +177,18 @@ pub struct RunArgs {
     /// Refuse runs that need more internal steps than this (duration over the smaller step).
     #[arg(long, default_value_t = beam_impact::model::scenario::MAX_STEPS)]
     pub max_steps: u64,
-    /// Record every Nth internal step to the MCAP log (for long runs). Step 0, the last step,
-    /// the steps on both sides of a contact change and every step where a running peak changes
-    /// are recorded whatever N.
+    /// Record every Nth internal step to the MCAP log (for long runs), instead of the dense
+    /// output (--log-sample-interval 0). Step 0, the last step, the steps on both sides of a
+    /// contact change and every step where a running peak changes are recorded whatever N.
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
     pub record_every: u64,
+    /// The MCAP log's dense output, s of simulated time: the converged method's log holds the
+    /// exact state at every multiple of it and wherever a running peak is reached (so the log's
+    /// largest values are the printed peaks), the paper method's log one of its own steps at
+    /// least this often; both keep the steps where contact starts or ends or a peak rises. 0:
+    /// every internal step (thinned by --record-every) [default: 1e-4; with --record-every: 0].
+    #[arg(long, value_name = "SECONDS")]
+    pub log_sample_interval: Option<f64>,
     /// Leave the modal coordinates (topic /beam/modes) out of the MCAP log; the 3D scene is still
     /// drawn, `report` then cannot give the bridge's strain energy at the peak deflection.
     #[arg(long)]

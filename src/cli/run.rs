@@ -78,10 +78,26 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     let mut recorder: Box<dyn Recorder + Send> = if args.no_mcap {
         Box::new(NullRecorder)
     } else {
+        let sample_interval_ns = match (args.log_sample_interval, args.record_every) {
+            (None, 1) => beam_impact::record::options::DEFAULT_SAMPLE_INTERVAL_NS,
+            (None, _) => 0,
+            (Some(seconds), every) => {
+                let ns = beam_impact::record::options::sample_interval_ns("--log-sample-interval", seconds)
+                    .map_err(beam_impact::Error::Other)?;
+                if ns > 0 && every > 1 {
+                    return Err(beam_impact::Error::Other(format!(
+                        "--record-every {every} thins a log of every internal step: give --log-sample-interval 0 \
+                         with it, or leave it out for the dense output every {seconds} s"
+                    )));
+                }
+                ns
+            }
+        };
         let options = RecorderOptions {
             allow_devices: true,
             max_bytes: args.max_log_bytes,
             record_every: args.record_every,
+            sample_interval_ns,
             modal_coordinates: !args.no_modal_coordinates,
             station_stresses: !args.no_station_stresses,
             compression: args.log_compression,
@@ -257,6 +273,12 @@ impl Recorder for Progress<'_> {
             self.say_progress(result);
         }
         self.inner.step(result, modal_coordinates)
+    }
+    fn sample_interval_ns(&self) -> u64 {
+        self.inner.sample_interval_ns()
+    }
+    fn sample(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()> {
+        self.inner.sample(result, modal_coordinates)
     }
     fn contact_event(&mut self, event: &ContactEvent) -> Result<()> {
         self.inner.contact_event(event)

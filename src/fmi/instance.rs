@@ -213,6 +213,12 @@ impl Recorder for Tap<'_> {
     fn step(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> crate::Result<()> {
         self.send(|r| r.step(result, modal_coordinates))
     }
+    fn sample_interval_ns(&self) -> u64 {
+        self.inner.as_deref().map_or(0, Recorder::sample_interval_ns)
+    }
+    fn sample(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> crate::Result<()> {
+        self.send(|r| r.sample(result, modal_coordinates))
+    }
     fn contact_event(&mut self, event: &ContactEvent) -> crate::Result<()> {
         self.events.push(*event);
         self.send(|r| r.contact_event(event))

@@ -104,6 +104,9 @@ pub struct McapRecorder {
     peak_coordinates: Vec<f64>,
     next_scene_ns: u64,
     next_modes_ns: u64,
+    /// The next multiple of the sample interval at or after which an internal step's end is
+    /// recorded (when no sample came since), ns.
+    next_sample_ns: u64,
     has_scene: bool,
     /// The stations' feed (issue 30), held while the run has stations.
     feed: Option<Arc<StationFeed>>,
@@ -210,6 +213,7 @@ impl McapRecorder {
             peak_coordinates: Vec::new(),
             next_scene_ns: 0,
             next_modes_ns: 0,
+            next_sample_ns: 0,
             has_scene: false,
             feed: None,
             station_stride: 1,
@@ -254,6 +258,76 @@ impl McapRecorder {
         }
     }
 
+    /// A row for `/beam/step`: an internal step's end (`sample` false: recorded or left out by
+    /// the decimation rule, see the module's documentation) or a sample of the dense output
+    /// (always recorded); the scene's and the modes' ticks follow either.
+    fn observe(&mut self, result: &StepResult, modal_coordinates: &[f64], sample: bool) -> Result<()> {
+        if self.finished {
+            return Err(self.err("the log is already finished"));
+        }
+        if self.capped.get().is_some() {
+            return Ok(());
+        }
+        let (peaks_changed, stage_changed, deflection_peak) = match &self.previous {
+            None => (true, true, true),
+            Some(p) => (
+                p.peaks != result.peaks,
+                p.contact != result.contact,
+                p.peaks.lower_tip_deflection != result.peaks.lower_tip_deflection,
+            ),
+        };
+        let interval = self.options.sample_interval_ns;
+        let regular = match interval {
+            0 => result.step.is_multiple_of(self.options.record_every.max(1)),
+            _ => sample || result.time_ns >= self.next_sample_ns,
+        };
+        if let (Some(ticks), true) = (result.time_ns.checked_div(interval), regular) {
+            self.next_sample_ns = ticks.saturating_add(1).saturating_mul(interval);
+        }
+        let keep = peaks_changed || stage_changed || regular;
+        self.previous = Some(*result);
+        self.coordinates.clear();
+        self.coordinates.extend_from_slice(modal_coordinates);
+        self.coordinates_sent = false;
+        self.pending = !keep;
+        if let Some(feed) = &self.feed {
+            self.loads = feed.loads();
+        }
+        if keep {
+            self.push(Item::Step(*result, sample));
+            self.push_stations(result);
+        }
+        if deflection_peak && self.options.modal_coordinates {
+            self.peak = Some((result.step, result.time_ns));
+            self.peak_coordinates.clear();
+            self.peak_coordinates.extend_from_slice(modal_coordinates);
+        }
+        let scene = self.has_scene && result.time_ns >= self.next_scene_ns;
+        if scene {
+            let interval = self.options.scene_interval_ns;
+            self.next_scene_ns = (result.time_ns / interval + 1) * interval;
+        }
+        let mut modes = stage_changed;
+        if self.options.modes_interval_ns > 0 && result.time_ns >= self.next_modes_ns {
+            let interval = self.options.modes_interval_ns;
+            self.next_modes_ns = (result.time_ns / interval + 1) * interval;
+            modes = true;
+        }
+        let log = modes && self.options.modal_coordinates;
+        if log || scene {
+            self.push_modes(log, scene);
+        }
+        if log {
+            // The peak's shape from an earlier step of this tick.
+            self.push_peak();
+        }
+        self.batch.steps += 1;
+        if self.batch.steps >= BATCH_STEPS {
+            self.send()?;
+        }
+        Ok(())
+    }
+
     fn push(&mut self, item: Item) {
         self.batch.items.push(item);
     }
@@ -285,7 +359,7 @@ impl McapRecorder {
     /// coordinates of the latest deflection peak.
     fn record_pending(&mut self) {
         if let (true, Some(r)) = (self.pending, self.previous) {
-            self.push(Item::Step(r));
+            self.push(Item::Step(r, false));
             self.push_stations(&r);
             self.pending = false;
         }
@@ -432,69 +506,22 @@ impl Recorder for McapRecorder {
         }
         self.next_scene_ns = 0;
         self.next_modes_ns = 0;
+        self.next_sample_ns = 0;
         self.previous = None;
         self.pending = false;
         Ok(())
     }
 
+    fn sample_interval_ns(&self) -> u64 {
+        self.options.sample_interval_ns
+    }
+
+    fn sample(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()> {
+        self.observe(result, modal_coordinates, true)
+    }
+
     fn step(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()> {
-        if self.finished {
-            return Err(self.err("the log is already finished"));
-        }
-        if self.capped.get().is_some() {
-            return Ok(());
-        }
-        let (peaks_changed, stage_changed, deflection_peak) = match &self.previous {
-            None => (true, true, true),
-            Some(p) => (
-                p.peaks != result.peaks,
-                p.contact != result.contact,
-                p.peaks.lower_tip_deflection != result.peaks.lower_tip_deflection,
-            ),
-        };
-        let every = self.options.record_every.max(1);
-        let keep = peaks_changed || stage_changed || result.step.is_multiple_of(every);
-        self.previous = Some(*result);
-        self.coordinates.clear();
-        self.coordinates.extend_from_slice(modal_coordinates);
-        self.coordinates_sent = false;
-        self.pending = !keep;
-        if let Some(feed) = &self.feed {
-            self.loads = feed.loads();
-        }
-        if keep {
-            self.push(Item::Step(*result));
-            self.push_stations(result);
-        }
-        if deflection_peak && self.options.modal_coordinates {
-            self.peak = Some((result.step, result.time_ns));
-            self.peak_coordinates.clear();
-            self.peak_coordinates.extend_from_slice(modal_coordinates);
-        }
-        let scene = self.has_scene && result.time_ns >= self.next_scene_ns;
-        if scene {
-            let interval = self.options.scene_interval_ns;
-            self.next_scene_ns = (result.time_ns / interval + 1) * interval;
-        }
-        let mut modes = stage_changed;
-        if self.options.modes_interval_ns > 0 && result.time_ns >= self.next_modes_ns {
-            let interval = self.options.modes_interval_ns;
-            self.next_modes_ns = (result.time_ns / interval + 1) * interval;
-            modes = true;
-        }
-        let log = modes && self.options.modal_coordinates;
-        if log || scene {
-            self.push_modes(log, scene);
-        }
-        if log {
-            // The peak's shape from an earlier step of this tick.
-            self.push_peak();
-        }
-        self.batch.steps += 1;
-        if self.batch.steps >= BATCH_STEPS {
-            self.send()?;
-        }
-        Ok(())
+        self.observe(result, modal_coordinates, false)
     }
 
     fn attach(&mut self, name: &str, media_type: &str, data: &[u8]) -> Result<()> {
@@ -529,6 +556,11 @@ impl Recorder for McapRecorder {
         }
         self.peak = None;
         self.push(Item::Rollback(*result));
+        // The dense output goes on from the restored time.
+        let interval = self.options.sample_interval_ns;
+        if let Some(ticks) = result.time_ns.checked_div(interval) {
+            self.next_sample_ns = ticks.saturating_add(1).saturating_mul(interval);
+        }
         self.previous = Some(*result);
         self.pending = false;
         // The restored step's coordinates are not known here: none are owed for it.

@@ -35,6 +35,20 @@ pub trait Recorder {
     fn start(&mut self, info: &RunInfo<'_>) -> Result<()>;
     /// One internal step, with the modal coordinates from which the deflected shapes follow.
     fn step(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()>;
+    /// The simulated time between two samples of the dense output the recorder asks for, ns (0:
+    /// none, every internal step is what it gets). See [`Recorder::sample`].
+    fn sample_interval_ns(&self) -> u64 {
+        0
+    }
+    /// A sample of the dense output (issue 41): the state at an instant inside the internal step
+    /// `result.step` (every multiple of [`Recorder::sample_interval_ns`], and every instant where
+    /// a running peak was reached), from the exact solution there, with its modal coordinates;
+    /// sent before that step's end, in time order. `result.step_size` is the time since the
+    /// step's start, and its peaks the run's up to the sample.
+    fn sample(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()> {
+        let _ = (result, modal_coordinates);
+        Ok(())
+    }
     /// A contact stage starts or ends.
     fn contact_event(&mut self, event: &ContactEvent) -> Result<()>;
     /// The run was rolled back (an FMU state was restored) to `result`: the steps after it that
@@ -101,6 +115,10 @@ pub struct MemoryRecorder {
     pub finished: bool,
     /// The nodal shape matrix given at start.
     pub nodal_shapes: Option<DMatrix<f64>>,
+    /// The dense output's interval it asks for, ns (0: none).
+    pub sample_interval_ns: u64,
+    /// Every sample of the dense output, in order.
+    pub samples: Vec<StepResult>,
 }
 
 impl Recorder for MemoryRecorder {
@@ -112,6 +130,13 @@ impl Recorder for MemoryRecorder {
     fn step(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()> {
         self.steps.push(*result);
         self.coordinates.push(modal_coordinates.to_vec());
+        Ok(())
+    }
+    fn sample_interval_ns(&self) -> u64 {
+        self.sample_interval_ns
+    }
+    fn sample(&mut self, result: &StepResult, _: &[f64]) -> Result<()> {
+        self.samples.push(*result);
         Ok(())
     }
     fn contact_event(&mut self, event: &ContactEvent) -> Result<()> {

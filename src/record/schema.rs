@@ -379,13 +379,14 @@ mod tests {
             "upper_tip_velocity",
             "upper_support_displacement",
             "lower_support_displacement",
+            "sample",
         ];
-        assert_eq!(step.len(), 23);
+        assert_eq!(step.len(), 24);
         for (k, (field, name)) in step.iter().zip(names).enumerate() {
             let number = k as i32 + 1;
             let (ty, label) = match number {
                 1 | 2 => (Uint64, o),
-                5 => (Bool, o),
+                5 | 24 => (Bool, o),
                 14 | 15 => (Msg, o),
                 16 => (Float, Label::Repeated),
                 _ => (Double, o),
@@ -467,6 +468,7 @@ mod tests {
             upper_tip_velocity: 21.5,
             upper_support_displacement: 22.5,
             lower_support_displacement: 23.5,
+            sample: true,
         };
         let types = messages(&beam_impact_descriptor());
         let decoded = decode_by_schema(&types, ".beam_impact.Step", &step.encode_to_vec());
@@ -481,8 +483,9 @@ mod tests {
         assert_eq!(decoded["step"], 1);
         assert_eq!(decoded["time_ns"], 2);
         assert_eq!(decoded["contact"], 1);
+        assert_eq!(decoded["sample"], 1);
         assert_eq!(f32::from_bits(decoded["modal_coordinates"] as u32), 16.5);
-        assert_eq!(decoded.len(), 23 - 2 + 6 + 5, "{decoded:?}");
+        assert_eq!(decoded.len(), 24 - 2 + 6 + 5, "{decoded:?}");
 
         let stations = StationStressesMessage {
             step: 9,

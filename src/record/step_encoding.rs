@@ -19,8 +19,8 @@ const LENGTH_DELIMITED: u8 = 2;
 
 /// The largest message: two 10-byte varints and their keys (22), `step_size` (9), `contact` (2),
 /// 8 doubles (72), the energy account (2 + 54) and the peaks (2 + 45), 7 doubles with two-byte
-/// keys (70): 278 bytes.
-const MAX_BYTES: usize = 278;
+/// keys (70), `sample` (3): 281 bytes.
+const MAX_BYTES: usize = 281;
 
 /// The message built in a fixed array (one pass, no capacity checks), then appended at once.
 struct Bytes {
@@ -79,7 +79,8 @@ impl Bytes {
 /// Appends the `beam_impact.Step` message of `r` to the cleared `buffer` as log format 2 writes
 /// it: `time` (field 3) left out, `modal_coordinates` (16) empty, and `peaks` (15) only if
 /// `with_peaks`.
-pub fn encode_step(buffer: &mut Vec<u8>, r: &StepResult, with_peaks: bool) {
+/// `sample` marks a sample of the dense output (field 24).
+pub fn encode_step(buffer: &mut Vec<u8>, r: &StepResult, with_peaks: bool, sample: bool) {
     let mut b = Bytes { bytes: [0; MAX_BYTES], len: 0 };
     b.uint64(1, r.step);
     b.uint64(2, r.time_ns);
@@ -118,6 +119,10 @@ pub fn encode_step(buffer: &mut Vec<u8>, r: &StepResult, with_peaks: bool) {
     b.double(21, r.upper_tip_velocity);
     b.double(22, r.upper_support_displacement);
     b.double(23, r.lower_support_displacement);
+    if sample {
+        b.key(24, VARINT);
+        b.push(1);
+    }
     buffer.clear();
     buffer.extend_from_slice(&b.bytes[..b.len]);
 }
@@ -131,9 +136,10 @@ mod tests {
     use crate::results::{EnergyAccount, Peaks};
 
     /// prost's bytes of the same message: the generated code from proto/ is the oracle.
-    fn prost_bytes(r: &StepResult, with_peaks: bool) -> Vec<u8> {
+    fn prost_bytes(r: &StepResult, with_peaks: bool, sample: bool) -> Vec<u8> {
         let mut message = StepMessage::default();
         message.fill(r);
+        message.sample = sample;
         message.time = 0.0;
         if !with_peaks {
             message.peaks = None;
@@ -142,10 +148,10 @@ mod tests {
     }
 
     fn assert_same(r: &StepResult) {
-        for with_peaks in [true, false] {
+        for (with_peaks, sample) in [(true, false), (false, false), (true, true), (false, true)] {
             let mut ours = Vec::new();
-            encode_step(&mut ours, r, with_peaks);
-            assert_eq!(ours, prost_bytes(r, with_peaks), "{r:?} (peaks: {with_peaks})");
+            encode_step(&mut ours, r, with_peaks, sample);
+            assert_eq!(ours, prost_bytes(r, with_peaks, sample), "{r:?} (peaks: {with_peaks}, sample: {sample})");
             // And it decodes to the same result (time and peaks aside).
             let decoded = StepMessage::decode(ours.as_slice()).unwrap().result();
             assert_eq!(decoded.step, r.step);

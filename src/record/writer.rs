@@ -80,7 +80,8 @@ pub(super) struct StartRecord {
 #[derive(Debug)]
 pub(super) enum Item {
     Start(Box<StartRecord>),
-    Step(StepResult),
+    /// A row of `/beam/step`: an internal step's end, or (true) a sample of the dense output.
+    Step(StepResult, bool),
     /// The modal coordinates `batch.coordinates[offset..offset + len]` of `step` at `time_ns`:
     /// logged on the modes topic at log time `log_time_ns` (`log`; later than `time_ns` for a
     /// peak's coordinates written at the end of their interval, so log times never decrease)
@@ -184,7 +185,7 @@ pub(super) struct LogWriter {
     stations: Option<(StationLayout, std::sync::Arc<StationRows>)>,
     /// The latest stresses evaluated (every station, signed, Pa) and their step.
     station_values: Vec<f64>,
-    station_step: Option<u64>,
+    station_step: Option<(u64, u64)>,
     station_message: StationStressesMessage,
     steps_since_flush: u64,
     timing: RecorderTiming,
@@ -261,7 +262,7 @@ impl LogWriter {
             }
             match item {
                 Item::Start(start) => self.start(start)?,
-                Item::Step(result) => self.write_step(result)?,
+                &Item::Step(ref result, sample) => self.write_step(result, sample)?,
                 &Item::Modes { step, time_ns, log_time_ns, offset, len, log, scene, loads } => {
                     let q = &batch.coordinates[offset..offset + len];
                     self.write_modes(step, time_ns, log_time_ns, q, log, scene.then_some(loads))?;
@@ -328,14 +329,14 @@ impl LogWriter {
         result.map_err(|e| self.err(e))
     }
 
-    fn write_step(&mut self, result: &StepResult) -> Result<()> {
+    fn write_step(&mut self, result: &StepResult, sample: bool) -> Result<()> {
         self.last_time_ns = result.time_ns;
         let started = self.options.timing.then(Instant::now);
         // Format 2: no `time` (it is time_ns / 1e9), and no peaks when they are the previous
         // step message's.
         let with_peaks = self.peaks != Some(result.peaks);
         self.peaks = Some(result.peaks);
-        super::step_encoding::encode_step(&mut self.buffer, result, with_peaks);
+        super::step_encoding::encode_step(&mut self.buffer, result, with_peaks, sample);
         lap(started, &mut self.timing.encode);
         self.write_buffer(self.channels.step, result.time_ns)?;
         self.steps_since_flush += 1;
@@ -348,20 +349,20 @@ impl LogWriter {
     /// Evaluates every station's stress at `step` from `q` and `loads` into `station_values`
     /// (once per step: the stations message and the scene of one step share it). False without
     /// stations.
-    fn evaluate_stations(&mut self, step: u64, q: &[f64], loads: Option<[f64; LOADS]>) -> bool {
+    fn evaluate_stations(&mut self, (step, time_ns): (u64, u64), q: &[f64], loads: Option<[f64; LOADS]>) -> bool {
         let Some((_, rows)) = &self.stations else { return false };
-        if self.station_step != Some(step) {
+        if self.station_step != Some((step, time_ns)) {
             let started = self.options.timing.then(Instant::now);
             rows.stresses(q, loads.as_ref(), &mut self.station_values);
             lap(started, &mut self.timing.encode);
-            self.station_step = Some(step);
+            self.station_step = Some((step, time_ns));
         }
         true
     }
 
     /// Writes the stresses at every station of `step` (`/beam/stations`).
     fn write_stations(&mut self, step: u64, time_ns: u64, q: &[f64], loads: Option<[f64; LOADS]>) -> Result<()> {
-        if !self.evaluate_stations(step, q, loads) {
+        if !self.evaluate_stations((step, time_ns), q, loads) {
             return Ok(());
         }
         let Some((layout, _)) = &self.stations else { return Ok(()) };
@@ -404,7 +405,7 @@ impl LogWriter {
             self.write_buffer(self.channels.modes, log_time_ns)?;
         }
         if let (Some(loads), true) = (scene, self.scene.is_some()) {
-            let stresses = self.evaluate_stations(step, q, loads);
+            let stresses = self.evaluate_stations((step, time_ns), q, loads);
             if let Some(builder) = self.scene.as_mut() {
                 let started = self.options.timing.then(Instant::now);
                 let stresses = stresses.then_some(self.station_values.as_slice());

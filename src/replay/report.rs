@@ -386,6 +386,8 @@ pub fn read_log_bytes_with(bytes: &[u8], path: &Path, options: ReadOptions) -> R
 struct ReadState {
     topics: BTreeMap<u16, String>,
     step: StepMessage,
+    /// Whether the last step message was a sample of the dense output (issue 41).
+    last_sample: bool,
     last_time: u64,
     model_toml: Option<String>,
     retained: u64,
@@ -442,7 +444,15 @@ impl ReadState {
                         let mut result = self.step.result();
                         // Format 2 leaves out the time in seconds: it is time_ns / 1e9 (format 1's).
                         result.time = seconds(result.time_ns);
-                        let rollback = data.steps.last().is_some_and(|last| result.step <= last.step);
+                        // Rows of one step: its dense output's samples (issue 41), in time order, then
+                        // its end. Any other row of a step not after the last one's is a rollback's.
+                        let sample = self.step.sample;
+                        let follows = |last: &StepResult| {
+                            result.step > last.step
+                                || (result.step == last.step && self.last_sample && result.time_ns > last.time_ns)
+                        };
+                        let rollback = data.steps.last().is_some_and(|last| !follows(last));
+                        self.last_sample = sample;
                         data.monotonic &= !decreasing || rollback;
                         if rollback && self.history {
                             data.history.rollbacks.push((data.history.modal_steps.len(), result.step));
@@ -518,7 +528,9 @@ impl ReadState {
                             ));
                         }
                         // Rows in step order: a row of an earlier step (a rollback's) replaces the tail.
-                        if data.stations.steps.last().is_some_and(|&last| m.step <= last) {
+                        let last_time = data.stations.times_ns.last().copied().unwrap_or(0);
+                        let follows = |last: u64| m.step > last || (m.step == last && m.time_ns > last_time);
+                        if data.stations.steps.last().is_some_and(|&last| !follows(last)) {
                             data.stations.roll_back(m.step);
                         }
                         self.keep(4 * given + 16, at, "stations message")?;

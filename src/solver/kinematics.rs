@@ -122,6 +122,12 @@ pub trait Stepper {
         self.step(state, stage, dt, excitation);
         self.measure(state, stage, excitation)
     }
+    /// [`Stepper::step`] to a point inside the step just taken (a dense output's sample, a
+    /// peak's instant), leaving what the stepper says of that step ([`Stepper::step_dissipation`],
+    /// [`Stepper::force_ramp_error`]) as it was.
+    fn step_aside(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, excitation: &Excitation) {
+        self.step(state, stage, dt, excitation);
+    }
     /// Sets the acceleration that Eq. (1) gives for the state's displacement and velocity under
     /// `excitation` (gravity included): M a = F - K delta - C delta', with the bar in contact.
     /// Used where the load jumps, so that the next step starts from equilibrium.

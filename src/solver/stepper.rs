@@ -974,6 +974,12 @@ impl Stepper for ModalStepper {
         self.advance::<true>(state, stage, dt, excitation)
     }
 
+    fn step_aside(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, excitation: &Excitation) {
+        let kept = (self.last_dissipation, self.last_force_error);
+        self.advance::<false>(state, stage, dt, excitation);
+        (self.last_dissipation, self.last_force_error) = kept;
+    }
+
     fn step_dissipation(&self) -> Option<f64> {
         self.last_dissipation
     }

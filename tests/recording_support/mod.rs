@@ -16,6 +16,14 @@ impl Recorder for Tee<'_> {
         self.0.step(result, q)?;
         self.1.step(result, q)
     }
+    /// The first recorder's interval (the log's): the second gets the same samples.
+    fn sample_interval_ns(&self) -> u64 {
+        self.0.sample_interval_ns()
+    }
+    fn sample(&mut self, result: &StepResult, q: &[f64]) -> beam_impact::Result<()> {
+        self.0.sample(result, q)?;
+        self.1.sample(result, q)
+    }
     fn contact_event(&mut self, event: &ContactEvent) -> beam_impact::Result<()> {
         self.0.contact_event(event)?;
         self.1.contact_event(event)

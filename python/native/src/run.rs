@@ -107,6 +107,13 @@ impl Recorder for Outputs {
         }
         self.log.as_mut().map_or(Ok(()), |l| l.step(result, q))
     }
+    fn sample_interval_ns(&self) -> u64 {
+        self.log.as_ref().map_or(0, Recorder::sample_interval_ns)
+    }
+    /// The dense output goes to the log; the series keeps the internal steps.
+    fn sample(&mut self, result: &StepResult, q: &[f64]) -> beam_impact::Result<()> {
+        self.log.as_mut().map_or(Ok(()), |l| l.sample(result, q))
+    }
     fn contact_event(&mut self, event: &ContactEvent) -> beam_impact::Result<()> {
         self.log.as_mut().map_or(Ok(()), |l| l.contact_event(event))
     }
