@@ -255,8 +255,9 @@ pub(crate) fn matches(block: &str, output: &str) -> bool {
     align(&patterns(block), &output_lines(output), false).is_some()
 }
 
-/// Where a block and an output differ, line by line, for a failure message (empty when they match).
-pub(crate) fn differences(block: &str, output: &str) -> String {
+/// Where a block and an output differ, line by line, for a failure message (empty when they match);
+/// `first` is the page's line number of the block's first line.
+pub(crate) fn differences(block: &str, output: &str, first: usize) -> String {
     let patterns = patterns(block);
     let lines = output_lines(output);
     if align(&patterns, &lines, false).is_some() {
@@ -268,8 +269,8 @@ pub(crate) fn differences(block: &str, output: &str) -> String {
             if let Pattern::Line(line) = pattern {
                 if !line.strict.is_match(&lines[i]) {
                     out.push_str(&format!(
-                        "  block line {}:\n    shown: {}\n    today: {}\n",
-                        n + 1,
+                        "  line {}:\n    shown: {}\n    today: {}\n",
+                        first + n,
                         line.text,
                         lines[i]
                     ));
@@ -429,7 +430,7 @@ fn every_checked_output_block_shows_todays_output() {
                     continue;
                 }
             };
-            let diff = differences(&c.block.body, &output);
+            let diff = differences(&c.block.body, &output, c.block.line + 1);
             if diff.is_empty() {
                 continue;
             }
@@ -465,8 +466,8 @@ fn doc_outputs_a_changed_digit_fails_the_comparison() {
     assert!(matches(shown, output));
     let doctored = shown.replace("10635.9720", "10635.9721");
     assert!(!matches(&doctored, output));
-    let diff = differences(&doctored, output);
-    assert!(diff.contains("block line 2") && diff.contains("10635.9721") && diff.contains("10635.9720"), "{diff}");
+    let diff = differences(&doctored, output, 41);
+    assert!(diff.contains("line 42:") && diff.contains("10635.9721") && diff.contains("10635.9720"), "{diff}");
     // One digit of an integer, and a digit gone.
     assert!(!matches(&shown.replace("4506", "4507"), output));
     assert!(!matches(&shown.replace("3.0000", "3.000"), output));
