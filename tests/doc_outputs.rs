@@ -23,9 +23,11 @@
 //! - `...` alone on a line: any number of lines (none included);
 //! - `[..]`: any text within a line;
 //! - `[TIME]`: a duration or a wall time (`833.5 ms`, `4.86 s`, `0.50`);
-//! - `[N]`: a whole number that depends on the machine (threads, cores);
+//! - `[COUNT]`: a whole number that depends on the machine (threads, cores);
 //! - `[DATE]`: a date (`2026-11-29`, with an optional time);
 //! - `[PATH]`: a path (no spaces); `[HASH]`: a hexadecimal hash.
+//!
+//! A mask is one of these names exactly: `[m]`, `[N]`, `[MPa]` are units, compared as written.
 //!
 //! Everything else is compared as written: a number that moves fails the test, with the page, the
 //! line and the two texts. **Bless** when the change is meant: `BEAM_IMPACT_BLESS=1 cargo test
@@ -34,6 +36,18 @@
 //! its masks, its numbers taken from today; a block whose lines no longer align is written out in
 //! full, to be abridged again by hand). Then read `git diff` on the pages: the prose around a
 //! blessed block may quote its numbers.
+//!
+//! A new checked block: write its marker and an empty ```` ```text ```` block, bless, then abridge
+//! the output with `...` and mask what varies from run to run or machine to machine.
+//!
+//! Why a harness of our own and not `trycmd` or `snapbox` as a dependency: trycmd reads
+//! ```` ```console ```` blocks holding `$ command` and its output together and runs argv without a
+//! shell, while these pages keep a command (```` ```sh ````, which tests/python/test_tutorial.py
+//! and tests/examples.rs run as written) and its output in separate blocks, with pipes (`| grep`)
+//! and files written by earlier blocks; snapbox's matcher would fit (this test takes its `[..]`
+//! and `...` syntax and named masks), but its bless rewrites a Rust source or a whole file, not
+//! one block of a Markdown page. The harness is this file, with `regex` (already in the lock
+//! file) as its one new dev-dependency.
 
 use std::path::Path;
 use std::process::Command;
@@ -49,7 +63,7 @@ pub(crate) const BLESS: &str = "BEAM_IMPACT_BLESS";
 pub(crate) const MASKS: &[(&str, &str)] = &[
     ("[..]", r".*?"),
     ("[TIME]", r"[0-9]+(?:\.[0-9]+)?(?:e-?[0-9]+)?(?: ?(?:ns|us|µs|ms|s|min|h))?"),
-    ("[N]", r"[0-9]+"),
+    ("[COUNT]", r"[0-9]+"),
     ("[DATE]", r"[0-9]{4}-[0-9]{2}-[0-9]{2}(?:[T ][0-9:.]+Z?)?"),
     ("[PATH]", r"\S+"),
     ("[HASH]", r"[0-9a-f]{6,}"),
@@ -478,7 +492,7 @@ fn doc_outputs_a_changed_digit_fails_the_comparison() {
 fn doc_outputs_masks_and_elisions_hide_only_what_they_name() {
     let output = "sweep: 5 scenarios on 2 threads in 0.13 s (51.4 ms of a thread each): 5 ran\nrows written\n";
     assert!(matches(
-        "sweep: 5 scenarios on [N] threads in [TIME] ([TIME] of a thread each): 5 ran\nrows written",
+        "sweep: 5 scenarios on [COUNT] threads in [TIME] ([TIME] of a thread each): 5 ran\nrows written",
         output
     ));
     assert!(matches("sweep: [..]: 5 ran\n...", output));
@@ -492,14 +506,17 @@ fn doc_outputs_masks_and_elisions_hide_only_what_they_name() {
         "sweep:  5 scenarios on 2 threads in 0.13 s (51.4 ms of a thread each): 5   ran\nrows written",
         output
     ));
+    // Units in brackets are text, not masks.
+    assert!(matches("F_c [N] 12 [MPa] 3", "F_c [N] 12 [MPa] 3"));
+    assert!(!matches("F_c [N] 12", "F_c 7 12"));
     // A mask does not hide a number outside it, nor text.
     assert!(!matches(
-        "sweep: 6 scenarios on [N] threads in [TIME] ([TIME] of a thread each): 5 ran\nrows written",
+        "sweep: 6 scenarios on [COUNT] threads in [TIME] ([TIME] of a thread each): 5 ran\nrows written",
         output
     ));
-    assert!(!matches("sweep: 5 scenarios on [N] threads in [TIME] ([TIME] of a thread each): 5 ran", output));
+    assert!(!matches("sweep: 5 scenarios on [COUNT] threads in [TIME] ([TIME] of a thread each): 5 ran", output));
     assert!(!matches(
-        "sweep: 5 scenarios on [N] threads in [N] s (51.4 ms of a thread each): 5 ran\nrows written",
+        "sweep: 5 scenarios on [COUNT] threads in [COUNT] s (51.4 ms of a thread each): 5 ran\nrows written",
         output
     ));
     assert!(!matches(

@@ -15,7 +15,7 @@
 //! order, as `tests/python/test_tutorial.py` does `docs/tutorial.md`'s).
 //!
 //! A block of output (`text`, `json`, `csv`) carries one of these (tests/doc_outputs.rs has the
-//! details: how the commands run, the masks `[..]`, `[TIME]`, `[N]`, `[DATE]`, `[PATH]`, `[HASH]`
+//! details: how the commands run, the masks `[..]`, `[TIME]`, `[COUNT]`, `[DATE]`, `[PATH]`, `[HASH]`
 //! and `...` for the volatile parts):
 //!
 //! - `<!-- output: the block above -->`: tests/doc_outputs.rs runs the ```sh block just above and
