@@ -14,8 +14,8 @@
 //!
 //! Each page's checked commands run in order, in one temporary folder holding a copy of
 //! `examples/` (so a later block reads the files an earlier one wrote), through
-//! `bash -eo pipefail`, with the release `beam-impact` first on PATH, standard error merged into
-//! standard output (as a terminal shows them). The pages run in parallel.
+//! `bash -eo pipefail`, with the release `beam-impact` first on PATH and `LC_ALL=C`, standard
+//! error merged into standard output (as a terminal shows them). The pages run in parallel.
 //!
 //! A block matches its output line for line, trailing blanks dropped, a run of spaces matching any
 //! run of spaces (columns may widen). The volatile parts are masked in the block:
@@ -364,7 +364,7 @@ fn copy_dir(from: &Path, to: &Path) {
     }
 }
 
-/// Runs a page's checked commands in order in one fresh folder: (block, output) for each.
+/// Runs a page's checked commands in order in one fresh folder: each one's output, or why it failed.
 fn run_page(checked: &[Checked]) -> Vec<Result<String, String>> {
     let folder = tempfile::tempdir().unwrap();
     copy_dir(&root().join("examples"), &folder.path().join("examples"));
@@ -381,6 +381,7 @@ fn run_page(checked: &[Checked]) -> Vec<Result<String, String>> {
                 .args(["-eo", "pipefail", "-c", &format!("exec 2>&1\n{}", c.command)])
                 .current_dir(folder.path())
                 .env("PATH", &path)
+                .env("LC_ALL", "C") // the C locale's numbers (awk, sort) and messages
                 .env_remove(BLESS)
                 .output()
                 .map_err(|e| format!("bash: {e}"))?;
