@@ -15,6 +15,7 @@ mod cli_defects;
 mod closed_form;
 mod contact_laws;
 mod converged_references;
+mod doc_outputs;
 mod docs;
 mod energy_account_off;
 mod energy_method;
