@@ -5,7 +5,8 @@ packed, into target/wheels/) installs into a fresh venv whose PATH has no cargo 
 there runs docs/tutorial.md as test_tutorial.py does, except that `python` is the fresh venv's,
 no BEAM_IMPACT_FMU_DIR is set and the working folder has no target/fmu: `beam_impact.fmu_path()`
 must find the FMUs the wheel carries, and the native module must be the wheel's. The CLI blocks
-run `beam-impact` (BEAM_IMPACT_BIN: the built executable, no Rust toolchain).
+run the `beam-impact` the wheel installed into the venv's bin/ (issue 41: the wheel carries the
+command, as ruff's and uv's do), found on PATH as in an activated venv.
 
 The wheel is BEAM_IMPACT_WHEEL, or the one manylinux wheel in target/wheels/. Without one the test
 is skipped, except where BEAM_IMPACT_REQUIRE_WHEEL=1 (tests/run_all.sh), where it fails.
@@ -13,6 +14,7 @@ is skipped, except where BEAM_IMPACT_REQUIRE_WHEEL=1 (tests/run_all.sh), where i
 
 from __future__ import annotations
 
+import json
 import os
 import re
 import shutil
@@ -23,7 +25,8 @@ from pathlib import Path
 
 import pytest
 
-from test_tutorial import TIMEOUT, TUTORIAL, binary, runnable
+from test_glibc import HIGHEST, glibc_versions
+from test_tutorial import TIMEOUT, TUTORIAL, runnable
 
 ROOT = Path(__file__).resolve().parents[2]
 REQUIRED = os.environ.get("BEAM_IMPACT_REQUIRE_WHEEL") == "1"
@@ -71,16 +74,60 @@ def installed(tmp_path_factory):
     done = subprocess.run([str(python), "-m", "pip", "install", "--quiet", "--disable-pip-version-check", str(wheel),
                            pin("fmpy"), pin("matplotlib")], capture_output=True, text=True, timeout=600)
     assert done.returncode == 0, f"pip install {wheel.name} failed:\n{done.stdout}{done.stderr}"
-    bin_dir = tmp_path_factory.mktemp("wheel-bin")
-    (bin_dir / "beam-impact").symlink_to(binary())
-    for name in ("python", "python3"):
-        (bin_dir / name).symlink_to(python)
     env = {k: v for k, v in os.environ.items() if k not in DROPPED}
-    env.update(PATH=os.pathsep.join([str(bin_dir), str(venv / "bin"), without_rust(os.environ.get("PATH", ""))]),
+    # The venv's bin/ first, as an activated venv has it: its python and the wheel's `beam-impact`.
+    env.update(PATH=os.pathsep.join([str(venv / "bin"), without_rust(os.environ.get("PATH", ""))]),
                MPLBACKEND="Agg")
     for tool in ("cargo", "rustc"):
         assert shutil.which(tool, path=env["PATH"]) is None, f"{tool} is still on the test's PATH"
     return python, venv, env, wheel
+
+
+#: Where the Linux wheel keeps its command (maturin's data folder, installed into bin/ by pip).
+COMMAND = "beam_impact-{version}.data/scripts/beam-impact"
+
+
+def wheel_version(wheel: Path) -> str:
+    return wheel.name.split("-")[1]
+
+
+def test_the_wheel_carries_the_command_linked_for_glibc_2_17(tmp_path):
+    """Issue 41: the wheel's `beam-impact` is an executable (mode 755 in the archive, which pip
+    keeps) in the wheel's scripts, and, as the FMUs' library and the native module, needs no
+    glibc symbol newer than GLIBC_2.17 (`objdump -T`, the check of test_glibc.py)."""
+    wheel = the_wheel()
+    name = COMMAND.format(version=wheel_version(wheel))
+    with zipfile.ZipFile(wheel) as archive:
+        assert name in archive.namelist(), f"{wheel.name} has no {name}"
+        assert archive.getinfo(name).external_attr >> 16 & 0o777 == 0o755
+        command = Path(archive.extract(name, tmp_path))
+    assert command.read_bytes()[:4] == b"\x7fELF"
+    versions = glibc_versions(command)
+    assert versions, "no GLIBC symbol versions found: not a glibc-linked executable?"
+    highest = max(versions)
+    assert highest <= HIGHEST, f"the wheel's beam-impact needs GLIBC_{'.'.join(map(str, highest))}, newer than 2.17"
+
+
+def test_beam_impact_run_from_the_venv_s_path_equals_the_package_s_run(installed, tmp_path):
+    """`pip install WHEEL` puts `beam-impact` into the venv's bin/: found there on PATH (no other
+    on it), `beam-impact run` works, and its `--json` document gives the peaks `beam_impact.run`
+    gives in the same venv (one solver, two doors)."""
+    python, venv, env, _ = installed
+    found = shutil.which("beam-impact", path=env["PATH"])
+    assert found == str(venv / "bin" / "beam-impact"), found
+    done = subprocess.run(["beam-impact", "run", "--set", "duration=0.05", "--json", "run.json", "--no-mcap"],
+                          cwd=tmp_path, env=env, capture_output=True, text=True, timeout=TIMEOUT)
+    assert done.returncode == 0, done.stderr
+    assert "quality:" in done.stdout, done.stdout
+    probe = ("import json, beam_impact\n"
+             "r = beam_impact.run(duration=0.05)\n"
+             "print(json.dumps(r.peaks))\n")
+    ran = subprocess.run([str(python), "-c", probe], cwd=tmp_path, env=env, capture_output=True, text=True,
+                         timeout=TIMEOUT)
+    assert ran.returncode == 0, ran.stderr
+    by_command = json.loads((tmp_path / "run.json").read_text())["summary"]["peaks"]
+    by_package = json.loads(ran.stdout.splitlines()[-1])
+    assert by_package and all(by_command[k] == v for k, v in by_package.items()), (by_command, by_package)
 
 
 def test_the_wheel_carries_the_module_and_both_fmus(installed, tmp_path):
