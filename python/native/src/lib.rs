@@ -433,6 +433,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
     m.add_function(wrap_pyfunction!(run::cancel_running, m)?)?;
     m.add_function(wrap_pyfunction!(run::check_field, m)?)?;
+    m.add_function(wrap_pyfunction!(run::sweep_columns, m)?)?;
+    m.add_function(wrap_pyfunction!(run::sweep_row, m)?)?;
     m.add("MAX_FMU_BYTES", MAX_FMU_BYTES)?;
     m.add("MAX_STEPS", beam_impact::model::scenario::MAX_STEPS)?;
     // One name per quantity: the step channel's columns as `report --csv` names them.
