@@ -7,7 +7,8 @@
 //! Every file the package writes goes through the CLI's output guard (`write_file`,
 //! `check_output`), and an FMU is read only if it is a regular file under `MAX_FMU_BYTES` (1 GiB)
 //! (`fmu_key`, `read_fmu`), issue 27. `run` runs the solver itself, as `beam-impact run` does
-//! (`run.rs`), for `beam_impact.run` and the sweeps' native engine.
+//! (`run.rs`), for `beam_impact.run`; `sweep_row` and `sweep_columns` give the sweeps' native
+//! engine the rows and the columns of `beam-impact sweep`, from the CLI's own row code.
 
 mod run;
 
@@ -440,8 +441,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // One name per quantity: the step channel's columns as `report --csv` names them.
     m.add("STEP_COLUMNS", beam_impact::replay::csv::names())?;
     m.add("STEP_RENAMES", beam_impact::vocabulary::STEP_RENAMES.to_vec())?;
-    // The FMU's `energy_method.<name>` outputs, the columns of a sweep by either engine.
-    m.add("FMU_ENERGY_METHOD", beam_impact::fmi::variables::energy_method_names())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }
