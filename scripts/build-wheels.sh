@@ -187,11 +187,13 @@ chmod +x "$LINKER"
 # it), put in the data folder's scripts/ (the wheel's `beam_impact-V.data/scripts/`), whose
 # files pip installs into the environment's bin/, on its PATH. The Linux wheel only: the Windows
 # and macOS wheels carry no command (the executable is not cross-built).
+t1=$(now)
 (cd "$ROOT" && PATH="$TOOLS/bin:$PATH" cargo rustc --release --quiet --bin beam-impact -- -C linker="$LINKER") ||
     fail "cargo rustc --release --bin beam-impact (linked for glibc 2.17) failed"
 mkdir -p "$SCRIPTS"
 cp "$TARGET_DIR/release/beam-impact" "$SCRIPTS/beam-impact"
 chmod 755 "$SCRIPTS/beam-impact"
+echo "build-wheels: the beam-impact command in $(($(now) - t1)) s"
 WHEEL=$(PATH="$TOOLS/bin:$PATH" maturin_build "$STAGE/linux" --compatibility manylinux2014 --auditwheel check \
     -- -C linker="$LINKER") || fail "maturin build for Linux failed"
 rm -rf "$DATA"

@@ -433,7 +433,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(parse_motion, m)?)?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
     m.add_function(wrap_pyfunction!(run::cancel_running, m)?)?;
-    m.add_function(wrap_pyfunction!(run::check_field, m)?)?;
     m.add_function(wrap_pyfunction!(run::sweep_columns, m)?)?;
     m.add_function(wrap_pyfunction!(run::sweep_row, m)?)?;
     m.add("MAX_FMU_BYTES", MAX_FMU_BYTES)?;

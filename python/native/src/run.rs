@@ -356,10 +356,3 @@ pub fn sweep_row(
 pub fn cancel_running() {
     EPOCH.fetch_add(1, Ordering::SeqCst);
 }
-
-/// Refuses a name that is not a scenario field `--set` and `--vary` know (ValueError with the
-/// CLI's one-line message), before a sweep runs anything.
-#[pyfunction]
-pub fn check_field(name: &str) -> PyResult<()> {
-    sweep::field(name).map(drop).map_err(value_error)
-}
