@@ -184,9 +184,12 @@ chmod +x "$LINKER"
 # by the same zig for glibc 2.17 (`cargo rustc --bin`: the crate's library and every dependency
 # are the host build's; only the executable's own crate is compiled and linked again, about 5 s;
 # it replaces target/release/beam-impact, the same code, until the next `cargo build` relinks
-# it), put in the data folder's scripts/ (the wheel's `beam_impact-V.data/scripts/`), whose
-# files pip installs into the environment's bin/, on its PATH. The Linux wheel only: the Windows
-# and macOS wheels carry no command (the executable is not cross-built).
+# it). After `beam-impact pack` (whose `cargo rustc --lib` leaves the library's build with its
+# linker argument) this step recompiles the library once, 100 s in tests/run_all.sh, which the
+# native module's build below then reuses (it took as long without this step). The executable
+# goes into the data folder's scripts/ (the wheel's `beam_impact-V.data/scripts/`), whose files
+# pip installs into the environment's bin/, on its PATH. The Linux wheel only: the Windows and
+# macOS wheels carry no command (the executable is not cross-built).
 t1=$(now)
 (cd "$ROOT" && PATH="$TOOLS/bin:$PATH" cargo rustc --release --quiet --bin beam-impact -- -C linker="$LINKER") ||
     fail "cargo rustc --release --bin beam-impact (linked for glibc 2.17) failed"
