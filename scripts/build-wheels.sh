@@ -130,12 +130,18 @@ done
 # it finds it; /python/beam_impact/fmus/ is ignored by git) and are removed again on exit.
 # The example scenarios (and the motion file one names) go in beside them, for
 # `beam_impact.examples()` from a wheel (/python/beam_impact/examples/ is ignored by git too).
+# The Linux wheel's `beam-impact` command goes into maturin's data folder, made for that wheel
+# alone (below): python/beam_impact._native.data/ (ignored by git), maturin's default
+# `<module-name>.data`, which it packs when present and skips when absent (a `data =` setting in
+# pyproject.toml would fail `pip install ./python`, which carries no command).
 FMUS=$ROOT/python/beam_impact/fmus
 EXAMPLES=$ROOT/python/beam_impact/examples
-cleanup() { rm -rf "$FMUS" "$EXAMPLES"; }
+DATA=$ROOT/python/beam_impact._native.data
+SCRIPTS=$DATA/scripts
+cleanup() { rm -rf "$FMUS" "$EXAMPLES" "$DATA"; }
 trap cleanup EXIT
 trap 'cleanup; exit 130' INT TERM
-rm -rf "$FMUS" "$EXAMPLES"
+rm -rf "$FMUS" "$EXAMPLES" "$DATA"
 for fmi in fmi2 fmi3; do
     mkdir -p "$FMUS/$fmi"
     cp "$FMU_DIR/$fmi/BeamImpact.fmu" "$FMUS/$fmi/BeamImpact.fmu"
@@ -174,8 +180,26 @@ cat >"$LINKER" <<EOF
 exec '$TOOLS/bin/cargo-zigbuild' zig cc -- -g -fno-sanitize=all -target x86_64-linux-gnu.2.17 "\$@"
 EOF
 chmod +x "$LINKER"
+# The `beam-impact` command, as ruff's and uv's wheels carry theirs: the release executable linked
+# by the same zig for glibc 2.17 (`cargo rustc --bin`: the crate's library and every dependency
+# are the host build's; only the executable's own crate is compiled and linked again, about 5 s;
+# it replaces target/release/beam-impact, the same code, until the next `cargo build` relinks
+# it). After `beam-impact pack` (whose `cargo rustc --lib` leaves the library's build with its
+# linker argument) this step recompiles the library once, 100 s in tests/run_all.sh, which the
+# native module's build below then reuses (it took as long without this step). The executable
+# goes into the data folder's scripts/ (the wheel's `beam_impact-V.data/scripts/`), whose files
+# pip installs into the environment's bin/, on its PATH. The Linux wheel only: the Windows and
+# macOS wheels carry no command (the executable is not cross-built).
+t1=$(now)
+(cd "$ROOT" && PATH="$TOOLS/bin:$PATH" cargo rustc --release --quiet --bin beam-impact -- -C linker="$LINKER") ||
+    fail "cargo rustc --release --bin beam-impact (linked for glibc 2.17) failed"
+mkdir -p "$SCRIPTS"
+cp "$TARGET_DIR/release/beam-impact" "$SCRIPTS/beam-impact"
+chmod 755 "$SCRIPTS/beam-impact"
+echo "build-wheels: the beam-impact command in $(($(now) - t1)) s"
 WHEEL=$(PATH="$TOOLS/bin:$PATH" maturin_build "$STAGE/linux" --compatibility manylinux2014 --auditwheel check \
     -- -C linker="$LINKER") || fail "maturin build for Linux failed"
+rm -rf "$DATA"
 mv "$WHEEL" "$OUT/"
 keep "$OUT/$(basename "$WHEEL")" linux
 echo "build-wheels: linux in $(($(now) - t0)) s"

@@ -16,7 +16,7 @@ def main(argv: list[str] | None = None) -> int:
         help="run a grid of scenarios (the Rust solver, or the FMU) as Dask tasks",
         description="Every combination of the --vary values (the last varying fastest), one run per "
         "scenario as a Dask task (the Rust solver itself, or the FMU with --fmu); one CSV row per scenario "
-        "in grid order, with the columns of `beam-impact sweep` that the FMU gives.",
+        "in grid order, with the columns of `beam-impact sweep` (with --fmu, those the FMU gives).",
     )
     s.add_argument("--fmu", help="run the FMU file (target/fmu/fmi2/BeamImpact.fmu) instead of the solver itself")
     s.add_argument("--scenario", metavar="FILE",

@@ -1,9 +1,11 @@
 """`beam_impact.sweep`: a grid of runs as Dask tasks, one row per scenario.
 
 Each task runs one scenario of the grid and returns its row: by default through the Rust solver
-itself (the native module, `beam_impact.run`'s code as one row of `beam-impact sweep`: no FMU,
-the GIL released while it solves, Ctrl-C stopping the runs between steps); with `engine="fmu"`
-through the FMU (`beam_impact.simulate`, logging off, one communication step over the whole run).
+itself (the native module, `beam_impact.run`'s code as one row of `beam-impact sweep`, made by
+the CLI's own row code: its columns, names and order; no FMU, the GIL released while it solves,
+Ctrl-C stopping the runs between steps); with `engine="fmu"` through the FMU
+(`beam_impact.simulate`, logging off, one communication step over the whole run), whose table
+has the CLI's columns the FMU gives (`FMU_LACKS`: those it has no output for).
 A scenario refused, or whose run fails, returns its row with the message in `error`, and the
 sweep goes on. What follows says how the FMU route runs; the native one runs the same way
 without the FMU file (nothing to scatter: the workers need the `beam_impact` package only).
@@ -42,7 +44,8 @@ import time
 import uuid
 from typing import Any, Iterable
 
-from .fmu import CHECK_COLUMNS, CHECK_OUTPUTS, FORMER_NAMES, PEAK_OUTPUTS, FmuFile, _extracted, _path_text, fmu_path, simulate
+from .fmu import CHECK_COLUMNS, ENVELOPE_OUTPUTS, FORMER_NAMES, PEAK_OUTPUTS, FmuFile, _extracted, _path_text, fmu_path, \
+    simulate
 from .grid import display, expand
 
 #: Dask key prefix of the sweep's tasks (the progress bar's label).
@@ -71,56 +74,51 @@ def run_row(point: dict[str, float], fmu: "str | FmuFile", stop_time: float = 3.
 
 def run_row_native(point: dict[str, float], scenario: Any = None, stop_time: float | None = 3.0,
                    check_sensitivity: bool = False) -> dict[str, Any]:
-    """`run_row` through the Rust solver itself (`beam_impact.run`'s code, as one row of
-    `beam-impact sweep`: the coarsest rung left out), no FMU: the same columns and numbers. The
-    base scenario is `scenario` (a path or TOML text; None: the defaults, the FMU's), the run
-    `stop_time` s long unless the grid varies `duration` (None: the scenario's)."""
+    """`run_row` through the Rust solver itself: the row `beam-impact sweep` writes for the grid
+    point, made by the CLI's own code (the native module's `sweep_row`: the run of a sweep's row,
+    the coarsest rung left out, no FMU; the row's cells as the CLI's JSON rows hold them, its
+    columns and their order), with the CLI's message in `error` for a refused scenario. Empty
+    cells (a failed row's results, a check not run) are NaN. The base scenario is `scenario` (a
+    path or TOML text; None: the defaults, the FMU's), the run `stop_time` s long unless the grid
+    varies `duration` (None: the scenario's)."""
     from . import _native
     from .native_run import scenario_source
 
-    row: dict[str, Any] = {k: display(k, v) for k, v in point.items()}
     started = time.perf_counter()
     try:
         path, text = scenario_source(scenario)
-        if path is None and text is None:
-            text = ""  # the defaults, as the FMU starts from them
-        fields = [(k, float(v)) for k, v in point.items()]
-        if stop_time is not None and "duration" not in point:
-            fields.append(("duration", float(stop_time)))
-        doc, _, _, _ = _native.run(scenario=path, scenario_text=text, fields=fields, sensitivity=check_sensitivity,
-                                   observed_order=False)
-        row.update(_native_row(json.loads(doc)))
-        row["error"] = ""
-    except Exception as e:  # a refused scenario or a failed run is a row, not an aborted sweep
-        row["error"] = _one_line(e) or type(e).__name__
-    row["wall_time"] = time.perf_counter() - started
-    return row
+        cells = json.loads(_native.sweep_row([(k, float(v)) for k, v in point.items()], scenario=path,
+                                             scenario_text=text, duration=stop_time,
+                                             sensitivity=check_sensitivity))
+    except Exception as e:  # a scenario of the wrong type: still a row, not an aborted sweep
+        return {**{k: display(k, v) for k, v in point.items()}, "error": _one_line(e) or type(e).__name__,
+                "wall_time": time.perf_counter() - started}
+    return {k: (math.nan if v is None and k != "error" else v) for k, v in cells.items()}
 
 
-def _native_row(doc: dict) -> dict[str, Any]:
-    """The values of the FMU's outputs (`simulate`'s keys) from a `run --json` document."""
-    summary, checks = doc["summary"], doc["quality"]["checks"]
-    values: dict[str, Any] = {name: float(summary["peaks"][name.removeprefix("peak.")]) for name in PEAK_OUTPUTS}
-    values.update({f"energy_method.{n}": float(summary["energy_method"][n]) for n in _native_energy_method()})
-
-    def figure(check):
-        return math.nan if check is None else float(check["value"])
-
-    values["quality.discretisation_error"] = figure(checks.get("discretisation"))
-    values["quality.sensitivity_spread"] = figure(checks.get("sensitivity"))
-    for name in CHECK_OUTPUTS:
-        if name.startswith("utilisation."):
-            values[name] = float(doc["design"]["utilisation"][name.removeprefix("utilisation.")])
-    values["design.pass"] = bool(doc["design"]["pass"])
-    values["quality.trusted"] = bool(doc["quality"]["trusted"])
-    values.update({former: values[name] for former, name in FORMER_NAMES.items()})
-    return values
-
-
-def _native_energy_method() -> list[str]:
+def fmu_columns(fields: Iterable[str], method: Iterable[str]) -> list[str]:
+    """The FMU engine's columns: those of `beam-impact sweep` (`sweep_columns`' order) that the
+    FMU gives (its outputs `simulate` reads: `FMU_COLUMNS` and the FMU's `energy_method.<field>`),
+    after the varied `fields`."""
     from . import _native
 
-    return list(_native.FMU_ENERGY_METHOD)
+    given = {*FMU_COLUMNS, *method, *FORMER_NAMES}
+    return [*fields, *(c for c in _native.sweep_columns([]) if c in given)]
+
+
+#: What a row of the FMU engine holds besides the varied fields and the energy approach.
+FMU_COLUMNS = (*PEAK_OUTPUTS, *ENVELOPE_OUTPUTS, *CHECK_COLUMNS, "wall_time", "error")
+
+#: The columns of `beam-impact sweep` (and of the native engine) that the FMU engine's table
+#: lacks, in the CLI's order: the FMU has no output for them (tests/python/test_package.py holds
+#: this list to the two engines' tables).
+FMU_LACKS = (
+    *(f"peak_time.{name.removeprefix('peak.')}" for name in PEAK_OUTPUTS),
+    "energy_method.flexion_stiffness", "energy_method.bridge_deceleration", "energy_method.bridge_contact_moment",
+    "energy_method.bridge_bending_stress", "energy_method.bridge_strain_energy", "energy_method.bridge_strain_ratio",
+    "max_energy_residual", "yield_utilisation",
+    *(f"{former}_time" for former in PEAK_OUTPUTS.values()),
+)
 
 
 def _fmu_path(fmu: "str | os.PathLike | None") -> str:
@@ -147,7 +145,7 @@ def _columns(fields: Iterable[str], path: str) -> list[str]:
         if f != "duration" and f not in names:
             raise ValueError(f"unknown parameter `{f}`: the FMU has no variable of that name")
     method = [v.name for v in md.modelVariables if v.name.startswith("energy_method.")]
-    return [*fields, *PEAK_OUTPUTS, *method, *CHECK_COLUMNS, "wall_time", "error", *FORMER_NAMES]
+    return fmu_columns(fields, method)
 
 
 def sweep(
@@ -163,23 +161,32 @@ def sweep(
 ):
     """Runs every scenario of `grid` ({field: values}, the product in dict order with the last
     field fastest, as `beam-impact sweep --vary`) and returns a pandas.DataFrame, one row per
-    scenario in grid order, columns named as the FMU and the CLI's sweep name them: the varied
-    fields, the peaks `peak.lower.tip_deflection` (m), `peak.lower.clamp_bending_stress`,
-    `peak.lower.clamp_shear_stress`, `peak.upper.contact_bending_stress` (Pa),
-    `peak.contact.force` (N), `energy_method.<field>` (SI units), the checks
-    `quality.discretisation_error`, `quality.sensitivity_spread` (NaN unless
+    scenario in grid order.
+
+    Columns: by default (the native engine) those of `beam-impact sweep --out` for the same grid,
+    the same names in the same order (`docs/cli.md` lists them with their units): the varied
+    fields, the peaks `peak.<quantity>` (SI) and when each was reached `peak_time.<quantity>` (s),
+    each beam's worst stress along it `peak.<beam>.<stress>` with `peak_position.<...>` (m) and
+    `utilisation.<...>`, the energy approach `energy_method.<field>`, `max_energy_residual`, the
+    checks `quality.discretisation_error`, `quality.sensitivity_spread` (NaN unless
     `check_sensitivity=True`, which runs each scenario's twin as the CLI's sweep does, at twice the
-    stepping cost), `utilisation.<stress peak>`, `design.pass`, `quality.trusted`, `wall_time` (the
-    row's run, s) and `error` ("" when fine; the peaks are NaN then); then the former names of
-    the peaks and checks (`lower_clamp_bending_stress`, `trusted`, ...), duplicates until 0.2.0.
+    stepping cost), `yield_utilisation`, `utilisation.<stress peak>`, `design.pass`,
+    `quality.trusted`, `wall_time` (the row's run, s) and `error` ("" when fine; the results are
+    NaN then, as the CLI's cells are empty); then the former names of the peaks, their times and
+    the checks (`lower_clamp_bending_stress`, `contact_force_time`, `trusted`, ...), duplicates
+    until 0.2.0. An empty cell of the CLI is NaN.
 
     `engine`: "native" (the default without `fmu`) runs each scenario through the Rust solver
-    itself (`beam_impact.run`'s code; no FMU needed; the GIL is released, so threads solve in
-    parallel); "fmu" (the default when `fmu` is given) through the FMU at `fmu` (or
-    `$BEAM_IMPACT_FMU`) with fmpy. Both give the same columns
-    and the same numbers (to round-off: tests/python/test_package.py holds both to the CLI's sweep
-    at 1e-9). `scenario` (native engine only): the base scenario, a file path or TOML text as
-    `beam_impact.run` takes it (default: the defaults, the FMU's).
+    itself (the CLI sweep's row of `beam_impact.run`'s code; no FMU needed; the GIL is released,
+    so threads solve in parallel); "fmu" (the default when `fmu` is given) through the FMU at
+    `fmu` (or `$BEAM_IMPACT_FMU`) with fmpy. The FMU engine's table has the CLI's columns that the
+    FMU gives as outputs, in the same order, and lacks the others (`FMU_LACKS`): the peak times
+    `peak_time.<quantity>` (and their former names `<quantity>_time`), six of the eleven
+    `energy_method.<field>` (`flexion_stiffness` and the bridge's five), `max_energy_residual` and
+    `yield_utilisation`. In the columns both have, the two engines give the same numbers (to
+    round-off: tests/python/test_package.py holds both to the CLI's sweep at 1e-9). `scenario`
+    (native engine only): the base scenario, a file path or TOML text as `beam_impact.run` takes
+    it (default: the defaults, the FMU's, as `beam-impact sweep` without a file).
     `client`: None for the local threaded scheduler (`num_workers` threads, default one per core),
     a `dask.distributed.Client`, or a scheduler address ("tcp://host:8786").
     `stop_time`: simulated s per run (a varied `duration` overrides it; default: the scenario's
@@ -208,11 +215,8 @@ def sweep(
     else:
         from . import _native
 
-        for f in grid:
-            if f != "duration":
-                _native.check_field(str(f))
-        method = [f"energy_method.{n}" for n in _native_energy_method()]
-        columns = [*grid, *PEAK_OUTPUTS, *method, *CHECK_COLUMNS, "wall_time", "error", *FORMER_NAMES]
+        # The CLI's columns for this grid (an unknown field refused with the CLI's message).
+        columns = list(_native.sweep_columns([str(f) for f in grid]))
         task, target = run_row_native, scenario
     if client is None:
         rows = _run_local(task, points, target, stop_time, progress, num_workers, check_sensitivity)

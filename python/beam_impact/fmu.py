@@ -35,6 +35,14 @@ PEAK_OUTPUTS = {
 }
 assert tuple(PEAK_OUTPUTS.values()) == PEAKS
 
+#: The stress envelope's outputs (issue 30): each beam's worst bending and shear stress along it
+#: (Pa), where (m from its support) and its utilisation, in the CLI sweep's columns' order. The
+#: FMU gives 0 where the beam has no such stress (or, for a utilisation, no allowable), where the
+#: CLI's cell is empty: NaN here.
+ENVELOPE_NAMES = ("upper.bending_stress", "upper.shear_stress", "lower.bending_stress", "lower.shear_stress")
+ENVELOPE_OUTPUTS = (*(f"peak.{n}" for n in ENVELOPE_NAMES), *(f"peak_position.{n}" for n in ENVELOPE_NAMES),
+                    *(f"utilisation.{n}" for n in ENVELOPE_NAMES))
+
 #: FMU output -> its former name, for the checks and the design (Real; -1 is "not checked", NaN here).
 CHECK_OUTPUTS = {
     "quality.discretisation_error": "discretisation_error",
@@ -376,7 +384,9 @@ def simulate(
     `duration` parameter). Returns a dict keyed by the FMU's output names (one name per quantity, as
     the CLI's sweep columns): the peaks (`peak.lower.tip_deflection`, `peak.lower.clamp_bending_stress`,
     `peak.lower.clamp_shear_stress`, `peak.upper.contact_bending_stress`, `peak.contact.force`; SI
-    units), the energy approach (`energy_method.<field>`), and the checks:
+    units), the stress envelope (`peak.<beam>.<stress>` each beam's worst bending and shear stress
+    along it, `peak_position.<...>` where, m, `utilisation.<...>`; NaN where the beam has none,
+    the FMU's 0), the energy approach (`energy_method.<field>`), and the checks:
     `quality.discretisation_error`, `quality.sensitivity_spread` (fractions; NaN when not checked:
     the twin runs only with `"check_sensitivity": True`, which doubles the cost),
     `utilisation.<stress peak>` (converged peak / allowable), `design.pass` and `quality.trusted`;
@@ -416,18 +426,23 @@ def simulate(
     if output_interval is None:
         output_interval = min(1e-3, stop_time) if histories else stop_time
     method = [v.name for v in md.modelVariables if v.name.startswith("energy_method.")]
-    outputs = list(PEAK_OUTPUTS) + method + list(CHECK_OUTPUTS)
+    envelope = [name for name in ENVELOPE_OUTPUTS if name in entry.names]  # an FMU before issue 30 has none
+    outputs = list(PEAK_OUTPUTS) + method + list(CHECK_OUTPUTS) + envelope
     if histories:
         real = ("Real", "Float64")
         outputs += [v.name for v in md.modelVariables if v.causality == "output" and v.type in real
-                    and v.name not in PEAK_OUTPUTS and v.name not in CHECK_OUTPUTS]
+                    and v.name not in outputs]
     rows, verdicts = _run(entry, start, stop_time, output_interval, outputs, histories)
-    last = rows[-1][1:]
-    peaks: dict[str, Any] = {name: float(value) for name, value in zip(PEAK_OUTPUTS, last)}
-    peaks.update({name: float(value) for name, value in zip(method, last[len(PEAK_OUTPUTS):])})
-    checks = last[len(PEAK_OUTPUTS) + len(method):][:len(CHECK_OUTPUTS)]
-    peaks.update({name: (math.nan if value < 0 else float(value))
-                  for name, value in zip(CHECK_OUTPUTS, checks)})
+    last = dict(zip(outputs, rows[-1][1:]))
+    peaks: dict[str, Any] = {name: float(last[name]) for name in PEAK_OUTPUTS}
+    # The FMU's 0 for a beam without the stress (or without an allowable): the CLI's empty cell.
+    # A position of 0 m is a peak at the support: NaN only where the peak itself is.
+    peaks.update({name: (math.nan if last[name] == 0 else float(last[name]))
+                  for name in envelope if not name.startswith("peak_position.")})
+    peaks.update({name: (math.nan if math.isnan(peaks[name.replace("peak_position.", "peak.", 1)])
+                         else float(last[name])) for name in envelope if name.startswith("peak_position.")})
+    peaks.update({name: float(last[name]) for name in method})
+    peaks.update({name: (math.nan if last[name] < 0 else float(last[name])) for name in CHECK_OUTPUTS})
     peaks.update(dict(zip(VERDICT_OUTPUTS, verdicts)))
     peaks.update({former: peaks[name] for former, name in FORMER_NAMES.items()})
     if not histories:

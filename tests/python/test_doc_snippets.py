@@ -62,6 +62,16 @@ def test_the_pages_mark_their_snippets_for_this_file():
     assert len(SNIPPETS) >= 6, SNIPPETS
 
 
+def make_inputs(work: Path, command: str, env: dict | None = None) -> None:
+    """What the pages assume a reader has made with `beam-impact` (`command`), in `work`: a short
+    paper log `paper.mcap` and its CSV `steps.csv` (tests/python/test_wheel.py makes them with the
+    wheel's command)."""
+    for args in (["run", "--set", "duration=0.05", "--mcap", "paper.mcap"],
+                 ["report", "paper.mcap", "--csv", "steps.csv", "--out", "paper-figures"]):
+        done = subprocess.run([command, *args], cwd=work, env=env, capture_output=True, text=True, timeout=TIMEOUT)
+        assert done.returncode == 0, done.stderr
+
+
 @pytest.fixture(scope="module")
 def work(tmp_path_factory):
     """The folder the snippets run in, with the FMUs, a short paper log and its CSV."""
@@ -69,16 +79,14 @@ def work(tmp_path_factory):
     work = tmp_path_factory.mktemp("snippets")
     (work / "target").mkdir()
     (work / "target" / "fmu").symlink_to(FMU_DIR.resolve(), target_is_directory=True)
-    for args in (["run", "--set", "duration=0.05", "--mcap", "paper.mcap"],
-                 ["report", "paper.mcap", "--csv", "steps.csv", "--out", "paper-figures"]):
-        done = subprocess.run([binary(), *args], cwd=work, capture_output=True, text=True, timeout=TIMEOUT)
-        assert done.returncode == 0, done.stderr
+    make_inputs(work, binary())
     return work
 
 
 @pytest.mark.parametrize("page,line,body", SNIPPETS, ids=[f"{p}:{n}" for p, n, _ in SNIPPETS])
 def test_the_snippet_runs_as_written(work, page, line, body):
-    env = dict(os.environ, MPLBACKEND="Agg")
+    # fmu_path(): the suite's FMUs, those of target/fmu.
+    env = dict(os.environ, MPLBACKEND="Agg", BEAM_IMPACT_FMU_DIR=str(FMU_DIR.resolve()))
     done = subprocess.run([sys.executable, "-c", body], cwd=work, env=env, capture_output=True, text=True,
                           timeout=TIMEOUT)
     output = done.stdout + done.stderr

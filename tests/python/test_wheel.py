@@ -5,7 +5,8 @@ packed, into target/wheels/) installs into a fresh venv whose PATH has no cargo 
 there runs docs/tutorial.md as test_tutorial.py does, except that `python` is the fresh venv's,
 no BEAM_IMPACT_FMU_DIR is set and the working folder has no target/fmu: `beam_impact.fmu_path()`
 must find the FMUs the wheel carries, and the native module must be the wheel's. The CLI blocks
-run `beam-impact` (BEAM_IMPACT_BIN: the built executable, no Rust toolchain).
+run the `beam-impact` the wheel installed into the venv's bin/ (issue 41: the wheel carries the
+command, as ruff's and uv's do), found on PATH as in an activated venv.
 
 The wheel is BEAM_IMPACT_WHEEL, or the one manylinux wheel in target/wheels/. Without one the test
 is skipped, except where BEAM_IMPACT_REQUIRE_WHEEL=1 (tests/run_all.sh), where it fails.
@@ -13,6 +14,7 @@ is skipped, except where BEAM_IMPACT_REQUIRE_WHEEL=1 (tests/run_all.sh), where i
 
 from __future__ import annotations
 
+import json
 import os
 import re
 import shutil
@@ -23,7 +25,11 @@ from pathlib import Path
 
 import pytest
 
-from test_tutorial import TIMEOUT, TUTORIAL, binary, runnable
+from test_doc_snippets import SNIPPETS, make_inputs
+from test_glibc import HIGHEST, glibc_versions
+from test_python_doc import PAGE as PYTHON_PAGE
+from test_python_doc import blocks
+from test_tutorial import TIMEOUT, TUTORIAL, runnable
 
 ROOT = Path(__file__).resolve().parents[2]
 REQUIRED = os.environ.get("BEAM_IMPACT_REQUIRE_WHEEL") == "1"
@@ -48,11 +54,12 @@ def the_wheel() -> Path:
 
 
 def pin(name: str) -> str:
-    """The pinned requirement of tests/python/requirements.txt (the same fmpy and matplotlib as the suite)."""
+    """The requirement of tests/python/requirements.txt (the same fmpy and matplotlib as the suite;
+    pinned or not, as the suite has it)."""
     for line in (ROOT / "tests" / "python" / "requirements.txt").read_text().splitlines():
-        if line.startswith(f"{name}=="):
+        if line.split("#")[0].strip() == name or line.startswith(f"{name}=="):
             return line.split()[0]
-    raise AssertionError(f"tests/python/requirements.txt pins no {name}")
+    raise AssertionError(f"tests/python/requirements.txt has no {name}")
 
 
 def without_rust(path: str) -> str:
@@ -68,19 +75,66 @@ def installed(tmp_path_factory):
     venv = tmp_path_factory.mktemp("wheel-venv")
     subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True, timeout=TIMEOUT)
     python = venv / "bin" / "python"
+    # matplotlib for the plots; mcap and mcap-protobuf-support for docs/logs.md's reader without
+    # beam_impact (the page names them to install).
     done = subprocess.run([str(python), "-m", "pip", "install", "--quiet", "--disable-pip-version-check", str(wheel),
-                           pin("fmpy"), pin("matplotlib")], capture_output=True, text=True, timeout=600)
+                           pin("fmpy"), pin("matplotlib"), pin("mcap"), pin("mcap-protobuf-support")],
+                          capture_output=True, text=True, timeout=600)
     assert done.returncode == 0, f"pip install {wheel.name} failed:\n{done.stdout}{done.stderr}"
-    bin_dir = tmp_path_factory.mktemp("wheel-bin")
-    (bin_dir / "beam-impact").symlink_to(binary())
-    for name in ("python", "python3"):
-        (bin_dir / name).symlink_to(python)
     env = {k: v for k, v in os.environ.items() if k not in DROPPED}
-    env.update(PATH=os.pathsep.join([str(bin_dir), str(venv / "bin"), without_rust(os.environ.get("PATH", ""))]),
+    # The venv's bin/ first, as an activated venv has it: its python and the wheel's `beam-impact`.
+    env.update(PATH=os.pathsep.join([str(venv / "bin"), without_rust(os.environ.get("PATH", ""))]),
                MPLBACKEND="Agg")
     for tool in ("cargo", "rustc"):
         assert shutil.which(tool, path=env["PATH"]) is None, f"{tool} is still on the test's PATH"
     return python, venv, env, wheel
+
+
+#: Where the Linux wheel keeps its command (maturin's data folder, installed into bin/ by pip).
+COMMAND = "beam_impact-{version}.data/scripts/beam-impact"
+
+
+def wheel_version(wheel: Path) -> str:
+    return wheel.name.split("-")[1]
+
+
+def test_the_wheel_carries_the_command_linked_for_glibc_2_17(tmp_path):
+    """Issue 41: the wheel's `beam-impact` is an executable (mode 755 in the archive, which pip
+    keeps) in the wheel's scripts, and, as the FMUs' library and the native module, needs no
+    glibc symbol newer than GLIBC_2.17 (`objdump -T`, the check of test_glibc.py)."""
+    wheel = the_wheel()
+    name = COMMAND.format(version=wheel_version(wheel))
+    with zipfile.ZipFile(wheel) as archive:
+        assert name in archive.namelist(), f"{wheel.name} has no {name}"
+        assert archive.getinfo(name).external_attr >> 16 & 0o777 == 0o755
+        command = Path(archive.extract(name, tmp_path))
+    assert command.read_bytes()[:4] == b"\x7fELF"
+    versions = glibc_versions(command)
+    assert versions, "no GLIBC symbol versions found: not a glibc-linked executable?"
+    highest = max(versions)
+    assert highest <= HIGHEST, f"the wheel's beam-impact needs GLIBC_{'.'.join(map(str, highest))}, newer than 2.17"
+
+
+def test_beam_impact_run_from_the_venv_s_path_equals_the_package_s_run(installed, tmp_path):
+    """`pip install WHEEL` puts `beam-impact` into the venv's bin/: found there on PATH (no other
+    on it), `beam-impact run` works, and its `--json` document gives the peaks `beam_impact.run`
+    gives in the same venv (one solver, two doors)."""
+    python, venv, env, _ = installed
+    found = shutil.which("beam-impact", path=env["PATH"])
+    assert found == str(venv / "bin" / "beam-impact"), found
+    done = subprocess.run(["beam-impact", "run", "--set", "duration=0.05", "--json", "run.json", "--no-mcap"],
+                          cwd=tmp_path, env=env, capture_output=True, text=True, timeout=TIMEOUT)
+    assert done.returncode == 0, done.stderr
+    assert "quality:" in done.stdout, done.stdout
+    probe = ("import json, beam_impact\n"
+             "r = beam_impact.run(duration=0.05)\n"
+             "print(json.dumps(r.peaks))\n")
+    ran = subprocess.run([str(python), "-c", probe], cwd=tmp_path, env=env, capture_output=True, text=True,
+                         timeout=TIMEOUT)
+    assert ran.returncode == 0, ran.stderr
+    by_command = json.loads((tmp_path / "run.json").read_text())["summary"]["peaks"]
+    by_package = json.loads(ran.stdout.splitlines()[-1])
+    assert by_package and all(by_command[k] == v for k, v in by_package.items()), (by_command, by_package)
 
 
 def test_the_wheel_carries_the_module_and_both_fmus(installed, tmp_path):
@@ -205,3 +259,109 @@ def test_the_wheel_carries_the_example_scenarios(installed, tmp_path):
     assert str(Path(arrestor).resolve()).startswith(str(venv.resolve())), arrestor
     assert names == repr(sorted(p.name for p in (ROOT / "examples").glob("*.toml")))
     assert float(time) == pytest.approx(0.01)
+
+
+# Every page's Python from the wheel (issue 41: "every page of the docs runs from a wheel install"):
+# the fresh venv's python, in an empty temporary folder (no examples/, no target/fmu, nothing of
+# the repository on sys.path), with the wheel's FMUs, examples and command.
+
+#: Pages whose marked snippets read a checkout's packed FMUs (`target/fmu/...`, which
+#: `beam-impact pack --out target/fmu` makes) rather than `beam_impact.fmu_path()`: from the wheel
+#: they run in a folder whose target/fmu is the wheel's own FMUs. No other page may (the list
+#: can only shrink: each of these would read `beam_impact.fmu_path()` instead).
+CHECKOUT_FMU_PAGES = {"README.md", "docs/fmu.md"}
+
+
+def run_python(python: Path, env: dict, cwd: Path, body: str) -> tuple[int | str, str]:
+    try:
+        done = subprocess.run([str(python), "-c", body], cwd=cwd, env=env, capture_output=True, text=True,
+                              timeout=TIMEOUT)
+        return done.returncode, done.stdout + done.stderr
+    except subprocess.TimeoutExpired as e:
+        return "timeout", f"{e.stdout or ''}{e.stderr or ''}\n(timed out after {TIMEOUT} s)"
+
+
+def wheel_fmus(python: Path, env: dict, cwd: Path) -> Path:
+    """The installed package's FMU folder (`fmus/fmi2/BeamImpact.fmu`, `fmus/fmi3/...`)."""
+    code, out = run_python(python, env, cwd, "import beam_impact; print(beam_impact.fmu_path())")
+    assert code == 0, out
+    return Path(out.strip()).parents[1]
+
+
+def test_the_fresh_venv_s_python_has_nothing_of_the_repository_on_its_path(installed, tmp_path):
+    python, venv, env, _ = installed
+    code, out = run_python(python, env, tmp_path, "import sys, beam_impact\nprint(beam_impact.__file__)\n"
+                                                  "print('\\n'.join(p for p in sys.path if p))")
+    assert code == 0, out
+    package, *path = out.splitlines()
+    assert str(Path(package).resolve()).startswith(str(venv.resolve())), package
+    assert not [p for p in path if str(Path(p).resolve()).startswith(str(ROOT))], path
+
+
+def test_python_md_runs_from_the_wheel_in_an_empty_folder(installed, tmp_path):
+    """docs/python.md's ```python blocks, in order, as test_python_doc.py runs them but from the
+    wheel: the example scenario is `beam_impact.examples()`'s, the FMU `beam_impact.fmu_path()`'s
+    (no BEAM_IMPACT_FMU_DIR, no target/fmu); the sweep's table has the CLI's columns and the
+    FMU route gives the native numbers (the page prints True)."""
+    python, _, env, _ = installed
+    outputs = []
+    for n, (info, body) in enumerate(blocks(PYTHON_PAGE.read_text()), 1):
+        if info != "python":
+            continue
+        code, output = run_python(python, env, tmp_path, body)
+        assert code == 0, f"docs/python.md block {n} failed from the wheel ({code}):\n{body}\n--- output:\n{output}"
+        outputs.append(output)
+    assert not (tmp_path / "target").exists() and not (tmp_path / "examples").exists()
+    assert outputs[-1].rstrip().endswith("True"), outputs[-1]
+    header = (tmp_path / "sweep.csv").read_text().splitlines()[0].split(",")
+    assert header[:2] == ["drop_height", "damping_ratio"] and "peak_time.contact.force" in header
+    assert len(header) == 62 + 1  # the CLI sweep's columns for two varied fields
+    assert (tmp_path / "sweep.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.fixture(scope="module")
+def made_by_the_command(installed, tmp_path_factory):
+    """paper.mcap and steps.csv, as test_doc_snippets.py makes them, by the wheel's `beam-impact`."""
+    _, _, env, _ = installed
+    folder = tmp_path_factory.mktemp("wheel-snippet-inputs")
+    make_inputs(folder, "beam-impact", env)
+    return folder
+
+
+@pytest.mark.parametrize("page,line,body", SNIPPETS, ids=[f"{p}:{n}" for p, n, _ in SNIPPETS])
+def test_every_marked_snippet_runs_from_the_wheel(installed, made_by_the_command, tmp_path, page, line, body):
+    """Each snippet test_doc_snippets.py runs (README, docs/fmu.md, docs/logs.md,
+    docs/python-reference.md, ...), in an empty folder with the command's paper.mcap and
+    steps.csv; a checkout's target/fmu only for the pages that still read it (CHECKOUT_FMU_PAGES),
+    there the wheel's FMUs."""
+    python, _, env, _ = installed
+    for name in ("paper.mcap", "steps.csv"):
+        shutil.copy(made_by_the_command / name, tmp_path / name)
+    if "target/fmu" in body:
+        assert page in CHECKOUT_FMU_PAGES, f"{page}:{line} reads target/fmu: use beam_impact.fmu_path() instead"
+        (tmp_path / "target").mkdir()
+        (tmp_path / "target" / "fmu").symlink_to(wheel_fmus(python, env, tmp_path), target_is_directory=True)
+    code, output = run_python(python, env, tmp_path, body)
+    assert code == 0, f"{page}:{line} failed from the wheel ({code}):\n{body}\n--- its output:\n{output[-3000:]}"
+
+
+def test_wheels_md_and_the_reference_s_cluster_script_run_from_the_wheel(installed, tmp_path):
+    """docs/wheels.md's marked block, and docs/python-reference.md's LocalCluster script saved as a
+    script (as test_package.py runs it, with no path replaced), from the fresh venv."""
+    python, _, env, _ = installed
+    page = (ROOT / "docs" / "wheels.md").read_text()
+    marker = "<!-- run by tests/python/test_wheel.py"
+    start = page.index("```python\n", page.index(marker)) + len("```python\n")
+    code, output = run_python(python, env, tmp_path, page[start:page.index("```", start)])
+    assert code == 0, output
+    reference = (ROOT / "docs" / "python-reference.md").read_text()
+    at = reference.index('  if __name__ == "__main__":')
+    begin = reference.rindex("```python\n", 0, at) + len("```python\n")
+    script = "\n".join(line[2:] for line in reference[begin:reference.index("```", begin)].splitlines())
+    assert "LocalCluster" in script and "beam_impact.fmu_path()" in script, script
+    (tmp_path / "study.py").write_text(script)
+    done = subprocess.run([str(python), "study.py"], cwd=tmp_path, env=env, capture_output=True, text=True,
+                          timeout=300)
+    assert done.returncode == 0, done.stderr[-2000:]
+    table = (tmp_path / "sweep.csv").read_text().splitlines()
+    assert len(table) == 4 and table[0].startswith("drop_height,peak.lower.tip_deflection"), table[:2]

@@ -7,7 +7,8 @@
 //! Every file the package writes goes through the CLI's output guard (`write_file`,
 //! `check_output`), and an FMU is read only if it is a regular file under `MAX_FMU_BYTES` (1 GiB)
 //! (`fmu_key`, `read_fmu`), issue 27. `run` runs the solver itself, as `beam-impact run` does
-//! (`run.rs`), for `beam_impact.run` and the sweeps' native engine.
+//! (`run.rs`), for `beam_impact.run`; `sweep_row` and `sweep_columns` give the sweeps' native
+//! engine the rows and the columns of `beam-impact sweep`, from the CLI's own row code.
 
 mod run;
 
@@ -432,14 +433,13 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(parse_motion, m)?)?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
     m.add_function(wrap_pyfunction!(run::cancel_running, m)?)?;
-    m.add_function(wrap_pyfunction!(run::check_field, m)?)?;
+    m.add_function(wrap_pyfunction!(run::sweep_columns, m)?)?;
+    m.add_function(wrap_pyfunction!(run::sweep_row, m)?)?;
     m.add("MAX_FMU_BYTES", MAX_FMU_BYTES)?;
     m.add("MAX_STEPS", beam_impact::model::scenario::MAX_STEPS)?;
     // One name per quantity: the step channel's columns as `report --csv` names them.
     m.add("STEP_COLUMNS", beam_impact::replay::csv::names())?;
     m.add("STEP_RENAMES", beam_impact::vocabulary::STEP_RENAMES.to_vec())?;
-    // The FMU's `energy_method.<name>` outputs, the columns of a sweep by either engine.
-    m.add("FMU_ENERGY_METHOD", beam_impact::fmi::variables::energy_method_names())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

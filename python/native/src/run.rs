@@ -9,13 +9,13 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
-use beam_impact::answer::Options;
+use beam_impact::answer::{Answer, Options};
 use beam_impact::record::mcap::{McapRecorder, RecorderOptions};
 use beam_impact::record::{Recorder, RunInfo};
 use beam_impact::results::{ContactEvent, StepResult};
-use beam_impact::studies::sweep::{self, Setting};
+use beam_impact::studies::sweep::{self, Axis, Row, RowResults, Setting};
 use beam_impact::{scenario_file, Error, Scenario};
-use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -146,6 +146,15 @@ impl Recorder for Outputs {
 /// asked), the warnings (motion rows, the log stopped early), the log's path (None without one).
 type RunOutput<'py> = (String, Option<Bound<'py, PyDict>>, Vec<String>, Option<String>);
 
+/// One run done: the scenario as given, its answer, what it recorded, its warnings, its start.
+struct Ran {
+    as_given: Scenario,
+    answer: Answer,
+    outputs: Outputs,
+    warnings: Vec<String>,
+    started: Instant,
+}
+
 /// Runs one scenario as `beam-impact run` does. `scenario`: a scenario file's path; else
 /// `scenario_text`: its TOML; else the paper's scenario (no fields) or the defaults. `fields`:
 /// (dotted name, value) pairs applied as `--set`. `log`: the MCAP log's path (through the output
@@ -170,6 +179,38 @@ pub fn run<'py>(
     sensitivity: bool,
     observed_order: bool,
 ) -> PyResult<RunOutput<'py>> {
+    let options = RunOptions { series_every, max_steps, sensitivity, observed_order };
+    let ran = answer_of(py, scenario, scenario_text, fields, log.clone(), options)?;
+    let doc = beam_impact::run_document::document(&ran.as_given, &ran.answer, ran.started.elapsed().as_secs_f64())
+        .and_then(|d| serde_json::to_string(&d).map_err(|e| Error::Other(format!("JSON: {e}"))))
+        .map_err(|e| PyRuntimeError::new_err(crate::one_line(&e.to_string())))?;
+    let series = match &ran.outputs.series {
+        Some(s) => Some(columns(py, &s.steps)?),
+        None => None,
+    };
+    Ok((doc, series, ran.warnings, log.map(|p| p.display().to_string())))
+}
+
+/// How [`answer_of`] runs: see [`run`]'s arguments of the same names.
+#[derive(Clone, Copy)]
+struct RunOptions {
+    series_every: u64,
+    max_steps: u64,
+    sensitivity: bool,
+    observed_order: bool,
+}
+
+/// The run of [`run`] up to its answer (the scenario read, checked, run with the GIL released
+/// and Ctrl-C watched), with [`run`]'s errors.
+fn answer_of(
+    py: Python<'_>,
+    scenario: Option<PathBuf>,
+    scenario_text: Option<String>,
+    fields: Vec<(String, FieldValue)>,
+    log: Option<PathBuf>,
+    options: RunOptions,
+) -> PyResult<Ran> {
+    let RunOptions { series_every, max_steps, sensitivity, observed_order } = options;
     let epoch = EPOCH.load(Ordering::SeqCst);
     let started = Instant::now();
     let mut warnings = Vec::new();
@@ -250,14 +291,70 @@ pub fn run<'py>(
     }
     // The CLI's warnings of an untrusted run, one line per reason (issue 41).
     warnings.extend(answer.quality.reasons.iter().map(|r| format!("results not trusted: {r}")));
-    let doc = beam_impact::run_document::document(&as_given, &answer, started.elapsed().as_secs_f64())
-        .and_then(|d| serde_json::to_string(&d).map_err(|e| Error::Other(format!("JSON: {e}"))))
-        .map_err(|e| PyRuntimeError::new_err(crate::one_line(&e.to_string())))?;
-    let series = match &outputs.series {
-        Some(s) => Some(columns(py, &s.steps)?),
-        None => None,
+    Ok(Ran { as_given, answer, outputs, warnings, started })
+}
+
+/// The axes of a sweep's grid point: one axis per varied field, holding the point's value.
+fn axes_of(point: &[(String, f64)]) -> PyResult<Vec<Axis>> {
+    point
+        .iter()
+        .map(|(name, value)| Ok(Axis { field: sweep::field(name).map_err(value_error)?, values: vec![*value] }))
+        .collect()
+}
+
+/// The columns of `beam-impact sweep --out` for a grid varying `fields` (in that order): the
+/// CLI's header, names and order, which the native engine's rows follow.
+#[pyfunction]
+pub fn sweep_columns(fields: Vec<String>) -> PyResult<Vec<String>> {
+    let point: Vec<(String, f64)> = fields.into_iter().map(|f| (f, 0.0)).collect();
+    Ok(sweep::columns(&axes_of(&point)?))
+}
+
+/// One row of `beam-impact sweep` for the grid point `point` ((dotted name, value in the
+/// parameter form) per varied field), through the CLI's own row (`sweep::json_object`: its
+/// columns, in its order, `sweep_columns`' names) as JSON text. The scenario is `scenario` /
+/// `scenario_text` as [`run`] takes them (both None: the defaults), with `duration` set unless
+/// None (a varied `duration` wins) and `point` applied; the run is a sweep's (no coarsest rung,
+/// no log, the twin with `sensitivity`). A refused scenario, or a failed run, is the row of its
+/// error (the CLI's message), as the CLI writes it; KeyboardInterrupt when Ctrl-C (or
+/// [`cancel_running`]) stops it.
+#[pyfunction]
+#[pyo3(signature = (point, scenario=None, scenario_text=None, duration=None, sensitivity=false))]
+pub fn sweep_row(
+    py: Python<'_>,
+    point: Vec<(String, f64)>,
+    scenario: Option<PathBuf>,
+    scenario_text: Option<String>,
+    duration: Option<f64>,
+    sensitivity: bool,
+) -> PyResult<String> {
+    let started = Instant::now();
+    let axes = axes_of(&point)?;
+    let mut fields: Vec<(String, FieldValue)> =
+        point.iter().map(|(name, value)| (name.clone(), FieldValue::Number(*value))).collect();
+    if let Some(d) = duration.filter(|_| !point.iter().any(|(name, _)| name == "duration")) {
+        fields.push(("duration".into(), FieldValue::Number(d)));
+    }
+    // Without a base scenario the defaults, as `beam-impact sweep` without a file and the FMU
+    // start from them (not the paper's scenario a bare `run` takes).
+    let text = if scenario.is_none() && scenario_text.is_none() { Some(String::new()) } else { scenario_text };
+    let options = RunOptions {
+        series_every: 0,
+        max_steps: beam_impact::model::scenario::MAX_STEPS,
+        sensitivity,
+        observed_order: false,
     };
-    Ok((doc, series, warnings, log.map(|p| p.display().to_string())))
+    let outcome = match answer_of(py, scenario, text, fields, None, options) {
+        Ok(ran) => Ok(RowResults::from(&ran.answer)),
+        Err(e) if e.is_instance_of::<PyKeyboardInterrupt>(py) => return Err(e),
+        Err(e) if e.is_instance_of::<PyValueError>(py) || e.is_instance_of::<PyRuntimeError>(py) => {
+            Err(e.value(py).to_string())
+        }
+        Err(e) => return Err(e),
+    };
+    let values = point.iter().map(|(_, v)| *v).collect();
+    let row = Row { values, outcome, wall_time: started.elapsed().as_secs_f64() };
+    Ok(sweep::json_object(&axes, &row))
 }
 
 /// Stops every run of this process at its next step (each raises KeyboardInterrupt): what a
@@ -265,11 +362,4 @@ pub fn run<'py>(
 #[pyfunction]
 pub fn cancel_running() {
     EPOCH.fetch_add(1, Ordering::SeqCst);
-}
-
-/// Refuses a name that is not a scenario field `--set` and `--vary` know (ValueError with the
-/// CLI's one-line message), before a sweep runs anything.
-#[pyfunction]
-pub fn check_field(name: &str) -> PyResult<()> {
-    sweep::field(name).map(drop).map_err(value_error)
 }
