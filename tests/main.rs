@@ -40,6 +40,7 @@ mod fmi_quality;
 mod fmi_sections;
 mod fmi_state_restore;
 mod fuzz_log_reader;
+mod fuzz_log_sample_interval;
 mod fuzz_motion_table;
 mod fuzz_output_paths;
 mod fuzz_resource_scenario;

@@ -159,8 +159,8 @@ def series_every_of(value: Any) -> int:
 
 
 def run(scenario: Any = None, *, fields: dict | None = None, log: "str | os.PathLike | None" = None,
-        series: bool = False, series_every: int = 1, max_steps: int | None = None,
-        check_sensitivity: bool = True, **field_keywords: Any) -> RunResult:
+        log_sample_interval: float = 1e-4, series: bool = False, series_every: int = 1,
+        max_steps: int | None = None, check_sensitivity: bool = True, **field_keywords: Any) -> RunResult:
     """Runs one scenario as `beam-impact run` does and returns its `RunResult` (the `run --json`
     document).
 
@@ -170,6 +170,9 @@ def run(scenario: Any = None, *, fields: dict | None = None, log: "str | os.Path
     relative to the current folder). `fields` / keywords: the dotted fields to change, as `--set`
     (numbers, or text read by the CLI's parser: `"auto"`, `"mean"`, `"converged"`).
     `log`: write the MCAP log there, through the CLI's output guard (default: none).
+    `log_sample_interval`: the log's dense output, s (`run --log-sample-interval`): the exact
+    state every this much simulated time and wherever a peak is reached, so that the log's
+    largest values are the printed peaks; 0: every internal step instead; 1e-6 to 1 s.
     `series`: keep every `series_every`-th step (and the last) and return them as
     `result.series`, a pandas.DataFrame (a converged run takes 1e5 to 1e6 steps of about 250
     bytes each). `max_steps`: refuse a run needing more internal steps (default the CLI's 1e8).
@@ -192,11 +195,14 @@ def run(scenario: Any = None, *, fields: dict | None = None, log: "str | os.Path
     if isinstance(limit, bool) or not isinstance(limit, int) or not 0 < limit < 2**64:
         raise ScenarioError(f"max_steps must be a whole number > 0, got {max_steps!r}")
     every = series_every_of(series_every)
+    if isinstance(log_sample_interval, bool) or not isinstance(log_sample_interval, (int, float)):
+        raise ScenarioError(f"log_sample_interval must be a number of seconds, got {log_sample_interval!r}")
     log_text = None if log is None else os.fsdecode(os.fspath(log))
     try:
         doc, steps, warnings, log_path = _native.run(
             scenario=path, scenario_text=text, fields=pairs, log=log_text, series_every=every if series else 0,
-            max_steps=limit, sensitivity=bool(check_sensitivity), observed_order=True)
+            max_steps=limit, sensitivity=bool(check_sensitivity), observed_order=True,
+            log_sample_interval=float(log_sample_interval))
     except ValueError as e:
         # The crate's line names the CLI's option; here it is this function's keyword.
         raise ScenarioError(str(e).replace("with --max-steps", "with run(..., max_steps=N)")) from None

@@ -37,7 +37,11 @@ impl Recorder for Cancellable<'_> {
     fn sample_interval_ns(&self) -> u64 {
         self.inner.sample_interval_ns()
     }
+    /// A sample is checked as a step is: the step it lies in is where the run stops.
     fn sample(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()> {
+        if self.flag.load(Ordering::Relaxed) {
+            return Err(Error::Cancelled { time: result.time, step: result.step });
+        }
         self.inner.sample(result, modal_coordinates)
     }
     fn contact_event(&mut self, event: &ContactEvent) -> Result<()> {

@@ -91,7 +91,8 @@ pub struct RecorderOptions {
 /// thinned to one at least every interval, as the paper plotted its figures.
 pub const DEFAULT_SAMPLE_INTERVAL_NS: u64 = 100_000;
 
-/// Bounds of the dense output's interval (besides 0, every internal step): 1 us to 1 s. Below a
+/// Bounds of the dense output's interval (besides 0, every internal step): 1 us to 1 s (the
+/// error message of [`sample_interval_ns`] spells them). Below a
 /// microsecond a 3 s run's log would pass its 2 GiB cap; above a second it holds no dynamics.
 pub const SAMPLE_INTERVAL_BOUNDS_NS: (u64, u64) = (1_000, 1_000_000_000);
 
@@ -105,11 +106,9 @@ pub fn sample_interval_ns(name: &str, seconds: f64) -> std::result::Result<u64, 
         return Ok(0);
     }
     if !(ns >= low as f64 - 0.5 && ns <= high as f64 + 0.5) {
-        return Err(format!(
-            "{name} must be 0 (every internal step) or between {} and {} s, got {seconds}",
-            low as f64 * 1e-9,
-            high as f64 * 1e-9
-        ));
+        // Short either way: 1e-300 and 1e300 as such, not as 300 digits.
+        let given = if (1e-4..1e6).contains(&seconds.abs()) { format!("{seconds}") } else { format!("{seconds:e}") };
+        return Err(format!("{name} must be 0 (every internal step) or between 1e-6 and 1 s, got {given}"));
     }
     Ok(ns.round() as u64)
 }

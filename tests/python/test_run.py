@@ -112,7 +112,8 @@ def test_what_the_cli_refuses_is_a_one_line_value_error(kwargs, message):
 
 def test_the_log_goes_through_the_guard_and_holds_the_run(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    result = beam_impact.run(drop_height=0.6, log="run.mcap", series=True)
+    # A log of every internal step (no dense output), as the series keeps them.
+    result = beam_impact.run(drop_height=0.6, log="run.mcap", log_sample_interval=0, series=True)
     assert result.log_path == "run.mcap" and sorted(p.name for p in tmp_path.iterdir()) == ["run.mcap"]
     log = beam_impact.load_log("run.mcap")
     assert log.complete
@@ -248,6 +249,38 @@ def test_ctrl_c_stops_a_threaded_sweep_s_runs(tmp_path):
     assert stopped < 10, f"exited {stopped:.2f} s after SIGINT"
 
 
+def test_the_log_holds_the_printed_peaks_at_their_times(tmp_path):
+    # Issue 41: the dense output (0.1 ms by default) and every peak's instant are rows of the
+    # log, so the log's largest |value| of each peak output is the printed peak, to the bit (the
+    # same computation; tests/log_peaks.rs proves it across a grid), at the printed time.
+    names = ["lower.tip_deflection", "lower.clamp_bending_stress", "lower.clamp_shear_stress",
+             "upper.contact_bending_stress", "contact.force"]
+    for interval, spacing in [(1e-4, 1e-4), (1e-3, 1e-3)]:
+        log = tmp_path / f"dense-{interval}.mcap"
+        result = beam_impact.run(drop_height=1.2, duration=0.5, log=log, log_sample_interval=interval,
+                                 check_sensitivity=False)
+        frame = beam_impact.load_log(log).dataframe()
+        summary = result["summary"]
+        for name in names:
+            at = int(frame[name].abs().to_numpy().argmax())
+            assert frame[name].abs().iloc[at] == summary["peaks"][name], name
+            assert frame["time_ns"].iloc[at] == round(summary["peak_times"][name] * 1e9), name
+        # A row at least every interval.
+        assert np.diff(frame["time_ns"].to_numpy()).max() <= round(spacing * 1e9)
+        # `report` replays the same log and prints the same peaks.
+        binary = os.environ.get("BEAM_IMPACT_BIN", str(Path(__file__).resolve().parents[2] / "target/release/beam-impact"))
+        text = subprocess.run([binary, "report", str(log),
+                               "--out", str(tmp_path / "figures")], capture_output=True, text=True)
+        assert text.returncode == 0, text.stderr
+        assert f"{summary['peaks']['contact.force'] / 1e3:.4f} kN" in text.stdout, text.stdout
+    # Bounds, in one line, before anything runs.
+    for bad in [-1e-4, 1e-9, 2.0, float("nan"), "fast", True]:
+        with pytest.raises(ValueError, match="log_sample_interval") as refused:
+            beam_impact.run(log=tmp_path / "bad.mcap", log_sample_interval=bad)
+        assert "\n" not in str(refused.value)
+    assert not (tmp_path / "bad.mcap").exists()
+
+
 def test_cancel_running_stops_another_thread_s_run(tmp_path):
     from beam_impact import _native
 
@@ -256,7 +289,7 @@ def test_cancel_running_stops_another_thread_s_run(tmp_path):
 
     def solve():
         try:
-            beam_impact.run(duration=2000.0, check_sensitivity=False, log=log)
+            beam_impact.run(duration=2000.0, check_sensitivity=False, log=log, log_sample_interval=0)
             outcome.append("finished")
         except KeyboardInterrupt as e:
             outcome.append(str(e))

@@ -166,7 +166,8 @@ struct Ran {
 /// RuntimeError when the run fails.
 #[pyfunction]
 #[pyo3(signature = (scenario=None, scenario_text=None, fields=Vec::new(), log=None, series_every=0,
-    max_steps=beam_impact::model::scenario::MAX_STEPS, sensitivity=true, observed_order=true))]
+    max_steps=beam_impact::model::scenario::MAX_STEPS, sensitivity=true, observed_order=true,
+    log_sample_interval=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn run<'py>(
     py: Python<'py>,
@@ -178,6 +179,7 @@ pub fn run<'py>(
     max_steps: u64,
     sensitivity: bool,
     observed_order: bool,
+    log_sample_interval: Option<f64>,
 ) -> PyResult<RunOutput<'py>> {
     let options = RunOptions { series_every, max_steps, sensitivity, observed_order };
     let ran = answer_of(py, scenario, scenario_text, fields, log.clone(), options)?;
@@ -238,7 +240,12 @@ fn answer_of(
         None => None,
         Some(path) => {
             guard("log", path, &inputs, &Vec::new(), true)?;
-            let options = RecorderOptions { allow_devices: true, ..RecorderOptions::default() };
+            let sample_interval_ns = match log_sample_interval {
+                None => beam_impact::record::options::DEFAULT_SAMPLE_INTERVAL_NS,
+                Some(s) => beam_impact::record::options::sample_interval_ns("log_sample_interval", s)
+                    .map_err(pyo3::exceptions::PyValueError::new_err)?,
+            };
+            let options = RecorderOptions { allow_devices: true, sample_interval_ns, ..RecorderOptions::default() };
             Some(McapRecorder::with_options(path, options).map_err(value_error)?)
         }
     };
