@@ -181,7 +181,7 @@ pub fn run<'py>(
     observed_order: bool,
     log_sample_interval: Option<f64>,
 ) -> PyResult<RunOutput<'py>> {
-    let options = RunOptions { series_every, max_steps, sensitivity, observed_order };
+    let options = RunOptions { series_every, max_steps, sensitivity, observed_order, log_sample_interval };
     let ran = answer_of(py, scenario, scenario_text, fields, log.clone(), options)?;
     let doc = beam_impact::run_document::document(&ran.as_given, &ran.answer, ran.started.elapsed().as_secs_f64())
         .and_then(|d| serde_json::to_string(&d).map_err(|e| Error::Other(format!("JSON: {e}"))))
@@ -200,6 +200,8 @@ struct RunOptions {
     max_steps: u64,
     sensitivity: bool,
     observed_order: bool,
+    /// The log's dense output, s (None: the default).
+    log_sample_interval: Option<f64>,
 }
 
 /// The run of [`run`] up to its answer (the scenario read, checked, run with the GIL released
@@ -212,7 +214,7 @@ fn answer_of(
     log: Option<PathBuf>,
     options: RunOptions,
 ) -> PyResult<Ran> {
-    let RunOptions { series_every, max_steps, sensitivity, observed_order } = options;
+    let RunOptions { series_every, max_steps, sensitivity, observed_order, log_sample_interval } = options;
     let epoch = EPOCH.load(Ordering::SeqCst);
     let started = Instant::now();
     let mut warnings = Vec::new();
@@ -350,6 +352,7 @@ pub fn sweep_row(
         max_steps: beam_impact::model::scenario::MAX_STEPS,
         sensitivity,
         observed_order: false,
+        log_sample_interval: None,
     };
     let outcome = match answer_of(py, scenario, text, fields, None, options) {
         Ok(ran) => Ok(RowResults::from(&ran.answer)),
