@@ -82,6 +82,7 @@ pub fn run(args: &RunArgs) -> Result<bool> {
             allow_devices: true,
             max_bytes: args.max_log_bytes,
             record_every: args.record_every,
+            channels: args.log_channels,
             modal_coordinates: !args.no_modal_coordinates,
             station_stresses: !args.no_station_stresses,
             compression: args.log_compression,
