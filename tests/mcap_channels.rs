@@ -114,3 +114,36 @@ fn a_cli_log_with_only_the_required_topics_replays_with_report() {
     assert!(stderr.contains("log.channels: unknown topic \"foo\"; known: model, step"), "{stderr}");
     assert!(!bad.exists());
 }
+
+#[test]
+fn the_fmus_log_channels_parameter_chooses_the_topics_and_refuses_an_unknown_one() {
+    use crate::fmi_common::importer::{load, Fmu2, Fmu3, ERROR, OK};
+    let dir = tempfile::tempdir().unwrap();
+    let lib = load();
+    let path = dir.path().join("fmu.mcap");
+    let fmu = Fmu2::new(&lib);
+    assert_eq!(fmu.set_string("log.path", path.to_str().unwrap()), OK);
+    assert_eq!(fmu.set_string("log.channels", "step,/beam/stations"), OK, "{}", fmu.log.text());
+    assert_eq!(fmu.initialize(), OK, "{}", fmu.log.text());
+    fmu.run(0.0, 0.05, 1e-2);
+    assert_eq!(fmu.call0("fmi2Terminate"), OK);
+    // The FMU's log names the full path and the topics.
+    let text = fmu.log.text();
+    assert!(
+        text.contains(&format!(
+            "MCAP log of every internal step: {}, topics model,step,contact,log,stations",
+            path.display()
+        )),
+        "{text}"
+    );
+    let data = read_log(&path).unwrap();
+    assert!(data.complete, "{:?}", data.problem);
+    assert_eq!(data.messages.get(MODES_TOPIC).copied().unwrap_or(0), 0);
+    assert_eq!(data.messages.get(SCENE_TOPIC).copied().unwrap_or(0), 0);
+    assert!(data.messages.get(STATIONS_TOPIC).copied().unwrap_or(0) > 0);
+    // A bad list is the setter's error, naming the value; the parameter keeps its value.
+    let fmu3 = Fmu3::try_new(&lib, None, false).0.unwrap();
+    assert_eq!(fmu3.set_string("log.channels", "step,foo"), ERROR);
+    let text = fmu3.log.text();
+    assert!(text.contains("log.channels: unknown topic \"foo\"; known: model, step"), "{text}");
+}
