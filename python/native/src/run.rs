@@ -10,7 +10,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
 use beam_impact::answer::Options;
-use beam_impact::record::mcap::{McapRecorder, RecorderOptions};
+use beam_impact::record::mcap::{LogChannels, McapRecorder, RecorderOptions};
 use beam_impact::record::{Recorder, RunInfo};
 use beam_impact::results::{ContactEvent, StepResult};
 use beam_impact::studies::sweep::{self, Setting};
@@ -142,7 +142,8 @@ type RunOutput<'py> = (String, Option<Bound<'py, PyDict>>, Vec<String>, Option<S
 /// Runs one scenario as `beam-impact run` does. `scenario`: a scenario file's path; else
 /// `scenario_text`: its TOML; else the paper's scenario (no fields) or the defaults. `fields`:
 /// (dotted name, value) pairs applied as `--set`. `log`: the MCAP log's path (through the output
-/// guard; never the scenario or motion file), None for none. `series_every`: keep every N-th
+/// guard; never the scenario or motion file), None for none; `log_channels`: its topics, as
+/// `run --log-channels` (ValueError naming a bad one). `series_every`: keep every N-th
 /// step (and the last) for a DataFrame, 0 for none. `sensitivity`, `observed_order`: the twin
 /// and the coarsest rung (a sweep's row leaves the latter out, as `beam-impact sweep`).
 /// ValueError with the CLI's one-line message for a scenario, field, path or step count it
@@ -150,7 +151,7 @@ type RunOutput<'py> = (String, Option<Bound<'py, PyDict>>, Vec<String>, Option<S
 /// RuntimeError when the run fails.
 #[pyfunction]
 #[pyo3(signature = (scenario=None, scenario_text=None, fields=Vec::new(), log=None, series_every=0,
-    max_steps=beam_impact::model::scenario::MAX_STEPS, sensitivity=true, observed_order=true))]
+    max_steps=beam_impact::model::scenario::MAX_STEPS, sensitivity=true, observed_order=true, log_channels=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn run<'py>(
     py: Python<'py>,
@@ -162,7 +163,12 @@ pub fn run<'py>(
     max_steps: u64,
     sensitivity: bool,
     observed_order: bool,
+    log_channels: Option<String>,
 ) -> PyResult<RunOutput<'py>> {
+    let channels = match log_channels.as_deref() {
+        None => LogChannels::ALL,
+        Some(text) => LogChannels::parse(text).map_err(pyo3::exceptions::PyValueError::new_err)?,
+    };
     let epoch = EPOCH.load(Ordering::SeqCst);
     let started = Instant::now();
     let mut warnings = Vec::new();
@@ -190,7 +196,7 @@ pub fn run<'py>(
         None => None,
         Some(path) => {
             guard("log", path, &inputs, &Vec::new(), true)?;
-            let options = RecorderOptions { allow_devices: true, ..RecorderOptions::default() };
+            let options = RecorderOptions { allow_devices: true, channels, ..RecorderOptions::default() };
             Some(McapRecorder::with_options(path, options).map_err(value_error)?)
         }
     };
