@@ -92,7 +92,7 @@ fn recorded_run(scenario: &Scenario, path: &std::path::Path, options: RecorderOp
 }
 
 /// Runs the paper scenario `runs` times unrecorded and `runs` times recorded in each way
-/// ([`variants`]), alternating, so every ratio compares runs made under the same machine load;
+/// (the default options, zstd 1, lz4, none, the required topics alone), alternating, so every ratio compares runs made under the same machine load;
 /// returns the table of medians (the CLI prints it), the default recording's ratio and size first.
 pub fn recording_benchmark(runs: usize) -> Result<String> {
     let runs = runs.max(1);
