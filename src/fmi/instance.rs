@@ -14,6 +14,7 @@ use super::logger::{c_string, log_with, number, significant, Logger};
 use super::resource::SCENARIO_RESOURCE;
 use super::state::{parameters_of, scenario_of, sections_of, Snapshot};
 use super::status::{Mask, State, Status};
+pub use super::variables::DEFAULT_LOG_CHANNELS;
 use super::variables::{table, Column, Source, Tip, Type, Variable};
 use crate::error::Error;
 use crate::model::parameters::{self, find};
@@ -112,9 +113,6 @@ const LOGGED_MISMATCHES: u64 = 10;
 /// the user's log folder ([`default_log_dir`]), `BeamImpact-<instance>-<UTC date and time>-<n>.mcap`
 /// (see [`unique_log`]). Any other path is the user's file (`./BeamImpact.mcap` for that very name).
 pub const DEFAULT_LOG_PATH: &str = "BeamImpact.mcap";
-
-/// `log.channels`' start value: every topic.
-pub const DEFAULT_LOG_CHANNELS: &str = "all";
 
 /// The folder of the default logs: `$XDG_STATE_HOME/beam-impact/logs` when `XDG_STATE_HOME` is
 /// an absolute path, else on Windows `%LOCALAPPDATA%\beam-impact\logs`, elsewhere

@@ -116,6 +116,9 @@ pub enum Column {
     Coupled,
 }
 
+/// `log.channels`' start value: every topic.
+pub const DEFAULT_LOG_CHANNELS: &str = "all";
+
 /// Where a variable's value comes from.
 #[derive(Clone, Copy, Debug)]
 pub enum Source {
@@ -685,7 +688,7 @@ pub fn table_for(defaults: &Scenario) -> Vec<Variable> {
          (/beam/stations, the stress at every station: a killed run's log rebuilds its envelope from them), or all; \
          \"step\" writes the smallest log that replays. An unknown name is an error naming it"
             .into(),
-        Some(crate::fmi::instance::DEFAULT_LOG_CHANNELS.into()),
+        Some(DEFAULT_LOG_CHANNELS.into()),
         Source::LogChannels,
     ));
     v
