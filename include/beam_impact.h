@@ -167,7 +167,7 @@ enum Status fmi2SetBoolean(Fmi2Component c,
                            size_t nvr,
                            const Fmi2Boolean *value);
 
-// `fmi2SetString`: `log.path`.
+// `fmi2SetString`: `log.path`, `log.channels`.
 enum Status fmi2SetString(Fmi2Component c,
                           const unsigned int *vr,
                           size_t nvr,
@@ -473,7 +473,7 @@ enum Status fmi3GetString(Fmi3Instance instance,
                           const char **values,
                           size_t n_values);
 
-// `fmi3SetString`: `log.path`.
+// `fmi3SetString`: `log.path`, `log.channels`.
 enum Status fmi3SetString(Fmi3Instance instance,
                           const Fmi3ValueReference *value_references,
                           size_t n_value_references,

@@ -127,7 +127,8 @@ pub fn table1(summary: &Summary, paper: bool) -> String {
         let _ = writeln!(
             s,
             "FEM bridge strain energy at the largest arrestor deflection: n/a (the log holds no modal coordinates \
-             of that step: recorded with --no-modal-coordinates, or rolled back past it)"
+             of that step: recorded without /beam/modes, by --log-channels or --no-modal-coordinates, or rolled back \
+             past it)"
         );
     }
     let first = &summary.first_contact_peaks;

@@ -1,26 +1,39 @@
-//! The default `log.path` (issue 8 item 4): every instance with default parameters records every
-//! step to a new file `BeamImpact-<instance>-<UTC time>-<n>.mcap` in the working directory, never
-//! one another's; two instances in one process and two processes in one folder run side by
-//! side; serial runs never overwrite a log; a folder that cannot be written is a warning and no
-//! log.
+//! The default `log.path` (issue 8 item 4, issue 41 item 2): every instance with default
+//! parameters records every step to a new file `BeamImpact-<instance>-<UTC time>-<n>.mcap` in the
+//! user's log folder (`$XDG_STATE_HOME/beam-impact/logs`, else `~/.local/state/beam-impact/logs`),
+//! never in the working directory and never one another's; two instances in one process and two
+//! processes run side by side; serial runs never overwrite a log; a folder that cannot be written
+//! is a warning and no log; an instance name that is a path (Ecos's) names the log by its last
+//! component.
 //!
-//! The working directory is per process, so each case runs in a child process: this test binary
-//! run again with `--exact fmi_default_log::child` and `BEAM_IMPACT_LOG_CHILD=<case>`, in a temporary folder.
-//! The child drives the FMU through the C API (libloading) and asserts; the parent checks the
-//! folder.
+//! The environment and the working directory are per process, so each case runs in a child
+//! process: this test binary run again with `--exact fmi_default_log::child` and
+//! `BEAM_IMPACT_LOG_CHILD=<case>`, in a temporary folder with `XDG_STATE_HOME` inside it (the
+//! tests never write to the real home). The child drives the FMU through the C API (libloading)
+//! and asserts; the parent checks the folders.
 
 use crate::fmi_common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use beam_impact::fmi::instance::{file_name_part, timestamp, unique_log, DEFAULT_LOG_PATH};
+use beam_impact::fmi::instance::{file_name_part, log_name_part, timestamp, unique_log, DEFAULT_LOG_PATH};
 use fmi_common::importer::{load, Fmu2, Fmu3, OK, WARNING};
 
 const CASE: &str = "BEAM_IMPACT_LOG_CHILD";
 
+/// The child runs in `dir` with `XDG_STATE_HOME` = `dir/state`: its default logs go to
+/// [`log_dir`]`(dir)`.
 fn spawn(case: &str, dir: &Path) -> std::process::Child {
-    Command::new(std::env::current_exe().unwrap())
+    spawn_with(case, dir, &[("XDG_STATE_HOME", dir.join("state").as_os_str())])
+}
+
+fn spawn_with(case: &str, dir: &Path, env: &[(&str, &std::ffi::OsStr)]) -> std::process::Child {
+    let mut command = Command::new(std::env::current_exe().unwrap());
+    for (key, value) in env {
+        command.env(key, value);
+    }
+    command
         .args(["--exact", "fmi_default_log::child", "--nocapture", "--test-threads=1"])
         .env(CASE, case)
         .current_dir(dir)
@@ -41,15 +54,19 @@ fn check(output: Output, case: &str) {
 
 fn run_child(case: &str, dir: &Path) {
     check(spawn(case, dir).wait_with_output().unwrap(), case);
+    assert!(logs(dir).is_empty(), "{case}: a log in the working directory: {:?}", logs(dir));
 }
 
-/// The `.mcap` files in `dir`, sorted.
+/// Where the children of [`spawn`] in `dir` write their default logs.
+fn log_dir(dir: &Path) -> PathBuf {
+    dir.join("state").join("beam-impact").join("logs")
+}
+
+/// The `.mcap` files in `dir`, sorted (none if there is no such folder).
 fn logs(dir: &Path) -> Vec<PathBuf> {
-    let mut found: Vec<PathBuf> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "mcap"))
-        .collect();
+    let Ok(entries) = std::fs::read_dir(dir) else { return Vec::new() };
+    let mut found: Vec<PathBuf> =
+        entries.map(|e| e.unwrap().path()).filter(|p| p.extension().is_some_and(|e| e == "mcap")).collect();
     found.sort();
     found
 }
@@ -91,6 +108,7 @@ fn announced(log: &str) -> PathBuf {
 fn child() {
     let Ok(case) = std::env::var(CASE) else { return };
     let cwd = std::env::current_dir().unwrap();
+    let expected_dir = std::env::var_os("XDG_STATE_HOME").map(|s| Path::new(&s).join("beam-impact").join("logs"));
     match case.as_str() {
         // Two instances in one process, both with default parameters and the same instance name
         // (libcosim aborted the process here), plus an FMI 3 one: three logs.
@@ -111,25 +129,38 @@ fn child() {
             let (pa, pb, pc) = (announced(&a.log.text()), announced(&b.log.text()), announced(&c.log.text()));
             assert!(pa != pb && pa != pc && pb != pc, "{pa:?} {pb:?} {pc:?}");
             for p in [&pa, &pb, &pc] {
-                assert_eq!(p.parent().unwrap(), cwd, "in the working directory");
-                assert!(p.is_file());
+                assert_eq!(Some(p.parent().unwrap()), expected_dir.as_deref(), "in the user's log folder, {cwd:?}");
+                assert!(p.is_absolute() && p.is_file(), "{p:?}");
             }
             assert!(pc.file_name().unwrap().to_str().unwrap().starts_with("BeamImpact-beam3-"));
         }
         "one-instance" => {
-            let path = default_run_fmi2("a run/with:odd*chars");
+            let path = default_run_fmi2("a run:with odd*chars");
             let name = path.file_name().unwrap().to_str().unwrap().to_string();
             assert!(name.starts_with("BeamImpact-a_run_with_odd_chars-"), "the instance name sanitised: {name}");
         }
-        // The working directory cannot take a file (the parent runs this in /proc): a warning
-        // from ExitInitializationMode, the reason logged, the run goes on without a log.
+        // Ecos names an instance after the FMU's file in its temporary folder: the log is named
+        // after the last component, never after the folder.
+        "path-named" => {
+            let path = default_run_fmi2("/tmp/ecos/ssp_d27d578b-0203-4fe5/resources/BeamImpact.fmu");
+            let name = path.file_name().unwrap().to_str().unwrap().to_string();
+            assert!(name.starts_with("BeamImpact-BeamImpact-2"), "{name}");
+        }
+        // XDG_STATE_HOME relative (ignored, as the XDG specification says): HOME's .local/state.
+        "home" => {
+            let path = default_run_fmi2("beam");
+            let home = std::env::var_os("HOME").unwrap();
+            assert_eq!(path.parent().unwrap(), Path::new(&home).join(".local/state/beam-impact/logs"));
+        }
+        // The log folder cannot be created (the parent points XDG_STATE_HOME into /proc): a
+        // warning from ExitInitializationMode, the reason logged, the run goes on without a log.
         "unwritable" => {
             let fmu = Fmu2::new(&load());
             assert_eq!(fmu.initialize(), WARNING, "{}", fmu.log.text());
             let log = fmu.log.text();
             assert!(
                 log.contains("[logStatusWarning] log.path = \"BeamImpact.mcap\" (the default")
-                    && log.contains("cannot create a log in the working directory")
+                    && log.contains("cannot create a log in /proc/")
                     && log.contains("the run goes on without an MCAP log"),
                 "{log}"
             );
@@ -197,13 +228,13 @@ fn child() {
 fn two_instances_in_one_process_write_their_own_logs_and_serial_runs_overwrite_none() {
     let dir = tempfile::tempdir().unwrap();
     run_child("two-instances", dir.path());
-    let first = logs(dir.path());
+    let first = logs(&log_dir(dir.path()));
     assert_eq!(first.len(), 3, "{first:?}");
     assert_complete(&first);
     let contents: Vec<Vec<u8>> = first.iter().map(|p| std::fs::read(p).unwrap()).collect();
     // The same again in the same folder (within the same second, most likely): three new logs.
     run_child("two-instances", dir.path());
-    let all = logs(dir.path());
+    let all = logs(&log_dir(dir.path()));
     assert_eq!(all.len(), 6, "{all:?}");
     assert_complete(&all);
     for (path, before) in first.iter().zip(&contents) {
@@ -218,29 +249,50 @@ fn two_processes_in_one_folder_write_their_own_logs() {
     for child in children {
         check(child.wait_with_output().unwrap(), "one-instance");
     }
-    let found = logs(dir.path());
+    assert!(logs(dir.path()).is_empty(), "a log in the working directory");
+    let found = logs(&log_dir(dir.path()));
     assert_eq!(found.len(), 2, "{found:?}");
     assert_complete(&found);
 }
 
 #[test]
+fn an_instance_named_after_a_temporary_path_names_its_log_after_the_fmu() {
+    let dir = tempfile::tempdir().unwrap();
+    run_child("path-named", dir.path());
+    assert_eq!(logs(&log_dir(dir.path())).len(), 1);
+}
+
+#[test]
+fn without_xdg_state_home_the_default_log_goes_under_home() {
+    let dir = tempfile::tempdir().unwrap();
+    let home = dir.path().join("home");
+    let env = [("XDG_STATE_HOME", std::ffi::OsStr::new("relative/state")), ("HOME", home.as_os_str())];
+    check(spawn_with("home", dir.path(), &env).wait_with_output().unwrap(), "home");
+    assert_eq!(logs(&home.join(".local/state/beam-impact/logs")).len(), 1);
+    assert!(logs(dir.path()).is_empty() && !dir.path().join("relative").exists());
+}
+
+#[test]
 fn a_default_folder_that_cannot_be_written_is_a_warning_and_no_log() {
-    // /proc takes no new files, not even from root.
-    run_child("unwritable", Path::new("/proc"));
+    // /proc takes no new folders, not even from root.
+    let dir = tempfile::tempdir().unwrap();
+    let env = [("XDG_STATE_HOME", std::ffi::OsStr::new("/proc/beam-impact-state"))];
+    check(spawn_with("unwritable", dir.path(), &env).wait_with_output().unwrap(), "unwritable");
+    assert!(logs(dir.path()).is_empty());
 }
 
 #[test]
 fn a_state_restored_with_default_parameters_logs_to_a_new_default_file() {
     let dir = tempfile::tempdir().unwrap();
     run_child("restore", dir.path());
-    assert_eq!(logs(dir.path()).len(), 1);
+    assert_eq!(logs(&log_dir(dir.path())).len(), 1);
 }
 
 #[test]
 fn another_scenario_restored_goes_on_in_a_new_default_log() {
     let dir = tempfile::tempdir().unwrap();
     run_child("switch", dir.path());
-    let found = logs(dir.path());
+    let found = logs(&log_dir(dir.path()));
     assert_eq!(found.len(), 2, "{found:?}");
     assert_complete(&found);
 }
@@ -256,6 +308,11 @@ fn names_of_default_logs() {
     assert_eq!(file_name_part("a/b\\c d:é"), "a_b_c_d__");
     assert_eq!(file_name_part(""), "instance");
     assert_eq!(file_name_part(&"x".repeat(100)).len(), 64);
+    assert_eq!(log_name_part("/tmp/ecos/ssp_1/resources/BeamImpact.fmu"), "BeamImpact");
+    assert_eq!(log_name_part("C:\\Temp\\x\\gangway"), "gangway");
+    assert_eq!(log_name_part("beam/"), "beam");
+    assert_eq!(log_name_part("/"), "instance");
+    assert_eq!(log_name_part("a run:with odd*chars"), "a_run_with_odd_chars");
     let at = |s: u64| timestamp(std::time::UNIX_EPOCH + std::time::Duration::from_secs(s));
     assert_eq!(at(0), "19700101T000000Z");
     assert_eq!(at(951_782_400), "20000229T000000Z");

@@ -159,8 +159,9 @@ def series_every_of(value: Any) -> int:
 
 
 def run(scenario: Any = None, *, fields: dict | None = None, log: "str | os.PathLike | None" = None,
-        log_sample_interval: float = 1e-4, series: bool = False, series_every: int = 1,
-        max_steps: int | None = None, check_sensitivity: bool = True, **field_keywords: Any) -> RunResult:
+        log_sample_interval: float = 1e-4, log_channels: "str | None" = None, series: bool = False,
+        series_every: int = 1, max_steps: int | None = None, check_sensitivity: bool = True,
+        **field_keywords: Any) -> RunResult:
     """Runs one scenario as `beam-impact run` does and returns its `RunResult` (the `run --json`
     document).
 
@@ -173,6 +174,9 @@ def run(scenario: Any = None, *, fields: dict | None = None, log: "str | os.Path
     `log_sample_interval`: the log's dense output, s (`run --log-sample-interval`): the exact
     state every this much simulated time and wherever a peak is reached, so that the log's
     largest values are the printed peaks; 0: every internal step instead; 1e-6 to 1 s.
+    `log_channels`: its topics, as `beam-impact run --log-channels` (default all): a comma list of
+    model, step, contact, log (always written), modes, scene, stations, or a list of those names;
+    `"step"` writes the smallest log that `load_log` reads (docs/logs.md says what each adds).
     `series`: keep every `series_every`-th step (and the last) and return them as
     `result.series`, a pandas.DataFrame (a converged run takes 1e5 to 1e6 steps of about 250
     bytes each). `max_steps`: refuse a run needing more internal steps (default the CLI's 1e8).
@@ -198,11 +202,15 @@ def run(scenario: Any = None, *, fields: dict | None = None, log: "str | os.Path
     if isinstance(log_sample_interval, bool) or not isinstance(log_sample_interval, (int, float)):
         raise ScenarioError(f"log_sample_interval must be a number of seconds, got {log_sample_interval!r}")
     log_text = None if log is None else os.fsdecode(os.fspath(log))
+    if log_channels is not None and not isinstance(log_channels, str):
+        if not isinstance(log_channels, (list, tuple)) or not all(isinstance(c, str) for c in log_channels):
+            raise ScenarioError(f"log_channels must be a comma list or a list of topic names, got {log_channels!r:.100}")
+        log_channels = ",".join(log_channels)
     try:
         doc, steps, warnings, log_path = _native.run(
             scenario=path, scenario_text=text, fields=pairs, log=log_text, series_every=every if series else 0,
             max_steps=limit, sensitivity=bool(check_sensitivity), observed_order=True,
-            log_sample_interval=float(log_sample_interval))
+            log_sample_interval=float(log_sample_interval), log_channels=log_channels)
     except ValueError as e:
         # The crate's line names the CLI's option; here it is this function's keyword.
         raise ScenarioError(str(e).replace("with --max-steps", "with run(..., max_steps=N)")) from None

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 
-use beam_impact::record::mcap::LogCompression;
+use beam_impact::record::mcap::{LogChannels, LogCompression};
 
 /// Elastic impact of two beams (Catipovic, Vladimir, Reljic 2008): FEM + linear acceleration method.
 #[derive(Parser)]
@@ -189,18 +189,24 @@ pub struct RunArgs {
     /// every internal step (thinned by --record-every) [default: 1e-4; with --record-every: 0].
     #[arg(long, value_name = "SECONDS")]
     pub log_sample_interval: Option<f64>,
-    /// Leave the modal coordinates (topic /beam/modes) out of the MCAP log; the 3D scene is still
-    /// drawn, `report` then cannot give the bridge's strain energy at the peak deflection.
+    /// The topics of the MCAP log, a comma list of model, step, contact, log (always written),
+    /// modes (/beam/modes: without it `report` cannot give the bridge's strain energy at the peak
+    /// deflection), scene (/beam/scene, Foxglove's 3D panel) and stations (/beam/stations: without
+    /// it a killed run's log cannot rebuild the stress envelope), or all: `--log-channels step`
+    /// writes the smallest log that replays.
+    #[arg(long, value_name = "LIST", default_value = "all")]
+    pub log_channels: LogChannels,
+    /// The same as leaving `modes` out of --log-channels (kept as an alias).
     #[arg(long)]
     pub no_modal_coordinates: bool,
-    /// Leave the stress at every station of each recorded step (topic /beam/stations) out of the
-    /// MCAP log; the envelope is still attached when the log is finished (a killed run's log then
-    /// cannot rebuild it) and the 3D scene still coloured by utilisation.
+    /// The same as leaving `stations` out of --log-channels (kept as an alias); the envelope is
+    /// still attached when the log is finished and the 3D scene still coloured by utilisation.
     #[arg(long)]
     pub no_station_stresses: bool,
-    /// Chunk compression of the MCAP log: none (the default: recording keeps pace with the
-    /// solver), lz4 (~20 % smaller, about 2x the writer's work) or zstd (~35 % smaller, slower).
-    #[arg(long, value_name = "none|lz4|zstd", default_value = "none")]
+    /// Chunk compression of the MCAP log: zstd (the default, at level -1: the paper log a third
+    /// smaller than none), lz4 (larger, and no cheaper to write) or none (the largest file, the
+    /// cheapest writer). Every MCAP reader reads all three.
+    #[arg(long, value_name = "zstd|lz4|none", default_value = "zstd")]
     pub log_compression: LogCompression,
     /// Change a scenario field, KEY=VALUE with the dotted names of `beam-impact scenario`
     /// (repeatable): `--set upper.mass=14000 --set step_free=auto --set stress_recovery=left`.

@@ -98,6 +98,7 @@ pub fn run(args: &RunArgs) -> Result<bool> {
             max_bytes: args.max_log_bytes,
             record_every: args.record_every,
             sample_interval_ns,
+            channels: args.log_channels,
             modal_coordinates: !args.no_modal_coordinates,
             station_stresses: !args.no_station_stresses,
             compression: args.log_compression,

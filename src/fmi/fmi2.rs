@@ -341,7 +341,7 @@ pub unsafe extern "C" fn fmi2SetBoolean(
     ffi_boundary! { setter!(c, "fmi2SetBoolean", allowed::SET_BOOLEAN, vr, nvr, value, set_boolean, |x: Fmi2Boolean| Ok::<bool, String>(x != 0)) }
 }
 
-/// `fmi2SetString`: `log.path`.
+/// `fmi2SetString`: `log.path`, `log.channels`.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetString(
     c: Fmi2Component,

@@ -631,7 +631,7 @@ pub unsafe extern "C" fn fmi3GetString(
     }
 }
 
-/// `fmi3SetString`: `log.path`.
+/// `fmi3SetString`: `log.path`, `log.channels`.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetString(
     instance: Fmi3Instance,

@@ -14,13 +14,14 @@ use super::logger::{c_string, log_with, number, significant, Logger};
 use super::resource::SCENARIO_RESOURCE;
 use super::state::{parameters_of, scenario_of, sections_of, Snapshot};
 use super::status::{Mask, State, Status};
+pub use super::variables::DEFAULT_LOG_CHANNELS;
 use super::variables::{table, Column, Source, Tip, Type, Variable};
 use crate::error::Error;
 use crate::model::parameters::{self, find};
 use crate::model::scenario::MAX_TIP_FORCE;
 use crate::model::support_motion::{check_motion_value, MOTION_NAMES};
 use crate::model::SupportMotion;
-use crate::record::mcap::McapRecorder;
+use crate::record::mcap::{LogChannels, McapRecorder, RecorderOptions};
 use crate::record::{Recorder, RunInfo};
 use crate::results::{seconds, ContactEvent, StepResult};
 use crate::simulation::Advance;
@@ -76,6 +77,8 @@ pub struct Instance {
     packed: Option<Scenario>,
     scenario: Scenario,
     log_path: String,
+    /// `log.channels`: the topics of the log (checked when set).
+    log_channels: String,
     simulation: Option<Simulation>,
     /// The discretisation check's runs, stepped in lockstep with `simulation` (the coarser rungs
     /// of the converged method, or the converged answer beside the paper method); `None` once a
@@ -107,9 +110,49 @@ pub struct Instance {
 const LOGGED_MISMATCHES: u64 = 10;
 
 /// `log.path`'s start value, which stands for the default log: a new file per instance and run in
-/// the working directory, `BeamImpact-<instance>-<UTC date and time>-<n>.mcap` (see [`unique_log`]).
-/// Any other path is the user's file (`./BeamImpact.mcap` for that very name).
+/// the user's log folder ([`default_log_dir`]), `BeamImpact-<instance>-<UTC date and time>-<n>.mcap`
+/// (see [`unique_log`]). Any other path is the user's file (`./BeamImpact.mcap` for that very name).
 pub const DEFAULT_LOG_PATH: &str = "BeamImpact.mcap";
+
+/// The folder of the default logs: `$XDG_STATE_HOME/beam-impact/logs` when `XDG_STATE_HOME` is
+/// an absolute path, else on Windows `%LOCALAPPDATA%\beam-impact\logs`, elsewhere
+/// `$HOME/.local/state/beam-impact/logs` (the XDG base directories' place for logs). Not the working
+/// directory: an SSP tool's or a test's run would litter it (and some tools run the FMU in a
+/// temporary folder that is deleted afterwards). Relative values are ignored, as the XDG
+/// specification says. Err says which variables were missing.
+pub fn default_log_dir() -> Result<PathBuf, String> {
+    let absolute = |name: &str| std::env::var_os(name).map(PathBuf::from).filter(|p| p.is_absolute());
+    let tail = |base: PathBuf| base.join("beam-impact").join("logs");
+    if let Some(state) = absolute("XDG_STATE_HOME") {
+        return Ok(tail(state));
+    }
+    if cfg!(windows) {
+        return absolute("LOCALAPPDATA")
+            .map(tail)
+            .ok_or_else(|| "neither XDG_STATE_HOME nor LOCALAPPDATA is an absolute folder".to_string());
+    }
+    absolute("HOME")
+        .map(|home| tail(home.join(".local").join("state")))
+        .ok_or_else(|| "neither XDG_STATE_HOME nor HOME is an absolute folder".to_string())
+}
+
+/// Creates the folder of the default logs with its parents (on Unix, those it creates readable
+/// by the user alone, as the XDG specification asks of the state folder).
+pub fn create_log_dir(dir: &Path) -> std::io::Result<()> {
+    let mut builder = std::fs::DirBuilder::new();
+    builder.recursive(true);
+    #[cfg(unix)]
+    std::os::unix::fs::DirBuilderExt::mode(&mut builder, 0o700);
+    builder.create(dir)
+}
+
+/// The instance name as it goes into a default log's name: an instance name that is a path (Ecos
+/// names its instances after the FMU's file in a temporary folder) gives its last component, a
+/// `.fmu` extension left off, then [`file_name_part`]: never a temporary folder's name.
+pub fn log_name_part(instance_name: &str) -> String {
+    let last = instance_name.rsplit(['/', '\\']).find(|s| !s.trim().is_empty()).unwrap_or("");
+    file_name_part(last.strip_suffix(".fmu").unwrap_or(last))
+}
 
 /// The highest `<n>` tried for a default log name in one second before giving up (a warning).
 const MAX_LOG_COUNTER: u32 = 10_000;
@@ -146,11 +189,12 @@ pub fn timestamp(time: SystemTime) -> String {
     format!("{year:04}{month:02}{day:02}T{hour:02}{minute:02}{second:02}Z")
 }
 
-/// Reserves a new log name `BeamImpact-<instance>-<timestamp>-<n>.mcap` in `dir`, `n` = 1, 2, ...
+/// Reserves a new log name `BeamImpact-<instance>-<timestamp>-<n>.mcap` in `dir` (`<instance>`:
+/// [`log_name_part`]), `n` = 1, 2, ...
 /// the first name that does not exist yet, by creating its empty `NAME.partial` with
 /// `create_new`: two instances or processes never get the same one and no file is overwritten.
 pub fn unique_log(dir: &Path, instance_name: &str, now: SystemTime) -> std::io::Result<PathBuf> {
-    let stem = format!("BeamImpact-{}-{}", file_name_part(instance_name), timestamp(now));
+    let stem = format!("BeamImpact-{}-{}", log_name_part(instance_name), timestamp(now));
     for n in 1..=MAX_LOG_COUNTER {
         let path = dir.join(format!("{stem}-{n}.mcap"));
         if path.exists() {
@@ -270,6 +314,7 @@ impl Instance {
             packed,
             scenario,
             log_path: DEFAULT_LOG_PATH.to_string(),
+            log_channels: DEFAULT_LOG_CHANNELS.to_string(),
             simulation: None,
             checks: None,
             check_sensitivity: false,
@@ -537,14 +582,17 @@ impl Instance {
 
     /// The MCAP log of a run that starts now (initialization, or a state restored into an instance
     /// that was not initialized). `log.path` = `""`: none. [`DEFAULT_LOG_PATH`]: a new file with a
-    /// unique name in the working directory ([`unique_log`]); a folder that cannot take it is a
-    /// warning (returned, to be logged) and no log. Any other path is the user's file, created or
-    /// truncated (an error if that fails, or if another run writes it). The model description is
-    /// attached, and where the log goes is logged (logEvents).
+    /// unique name in the user's log folder ([`default_log_dir`], [`unique_log`]); a folder that
+    /// cannot take it is a warning (returned, to be logged) and no log. Any other path is the user's
+    /// file, created or truncated (an error if that fails, or if another run writes it). The topics
+    /// are `log.channels`'. The model description is attached, and where the log goes is logged
+    /// (logEvents), its full path.
     fn open_log(&self) -> Outcome<(Option<McapRecorder>, Option<String>)> {
         if self.log_path.is_empty() {
             return Ok((None, None));
         }
+        let channels = LogChannels::parse(&self.log_channels)?;
+        let options = RecorderOptions { channels, ..RecorderOptions::default() };
         let tool = description::generation_tool(None);
         let xml = match self.version {
             Version::Fmi2 => description::fmi2_for(self.packed.as_ref(), &tool),
@@ -553,32 +601,40 @@ impl Instance {
         let attach = |mut recorder: McapRecorder| {
             recorder.attach("modelDescription.xml", "application/xml", xml.as_bytes()).map(|()| recorder)
         };
+        let topics = if channels == LogChannels::ALL { String::new() } else { format!(", topics {channels}") };
         if self.log_path != DEFAULT_LOG_PATH {
-            let recorder = McapRecorder::create(Path::new(&self.log_path))
+            let path = Path::new(&self.log_path);
+            let recorder = McapRecorder::with_options(path, options)
                 .and_then(attach)
                 .map_err(|e| format!("log.path = \"{}\": {e}", self.log_path))?;
-            self.log(Status::Ok, "logEvents", &format!("MCAP log of every internal step: {}", self.log_path));
+            let full = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+            self.log(Status::Ok, "logEvents", &format!("MCAP log of every internal step: {}{topics}", full.display()));
             return Ok((Some(recorder), None));
         }
         let no_log = |why: String| {
             format!(
-                "log.path = \"{DEFAULT_LOG_PATH}\" (the default, a new file per instance and run in the working \
-                 directory): {why}; the run goes on without an MCAP log (set log.path to a writable file, or \"\" \
-                 for no log)"
+                "log.path = \"{DEFAULT_LOG_PATH}\" (the default, a new file per instance and run in the user's log \
+                 folder): {why}; the run goes on without an MCAP log (set log.path to a writable file, or \"\" for no \
+                 log)"
             )
         };
-        let path = match std::env::current_dir().and_then(|dir| unique_log(&dir, &self.name, SystemTime::now())) {
-            Ok(path) => path,
-            Err(e) => return Ok((None, Some(no_log(format!("cannot create a log in the working directory: {e}"))))),
+        let dir = match default_log_dir() {
+            Ok(dir) => dir,
+            Err(why) => return Ok((None, Some(no_log(format!("no log folder: {why}"))))),
         };
-        match McapRecorder::create(&path).and_then(attach) {
+        let reserved = create_log_dir(&dir).and_then(|()| unique_log(&dir, &self.name, SystemTime::now()));
+        let path = match reserved {
+            Ok(path) => path,
+            Err(e) => return Ok((None, Some(no_log(format!("cannot create a log in {}: {e}", dir.display()))))),
+        };
+        match McapRecorder::with_options(&path, options).and_then(attach) {
             Ok(recorder) => {
                 self.log(
                     Status::Ok,
                     "logEvents",
                     &format!(
-                        "MCAP log of every internal step: {} (log.path is the default \"{DEFAULT_LOG_PATH}\": a new \
-                         file per instance and run)",
+                        "MCAP log of every internal step: {}{topics} (log.path is the default \"{DEFAULT_LOG_PATH}\": a \
+                         new file per instance and run)",
                         path.display()
                     ),
                 );
@@ -938,6 +994,7 @@ impl Instance {
                 self.computed(&v.name)?.envelope().peaks()[k].and_then(|p| p.utilisation).unwrap_or(0.0)
             }
             Source::LogPath
+            | Source::LogChannels
             | Source::ContactActive
             | Source::DesignPass
             | Source::Trusted
@@ -984,6 +1041,7 @@ impl Instance {
             let v = self.variable(vr, Type::String)?;
             match v.source {
                 Source::LogPath => strings.push(c_string(&self.log_path)),
+                Source::LogChannels => strings.push(c_string(&self.log_channels)),
                 _ => return Err(format!("`{}` is not a String", v.name)),
             }
         }
@@ -995,7 +1053,7 @@ impl Instance {
     /// `ExitInitializationMode`, inputs until `Terminate`, nothing else ever.
     fn check_settable(&self, v: &Variable, value: &dyn Shown) -> Outcome<()> {
         let (allowed, rule) = match v.source {
-            Source::Parameter(_) | Source::LogPath | Source::CheckSensitivity => {
+            Source::Parameter(_) | Source::LogPath | Source::LogChannels | Source::CheckSensitivity => {
                 (super::status::allowed::SET_PARAMETER, "parameters are fixed at ExitInitializationMode")
             }
             Source::Input(_) | Source::Motion(_) => {
@@ -1120,6 +1178,12 @@ impl Instance {
         match v.source {
             Source::LogPath => {
                 self.log_path = value;
+                Ok(())
+            }
+            Source::LogChannels => {
+                // Checked here, so that a bad list is the setter's error, naming the value.
+                LogChannels::parse(&value)?;
+                self.log_channels = value;
                 Ok(())
             }
             _ => Err(format!("`{}` cannot be set: value reference {vr} = {} is not set", v.name, value.shown())),

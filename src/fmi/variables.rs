@@ -116,6 +116,9 @@ pub enum Column {
     Coupled,
 }
 
+/// `log.channels`' start value: every topic.
+pub const DEFAULT_LOG_CHANNELS: &str = "all";
+
 /// Where a variable's value comes from.
 #[derive(Clone, Copy, Debug)]
 pub enum Source {
@@ -125,6 +128,8 @@ pub enum Source {
     Parameter(&'static Parameter),
     /// The MCAP log path.
     LogPath,
+    /// The MCAP log's topics (`log.channels`).
+    LogChannels,
     /// An input tip force.
     Input(Tip),
     /// A support-motion input: its index in [`crate::model::support_motion::MOTION_NAMES`].
@@ -453,9 +458,12 @@ pub fn table_for(defaults: &Scenario) -> Vec<Variable> {
         Variability::Fixed,
         Some(true),
         None,
-        "MCAP log of every internal step. The default BeamImpact.mcap stands for a new file per instance and run in \
-         the working directory, BeamImpact-<instance>-<UTC date-time>-<n>.mcap, never overwriting one (the FMU's log \
-         says which); any other path: that file, relative to the working directory; empty: no log"
+        "MCAP log of every internal step (zstd chunks). The default BeamImpact.mcap stands for a new file per \
+         instance and run in the user's log folder, not the working directory (an SSP tool's run would litter it): \
+         $XDG_STATE_HOME/beam-impact/logs, else ~/.local/state/beam-impact/logs (Windows: \
+         %LOCALAPPDATA%\\beam-impact\\logs), named BeamImpact-<instance>-<UTC date-time>-<n>.mcap after the instance \
+         name (its last component if it is a path), never overwriting one (the FMU's log says the full path); any \
+         other path: that file, relative to the working directory; empty: no log"
             .into(),
         Some("BeamImpact.mcap".into()),
         Source::LogPath,
@@ -668,6 +676,21 @@ pub fn table_for(defaults: &Scenario) -> Vec<Variable> {
         let description = format!("{}{}", envelope_description(k, EnvelopeField::Utilisation), missing_utilisation(k));
         push(real_output(&format!("utilisation.{name}"), "1", &description, Source::EnvelopeUtilisation(k)));
     }
+    push((
+        "log.channels".into(),
+        Type::String,
+        Causality::Parameter,
+        Variability::Fixed,
+        Some(true),
+        None,
+        "The MCAP log's topics, a comma list: model, step, contact and log (always written), modes (/beam/modes, the \
+         modal coordinates: the deflected shapes), scene (/beam/scene, Foxglove's 3D panel) and stations \
+         (/beam/stations, the stress at every station: a killed run's log rebuilds its envelope from them), or all; \
+         \"step\" writes the smallest log that replays. An unknown name is an error naming it"
+            .into(),
+        Some(DEFAULT_LOG_CHANNELS.into()),
+        Source::LogChannels,
+    ));
     v
 }
 

@@ -64,7 +64,9 @@ pub use super::log_format::{
     MODES_TOPIC, MOTION_ATTACHMENT, MOTION_MEDIA_TYPE, ROLLBACK_LINE, SCENARIO_ATTACHMENT, SCENARIO_METADATA,
     SCENE_TOPIC, SIZE_CAP_LINE, STATIONS_TOPIC, STEP_TOPIC,
 };
-pub use super::options::{LogCompression, RecorderOptions, RecorderTiming, MAX_LOG_BYTES};
+pub use super::options::{
+    LogChannels, LogCompression, RecorderOptions, RecorderTiming, DEFAULT_ZSTD_LEVEL, MAX_LOG_BYTES,
+};
 use super::scene::SceneBuilder;
 use super::schema::{self, ModelMessage, StationGroupMessage};
 use super::stations::{StationFeed, StationGroup};
@@ -135,6 +137,8 @@ impl McapRecorder {
     /// Like [`McapRecorder::create`], with explicit options. The file is created, locked and given
     /// its header and channels here, on the caller's thread; then the writer thread starts.
     pub fn with_options(path: &Path, options: RecorderOptions) -> Result<Self> {
+        // The channel filter (`log.channels`): a topic left out is switched off here.
+        let options = options.effective();
         let io_error = |action, source| Error::Io { action, path: path.display().to_string(), source };
         let mcap_error =
             |e: ::mcap::McapError| Error::Mcap { path: path.display().to_string(), message: error_chain(&e) };
@@ -175,7 +179,9 @@ impl McapRecorder {
         let write_options = WriteOptions::new()
             .profile("beam-impact")
             .compression(compression)
-            .compression_level(options.compression_level)
+            // The crate hands the level to zstd as an i32: a fast level (-1) goes through as its
+            // two's complement (tests/mcap_channels.rs checks that it takes effect).
+            .compression_level(options.compression_level.cast_unsigned())
             .compression_threads(0)
             // Every chunk has its own CRC; the data section's CRC covers what lies outside the
             // chunks (the top-level metadata record has no CRC of its own), checked by the

@@ -4,17 +4,20 @@
 
 use std::time::Duration;
 
-/// How the log's chunks are compressed.
+/// How the log's chunks are compressed (every MCAP reader reads all three: the `mcap` crate,
+/// Foxglove, Python's `mcap`, `@mcap/core` with `@mcap/support`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum LogCompression {
-    /// None, the default: the solver's results are doubles that compress poorly (LZ4 saves
-    /// about 20 %, zstd 35 %) while compressing takes the writer thread longer than the solver's
-    /// step takes (see `beam-impact bench`); without it recording keeps pace with the solver.
-    #[default]
+    /// Uncompressed chunks: the cheapest writer, the largest file (the paper log 45.9 MB).
     None,
-    /// LZ4 frames: a 20 % smaller file, at about twice the writer thread's work.
+    /// LZ4 frames: about 24 % smaller than none on the paper log, at about twice the writer
+    /// thread's work; zstd at its fast levels is both smaller and cheaper (measured in
+    /// `docs/logs.md`).
     Lz4,
-    /// zstd at [`RecorderOptions::compression_level`]: the smallest file, the slowest writer.
+    /// zstd at [`RecorderOptions::compression_level`], the default: at level -1 about a third
+    /// smaller than none on the paper log (30.5 MB) and half on the arrestor example's, for about
+    /// the writer work LZ4 costs.
+    #[default]
     Zstd,
 }
 
@@ -40,7 +43,119 @@ impl std::fmt::Display for LogCompression {
     }
 }
 
-/// How the log is written. The defaults: no compression, chunks up to 256 KiB, a flush every 1000 steps and
+/// zstd level of the default compression: -1, one of zstd's fast levels. Measured on the paper
+/// log (`docs/logs.md`, 2026-11-29): level 1 is 2 % smaller (29.8 MB against 30.5 MB) for 18 %
+/// more writer CPU; level -5 8 % larger for 13 % less.
+pub const DEFAULT_ZSTD_LEVEL: i32 = -1;
+
+/// The topics a log can leave out (`log.channels`, `run --log-channels`): the modal
+/// coordinates (`/beam/modes`), the 3D scene (`/beam/scene`) and the stations' stresses
+/// (`/beam/stations`). The model, the steps, the contact events and the log lines are always
+/// written: they are what [`crate::replay`] reads a run from (a log without its steps would not
+/// replay), and they are a small part of it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LogChannels {
+    /// `/beam/modes`: without it `report` cannot give the bridge's strain energy at the peak
+    /// deflection, and `load_log` has no modal coordinates (no deflected shapes).
+    pub modes: bool,
+    /// `/beam/scene`: Foxglove's 3D panel; neither `report` nor `load_log` reads it.
+    pub scene: bool,
+    /// `/beam/stations`: without it a killed run's log cannot rebuild the stress envelope (a
+    /// finished log carries it as an attachment), and `load_log`'s `station_stresses` is empty.
+    pub stations: bool,
+}
+
+impl Default for LogChannels {
+    fn default() -> Self {
+        LogChannels::ALL
+    }
+}
+
+/// The topics by their short names, in the order [`LogChannels`]' `Display` writes them; the
+/// first four are always written.
+pub const CHANNEL_NAMES: [&str; 7] = ["model", "step", "contact", "log", "modes", "scene", "stations"];
+
+/// The longest `log.channels` text accepted, bytes (every name once with its `/beam/` prefix
+/// and a space after each comma is 82).
+pub const MAX_CHANNELS_TEXT: usize = 256;
+
+impl LogChannels {
+    /// Every topic (the default).
+    pub const ALL: LogChannels = LogChannels { modes: true, scene: true, stations: true };
+    /// The topics always written only.
+    pub const REQUIRED: LogChannels = LogChannels { modes: false, scene: false, stations: false };
+
+    /// Parses a comma list of topics, each by its short name (`modes`) or its topic
+    /// (`/beam/modes`), spaces around a name ignored, or `all`. The always-written topics may be
+    /// named or not. Every problem is one line naming the bad value: `log.channels: unknown topic
+    /// "foo"; known: ...`.
+    pub fn parse(text: &str) -> std::result::Result<LogChannels, String> {
+        let known = || format!("{}, or all", CHANNEL_NAMES.join(", "));
+        if text.len() > MAX_CHANNELS_TEXT {
+            return Err(format!(
+                "log.channels: {} bytes, at most {MAX_CHANNELS_TEXT}: give a comma list of {}",
+                text.len(),
+                known()
+            ));
+        }
+        if text.trim().is_empty() {
+            return Err(format!(
+                "log.channels: empty; give a comma list of {} (model, step, contact and log are always written)",
+                known()
+            ));
+        }
+        let mut channels = LogChannels::REQUIRED;
+        for (k, item) in text.split(',').enumerate() {
+            let name = item.trim();
+            let short = name.strip_prefix("/beam/").unwrap_or(name);
+            match short {
+                "all" if name == "all" => channels = LogChannels::ALL,
+                "model" | "step" | "contact" | "log" => {}
+                "modes" => channels.modes = true,
+                "scene" => channels.scene = true,
+                "stations" => channels.stations = true,
+                "" => {
+                    return Err(format!(
+                        "log.channels: empty topic at position {} of {}; known: {}",
+                        k + 1,
+                        shown(text),
+                        known()
+                    ))
+                }
+                _ => return Err(format!("log.channels: unknown topic {}; known: {}", shown(name), known())),
+            }
+        }
+        Ok(channels)
+    }
+}
+
+/// `text` quoted for an error line: at most 40 characters, control characters and quotes escaped.
+fn shown(text: &str) -> String {
+    let mut cut: String = text.chars().take(40).collect();
+    if cut.len() < text.len() {
+        cut.push_str("...");
+    }
+    format!("{cut:?}")
+}
+
+impl std::str::FromStr for LogChannels {
+    type Err = String;
+    fn from_str(s: &str) -> std::result::Result<Self, String> {
+        LogChannels::parse(s)
+    }
+}
+
+impl std::fmt::Display for LogChannels {
+    /// The topics written, by their short names (`model,step,contact,log,modes,scene,stations`);
+    /// parses back to the same set.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let on = [true, true, true, true, self.modes, self.scene, self.stations];
+        let names: Vec<&str> = CHANNEL_NAMES.iter().zip(on).filter(|(_, on)| *on).map(|(n, _)| *n).collect();
+        f.write_str(&names.join(","))
+    }
+}
+
+/// How the log is written. The defaults: zstd chunks at level [`DEFAULT_ZSTD_LEVEL`], chunks up to 256 KiB, a flush every 1000 steps and
 /// at contact events, a scene and modal coordinates every 1 ms of simulated time, every step with
 /// its stations' stresses.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -49,8 +164,9 @@ pub struct RecorderOptions {
     pub chunk_size: u64,
     /// Chunk compression.
     pub compression: LogCompression,
-    /// zstd level (1 is the fastest; 0 means zstd's default, 3); LZ4 ignores it.
-    pub compression_level: u32,
+    /// zstd level: 1 to 22, 0 for zstd's default (3), or a fast level, -1 to -131072 (the faster,
+    /// the larger); LZ4 ignores it.
+    pub compression_level: i32,
     /// Steps between flushes (each flush closes the chunk and hands it to the OS).
     pub flush_every: u64,
     /// Simulated time between two scene updates, ns (0: no scene).
@@ -58,6 +174,9 @@ pub struct RecorderOptions {
     /// Simulated time between two regular `/beam/modes` messages, ns (0: only at step 0, peaks,
     /// contact changes and the last step).
     pub modes_interval_ns: u64,
+    /// The topics written besides the always-written ones: a topic left out here is left out
+    /// whatever the switches below say ([`RecorderOptions::effective`]).
+    pub channels: LogChannels,
     /// Write `/beam/modes` at all (the scene is drawn either way).
     pub modal_coordinates: bool,
     /// Write `/beam/stations`, the stress at every station of each recorded step (issue 30; the
@@ -123,10 +242,11 @@ impl Default for RecorderOptions {
             // above it: 255 KiB keeps every chunk within 256 KiB.
             chunk_size: 255 * 1024,
             compression: LogCompression::default(),
-            compression_level: 1,
+            compression_level: DEFAULT_ZSTD_LEVEL,
             flush_every: 1000,
             scene_interval_ns: 1_000_000,
             modes_interval_ns: 1_000_000,
+            channels: LogChannels::ALL,
             modal_coordinates: true,
             station_stresses: true,
             record_every: 1,
@@ -134,6 +254,27 @@ impl Default for RecorderOptions {
             timing: false,
             allow_devices: false,
             max_bytes: MAX_LOG_BYTES,
+        }
+    }
+}
+
+impl RecorderOptions {
+    /// The options as the recorder applies them: a topic is written when `channels` names it and
+    /// its older switch ([`RecorderOptions::modal_coordinates`], [`RecorderOptions::station_stresses`],
+    /// a non-zero [`RecorderOptions::scene_interval_ns`]) leaves it on; `channels` then says
+    /// exactly what the log holds.
+    pub fn effective(self) -> RecorderOptions {
+        let channels = LogChannels {
+            modes: self.channels.modes && self.modal_coordinates,
+            scene: self.channels.scene && self.scene_interval_ns > 0,
+            stations: self.channels.stations && self.station_stresses,
+        };
+        RecorderOptions {
+            channels,
+            modal_coordinates: channels.modes,
+            station_stresses: channels.stations,
+            scene_interval_ns: if channels.scene { self.scene_interval_ns } else { 0 },
+            ..self
         }
     }
 }
@@ -153,4 +294,46 @@ pub struct RecorderTiming {
     pub writer_cpu: Duration,
     /// Messages written.
     pub messages: u64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn channels_parse_short_names_topics_and_all_and_print_back() {
+        assert_eq!(LogChannels::parse("all").unwrap(), LogChannels::ALL);
+        assert_eq!(LogChannels::parse("step").unwrap(), LogChannels::REQUIRED);
+        let some = LogChannels::parse(" step, /beam/modes ,scene").unwrap();
+        assert_eq!(some, LogChannels { modes: true, scene: true, stations: false });
+        assert_eq!(some.to_string(), "model,step,contact,log,modes,scene");
+        assert_eq!(LogChannels::ALL.to_string().parse::<LogChannels>().unwrap(), LogChannels::ALL);
+        assert_eq!(LogChannels::REQUIRED.to_string(), "model,step,contact,log");
+    }
+
+    #[test]
+    fn channels_errors_name_the_bad_value_on_one_line() {
+        let e = LogChannels::parse("step,foo").unwrap_err();
+        assert_eq!(
+            e,
+            "log.channels: unknown topic \"foo\"; known: model, step, contact, log, modes, scene, stations, or all"
+        );
+        assert!(LogChannels::parse("").unwrap_err().starts_with("log.channels: empty;"));
+        assert!(LogChannels::parse("step,,modes")
+            .unwrap_err()
+            .contains("empty topic at position 2 of \"step,,modes\""));
+        assert!(LogChannels::parse("/beam/all").unwrap_err().contains("unknown topic \"/beam/all\""));
+        assert!(LogChannels::parse(&"x".repeat(300)).unwrap_err().starts_with("log.channels: 300 bytes, at most 256"));
+        assert!(!LogChannels::parse("a\nb").unwrap_err().contains('\n'));
+    }
+
+    #[test]
+    fn effective_options_follow_the_channels_and_the_older_switches() {
+        let o = RecorderOptions { channels: LogChannels::parse("scene").unwrap(), ..RecorderOptions::default() }
+            .effective();
+        assert!(!o.modal_coordinates && !o.station_stresses && o.scene_interval_ns > 0);
+        let o = RecorderOptions { modal_coordinates: false, scene_interval_ns: 0, ..RecorderOptions::default() }
+            .effective();
+        assert_eq!(o.channels, LogChannels { modes: false, scene: false, stations: true });
+    }
 }

@@ -34,3 +34,12 @@ def fmi2_logger_restored():
         # holds it: give it the printing function again each time, so the registration happens.
         _PRINTING.logger = _PRINT
         addLoggerProxy(byref(_PRINTING))
+
+
+@pytest.fixture(autouse=True)
+def log_folder(tmp_path, monkeypatch):
+    """The FMU's default log goes to the user's log folder, `$XDG_STATE_HOME/beam-impact/logs`
+    (issue 41): every test points XDG_STATE_HOME into its own temporary folder, so no test writes
+    to the real home. Returns that log folder."""
+    monkeypatch.setenv("XDG_STATE_HOME", str(tmp_path / "state"))
+    return tmp_path / "state" / "beam-impact" / "logs"

@@ -242,14 +242,15 @@ def _saved_state(version: str, start: float, save_at: float) -> bytes:
 
 @pytest.mark.parametrize("version", VERSIONS)
 @pytest.mark.parametrize("start", [0.0, 10.0])
-def test_fmpy_restore_flow_continues_to_the_uninterrupted_peaks(version, start, tmp_path):
+def test_fmpy_restore_flow_continues_to_the_uninterrupted_peaks(version, start, tmp_path, log_folder):
     """Issue 8 items 1, 2: `simulate_fmu(fmu, fmu_state=bytes, start_time=...)` instantiates, restores
     the state and steps, with no initialization call and no start values: the state's parameters
     and absolute time win, and the run continues to the uninterrupted run's peaks. Before: the fresh
     instance refused a state of other parameters than its defaults (here the paper's steps: "the state
     belongs to another scenario"); with equal ones fmpy failed with "fmi2GetReal is not allowed in
     state Instantiated", and a state of a run started at 10 s restored at 1.5 s. The restored
-    instance has the default log.path: it records to a new BeamImpact-*.mcap in the working directory."""
+    instance has the default log.path: it records to a new BeamImpact-*.mcap in the user's log folder
+    ($XDG_STATE_HOME/beam-impact/logs, issue 41), none in the working directory."""
     stop = start + 3.0
     uninterrupted = fmpy.simulate_fmu(fmu_path(version), start_time=start, stop_time=stop, output_interval=1e-3,
                                       start_values={"log.path": "", **PAPER_STEPS}, output=PEAKS)
@@ -260,8 +261,9 @@ def test_fmpy_restore_flow_continues_to_the_uninterrupted_peaks(version, start, 
     assert restored["time"][0] == start + 1.5 and restored["time"][-1] == pytest.approx(stop)
     for name in PEAKS:
         assert restored[name][-1] == uninterrupted[name][-1], f"{name}: restored {restored[name][-1]} vs {uninterrupted[name][-1]}"
-    logs = list(tmp_path.glob("BeamImpact-*.mcap"))
+    logs = list(log_folder.glob("BeamImpact-*.mcap"))
     assert len(logs) == 1 and logs[0].stat().st_size > 0, logs
+    assert not list(Path.cwd().glob("BeamImpact-*.mcap")), "a log in the working directory"
 
 
 def test_a_rolled_back_fmu_log_loads_like_report_reads_it(tmp_path):

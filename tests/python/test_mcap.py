@@ -224,3 +224,40 @@ def test_a_decimated_log_without_modes_loads(tmp_path):
     rows = np.searchsorted(r["step"], s["step"])
     for name in ["lower_tip_deflection", "energy.residual", "peaks.lower_clamp_bending_stress", "time"]:
         assert np.array_equal(s[name], r[name][rows]), name
+
+
+def test_a_log_of_the_required_topics_alone_loads_and_reports(tmp_path):
+    """Issue 41 item 2: `run --log-channels step` (model, steps, contact events and log lines only)
+    and `beam_impact.run(log=..., log_channels="step")` write zstd-compressed logs that the `mcap`
+    package reads with every CRC checked, `beam_impact.load_log` loads (steps and the attached
+    envelope; no modal coordinates, no station stresses) and `report` replays; a bad topic is a
+    ValueError naming it."""
+    import beam_impact
+
+    cli = tmp_path / "cli.mcap"
+    subprocess.run([binary(), "run", "--set", "duration=0.3", "--log-channels", "step", "--mcap", str(cli)],
+                   check=True, capture_output=True)
+    py = tmp_path / "py.mcap"
+    result = beam_impact.run(fields={"duration": 0.3}, log=py, log_channels="step", check_sensitivity=False)
+    listed = tmp_path / "listed.mcap"
+    beam_impact.run(fields={"duration": 0.3}, log=listed, log_channels=["step", "stations"], check_sensitivity=False)
+    for path in [cli, py]:
+        with open(path, "rb") as f:
+            messages = [r for r in StreamReader(f, validate_crcs=True).records if isinstance(r, Message)]
+        with open(path, "rb") as f:
+            chunks = [r for r in StreamReader(f, emit_chunks=True).records if isinstance(r, Chunk)]
+        assert messages and {c.compression for c in chunks} == {"zstd"}
+        log = beam_impact.load_log(path)
+        assert log.counts.get("/beam/modes", 0) == 0 and log.counts.get("/beam/stations", 0) == 0
+        assert log.counts.get("/beam/scene", 0) == 0 and log.counts["/beam/step"] == len(log.steps["step"])
+        assert log.modal_coordinates.shape[0] == 0 and log.station_stresses is None
+        assert log.envelope is not None and log.envelope["source"] == "attachment"
+        report = subprocess.run([binary(), "report", str(path), "--out", str(tmp_path / f"{path.stem}-figures")],
+                                capture_output=True, text=True)
+        assert report.returncode == 0, report.stderr
+    assert result.log_path is not None and len(beam_impact.load_log(py).steps["step"]) > 1
+    stations = beam_impact.load_log(listed)
+    assert stations.station_stresses is not None and stations.counts.get("/beam/modes", 0) == 0
+    with pytest.raises(ValueError, match='log.channels: unknown topic "foo"; known: model, step'):
+        beam_impact.run(fields={"duration": 0.01}, log=tmp_path / "bad.mcap", log_channels="step,foo")
+    assert not (tmp_path / "bad.mcap").exists()

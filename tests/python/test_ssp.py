@@ -144,7 +144,8 @@ def master(fmus, tmp_path_factory) -> dict[float, dict]:
 
 @pytest.fixture
 def in_tmp(tmp_path, monkeypatch):
-    """Each tool runs in a folder of its own: BeamImpact writes its MCAP log to the working directory."""
+    """Each tool runs in a folder of its own (BeamImpact's default log goes to the user's log folder,
+    `log_folder`, not there)."""
     monkeypatch.chdir(tmp_path)
     return tmp_path
 
@@ -203,10 +204,11 @@ def run_libcosim(path: Path) -> dict:
     return dict(zip(vm.PEAKS, observer.last_real_values(beam, [refs[p] for p in vm.PEAKS])))
 
 
-def test_libcosim_gives_the_masters_peaks(master, in_tmp):
+def test_libcosim_gives_the_masters_peaks(master, in_tmp, log_folder):
     bound_phase = bindings(ssp_path())[VESSEL]["wave.phase"]
     peaks_close(run_libcosim(ssp_path()), master[bound_phase])
-    assert list(in_tmp.glob("BeamImpact-*.mcap")), "BeamImpact's default log"
+    assert list(log_folder.glob("BeamImpact-*.mcap")), "BeamImpact's default log, in the user's log folder"
+    assert not list(in_tmp.glob("*.mcap")), "no log in the tool's working folder"
 
 
 def test_libcosim_applies_the_bindings(master, in_tmp):
@@ -241,9 +243,14 @@ def parameter_set_name(path: Path) -> str:
     return names.pop()
 
 
-def test_ecos_gives_the_masters_peaks(master, in_tmp):
+def test_ecos_gives_the_masters_peaks(master, in_tmp, log_folder):
     bound_phase = bindings(ssp_path())[VESSEL]["wave.phase"]
     peaks_close(run_ecos(ssp_path()), master[bound_phase])
+    # Ecos names the instance after the FMU's file in a temporary folder: the log is named after
+    # the FMU, never after that folder (issue 41).
+    names = [p.name for p in log_folder.glob("BeamImpact-*.mcap")]
+    assert names and all(n.startswith("BeamImpact-BeamImpact") for n in names), names
+    assert not list(in_tmp.glob("*.mcap")), "no log in the tool's working folder"
 
 
 def test_ecos_applies_the_bindings(master, in_tmp):

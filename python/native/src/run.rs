@@ -10,7 +10,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
 use beam_impact::answer::{Answer, Options};
-use beam_impact::record::mcap::{McapRecorder, RecorderOptions};
+use beam_impact::record::mcap::{LogChannels, McapRecorder, RecorderOptions};
 use beam_impact::record::{Recorder, RunInfo};
 use beam_impact::results::{ContactEvent, StepResult};
 use beam_impact::studies::sweep::{self, Axis, Row, RowResults, Setting};
@@ -158,7 +158,8 @@ struct Ran {
 /// Runs one scenario as `beam-impact run` does. `scenario`: a scenario file's path; else
 /// `scenario_text`: its TOML; else the paper's scenario (no fields) or the defaults. `fields`:
 /// (dotted name, value) pairs applied as `--set`. `log`: the MCAP log's path (through the output
-/// guard; never the scenario or motion file), None for none. `series_every`: keep every N-th
+/// guard; never the scenario or motion file), None for none; `log_channels`: its topics, as
+/// `run --log-channels` (ValueError naming a bad one). `series_every`: keep every N-th
 /// step (and the last) for a DataFrame, 0 for none. `sensitivity`, `observed_order`: the twin
 /// and the coarsest rung (a sweep's row leaves the latter out, as `beam-impact sweep`).
 /// ValueError with the CLI's one-line message for a scenario, field, path or step count it
@@ -167,7 +168,7 @@ struct Ran {
 #[pyfunction]
 #[pyo3(signature = (scenario=None, scenario_text=None, fields=Vec::new(), log=None, series_every=0,
     max_steps=beam_impact::model::scenario::MAX_STEPS, sensitivity=true, observed_order=true,
-    log_sample_interval=None))]
+    log_sample_interval=None, log_channels=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn run<'py>(
     py: Python<'py>,
@@ -180,8 +181,13 @@ pub fn run<'py>(
     sensitivity: bool,
     observed_order: bool,
     log_sample_interval: Option<f64>,
+    log_channels: Option<String>,
 ) -> PyResult<RunOutput<'py>> {
-    let options = RunOptions { series_every, max_steps, sensitivity, observed_order, log_sample_interval };
+    let channels = match log_channels.as_deref() {
+        None => LogChannels::ALL,
+        Some(text) => LogChannels::parse(text).map_err(pyo3::exceptions::PyValueError::new_err)?,
+    };
+    let options = RunOptions { series_every, max_steps, sensitivity, observed_order, log_sample_interval, channels };
     let ran = answer_of(py, scenario, scenario_text, fields, log.clone(), options)?;
     let doc = beam_impact::run_document::document(&ran.as_given, &ran.answer, ran.started.elapsed().as_secs_f64())
         .and_then(|d| serde_json::to_string(&d).map_err(|e| Error::Other(format!("JSON: {e}"))))
@@ -202,6 +208,8 @@ struct RunOptions {
     observed_order: bool,
     /// The log's dense output, s (None: the default).
     log_sample_interval: Option<f64>,
+    /// The log's topics.
+    channels: LogChannels,
 }
 
 /// The run of [`run`] up to its answer (the scenario read, checked, run with the GIL released
@@ -214,7 +222,7 @@ fn answer_of(
     log: Option<PathBuf>,
     options: RunOptions,
 ) -> PyResult<Ran> {
-    let RunOptions { series_every, max_steps, sensitivity, observed_order, log_sample_interval } = options;
+    let RunOptions { series_every, max_steps, sensitivity, observed_order, log_sample_interval, channels } = options;
     let epoch = EPOCH.load(Ordering::SeqCst);
     let started = Instant::now();
     let mut warnings = Vec::new();
@@ -247,7 +255,8 @@ fn answer_of(
                 Some(s) => beam_impact::record::options::sample_interval_ns("log_sample_interval", s)
                     .map_err(pyo3::exceptions::PyValueError::new_err)?,
             };
-            let options = RecorderOptions { allow_devices: true, sample_interval_ns, ..RecorderOptions::default() };
+            let options =
+                RecorderOptions { allow_devices: true, sample_interval_ns, channels, ..RecorderOptions::default() };
             Some(McapRecorder::with_options(path, options).map_err(value_error)?)
         }
     };
@@ -353,6 +362,7 @@ pub fn sweep_row(
         sensitivity,
         observed_order: false,
         log_sample_interval: None,
+        channels: LogChannels::ALL,
     };
     let outcome = match answer_of(py, scenario, text, fields, None, options) {
         Ok(ran) => Ok(RowResults::from(&ran.answer)),
