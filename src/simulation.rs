@@ -1628,12 +1628,17 @@ impl<S: Stepper> Simulation<S> {
         times.sort_unstable();
         times.dedup();
         let (values, when) = (peaks.as_array(), peak_times.as_array());
-        // The grid's samples follow each other by exact steps of the interval (whose
-        // coefficients the stepper keeps), each peak's instant from the step's start as
-        // [`Self::exact_extremes`] took it (the printed value, to the bit).
+        // Out of contact the grid's samples follow each other by exact steps of the interval
+        // (whose coefficients the stepper keeps; the free stage's forcing is the step's own, so
+        // they are the step's solution to round-off). In contact each sample, and everywhere each
+        // peak's instant, is the exact advance from the step's start, as [`Self::exact_extremes`]
+        // took the peak (its printed value, to the bit) and [`Self::interpolate`] the outputs at
+        // a communication point (the FMU's outputs there, to the bit): the bar's force is the
+        // cubic of the advance taken, and a chain of shorter advances would follow another.
+        let chained = self.stepper.adapts_steps() && !stage.is_contact();
         let mut walker = (start_ns, self.backup.clone());
         for at_ns in times {
-            let given = if self.stepper.adapts_steps() && !instants.contains(&at_ns) {
+            let given = if chained && !instants.contains(&at_ns) {
                 let excitation = self.excitation_at(at_ns);
                 self.stepper.step_aside(&mut walker.1, stage, seconds(at_ns - walker.0), &excitation);
                 walker.0 = at_ns;
@@ -1645,10 +1650,13 @@ impl<S: Stepper> Simulation<S> {
             row.step = before.result.step + 1;
             row.step_size = seconds(at_ns - start_ns);
             let at = seconds(at_ns);
+            let reached = peak_values(&row);
             for (k, peak) in row.peaks.as_mut_array().into_iter().enumerate() {
                 if when[k] > seconds(start_ns) && when[k] <= at {
                     *peak = peak.max(values[k]);
                 }
+                // Its own value too, as the outputs at a communication point take it.
+                *peak = peak.max(reached[k]);
             }
             if let Some(feed) = self.feed.listened() {
                 feed.set_loads(self.correction_loads(own(&kinematics), stage, &self.excitation_at(at_ns)));

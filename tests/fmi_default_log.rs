@@ -92,13 +92,13 @@ fn default_run_fmi2(name: &str) -> PathBuf {
     announced(&fmu.log.text())
 }
 
-/// The path in the logEvents line "MCAP log of every internal step: <path> (log.path is the default ...".
+/// The path in the logEvents line "MCAP log of the run: <path> (log.path is the default ...".
 fn announced(log: &str) -> PathBuf {
     let line = log
         .lines()
-        .find(|l| l.starts_with("[logEvents] MCAP log of every internal step: "))
+        .find(|l| l.starts_with("[logEvents] MCAP log of the run: "))
         .unwrap_or_else(|| panic!("no line says where the log went: {log}"));
-    let rest = line.trim_start_matches("[logEvents] MCAP log of every internal step: ");
+    let rest = line.trim_start_matches("[logEvents] MCAP log of the run: ");
     assert!(rest.contains("(log.path is the default \"BeamImpact.mcap\": a new file per instance and run)"), "{line}");
     PathBuf::from(rest.split(" (log.path").next().unwrap())
 }

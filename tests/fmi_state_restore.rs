@@ -177,7 +177,7 @@ fn the_restored_run_logs_from_the_restored_step() {
     let (first, bytes) = saved_fmi2(0.0, 0.2, 0.567);
     let (second, status) = restored_fmi2(&bytes, path.to_str().unwrap());
     assert_eq!(status, OK, "{}", second.log.text());
-    assert!(second.log.text().contains(&format!("MCAP log of every internal step: {}", path.display())));
+    assert!(second.log.text().contains(&format!("MCAP log of the run: {}", path.display())));
     second.run(0.2, 0.3, 1e-2);
     assert_eq!(second.call0("fmi2Terminate"), OK, "{}", second.log.text());
     let log = beam_impact::replay::report::read_log(&path).unwrap();

@@ -205,11 +205,21 @@ fn the_fmu_s_peak_outputs_are_rows_of_its_log() {
     const OK: i32 = 0;
     assert_eq!(fmu.setup(0.0, Some(0.6)), OK);
     assert_eq!(fmu.set_string("log.path", log.to_str().unwrap()), OK);
+    // `log.sample_interval`: bounded when set (the error names it), read back as set.
+    assert_ne!(fmu.set("log.sample_interval", 2.0), OK);
+    assert!(fmu
+        .log
+        .text()
+        .contains("log.sample_interval must be 0 (every internal step) or between 1e-6 and 1 s, got 2"));
+    assert_eq!(fmu.set("log.sample_interval", 5e-4), OK);
     assert_eq!(fmu.initialize(), OK);
+    assert_eq!(fmu.get("log.sample_interval"), 5e-4);
     fmu.run(0.0, 0.6, 1e-3);
     let peaks: Vec<f64> = NAMES.iter().map(|n| fmu.get(&format!("peak.{n}"))).collect();
     assert_eq!(fmu.call0("fmi2Terminate"), OK);
     let rows = read_log(&log).unwrap().steps;
+    let longest = rows.windows(2).map(|w| w[1].time_ns - w[0].time_ns).max().unwrap();
+    assert!(longest <= 500_000, "rows {longest} ns apart with log.sample_interval = 5e-4 s");
     for (k, peak) in peaks.iter().enumerate() {
         let held = rows.iter().any(|r| values(r)[k] == *peak);
         let largest = rows.iter().map(|r| values(r)[k]).fold(0.0, f64::max);

@@ -130,10 +130,7 @@ fn the_fmus_log_channels_parameter_chooses_the_topics_and_refuses_an_unknown_one
     // The FMU's log names the full path and the topics.
     let text = fmu.log.text();
     assert!(
-        text.contains(&format!(
-            "MCAP log of every internal step: {}, topics model,step,contact,log,stations",
-            path.display()
-        )),
+        text.contains(&format!("MCAP log of the run: {}, topics model,step,contact,log,stations", path.display())),
         "{text}"
     );
     let data = read_log(&path).unwrap();

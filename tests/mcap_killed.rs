@@ -61,7 +61,12 @@ fn killed_run_leaves_a_readable_log() {
     assert!(!log.complete);
     assert!(log.problem.is_some());
     assert!(log.steps.len() > 1000, "only {} steps read", log.steps.len());
-    assert!(log.steps.iter().enumerate().all(|(k, r)| r.step == k as u64), "steps are not consecutive from 0");
+    // The paper method's log (issue 41): its step ends, one at least every sample interval, in
+    // order, without a gap longer than the interval but where a step's end falls after it.
+    assert_eq!(log.steps[0].step, 0);
+    assert!(log.steps.windows(2).all(|w| w[1].step > w[0].step && w[1].time_ns > w[0].time_ns), "rows out of order");
+    let longest = log.steps.windows(2).map(|w| w[1].time_ns - w[0].time_ns).max().unwrap();
+    assert!(longest < 2 * beam_impact::record::options::DEFAULT_SAMPLE_INTERVAL_NS, "rows {longest} ns apart");
     assert!(log.monotonic);
     assert_eq!(log.scenario().unwrap().duration, 1000.0);
 

@@ -79,6 +79,8 @@ pub struct Instance {
     log_path: String,
     /// `log.channels`: the topics of the log (checked when set).
     log_channels: String,
+    /// `log.sample_interval`: the log's dense output, ns (checked when set).
+    log_sample_interval_ns: u64,
     simulation: Option<Simulation>,
     /// The discretisation check's runs, stepped in lockstep with `simulation` (the coarser rungs
     /// of the converged method, or the converged answer beside the paper method); `None` once a
@@ -315,6 +317,7 @@ impl Instance {
             scenario,
             log_path: DEFAULT_LOG_PATH.to_string(),
             log_channels: DEFAULT_LOG_CHANNELS.to_string(),
+            log_sample_interval_ns: crate::record::options::DEFAULT_SAMPLE_INTERVAL_NS,
             simulation: None,
             checks: None,
             check_sensitivity: false,
@@ -592,7 +595,8 @@ impl Instance {
             return Ok((None, None));
         }
         let channels = LogChannels::parse(&self.log_channels)?;
-        let options = RecorderOptions { channels, ..RecorderOptions::default() };
+        let options =
+            RecorderOptions { channels, sample_interval_ns: self.log_sample_interval_ns, ..RecorderOptions::default() };
         let tool = description::generation_tool(None);
         let xml = match self.version {
             Version::Fmi2 => description::fmi2_for(self.packed.as_ref(), &tool),
@@ -608,7 +612,7 @@ impl Instance {
                 .and_then(attach)
                 .map_err(|e| format!("log.path = \"{}\": {e}", self.log_path))?;
             let full = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
-            self.log(Status::Ok, "logEvents", &format!("MCAP log of every internal step: {}{topics}", full.display()));
+            self.log(Status::Ok, "logEvents", &format!("MCAP log of the run: {}{topics}", full.display()));
             return Ok((Some(recorder), None));
         }
         let no_log = |why: String| {
@@ -633,7 +637,7 @@ impl Instance {
                     Status::Ok,
                     "logEvents",
                     &format!(
-                        "MCAP log of every internal step: {}{topics} (log.path is the default \"{DEFAULT_LOG_PATH}\": a \
+                        "MCAP log of the run: {}{topics} (log.path is the default \"{DEFAULT_LOG_PATH}\": a \
                          new file per instance and run)",
                         path.display()
                     ),
@@ -956,6 +960,7 @@ impl Instance {
         Ok(match v.source {
             Source::Time => self.time(),
             Source::Parameter(p) => (p.get)(&self.scenario),
+            Source::LogSampleInterval => self.log_sample_interval_ns as f64 * 1e-9,
             Source::Input(Tip::Upper) => self.forces().upper,
             Source::Input(Tip::Lower) => self.forces().lower,
             Source::Motion(k) => self.motion.values()[k],
@@ -1053,7 +1058,11 @@ impl Instance {
     /// `ExitInitializationMode`, inputs until `Terminate`, nothing else ever.
     fn check_settable(&self, v: &Variable, value: &dyn Shown) -> Outcome<()> {
         let (allowed, rule) = match v.source {
-            Source::Parameter(_) | Source::LogPath | Source::LogChannels | Source::CheckSensitivity => {
+            Source::Parameter(_)
+            | Source::LogPath
+            | Source::LogChannels
+            | Source::LogSampleInterval
+            | Source::CheckSensitivity => {
                 (super::status::allowed::SET_PARAMETER, "parameters are fixed at ExitInitializationMode")
             }
             Source::Input(_) | Source::Motion(_) => {
@@ -1101,6 +1110,9 @@ impl Instance {
             Source::Parameter(p) => {
                 parameters::set(&mut self.scenario, p, value).map_err(|e| e.to_string())?;
                 self.simulation = None;
+            }
+            Source::LogSampleInterval => {
+                self.log_sample_interval_ns = crate::record::options::sample_interval_ns("log.sample_interval", value)?;
             }
             Source::Input(tip) => {
                 // The bound holds in every state, not only before initialization.

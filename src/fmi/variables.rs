@@ -130,6 +130,8 @@ pub enum Source {
     LogPath,
     /// The MCAP log's topics (`log.channels`).
     LogChannels,
+    /// The MCAP log's dense output, s (`log.sample_interval`, issue 41).
+    LogSampleInterval,
     /// An input tip force.
     Input(Tip),
     /// A support-motion input: its index in [`crate::model::support_motion::MOTION_NAMES`].
@@ -458,7 +460,7 @@ pub fn table_for(defaults: &Scenario) -> Vec<Variable> {
         Variability::Fixed,
         Some(true),
         None,
-        "MCAP log of every internal step (zstd chunks). The default BeamImpact.mcap stands for a new file per \
+        "MCAP log of the run (the exact state every log.sample_interval and at every peak; zstd chunks). The default BeamImpact.mcap stands for a new file per \
          instance and run in the user's log folder, not the working directory (an SSP tool's run would litter it): \
          $XDG_STATE_HOME/beam-impact/logs, else ~/.local/state/beam-impact/logs (Windows: \
          %LOCALAPPDATA%\\beam-impact\\logs), named BeamImpact-<instance>-<UTC date-time>-<n>.mcap after the instance \
@@ -690,6 +692,20 @@ pub fn table_for(defaults: &Scenario) -> Vec<Variable> {
             .into(),
         Some(DEFAULT_LOG_CHANNELS.into()),
         Source::LogChannels,
+    ));
+    push((
+        "log.sample_interval".into(),
+        Type::Real,
+        Causality::Parameter,
+        Variability::Fixed,
+        Some(true),
+        Some("s"),
+        "The MCAP log's dense output: the exact state every this much simulated time and at every instant a \
+         running peak is reached (the converged method; the paper method's log keeps one of its own steps at least \
+         this often), so that the log's largest values are the peak outputs; 0: every internal step; else 1e-6 to 1 s"
+            .into(),
+        Some(format!("{}", crate::record::options::DEFAULT_SAMPLE_INTERVAL_NS as f64 * 1e-9)),
+        Source::LogSampleInterval,
     ));
     v
 }

@@ -81,12 +81,15 @@ def test_the_envelope_is_the_runs_and_the_stations_are_the_steps(stepped_run):
     clamp = stresses["lower.bending.0"].to_numpy()
     steps = log.steps["lower.clamp_bending_stress"]
     assert np.all(np.abs(clamp - steps) <= 1e-6 * np.max(np.abs(steps)))
-    # No recorded internal step exceeds the envelope (the last record, the stop point inside the
-    # next internal step, may: the run's envelope is taken at internal steps' ends).
+    # No recorded row exceeds the envelope but by the envelope's in-step cubic's miss: the log's
+    # dense output is the exact solution, the envelope's crest inside a step the cubic through
+    # the step's ends (at most 5e-3 of the beam's largest, tests/envelope_log.rs's
+    # ENVELOPE_CUBIC_MISS, measured 3.1e-3), and the last record, the stop point inside the next
+    # internal step, is left out (the run's envelope is taken at internal steps' ends).
     bending = envelope["upper"]["bending"]["max"].to_numpy()
     columns = list(stations[(stations["beam"] == "upper") & (stations["stress"] == "bending")]["column"])
     recorded = np.abs(stresses[columns].to_numpy()[:-1]).max(axis=0)
-    assert np.all(recorded <= bending + 1e-6 * bending.max())
+    assert np.all(recorded <= bending + 5e-3 * bending.max())
 
 
 def test_a_killed_runs_log_rebuilds_the_envelope(stepped_run, tmp_path):
@@ -110,7 +113,8 @@ def test_a_killed_runs_log_rebuilds_the_envelope(stepped_run, tmp_path):
             last = np.abs(log.station_stresses[columns].to_numpy()[-1])
             bound = np.maximum(np.asarray(run["max"]), last)
             rebuilt = frame["max"].to_numpy()
-            assert np.all(rebuilt - bound <= 1e-6 * scale)
+            # Above it by the envelope's in-step cubic's miss (see above).
+            assert np.all(rebuilt - bound <= 5e-3 * scale)
             assert np.all(bound - rebuilt <= 3e-2 * scale)
 
 

@@ -286,6 +286,8 @@ def test_a_rolled_back_fmu_log_loads_like_report_reads_it(tmp_path):
     )
     slave.instantiate()
     slave.setString([vr["log.path"]], [log_path])
+    # Every internal step, consecutively numbered (the dense output's rows share their steps').
+    slave.setReal([vr["log.sample_interval"]], [0.0])
     slave.setupExperiment(startTime=0.0, stopTime=0.5)
     slave.enterInitializationMode()
     slave.exitInitializationMode()

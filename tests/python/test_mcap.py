@@ -45,7 +45,9 @@ def binary() -> str:
 def paper_log(tmp_path_factory):
     directory = tmp_path_factory.mktemp("mcap")
     log, summary = directory / "paper.mcap", directory / "summary.json"
-    subprocess.run([binary(), "run", "--mcap", str(log), "--json", str(summary)], check=True, capture_output=True)
+    # Every internal step (the paper method's log without the dense output's thinning).
+    subprocess.run([binary(), "run", "--mcap", str(log), "--json", str(summary), "--log-sample-interval", "0"],
+                   check=True, capture_output=True)
     return log, json.loads(summary.read_text())["summary"]
 
 
@@ -158,7 +160,9 @@ def test_fmu_log_equals_fmu_outputs(tmp_path):
             # between steps), so at most the next step's logged peak.
             peaks = np.asarray(log.steps["peaks.lower_tip_deflection"])
             if times[k] == t:
-                assert row["peak.lower.tip_deflection"] == peaks[k], (fmu, t)
+                # A row at the point (the dense output): the running peak up to it, which the
+                # output takes over the step's part up to the point, between the rows' around it.
+                assert peaks[k - 1] <= row["peak.lower.tip_deflection"] <= peaks[min(k + 1, len(peaks) - 1)], (fmu, t)
             else:
                 assert peaks[k] <= row["peak.lower.tip_deflection"] <= peaks[k + 1], (fmu, t)
             for fmu_name, log_name in names.items():
@@ -166,7 +170,12 @@ def test_fmu_log_equals_fmu_outputs(tmp_path):
                 if fmu_name.startswith("peak."):
                     continue
                 if times[k] == t:
-                    assert row[fmu_name] == values[k], (fmu, t, fmu_name)
+                    # A row of the dense output at the communication point: in contact the same
+                    # exact advance from its step's start as the output (the same bits), out of
+                    # contact the chain of the interval's exact advances (the same solution, to
+                    # round-off: 1e-12 of the quantity's scale).
+                    scale = max(1.0, float(np.max(np.abs(values))))
+                    assert abs(row[fmu_name] - values[k]) <= 1e-12 * scale, (fmu, t, fmu_name)
                     continue
                 share = (t - times[k]) / (times[k + 1] - times[k])
                 chord = values[k] + share * (values[k + 1] - values[k])
@@ -214,7 +223,8 @@ def test_a_decimated_log_without_modes_loads(tmp_path):
         capture_output=True,
     )
     full = tmp_path / "full.mcap"
-    subprocess.run([binary(), "run", "--set", "duration=2", "--mcap", str(full)], check=True, capture_output=True)
+    subprocess.run([binary(), "run", "--set", "duration=2", "--mcap", str(full), "--log-sample-interval", "0"],
+                   check=True, capture_output=True)
     log, reference = load_log(str(path)), load_log(str(full))
     assert "/beam/modes" not in log.counts and log.modal_coordinates.shape[0] == 0
     s, r = log.steps, reference.steps
