@@ -397,6 +397,10 @@ pub fn table_for(defaults: &Scenario) -> Vec<Variable> {
         let (min, max) = match source {
             Source::Parameter(p) => declared_range(p),
             Source::Motion(k) => (Some(-MOTION_LIMITS[k]), Some(MOTION_LIMITS[k])),
+            // 0 (every internal step) or 1e-6 to 1 s: the declared range is the span.
+            Source::LogSampleInterval => {
+                (Some(0.0), Some(crate::record::options::SAMPLE_INTERVAL_BOUNDS_NS.1 as f64 * 1e-9))
+            }
             _ => (None, None),
         };
         v.push(Variable { name, vr, ty, causality, variability, exact, unit, min, max, description, start, source });
