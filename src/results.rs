@@ -127,6 +127,18 @@ pub struct StepResult {
 }
 
 impl StepResult {
+    /// The |value| of each peak output, in the order of [`Peaks::as_array`]: what the running
+    /// peaks are the largest of.
+    pub fn peak_magnitudes(&self) -> [f64; 5] {
+        [
+            self.lower_tip_deflection.abs(),
+            self.lower_clamp_bending_stress.abs(),
+            self.lower_clamp_shear_stress.abs(),
+            self.upper_contact_bending_stress.abs(),
+            self.contact_force.abs(),
+        ]
+    }
+
     /// Absolute vertical position of the bridge's free end, m, up positive: its deflection plus
     /// the hinge's heave (0 at the undeformed horizontal with the supports at rest).
     pub fn upper_tip_position(&self) -> f64 {

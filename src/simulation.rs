@@ -752,14 +752,7 @@ impl<S: Stepper> Simulation<S> {
     /// converged method) the largest |value| of each output over the step and when it was reached.
     fn update_peaks(&mut self, upper_strain: f64, within_step: Option<[(f64, f64); 5]>) {
         let r = &mut self.state.result;
-        let ends = [
-            r.lower_tip_deflection,
-            r.lower_clamp_bending_stress,
-            r.lower_clamp_shear_stress,
-            r.upper_contact_bending_stress,
-            r.contact_force,
-        ];
-        let extremes = within_step.unwrap_or(ends.map(|v| (v.abs(), r.time)));
+        let extremes = within_step.unwrap_or(r.peak_magnitudes().map(|v| (v, r.time)));
         self.state.first_contact.observe_values(r, &extremes.map(|(v, _)| v));
         for (k, (peak, when)) in
             r.peaks.as_mut_array().into_iter().zip(self.state.peak_times.as_mut_array()).enumerate()
@@ -933,7 +926,7 @@ impl<S: Stepper> Simulation<S> {
             return (*t, *v);
         }
         let (row, kinematics) = self.point(start, at_ns, stage);
-        let values = peak_values(&row);
+        let values = row.peak_magnitudes();
         taken.push((at_ns, values, kinematics));
         (at_ns, values)
     }
@@ -1161,7 +1154,7 @@ impl<S: Stepper> Simulation<S> {
             // Once the first contact's peaks are settled, only the run's own can rise.
             let floors = self.state.first_contact.end().is_some().then(|| previous.peaks.as_array());
             let (mut extremes, rates) = self.step_extremes(&previous, &probes, stage, 1.0, floors);
-            let ends = peak_values(&result);
+            let ends = result.peak_magnitudes();
             self.peak_instants.clear();
             let mut instants = std::mem::take(&mut self.peak_instants);
             self.exact_extremes(&previous, (result.time_ns, ends), stage, &mut extremes, &mut instants);
@@ -1547,7 +1540,7 @@ impl<S: Stepper> Simulation<S> {
             let (mut extremes, _) = self.step_extremes(&start, &end, stage, fraction, None);
             // The exact advance's point is its own value, not the cubic's: a peak is never below
             // an output.
-            let own = peak_values(&result);
+            let own = result.peak_magnitudes();
             let mut instants = std::mem::take(&mut self.output_peak_instants);
             self.exact_extremes(&start, (at_ns, own), stage, &mut extremes, &mut instants);
             self.output_peak_instants = instants;
@@ -1650,7 +1643,7 @@ impl<S: Stepper> Simulation<S> {
             row.step = before.result.step + 1;
             row.step_size = seconds(at_ns - start_ns);
             let at = seconds(at_ns);
-            let reached = peak_values(&row);
+            let reached = row.peak_magnitudes();
             for (k, peak) in row.peaks.as_mut_array().into_iter().enumerate() {
                 if when[k] > seconds(start_ns) && when[k] <= at {
                     *peak = peak.max(values[k]);
@@ -2169,17 +2162,6 @@ fn range_rows(model: &Model, modal: &ModalSystem, shapes: &DMatrix<f64>, in_mode
 /// The probe of each peak output, in the order of [`Peaks::as_array`] (the contact force's: the gap).
 const PEAK_PROBES: [Probe; 5] =
     [Probe::LowerTipDeflection, Probe::ClampMoment, Probe::ClampShear, Probe::UpperContactMoment, Probe::Gap];
-
-/// The |value| of each peak output of `result`, in the order of [`Peaks::as_array`].
-fn peak_values(result: &StepResult) -> [f64; 5] {
-    [
-        result.lower_tip_deflection.abs(),
-        result.lower_clamp_bending_stress.abs(),
-        result.lower_clamp_shear_stress.abs(),
-        result.upper_contact_bending_stress.abs(),
-        result.contact_force.abs(),
-    ]
-}
 
 fn linear_acceleration_within(k0: &Kinematics, k1: &Kinematics, dt: f64, tau: f64) -> Kinematics {
     let jerk = (&k1.acceleration - &k0.acceleration) / dt;

@@ -25,13 +25,7 @@ use crate::fmi_common;
 
 /// The five peak outputs of a row, |value|, in the order of `Peaks::as_array`.
 fn values(r: &StepResult) -> [f64; 5] {
-    [
-        r.lower_tip_deflection.abs(),
-        r.lower_clamp_bending_stress.abs(),
-        r.lower_clamp_shear_stress.abs(),
-        r.upper_contact_bending_stress.abs(),
-        r.contact_force.abs(),
-    ]
+    r.peak_magnitudes()
 }
 
 const NAMES: [&str; 5] = [
