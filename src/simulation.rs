@@ -637,10 +637,31 @@ impl<S: Stepper> Simulation<S> {
     /// Sends `result` with its own coordinates q (of `kinematics`) to `recorder`, after telling
     /// the stations' feed (if a recorder holds it) the step's load coefficients, from which with
     /// q the log's per-step stresses follow.
-    fn record(&self, recorder: &mut dyn Recorder, result: &StepResult, kinematics: &Kinematics) -> Result<()> {
+    /// Hands a step to the recorder. What only a recorded row needs, the support reactions and
+    /// tip velocities ([`Recorder::wants_details`], a fifth of a step's cost) and the stations'
+    /// load coefficients, is computed here for the steps the recorder keeps ([`Recorder::keeps`])
+    /// and those it may record later (`must`: the step before a contact event, the last of an
+    /// advance, a stop point).
+    fn record(
+        &self,
+        recorder: &mut dyn Recorder,
+        result: &StepResult,
+        kinematics: &Kinematics,
+        must: bool,
+    ) -> Result<()> {
+        if !(must || recorder.keeps(result)) {
+            return recorder.step(result, kinematics.displacement.as_slice());
+        }
+        let excitation = self.excitation_at(result.time_ns);
+        let stage = if result.contact { Stage::Contact } else { Stage::Free };
         if let Some(feed) = self.feed.listened() {
-            let stage = if result.contact { Stage::Contact } else { Stage::Free };
-            feed.set_loads(self.correction_loads(own(kinematics), stage, &self.excitation_at(result.time_ns)));
+            feed.set_loads(self.correction_loads(own(kinematics), stage, &excitation));
+            self.publish_maxima(feed);
+        }
+        if recorder.wants_details() {
+            let mut detailed = *result;
+            self.set_support_and_tips(&mut detailed, kinematics, &excitation);
+            return recorder.step(&detailed, kinematics.displacement.as_slice());
         }
         recorder.step(result, kinematics.displacement.as_slice())
     }
@@ -1360,7 +1381,7 @@ impl<S: Stepper> Simulation<S> {
             }
             let record = self.stop_record();
             let kinematics = self.kinematics_at(self.output.time_ns)?;
-            self.record(recorder, &record, &kinematics)?;
+            self.record(recorder, &record, &kinematics, true)?;
         }
         Ok(advance)
     }
@@ -1428,7 +1449,8 @@ impl<S: Stepper> Simulation<S> {
             let start_ns = self.state.result.time_ns;
             let full_step_fits = start_ns + self.next_step_ns(stage) <= target_ns;
             let saved = (!full_step_fits || self.samples_for(recorder)).then(|| self.state.clone());
-            let event = self.step(u64::MAX, recorder.wants_details())?;
+            let event = self.step(u64::MAX, false)?;
+            let last = event.is_some() || self.state.result.time_ns >= target_ns;
             if let Some(saved) = saved {
                 if self.state.result.time_ns > target_ns {
                     // The point falls inside this step: interpolate, and leave the step untaken.
@@ -1438,9 +1460,9 @@ impl<S: Stepper> Simulation<S> {
                     return Ok(Advance::Reached);
                 }
                 let sampled = self.samples_for(recorder).then_some(&saved);
-                self.record_step(recorder, sampled)?;
+                self.record_step(recorder, sampled, last)?;
             } else {
-                self.record(recorder, &self.state.result, &self.state.kinematics)?;
+                self.record(recorder, &self.state.result, &self.state.kinematics, last)?;
             }
             if let Some(e) = &event {
                 recorder.contact_event(e)?;
@@ -1474,8 +1496,9 @@ impl<S: Stepper> Simulation<S> {
     ) -> Result<Advance> {
         while self.state.result.time_ns < target_ns {
             let before = self.samples_for(recorder).then(|| self.state.clone());
-            let event = self.step(target_ns - self.state.result.time_ns, recorder.wants_details())?;
-            self.record_step(recorder, before.as_ref())?;
+            let event = self.step(target_ns - self.state.result.time_ns, false)?;
+            let last = event.is_some() || self.state.result.time_ns >= target_ns;
+            self.record_step(recorder, before.as_ref(), last)?;
             if let Some(e) = &event {
                 recorder.contact_event(e)?;
                 if stop_at_contact_change {
@@ -1661,7 +1684,7 @@ impl<S: Stepper> Simulation<S> {
 
     /// Records the internal step just taken from `before` (when the recorder takes samples: see
     /// [`Self::samples_for`]): its dense output, then its end.
-    fn record_step(&mut self, recorder: &mut dyn Recorder, before: Option<&RunState>) -> Result<()> {
+    fn record_step(&mut self, recorder: &mut dyn Recorder, before: Option<&RunState>, must: bool) -> Result<()> {
         if let Some(before) = before {
             let instants = std::mem::take(&mut self.peak_instants);
             let peaks = (self.state.result.peaks, self.state.peak_times);
@@ -1669,7 +1692,7 @@ impl<S: Stepper> Simulation<S> {
             self.peak_instants = instants;
             sent?;
         }
-        self.record(recorder, &self.state.result, &self.state.kinematics)
+        self.record(recorder, &self.state.result, &self.state.kinematics, must)
     }
 
     /// The energy account at `reached` after `before`'s latest step (a whole step's end, or a
@@ -1738,7 +1761,7 @@ impl<S: Stepper> Simulation<S> {
             stations: probe.as_ref(),
         })?;
         drop(probe);
-        self.record(recorder, &self.state.result, &self.state.kinematics)?;
+        self.record(recorder, &self.state.result, &self.state.kinematics, true)?;
         self.publish_envelope();
         Ok(())
     }
@@ -2072,7 +2095,8 @@ impl<S: Stepper> Simulation<S> {
         use crate::model::stations::Station;
         use crate::results::{BeamEnvelope, StationEnvelope};
         let st = &self.model.stations;
-        let (max, times) = (&self.state.envelope, &self.state.envelope_times);
+        let (mut max, mut times) = (self.state.envelope.clone(), self.state.envelope_times.clone());
+        self.paper_points_stand(&mut max, &mut times);
         let mut offset = 0;
         let mut take = |stations: &[Station]| {
             let range = offset..offset + stations.len();
@@ -2084,33 +2108,48 @@ impl<S: Stepper> Simulation<S> {
                 allowable: stations.iter().map(|s| s.allowable).collect(),
             }
         };
-        let mut lower = BeamEnvelope { bending: take(&st.lower.bending), shear: take(&st.lower.shear) };
-        let mut upper = BeamEnvelope { bending: take(&st.upper.bending), shear: take(&st.upper.shear) };
-        // The paper's three points are stations too, the same functionals: their peaks, resolved
-        // within the steps by the probes' cubic (up to the outputs' point), raise them; the exact
-        // advance's peaks are its solution's own values where the cubic found them (issue 41,
-        // [`Self::exact_extremes`]), which the stations' cubic may overshoot: they stand there.
-        let (peaks, times) = self.last_peaks();
-        let (peaks, times) = (&peaks, &times);
+        let lower = BeamEnvelope { bending: take(&st.lower.bending), shear: take(&st.lower.shear) };
+        let upper = BeamEnvelope { bending: take(&st.upper.bending), shear: take(&st.upper.shear) };
+        crate::results::StressEnvelope { lower, upper, sampled_every: self.stations.stride }
+    }
+
+    /// Sets the paper's three points in the envelope's flat maxima `max` (Pa) and their `times`
+    /// (s), in the stations' order: they are stations too, the same functionals; their peaks,
+    /// resolved within the steps by the probes' cubic (up to the outputs' point), raise them; the
+    /// exact advance's peaks are its solution's own values where the cubic found them (issue 41,
+    /// [`Self::exact_extremes`]), which the stations' cubic may overshoot: they stand there.
+    fn paper_points_stand(&self, max: &mut [f64], times: &mut [f64]) {
+        let st = &self.model.stations;
+        let (peaks, peak_times) = self.last_peaks();
         let exact = self.stepper.adapts_steps();
-        let raise = |e: &mut StationEnvelope, k: usize, value: f64, time: f64| {
-            if k < e.max.len() && (value > e.max[k] || exact) {
-                (e.max[k], e.times[k]) = (value, time);
+        let mut raise = |k: usize, value: f64, time: f64| {
+            if k < max.len() && k < times.len() && (value > max[k] || exact) {
+                (max[k], times[k]) = (value, time);
             }
         };
-        if !st.lower.bending.is_empty() {
-            raise(&mut lower.bending, 0, peaks.lower_clamp_bending_stress, times.lower_clamp_bending_stress);
+        let (lower_bending, lower_shear) = (st.lower.bending.len(), st.lower.shear.len());
+        if lower_bending > 0 {
+            raise(0, peaks.lower_clamp_bending_stress, peak_times.lower_clamp_bending_stress);
         }
-        if !st.lower.shear.is_empty() {
-            raise(&mut lower.shear, 0, peaks.lower_clamp_shear_stress, times.lower_clamp_shear_stress);
+        if lower_shear > 0 {
+            raise(lower_bending, peaks.lower_clamp_shear_stress, peak_times.lower_clamp_shear_stress);
         }
         let contact = self.model.contact_node;
         let at_contact: Vec<usize> =
             st.upper.bending.iter().enumerate().filter(|(_, s)| s.node == contact).map(|(k, _)| k).collect();
         if let [k] = at_contact[..] {
-            raise(&mut upper.bending, k, peaks.upper_contact_bending_stress, times.upper_contact_bending_stress);
+            let k = lower_bending + lower_shear + k;
+            raise(k, peaks.upper_contact_bending_stress, peak_times.upper_contact_bending_stress);
         }
-        crate::results::StressEnvelope { lower, upper, sampled_every: self.stations.stride }
+    }
+
+    /// Hands the envelope so far, as the flat maxima and times of [`Self::envelope`], to the
+    /// stations' feed for the row about to be recorded (issue 41: a log cut short rebuilds the
+    /// envelope from its last row's).
+    fn publish_maxima(&self, feed: &crate::record::stations::StationFeed) {
+        feed.set_maxima_with(&self.state.envelope, &self.state.envelope_times, |max, times| {
+            self.paper_points_stand(max, times)
+        });
     }
 
     /// The impact's angular velocity and closing speed at t = 0.

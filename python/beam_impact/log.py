@@ -22,7 +22,7 @@
                             "upper": {...}, "sampled_every", "source", "note"}, each DataFrame one row per
                             station (position m, max Pa, time s, allowable Pa, utilisation); None when absent
     log.stations            the stress stations: DataFrame (column, beam, stress, position, allowable, node)
-    log.station_stresses    the signed stress at every station of each recorded step: DataFrame (step, time,
+    log.station_stresses    the signed stress at every station, every 1 ms of the rows: DataFrame (step, time,
                             then one column per station, `lower.bending.0`, ...; Pa), or None when not recorded
 
 The file is read by the Rust reader of `beam-impact report` (the native module
@@ -42,8 +42,8 @@ changed). A log written before logs carried the table has `motion_csv` None.
 
 The stress envelope comes from the log's `envelope.json` (stored when the log was finished:
 `envelope["source"] == "attachment"`); a log without it (a killed run) has it rebuilt from the
-stresses recorded at every station (`/beam/stations`, single precision, at the steps' ends: at most
-the run's own envelope, which also takes the crests inside long contact steps), as `beam-impact
+rows of `/beam/stations` (every 1 ms by default they carry the run's envelope so far: the last such
+row's, raised by the stresses after it, single precision), as `beam-impact
 report` rebuilds it (`"rebuilt"`, and `envelope["note"]` says why); a log written before logs carried the
 envelope has `envelope` None, and `station_stresses` None.
 
@@ -200,8 +200,9 @@ class Log:
 
     @property
     def station_stresses(self):
-        """The signed stress at every station of each recorded step (`/beam/stations`: every step,
-        or the recorded ones with `run --record-every N`), as a pandas.DataFrame: `step`, `time`
+        """The signed stress at every station (`/beam/stations`: the first row at or after every
+        1 ms of simulated time, the rows where contact starts or ends and the last row; every
+        recorded row of a log of every internal step), as a pandas.DataFrame: `step`, `time`
         (s), then one column per station (Pa; bending M / W sagging positive, shear Q / A_s; named
         as in `stations["column"]`). None when the log holds no such rows."""
         if self.station_layout is None or len(self.station_steps) == 0:

@@ -290,6 +290,9 @@ impl Recorder for Progress<'_> {
     fn wants_details(&self) -> bool {
         self.inner.wants_details()
     }
+    fn keeps(&self, result: &StepResult) -> bool {
+        self.inner.keeps(result)
+    }
     fn attach(&mut self, name: &str, media_type: &str, data: &[u8]) -> Result<()> {
         self.inner.attach(name, media_type, data)
     }

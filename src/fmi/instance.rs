@@ -275,6 +275,9 @@ impl Recorder for Tap<'_> {
     fn wants_details(&self) -> bool {
         self.inner.is_some()
     }
+    fn keeps(&self, result: &StepResult) -> bool {
+        self.inner.as_deref().is_some_and(|r| r.keeps(result))
+    }
     fn finish(&mut self) -> crate::Result<()> {
         self.send(|r| r.finish())
     }

@@ -59,6 +59,9 @@ impl Recorder for Cancellable<'_> {
     fn wants_details(&self) -> bool {
         self.inner.wants_details()
     }
+    fn keeps(&self, result: &StepResult) -> bool {
+        self.inner.keeps(result)
+    }
     fn stopped_early(&self) -> Option<&str> {
         self.inner.stopped_early()
     }

@@ -13,16 +13,20 @@
 //! | `/beam/contact` | `beam_impact.ContactEvent` | contact starts and ends |
 //! | `/beam/log` | `foxglove.Log` | the same events as text lines |
 //! | `/beam/scene` | `foxglove.SceneUpdate` | both beams, each element coloured by its utilisation, every [`RecorderOptions::scene_interval_ns`] |
-//! | `/beam/stations` | `beam_impact.StationStresses` | the stress at every station of each recorded step (issue 30; the stations in `/beam/model`) |
+//! | `/beam/stations` | `beam_impact.StationStresses` | the stress at every station (issue 30; the stations in `/beam/model`): at the first recorded row of every [`RecorderOptions::stations_interval_ns`], where contact starts or ends, and at the last row |
 //!
 //! **The stress envelope** (issue 30): the run's [`crate::results::StressEnvelope`] is attached as
 //! [`ENVELOPE_ATTACHMENT`] when the log is finished (the CLI's and the FMU's alike: the simulation
 //! hands it over through the stations' feed, see [`super::stations`]); `/beam/stations` holds the
-//! stresses it was raised from at the recorded steps (every step by default; with decimation the
-//! recorded ones; on a basis so large that the envelope is evaluated every k-th step, the recorded
-//! steps among those), so that a log without the attachment (a killed run) rebuilds it. The
-//! stresses are evaluated on the writer thread from the step's modal coordinates and the static
-//! correction's load coefficients.
+//! stresses along both beams, and the run's envelope so far, every 1 ms of simulated time by
+//! default (the scene's rate: the stresses at the paper's points, the peaks and the dense output
+//! are in every `/beam/step` row; evaluating and compressing some thirty stresses for every row
+//! was a third of the writer's time), at the rows where contact starts or ends and at the last
+//! row, so that a log without the attachment (a killed run) rebuilds it from its last such row;
+//! with `stations_interval_ns` 0 at every recorded row. On a basis so large that the envelope is
+//! evaluated every k-th step, only those steps carry stations. The stresses are evaluated on the
+//! writer thread from the step's modal coordinates and the static correction's load
+//! coefficients; the envelope so far comes from the simulation through the feed.
 //!
 //! The scenario is also an MCAP Metadata record (`scenario`, flattened dotted keys, with
 //! `log_format` = [`LOG_FORMAT`]) and a TOML attachment (`scenario.toml`).
@@ -110,6 +114,10 @@ pub struct McapRecorder {
     /// recorded (when no sample came since), ns.
     next_sample_ns: u64,
     has_scene: bool,
+    /// The next multiple of the stations' interval at or after which a recorded row carries its
+    /// stations' stresses, ns; and the step whose stresses were queued last.
+    next_stations_ns: u64,
+    stations_step: Option<(u64, u64)>,
     /// The stations' feed (issue 30), held while the run has stations.
     feed: Option<Arc<StationFeed>>,
     /// The stations are evaluated at every this many steps.
@@ -221,6 +229,8 @@ impl McapRecorder {
             next_modes_ns: 0,
             next_sample_ns: 0,
             has_scene: false,
+            next_stations_ns: 0,
+            stations_step: None,
             feed: None,
             station_stride: 1,
             loads: None,
@@ -283,10 +293,7 @@ impl McapRecorder {
             ),
         };
         let interval = self.options.sample_interval_ns;
-        let regular = match interval {
-            0 => result.step.is_multiple_of(self.options.record_every.max(1)),
-            _ => sample || result.time_ns >= self.next_sample_ns,
-        };
+        let regular = self.regular(result, sample);
         if let (Some(ticks), true) = (result.time_ns.checked_div(interval), regular) {
             self.next_sample_ns = ticks.saturating_add(1).saturating_mul(interval);
         }
@@ -301,7 +308,7 @@ impl McapRecorder {
         }
         if keep {
             self.push(Item::Step(*result, sample));
-            self.push_stations(result);
+            self.push_stations(result, false);
         }
         if deflection_peak && self.options.modal_coordinates {
             self.peak = Some((result.step, result.time_ns));
@@ -332,6 +339,15 @@ impl McapRecorder {
             self.send()?;
         }
         Ok(())
+    }
+
+    /// Whether `result` is a row by the clock: a sample of the dense output, the first step end
+    /// at or after a multiple of the sample interval, or (interval 0) every `record_every`-th step.
+    fn regular(&self, result: &StepResult, sample: bool) -> bool {
+        match self.options.sample_interval_ns {
+            0 => result.step.is_multiple_of(self.options.record_every.max(1)),
+            _ => sample || result.time_ns >= self.next_sample_ns,
+        }
     }
 
     fn push(&mut self, item: Item) {
@@ -366,8 +382,10 @@ impl McapRecorder {
     fn record_pending(&mut self) {
         if let (true, Some(r)) = (self.pending, self.previous) {
             self.push(Item::Step(r, false));
-            self.push_stations(&r);
             self.pending = false;
+        }
+        if let Some(r) = self.previous {
+            self.push_stations(&r, true);
         }
         self.push_peak();
         if !self.coordinates_sent && self.options.modal_coordinates {
@@ -376,11 +394,31 @@ impl McapRecorder {
     }
 
     /// Queues the stations' stresses of the recorded step `r` (its coordinates in
-    /// `self.coordinates`), if the run has stations evaluated at that step and the log keeps them.
-    fn push_stations(&mut self, r: &StepResult) {
-        if self.feed.is_some() && self.options.station_stresses && r.step.is_multiple_of(self.station_stride) {
-            self.batch.push_stations(&self.coordinates, r.step, r.time_ns, self.loads);
+    /// `self.coordinates`), if the run has stations evaluated at that step, the log keeps them, and
+    /// the row is the first at or after a multiple of [`RecorderOptions::stations_interval_ns`]
+    /// (every recorded row with 0) or `always` (the rows where contact starts or ends, the last).
+    fn push_stations(&mut self, r: &StepResult, always: bool) {
+        if self.feed.is_none() || !self.options.station_stresses || !r.step.is_multiple_of(self.station_stride) {
+            return;
         }
+        if self.stations_step == Some((r.step, r.time_ns)) {
+            return;
+        }
+        let interval = self.options.stations_interval_ns;
+        let due = interval == 0 || r.time_ns >= self.next_stations_ns;
+        if !(due || always) {
+            return;
+        }
+        if let (Some(ticks), true) = (r.time_ns.checked_div(interval), due) {
+            self.next_stations_ns = ticks.saturating_add(1).saturating_mul(interval);
+        }
+        self.stations_step = Some((r.step, r.time_ns));
+        let feed = self.feed.as_deref();
+        self.batch.push_stations(&self.coordinates, r.step, r.time_ns, self.loads, |out| {
+            if let Some(feed) = feed {
+                feed.append_maxima(out);
+            }
+        });
     }
 
     /// Why the log stopped before the run's end (it reached its size cap), if it did.
@@ -522,6 +560,18 @@ impl Recorder for McapRecorder {
         self.options.sample_interval_ns
     }
 
+    fn keeps(&self, result: &StepResult) -> bool {
+        if self.finished || self.capped.get().is_some() {
+            return false;
+        }
+        let Some(p) = &self.previous else { return true };
+        p.peaks != result.peaks
+            || p.contact != result.contact
+            || self.regular(result, false)
+            || (self.has_scene && result.time_ns >= self.next_scene_ns)
+            || (self.options.modes_interval_ns > 0 && result.time_ns >= self.next_modes_ns)
+    }
+
     fn sample(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()> {
         self.observe(result, modal_coordinates, true)
     }
@@ -567,6 +617,12 @@ impl Recorder for McapRecorder {
         if let Some(ticks) = result.time_ns.checked_div(interval) {
             self.next_sample_ns = ticks.saturating_add(1).saturating_mul(interval);
         }
+        // The stations likewise; the restored step's are in the log already or superseded.
+        let interval = self.options.stations_interval_ns;
+        if let Some(ticks) = result.time_ns.checked_div(interval) {
+            self.next_stations_ns = ticks.saturating_add(1).saturating_mul(interval);
+        }
+        self.stations_step = Some((result.step, result.time_ns));
         self.previous = Some(*result);
         self.pending = false;
         // The restored step's coordinates are not known here: none are owed for it.

@@ -72,6 +72,15 @@ pub trait Recorder {
     fn wants_details(&self) -> bool {
         true
     }
+    /// Whether the internal step `result` (final but for its details) is one the recorder
+    /// records now, or needs for a scene or modes tick: the simulation computes the details
+    /// ([`Recorder::wants_details`]) and the stations' loads only for those, and for the steps it
+    /// knows a recorder may record later (before a contact event, at an advance's end). A
+    /// recorder that thins the steps says no for the others; by default every step is kept.
+    fn keeps(&self, result: &StepResult) -> bool {
+        let _ = result;
+        true
+    }
     /// Why the record stopped before the run's end (a log at its size cap), if it did.
     fn stopped_early(&self) -> Option<&str> {
         None

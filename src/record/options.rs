@@ -156,8 +156,8 @@ impl std::fmt::Display for LogChannels {
 }
 
 /// How the log is written. The defaults: zstd chunks at level [`DEFAULT_ZSTD_LEVEL`], chunks up to 256 KiB, a flush every 1000 steps and
-/// at contact events, a scene and modal coordinates every 1 ms of simulated time, every step with
-/// its stations' stresses.
+/// at contact events, a scene, modal coordinates and the stations' stresses every 1 ms of
+/// simulated time, the dense output every 0.1 ms.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RecorderOptions {
     /// Target uncompressed chunk size, bytes (64-256 KiB: a killed run loses at most one).
@@ -179,9 +179,14 @@ pub struct RecorderOptions {
     pub channels: LogChannels,
     /// Write `/beam/modes` at all (the scene is drawn either way).
     pub modal_coordinates: bool,
-    /// Write `/beam/stations`, the stress at every station of each recorded step (issue 30; the
-    /// envelope attachment and the scene's utilisation colours stay either way).
+    /// Write `/beam/stations`, the stress at every station (issue 30; the envelope attachment and
+    /// the scene's utilisation colours stay either way).
     pub station_stresses: bool,
+    /// Simulated time between two rows that carry `/beam/stations`, ns: the first recorded row at
+    /// or after each multiple, besides the rows where contact starts or ends and the last row.
+    /// 0: every recorded row (so in a log of every internal step, see
+    /// [`RecorderOptions::effective`]). 1 ms by default, the scene's rate.
+    pub stations_interval_ns: u64,
     /// Record every Nth step (1: every step); see the module's decimation rule. Only for a log
     /// without the dense output (`sample_interval_ns` 0).
     pub record_every: u64,
@@ -249,6 +254,7 @@ impl Default for RecorderOptions {
             channels: LogChannels::ALL,
             modal_coordinates: true,
             station_stresses: true,
+            stations_interval_ns: 1_000_000,
             record_every: 1,
             sample_interval_ns: DEFAULT_SAMPLE_INTERVAL_NS,
             timing: false,
@@ -262,7 +268,8 @@ impl RecorderOptions {
     /// The options as the recorder applies them: a topic is written when `channels` names it and
     /// its older switch ([`RecorderOptions::modal_coordinates`], [`RecorderOptions::station_stresses`],
     /// a non-zero [`RecorderOptions::scene_interval_ns`]) leaves it on; `channels` then says
-    /// exactly what the log holds.
+    /// exactly what the log holds. A log of every internal step (`sample_interval_ns` 0) carries
+    /// the stations at every recorded row too.
     pub fn effective(self) -> RecorderOptions {
         let channels = LogChannels {
             modes: self.channels.modes && self.modal_coordinates,
@@ -274,6 +281,7 @@ impl RecorderOptions {
             modal_coordinates: channels.modes,
             station_stresses: channels.stations,
             scene_interval_ns: if channels.scene { self.scene_interval_ns } else { 0 },
+            stations_interval_ns: if self.sample_interval_ns == 0 { 0 } else { self.stations_interval_ns },
             ..self
         }
     }

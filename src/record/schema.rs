@@ -421,7 +421,9 @@ mod tests {
                 ("lower_bending", 3, Float, Label::Repeated),
                 ("lower_shear", 4, Float, Label::Repeated),
                 ("upper_bending", 5, Float, Label::Repeated),
-                ("upper_shear", 6, Float, Label::Repeated)
+                ("upper_shear", 6, Float, Label::Repeated),
+                ("envelope", 7, Float, Label::Repeated),
+                ("envelope_time", 8, Float, Label::Repeated)
             ]
         );
         let names: Vec<&str> = fields(&types[".beam_impact.StationGroup"]).iter().map(|f| f.0).collect();

@@ -134,6 +134,9 @@ struct FeedState {
     loads: Option<[f64; LOADS]>,
     /// The run's stress envelope as of the end of the latest advance.
     envelope: Option<StressEnvelope>,
+    /// The envelope's largest |stress| at every station as of the step about to be recorded, Pa,
+    /// in the layout's order, then when each was reached, s (empty: not given).
+    maxima: Vec<f64>,
 }
 
 /// The simulation's side of the stations' feed (see the module's documentation).
@@ -166,6 +169,30 @@ impl StationFeed {
     /// The latest envelope given, if any.
     pub fn envelope(&self) -> Option<StressEnvelope> {
         self.with(|s| s.envelope.clone())
+    }
+
+    /// The envelope's largest |stress| at every station as of the step about to be recorded
+    /// (the simulation's running maxima, Pa, in the layout's order) and when each was reached, s.
+    pub fn set_maxima(&self, maxima: &[f64], times: &[f64]) {
+        self.set_maxima_with(maxima, times, |_, _| {});
+    }
+
+    /// [`Self::set_maxima`], then `adjust` applied to the copies (maxima, times).
+    pub fn set_maxima_with(&self, maxima: &[f64], times: &[f64], adjust: impl FnOnce(&mut [f64], &mut [f64])) {
+        self.with(|s| {
+            s.maxima.clear();
+            if maxima.len() == times.len() {
+                s.maxima.extend_from_slice(maxima);
+                s.maxima.extend_from_slice(times);
+                let (max, times) = s.maxima.split_at_mut(maxima.len());
+                adjust(max, times);
+            }
+        });
+    }
+
+    /// Appends the latest running maxima given, then their times, to `out` (nothing if none were).
+    pub fn append_maxima(&self, out: &mut Vec<f64>) {
+        self.with(|s| out.extend_from_slice(&s.maxima));
     }
 }
 

@@ -105,6 +105,8 @@ pub(super) enum Item {
         offset: usize,
         len: usize,
         loads: Option<[f64; LOADS]>,
+        /// The run's envelope so far, after the coordinates (0: none).
+        maxima: usize,
     },
     Contact(ContactEvent),
     Rollback(StepResult),
@@ -147,10 +149,20 @@ impl Batch {
     }
 
     /// Queues the stations' stresses of `step` from its modal coordinates `q` (see [`Item::Stations`]).
-    pub fn push_stations(&mut self, q: &[f64], step: u64, time_ns: u64, loads: Option<[f64; LOADS]>) {
+    /// `maxima` appends the run's envelope so far after the coordinates (nothing: none given).
+    pub fn push_stations(
+        &mut self,
+        q: &[f64],
+        step: u64,
+        time_ns: u64,
+        loads: Option<[f64; LOADS]>,
+        maxima: impl FnOnce(&mut Vec<f64>),
+    ) {
         let offset = self.coordinates.len();
         self.coordinates.extend_from_slice(q);
-        self.items.push(Item::Stations { step, time_ns, offset, len: q.len(), loads });
+        maxima(&mut self.coordinates);
+        let maxima = self.coordinates.len() - offset - q.len();
+        self.items.push(Item::Stations { step, time_ns, offset, len: q.len(), loads, maxima });
     }
 }
 
@@ -267,9 +279,10 @@ impl LogWriter {
                     let q = &batch.coordinates[offset..offset + len];
                     self.write_modes(step, time_ns, log_time_ns, q, log, scene.then_some(loads))?;
                 }
-                &Item::Stations { step, time_ns, offset, len, loads } => {
+                &Item::Stations { step, time_ns, offset, len, loads, maxima } => {
                     let q = &batch.coordinates[offset..offset + len];
-                    self.write_stations(step, time_ns, q, loads)?;
+                    let maxima = &batch.coordinates[offset + len..offset + len + maxima];
+                    self.write_stations(step, time_ns, q, loads, maxima)?;
                 }
                 Item::Contact(event) => self.contact(event)?,
                 Item::Rollback(result) => self.rollback(result)?,
@@ -361,7 +374,14 @@ impl LogWriter {
     }
 
     /// Writes the stresses at every station of `step` (`/beam/stations`).
-    fn write_stations(&mut self, step: u64, time_ns: u64, q: &[f64], loads: Option<[f64; LOADS]>) -> Result<()> {
+    fn write_stations(
+        &mut self,
+        step: u64,
+        time_ns: u64,
+        q: &[f64],
+        loads: Option<[f64; LOADS]>,
+        maxima: &[f64],
+    ) -> Result<()> {
         if !self.evaluate_stations((step, time_ns), q, loads) {
             return Ok(());
         }
@@ -376,6 +396,15 @@ impl LogWriter {
         {
             field.clear();
             field.extend(values.iter().map(|&v| v as f32));
+        }
+        // The running envelope, one value per station (a feed that gave none, or another count:
+        // left out).
+        m.envelope.clear();
+        m.envelope_time.clear();
+        let width = self.station_values.len();
+        if maxima.len() == 2 * width {
+            m.envelope.extend(maxima[..width].iter().map(|&v| v as f32));
+            m.envelope_time.extend(maxima[width..].iter().map(|&v| v as f32));
         }
         encode_into(&mut self.buffer, &self.station_message);
         lap(started, &mut self.timing.encode);

@@ -111,6 +111,10 @@ pub struct StationRecord {
     /// The rows one after the other, signed, Pa, single precision as stored: row k is
     /// `values[k * width..(k + 1) * width]`, width the layout's station count.
     pub values: Vec<f32>,
+    /// The latest row that carried the run's envelope so far (issue 41), its index in the rows,
+    /// the largest |stress| at every station (Pa) and when each was reached (s); None for logs
+    /// written before the rows carried it.
+    pub envelope: Option<(usize, Vec<f32>, Vec<f32>)>,
 }
 
 impl StationRecord {
@@ -131,6 +135,11 @@ impl StationRecord {
         self.steps.truncate(keep);
         self.times_ns.truncate(keep);
         self.values.truncate(keep * width);
+        // The envelope of a superseded row is superseded too; an earlier one is not kept (the
+        // rebuild then starts from the rows alone).
+        if self.envelope.as_ref().is_some_and(|(row, _, _)| *row >= keep) {
+            self.envelope = None;
+        }
     }
 }
 
@@ -539,6 +548,12 @@ impl ReadState {
                         for values in [&m.lower_bending, &m.lower_shear, &m.upper_bending, &m.upper_shear] {
                             data.stations.values.extend_from_slice(values);
                         }
+                        // The running envelope, when the message holds one per station (else it is
+                        // not the model's, or the log predates it: the rows alone are used).
+                        if m.envelope.len() == width && m.envelope_time.len() == width && width > 0 {
+                            let row = data.stations.steps.len() - 1;
+                            data.stations.envelope = Some((row, m.envelope, m.envelope_time));
+                        }
                     }
                     CONTACT_TOPIC => {
                         self.keep(std::mem::size_of::<ContactEvent>(), at, "contact message")?;
@@ -754,9 +769,10 @@ impl EnvelopeSource {
         match self {
             EnvelopeSource::Attachment => format!("from the log's {ENVELOPE_ATTACHMENT} (stored with the run)"),
             EnvelopeSource::Rebuilt { rows, why } => format!(
-                "REBUILT from the stresses of the {rows} recorded steps (/beam/stations, single precision, at the \
-                 steps' ends: a crest inside a long contact step, which the run's own envelope holds, is not in \
-                 them; the paper's three points raised by the steps' running peaks): {why}"
+                "REBUILT from the {rows} rows of /beam/stations (the run's envelope so far, which the rows carry \
+                 every 1 ms by default, from the last that does, raised by the stresses after it; single \
+                 precision; a log written before the rows carried it: from their stresses alone, a lower bound; \
+                 the paper's three points raised by the steps' running peaks): {why}"
             ),
             EnvelopeSource::Absent { why } => format!("not in this log: {why}"),
         }
@@ -800,9 +816,10 @@ fn envelope_problem(envelope: &StressEnvelope, layout: Option<&StationLayout>) -
 }
 
 /// The run's stress envelope from a log (issue 30): its `envelope.json` when it holds a sound one,
-/// else rebuilt from the stresses recorded at the stations (the largest |value| of the recorded
-/// steps' ends at each station, at most the run's own, which also takes each station's cubic
-/// inside the exact advance's contact steps; raised at the paper's three points by the steps' running peaks
+/// else rebuilt from the stations' rows: the run's envelope so far that the last of them to carry it
+/// holds (issue 41), raised by the stresses of the rows from it on (a log written before the rows
+/// carried it: the largest |value| of the rows, a lower bound of the run's own, which takes every
+/// step and each station's cubic inside the exact advance's contact steps; raised at the paper's three points by the steps' running peaks
 /// `peaks`, reached at `peak_times`; the bridge's contact point at `contact_position` m), else
 /// empty; with where it came from.
 pub fn replay_envelope(
@@ -842,7 +859,19 @@ pub fn replay_envelope(
     }
     let width = layout.len();
     let (mut max, mut times) = (vec![0.0f64; width], vec![0.0f64; width]);
-    for (row, values) in record.values.chunks_exact(width.max(1)).enumerate() {
+    // From the latest running envelope the rows carried (every step's and the crests within
+    // them, to that row), raised by the stresses of the rows from it on; else from the rows alone.
+    let mut first = 0;
+    if let Some((row, envelope, envelope_times)) = &record.envelope {
+        let sound = |v: &f32| v.is_finite() && *v >= 0.0;
+        if envelope.len() == width && envelope.iter().all(sound) && envelope_times.iter().all(sound) {
+            for k in 0..width {
+                (max[k], times[k]) = (f64::from(envelope[k]), f64::from(envelope_times[k]));
+            }
+            first = *row;
+        }
+    }
+    for (row, values) in record.values.chunks_exact(width.max(1)).enumerate().skip(first) {
         for (k, &v) in values.iter().enumerate() {
             let v = f64::from(v).abs();
             if v > max[k] {

@@ -335,8 +335,15 @@ pub fn crafted_logs() -> Vec<(String, Vec<u8>)> {
 }
 
 /// Scene-less recorder options with small chunks, for small logs with several chunks.
+/// (The stations at every row, so that mutations reach many of their messages.)
 pub fn small_chunks() -> RecorderOptions {
-    RecorderOptions { chunk_size: 4096, flush_every: 20, scene_interval_ns: 0, ..RecorderOptions::default() }
+    RecorderOptions {
+        chunk_size: 4096,
+        flush_every: 20,
+        scene_interval_ns: 0,
+        stations_interval_ns: 0,
+        ..RecorderOptions::default()
+    }
 }
 
 /// A short real run of the default scenario (automatic steps), recorded to `path`: `duration`

@@ -137,6 +137,9 @@ impl Recorder for Outputs {
     fn wants_details(&self) -> bool {
         self.series.is_some() || self.log.as_ref().is_some_and(|l| l.wants_details())
     }
+    fn keeps(&self, result: &StepResult) -> bool {
+        self.series.is_some() || self.log.as_ref().is_some_and(|l| l.keeps(result))
+    }
     fn stopped_early(&self) -> Option<&str> {
         self.log.as_ref().and_then(|l| l.stopped_early())
     }
