@@ -172,7 +172,9 @@ import pandas  # imported before the signal can come (seconds on a loaded machin
 print("running", flush=True)
 started = time.monotonic()
 try:
-    beam_impact.run(duration=2000.0, check_sensitivity=False)  # about a minute of stepping
+    # About 80 s of stepping on an idle core (2000 s took 7.7 s on 2026-11-29: under a heavily
+    # loaded machine's delays the run could end before the signal was handled).
+    beam_impact.run(duration=20000.0, check_sensitivity=False, max_steps=10**9)
 except KeyboardInterrupt:
     print(f"interrupted after {time.monotonic() - started:.2f} s", flush=True)
     sys.exit(42)
@@ -215,8 +217,10 @@ def announced(*args, **kwargs):
 dask_sweep.run_row_native = announced
 started = time.monotonic()
 try:
-    # Four runs of about a minute each on two threads: Ctrl-C reaches the main thread only.
-    beam_impact.sweep({"drop_height": [0.3, 0.6, 0.9, 1.2], "duration": [2000.0]}, num_workers=2, progress=False)
+    # Eight runs of about 8 s each (2000 s took 7.7 s on 2026-11-29) on two threads, half a minute
+    # of stepping: Ctrl-C reaches the main thread only.
+    heights = [0.3, 0.45, 0.6, 0.75, 0.9, 1.05, 1.2, 1.35]
+    beam_impact.sweep({"drop_height": heights, "duration": [2000.0]}, num_workers=2, progress=False)
 except KeyboardInterrupt:
     print(f"interrupted after {time.monotonic() - started:.2f} s", flush=True)
     # The CPU this process spends in the next second: the pool's runs, if they went on.
