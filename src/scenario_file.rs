@@ -60,9 +60,7 @@ pub fn file_of_scenario(field: &'static str, file: &str, folder: &Path, hint: &s
     if !inside || file.contains('\0') || file.is_empty() {
         return Err(Error::invalid(
             field,
-            format!(
-                "a path relative to the scenario file's folder, inside it (no absolute path, no `..`{hint})"
-            ),
+            format!("a path relative to the scenario file's folder, inside it (no absolute path, no `..`{hint})"),
             format!("'{}'", crate::model::motion_table::quote_cell(file)),
         ));
     }

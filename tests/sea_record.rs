@@ -36,7 +36,10 @@ fn three_hours_of_elevation_give_the_requested_hs_within_two_percent() {
         let c = WaveComponents::new(&s, 1000, 0.5 * wp, 5.0 * wp, seed);
         // Sampled every 0.25 s (10 samples in the shortest component's period, 2 pi / 5 w_p).
         let measured = 4.0 * std_over_three_hours(0.25, |t| c.elevation(t));
-        println!("Hs {hs} m, Tp {tp} s, seed {seed}: 4 sqrt(m0) of the record {measured:.4} m ({:+.2} %)", 100.0 * (measured / hs - 1.0));
+        println!(
+            "Hs {hs} m, Tp {tp} s, seed {seed}: 4 sqrt(m0) of the record {measured:.4} m ({:+.2} %)",
+            100.0 * (measured / hs - 1.0)
+        );
         // The 2 %: the range holds 99.8 % of m0 (0.1 % of Hs), the stratified frequencies'
         // quadrature of m0 and the cross terms over 3 h (dw T = 40) a few tenths of a percent more.
         assert!((measured / hs - 1.0).abs() < 0.02, "Hs {hs}: {measured}");
@@ -51,11 +54,14 @@ fn three_hours_of_a_deck_points_heave_match_the_spectral_integral_within_three_p
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let raos = RaoTable::parse_re1(&text).unwrap();
     let fixture = RaoTable::parse_csv(include_str!("fixtures/sea-raos.csv")).unwrap();
-    for (name, raos, heading) in [("supply vessel", &raos, 180.0), ("supply vessel", &raos, 150.0), ("fixture", &fixture, 200.0)] {
+    for (name, raos, heading) in
+        [("supply vessel", &raos, 180.0), ("supply vessel", &raos, 150.0), ("fixture", &fixture, 200.0)]
+    {
         let s = Spectrum::jonswap(2.5, 8.0, None);
         let wp = s.peak_frequency();
         let (lo, hi) = (0.5 * wp, (5.0 * wp).min(raos.frequency_range().1));
-        let deck = DeckPoints { hinge: Some([-20.0, 5.0, 8.0]), clamp: Some([15.0, -3.0, 8.0]), arrestor_direction: 180.0 };
+        let deck =
+            DeckPoints { hinge: Some([-20.0, 5.0, 8.0]), clamp: Some([15.0, -3.0, 8.0]), arrestor_direction: 180.0 };
         let record = SeaRecord::new(WaveComponents::new(&s, 1000, lo, hi, 11), raos, heading, &deck).unwrap();
         // The spectral integral int |H|^2 S dw of each support coordinate, Simpson on 4000
         // intervals of the interpolated RAOs.
@@ -65,7 +71,13 @@ fn three_hours_of_a_deck_points_heave_match_the_spectral_integral_within_three_p
         let mut variance = [0.0; 3];
         for k in 0..=n {
             let w = lo + k as f64 * h;
-            let weight = if k == 0 || k == n { 1.0 } else if k % 2 == 1 { 4.0 } else { 2.0 };
+            let weight = if k == 0 || k == n {
+                1.0
+            } else if k % 2 == 1 {
+                4.0
+            } else {
+                2.0
+            };
             let supports = deck.supports(&raos.at_frequency(&column, w).unwrap());
             for j in 0..3 {
                 variance[j] += weight * supports[j].norm_sqr() * s.density(w) * h / 3.0;
@@ -74,7 +86,10 @@ fn three_hours_of_a_deck_points_heave_match_the_spectral_integral_within_three_p
         for (j, label) in ["hinge heave", "clamp heave", "clamp rotation"].iter().enumerate() {
             let measured = std_over_three_hours(0.25, |t| record.motion(t).values()[3 * j]);
             let expected = variance[j].sqrt();
-            println!("{name}, heading {heading}: {label} std {measured:.5} vs sqrt(int |H|^2 S dw) {expected:.5} ({:+.2} %)", 100.0 * (measured / expected - 1.0));
+            println!(
+                "{name}, heading {heading}: {label} std {measured:.5} vs sqrt(int |H|^2 S dw) {expected:.5} ({:+.2} %)",
+                100.0 * (measured / expected - 1.0)
+            );
             // The 3 %: as for Hs, plus the linear interpolation of the RAOs inside each bin.
             assert!((measured / expected - 1.0).abs() < 0.03, "{name} {heading} {label}: {measured} vs {expected}");
         }
@@ -113,7 +128,8 @@ fn a_seed_gives_the_same_record_to_the_bit_and_another_seed_another() {
     assert_ne!(a.phases, c.phases);
     // The record's bits, pinned: splitmix64 is integer arithmetic and libm's cos, sin and exp
     // are pure Rust, so every platform gives these (a change here changes every user's sea).
-    let bits = [a.frequencies[0].to_bits(), a.phases[0].to_bits(), a.amplitudes[500].to_bits(), a.elevation(100.0).to_bits()];
+    let bits =
+        [a.frequencies[0].to_bits(), a.phases[0].to_bits(), a.amplitudes[500].to_bits(), a.elevation(100.0).to_bits()];
     println!("{bits:#018x?}");
     assert_eq!(bits, PINNED);
 }

@@ -263,7 +263,9 @@ impl LogData {
         let duration = scenario.duration;
         if let Some(sea) = &mut scenario.sea {
             let csv = self.motion_csv.as_ref().ok_or_else(|| {
-                Error::Other(format!("the log's [sea] run holds no record ({MOTION_ATTACHMENT}): it cannot be replayed"))
+                Error::Other(format!(
+                    "the log's [sea] run holds no record ({MOTION_ATTACHMENT}): it cannot be replayed"
+                ))
             })?;
             let table = MotionTable::parse(csv)
                 .map_err(|e| Error::Other(format!("the log's sea record ({MOTION_ATTACHMENT}) is refused: {e}")))?;

@@ -94,13 +94,8 @@ mod tests {
         // The reference implementation's outputs (Vigna's splitmix64.c) for this seed, as the
         // `rand_xoshiro` crate's test `splitmix64::tests::reference` quotes them.
         let mut rng = SplitMix64::new(1_477_776_061_723_855_037);
-        let expected: [u64; 5] = [
-            1985237415132408290,
-            2979275885539914483,
-            13511426838097143398,
-            8488337342461049707,
-            15141737807933549159,
-        ];
+        let expected: [u64; 5] =
+            [1985237415132408290, 2979275885539914483, 13511426838097143398, 8488337342461049707, 15141737807933549159];
         for e in expected {
             assert_eq!(rng.next_u64(), e);
         }

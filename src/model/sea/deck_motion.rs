@@ -50,7 +50,8 @@ mod tests {
         let c = |x: f64| Complex::new(x, 0.0);
         // Pitch 0.01 rad bow down: a point 10 m forward drops 0.1 m, 10 m aft rises 0.1 m.
         let pitch = [c(0.0), c(0.0), c(0.0), c(0.0), c(0.01), c(0.0)];
-        let deck = DeckPoints { hinge: Some([10.0, 0.0, 5.0]), clamp: Some([-10.0, 0.0, 5.0]), arrestor_direction: 180.0 };
+        let deck =
+            DeckPoints { hinge: Some([10.0, 0.0, 5.0]), clamp: Some([-10.0, 0.0, 5.0]), arrestor_direction: 180.0 };
         let s = deck.supports(&pitch);
         assert!((s[0].re + 0.1).abs() < 1e-15 && (s[1].re - 0.1).abs() < 1e-15);
         // The arrestor points aft: with the bow down, its end (further aft) rises: +0.01 rad.

@@ -13,13 +13,15 @@
 //!   hinge's heave and the clamp's heave and rotation (small angles);
 //! - [`record`]: the supports' motion as the sum of the components, with exact derivatives, and
 //!   its samples as the motion table the solver already takes;
-//! - [`settings`]: the scenario's `[sea]` section (fields, defaults, ranges).
+//! - [`settings`]: the scenario's `[sea]` section (fields, defaults, ranges); [`fields`] the same
+//!   fields as `--set` / `--vary` parameters.
 //!
 //! Trigonometric and exponential functions come from the `libm` crate (pure Rust), as elsewhere
 //! in the physics: a seed gives the same record to the bit on every platform.
 
 pub mod components;
 pub mod deck_motion;
+pub mod fields;
 pub mod raos;
 pub mod record;
 pub mod settings;

@@ -196,7 +196,11 @@ impl RaoTable {
                 }
                 debug_assert!(k < headings.len());
             }
-            return Err(format!("incomplete grid: {} rows for {} headings x {nf} frequencies", points.len(), headings.len()));
+            return Err(format!(
+                "incomplete grid: {} rows for {} headings x {nf} frequencies",
+                points.len(),
+                headings.len()
+            ));
         }
         let given_headings = headings.len();
         let mut values: Vec<[Complex<f64>; 6]> = points.iter().map(|p| p.values).collect();
@@ -292,7 +296,8 @@ impl RaoTable {
             let mut values = [Complex::new(0.0, 0.0); 6];
             for dof in 0..6 {
                 let (amplitude, phase) = (v[2 + 2 * dof], v[3 + 2 * dof]);
-                let (unit, scale) = if is_rotation(dof) { ("deg/m", std::f64::consts::PI / 180.0) } else { ("m/m", 1.0) };
+                let (unit, scale) =
+                    if is_rotation(dof) { ("deg/m", std::f64::consts::PI / 180.0) } else { ("m/m", 1.0) };
                 check_amplitude(dof, amplitude, unit, scale).map_err(|e| format!("line {line}: {e}"))?;
                 if phase.abs() > 3600.0 {
                     return Err(format!("line {line}: {}_phase = {phase} deg is beyond +-3600", DOF_NAMES[dof]));
@@ -409,12 +414,7 @@ impl RaoTable {
                 }
             }
             if at_rest {
-                let source = RaoSource::Veres {
-                    ship,
-                    speed: 0.0,
-                    reference_x: speed[3],
-                    reference_z: speed[4],
-                };
+                let source = RaoSource::Veres { ship, speed: 0.0, reference_x: speed[3], reference_z: speed[4] };
                 return RaoTable::from_points(points, source).map_err(|e| format!("speed 0 (line {speed_line}): {e}"));
             }
         }

@@ -134,7 +134,10 @@ pub struct SeaSettings {
 /// The records made for a scenario and its clones (a run's rungs and twin, a sweep's rows), by
 /// key: each is made once. Shared between clones; a few kept.
 #[derive(Clone, Debug, Default)]
-struct RecordCache(Arc<Mutex<Vec<(String, Arc<RaoTable>, Arc<MotionTable>)>>>);
+struct RecordCache(Arc<Mutex<Vec<CachedRecord>>>);
+
+/// A record's key, the RAO table it was made from and its table.
+type CachedRecord = (String, Arc<RaoTable>, Arc<MotionTable>);
 
 impl PartialEq for RecordCache {
     fn eq(&self, _: &Self) -> bool {
@@ -152,7 +155,9 @@ impl SeaSettings {
             SpectrumKind::Jonswap => {
                 Spectrum::jonswap(self.significant_wave_height, self.peak_period, self.peak_enhancement)
             }
-            SpectrumKind::PiersonMoskowitz => Spectrum::pierson_moskowitz(self.significant_wave_height, self.peak_period),
+            SpectrumKind::PiersonMoskowitz => {
+                Spectrum::pierson_moskowitz(self.significant_wave_height, self.peak_period)
+            }
         }
     }
 
@@ -184,13 +189,23 @@ impl SeaSettings {
             }
         };
         let hs = self.significant_wave_height;
-        check(hs.is_finite() && hs > 0.0 && hs <= MAX_HS, "sea.significant_wave_height", format!("> 0 m, at most {MAX_HS} m"), hs.to_string());
+        check(
+            hs.is_finite() && hs > 0.0 && hs <= MAX_HS,
+            "sea.significant_wave_height",
+            format!("> 0 m, at most {MAX_HS} m"),
+            hs.to_string(),
+        );
         let tp = self.peak_period;
         let (tmin, tmax) = PEAK_PERIOD_RANGE;
         check((tmin..=tmax).contains(&tp), "sea.peak_period", format!("between {tmin} and {tmax} s"), tp.to_string());
         if let Some(gamma) = self.peak_enhancement {
             let (lo, hi) = GAMMA_RANGE;
-            check((lo..=hi).contains(&gamma), "sea.peak_enhancement", format!("between {lo} and {hi} (absent: DNV's rule)"), gamma.to_string());
+            check(
+                (lo..=hi).contains(&gamma),
+                "sea.peak_enhancement",
+                format!("between {lo} and {hi} (absent: DNV's rule)"),
+                gamma.to_string(),
+            );
             check(
                 self.spectrum == SpectrumKind::Jonswap,
                 "sea.peak_enhancement",
@@ -222,8 +237,18 @@ impl SeaSettings {
                 errors.push(Error::invalid(name, rule, value));
             }
         };
-        check((0.0..=360.0).contains(&self.heading), "sea.heading", "between 0 and 360 deg".into(), self.heading.to_string());
-        check(self.seed <= MAX_SEED, "sea.seed", format!("a whole number from 0 to 2^53 = {MAX_SEED}"), self.seed.to_string());
+        check(
+            (0.0..=360.0).contains(&self.heading),
+            "sea.heading",
+            "between 0 and 360 deg".into(),
+            self.heading.to_string(),
+        );
+        check(
+            self.seed <= MAX_SEED,
+            "sea.seed",
+            format!("a whole number from 0 to 2^53 = {MAX_SEED}"),
+            self.seed.to_string(),
+        );
         check(
             (1..=MAX_COMPONENTS).contains(&self.components),
             "sea.components",
@@ -232,7 +257,12 @@ impl SeaSettings {
         );
         for (name, value) in [("sea.frequency_min", self.frequency_min), ("sea.frequency_max", self.frequency_max)] {
             if let Some(w) = value {
-                check(w > 0.0 && w <= super::raos::MAX_FREQUENCY, name, format!("> 0 rad/s, at most {}", super::raos::MAX_FREQUENCY), w.to_string());
+                check(
+                    w > 0.0 && w <= super::raos::MAX_FREQUENCY,
+                    name,
+                    format!("> 0 rad/s, at most {}", super::raos::MAX_FREQUENCY),
+                    w.to_string(),
+                );
             }
         }
         if let (Some(lo), Some(hi)) = (self.frequency_min, self.frequency_max) {
@@ -275,7 +305,12 @@ impl SeaSettings {
         );
         let (dmin, dmax) = SAMPLE_INTERVAL_RANGE;
         let dt = self.sample_interval;
-        check((dmin..=dmax).contains(&dt), "sea.sample_interval", format!("between {dmin:e} and {dmax} s"), dt.to_string());
+        check(
+            (dmin..=dmax).contains(&dt),
+            "sea.sample_interval",
+            format!("between {dmin:e} and {dmax} s"),
+            dt.to_string(),
+        );
         if (dmin..=dmax).contains(&dt) && duration.is_finite() && duration > 0.0 {
             let rows = (duration / dt).ceil() as u64 + 2;
             let work = rows.saturating_mul(u64::from(self.components));
