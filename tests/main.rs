@@ -67,6 +67,7 @@ mod report_csv;
 mod robust_meshes;
 mod run_cost;
 mod scenario;
+mod sea_cli;
 mod sea_raos;
 mod sea_record;
 mod sea_scenario;
