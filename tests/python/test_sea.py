@@ -48,7 +48,7 @@ def sea_folder(tmp_path):
 
 def test_run_takes_a_sea_as_the_cli_does(sea_folder):
     out = sea_folder / "cli.json"
-    done = subprocess.run([binary(), "run", "s.toml", "--no-mcap", "--json", str(out)], capture_output=True,
+    done = subprocess.run([binary(), "run", str(sea_folder / "s.toml"), "--no-mcap", "--json", str(out)], capture_output=True,
                           text=True, cwd=sea_folder)
     assert done.returncode in (0, 1), done.stderr
     cli = json.loads(out.read_text())
