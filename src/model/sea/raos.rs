@@ -27,10 +27,11 @@
 //! starboard, z up, its rotations right-handed in rad/m, its heading h = 0 head seas measured in
 //! its own axes, and x_j(t) = Re(H_j zeta_a e^(i w t)) (MSS converts with T = diag(-1, 1, -1, -1,
 //! 1, -1) to its x forward, y starboard, z down axes). So ours are surge, sway, roll and pitch
-//! negated, heave and yaw as they are, at beta = h + 180 deg. The test
-//! `sea_raos::veres_supply_vessel_*` proves it on MSS's supply vessel: heave 1 at phase 0 in long
-//! head waves, pitch the wave slope k zeta_a at -90 deg (bow down as the crest passes... see the
-//! test), sway towards the side the waves travel to.
+//! negated, heave and yaw as they are, at beta = h + 180 deg. The tests
+//! `sea_raos::veres_supply_vessel_*` prove it on MSS's supply vessel against a long wave's limits:
+//! heave 1 at phase 0 in every heading; pitch the wave slope, i k cos(beta) (in head seas -90 deg:
+//! the bow goes down a quarter period after the crest passes the reference point); surge and sway
+//! the particles' excursion, -i cos(beta) and -i sin(beta); roll towards where beam waves travel.
 //!
 //! **Headings a file lacks**: a file whose headings all lie in 0..180 deg or all in 180..360 deg
 //! (VERES writes 0..180 of its own, ours 180..360) is completed by port-starboard symmetry: the
