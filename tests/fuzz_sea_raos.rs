@@ -4,12 +4,13 @@
 //!
 //! Goal: seeded mutations of the fixture CSV and of a small `.re1` written here (cells replaced
 //! by hostile literals, lines deleted, duplicated and swapped, byte-level mutations).
-//! `BEAM_IMPACT_FUZZ_ITERATIONS` sets the number of mutations.
+//! `BEAM_IMPACT_FUZZ_ITERATIONS` sets the number of mutations; `tests/corpus/raos/` (hostile files
+//! and the seeds) is replayed.
 
 use crate::fuzz_support;
 
 use beam_impact::model::sea::raos::{RaoTable, MAX_FREQUENCY, MAX_ROTATION, MAX_TRANSLATION};
-use fuzz_support::{iterations, mutate, Rng};
+use fuzz_support::{corpus_dir, corpus_files, iterations, mutate, Rng};
 
 const LITERALS: &[&str] = &[
     "1e308",
@@ -174,4 +175,48 @@ fn seeded_mutations_of_rao_files_never_panic_and_stay_within_bounds() {
         accepted.iter().all(|a| *a > 0) && refused.iter().all(|r| *r > 0),
         "accepted {accepted:?}, refused {refused:?}"
     );
+}
+
+#[test]
+fn the_committed_corpus_replays() {
+    let files = corpus_files("raos");
+    assert!(files.len() >= 10);
+    let mut accepted = 0;
+    for (name, bytes) in files {
+        if check(&name, &String::from_utf8_lossy(&bytes)) {
+            accepted += 1;
+        }
+    }
+    // The two seeds are accepted; every hostile file is refused.
+    assert_eq!(accepted, 2);
+}
+
+/// Writes `tests/corpus/raos/` (the seeds and hostile files; a file of too many rows is
+/// `sea_raos::a_million_rows_are_refused_at_the_limit_within_a_second`'s, made in memory):
+/// `cargo test --release --test integration -- --ignored fuzz_sea_raos::write_corpus`.
+#[test]
+#[ignore]
+fn write_corpus() {
+    let dir = corpus_dir("raos");
+    std::fs::create_dir_all(&dir).unwrap();
+    let [csv, re1] = [seeds()[0].clone(), seeds()[1].clone()];
+    let header = csv.lines().nth(1).unwrap().to_string();
+    let row = |w: &str, h: &str| format!("{w},{h},0,0,0,0,1,0,0,0,0,0,0,0\n");
+    let files: Vec<(&str, String)> = vec![
+        ("seed.csv", csv.clone()),
+        ("seed.re1", re1.clone()),
+        ("shadow-first-line.csv", "root:$6$salt$hash:19000:0:99999:7:::\n".into()),
+        ("nan-frequency.csv", format!("{header}\n{}{}", row("0.5", "180"), row("nan", "180"))),
+        ("duplicate-row.csv", format!("{header}\n{}{}", row("0.5", "180"), row("0.5", "180"))),
+        ("incomplete-grid.csv", format!("{header}\n{}{}{}", row("0.5", "180"), row("1", "180"), row("0.5", "195"))),
+        ("escape-in-header.csv", "frequency,heading,\u{1b}]0;owned\u{7}\n".into()),
+        ("re1-frequencies-decreasing.re1", re1.replacen("  0.8\n", "  0.1\n", 1)),
+        ("re1-counts-huge.re1", re1.replacen("     1     2     3     6", "     1     2     3000000     6", 1)),
+        ("re1-cut-short.re1", re1.lines().take(20).collect::<Vec<_>>().join("\n")),
+        ("re1-dof-twice.re1", re1.replacen("  2 0.2E+00", "  1 0.2E+00", 1)),
+        ("empty.csv", String::new()),
+    ];
+    for (name, text) in files {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
 }
