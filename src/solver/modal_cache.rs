@@ -30,7 +30,8 @@ use crate::model::{Model, Scenario};
 /// [`ModalSystem::with_damping`] sets per run), by their dotted names: a sweep over them shares
 /// the modes of each rung (the sweep runs rows that differ in other fields apart, see
 /// `studies::sweep`). `motion.file` and the motion table go with `motion.time_shift`; the key leaves
-/// out the whole `[sea]` (a sea moves the supports, never the modes).
+/// out the whole `[sea]` (a sea moves the supports, never the modes: every `sea.*` field is per
+/// run, `tests/sweep.rs` holds its cached answers to the bit).
 pub const PER_RUN_FIELDS: [&str; 18] = [
     "drop_height",
     "impact_angular_velocity",

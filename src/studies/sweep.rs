@@ -785,7 +785,12 @@ impl Sweep {
     /// [`crate::solver::modal_cache::PER_RUN_FIELDS`], in grid order), so that a row finds its
     /// modes in the cache while at most a window of finished rows waits for its turn to be written.
     pub fn execution_order(&self) -> Vec<usize> {
-        let geometry: Vec<bool> = self.axes.iter().map(|a| !PER_RUN_FIELDS.contains(&a.field.name)).collect();
+        // A sea's fields move the supports, never the modes (issue 42): per run, as the motion's shift.
+        let geometry: Vec<bool> = self
+            .axes
+            .iter()
+            .map(|a| !PER_RUN_FIELDS.contains(&a.field.name) && !a.field.name.starts_with("sea."))
+            .collect();
         let positions = |mut index: usize| -> Vec<usize> {
             let mut key = vec![0; self.axes.len()];
             for ((k, axis), shape) in key.iter_mut().zip(&self.axes).zip(&geometry).rev() {
