@@ -36,6 +36,10 @@ pub fn from_text(text: &str, name: &str, folder: &Path, warnings: &mut Vec<Strin
         let motion = motion_file_of_scenario(&scenario.motion.file, folder)?;
         load_motion(&mut scenario, &motion, warnings)?;
     }
+    if let Some(file) = scenario.sea.as_ref().map(|s| s.raos.clone()) {
+        let path = file_of_scenario("sea.raos", &file, folder, "")?;
+        load_raos(&mut scenario, &path)?;
+    }
     Ok(scenario)
 }
 
@@ -44,18 +48,46 @@ pub fn from_text(text: &str, name: &str, folder: &Path, warnings: &mut Vec<Strin
 /// nothing else (`/proc/self/environ`, `../../etc/shadow`); the user's own motion file anywhere
 /// is given with `--motion PATH`.
 pub fn motion_file_of_scenario(file: &str, folder: &Path) -> Result<PathBuf> {
+    file_of_scenario("motion.file", file, folder, "; give any other file with --motion PATH")
+}
+
+/// Where a file a scenario names (`field`: `motion.file`, `sea.raos`) points: a relative path
+/// inside the scenario's folder (see [`motion_file_of_scenario`]); `hint` ends the refusal.
+pub fn file_of_scenario(field: &'static str, file: &str, folder: &Path, hint: &str) -> Result<PathBuf> {
     use std::path::Component;
     let relative = Path::new(file);
     let inside = relative.components().all(|c| matches!(c, Component::Normal(_) | Component::CurDir));
-    if !inside || file.contains('\0') {
+    if !inside || file.contains('\0') || file.is_empty() {
         return Err(Error::invalid(
-            "motion.file",
-            "a path relative to the scenario file's folder, inside it (no absolute path, no `..`; give any other \
-             file with --motion PATH)",
+            field,
+            format!("a path relative to the scenario file's folder, inside it (no absolute path, no `..`{hint})"),
             format!("'{}'", crate::model::motion_table::quote_cell(file)),
         ));
     }
     Ok(folder.join(relative))
+}
+
+/// Largest RAO file read, bytes (32 MiB: a VERES file of 180 headings x 1000 frequencies is
+/// 25 MB), checked from the file's size before it is read.
+pub const MAX_RAO_BYTES: u64 = 32 << 20;
+
+/// Reads the vessel's RAO file `path` (`[sea] raos`: our CSV or VERES `.re1`) into the
+/// scenario's sea with its SHA-256, and checks the sea against it (its frequencies and headings).
+pub fn load_raos(scenario: &mut Scenario, path: &Path) -> Result<()> {
+    use sha2::Digest;
+    let file = open_regular_input(path, "cannot read RAO file")?;
+    let text = check_size(&file, MAX_RAO_BYTES, "the RAO file")
+        .and_then(|()| read_bounded(file, MAX_RAO_BYTES, "the RAO file"))
+        .map_err(|source| io("cannot read RAO file", path, source))?;
+    let table = crate::model::sea::RaoTable::parse(&text)
+        .map_err(|e| Error::Other(format!("RAO file {}: {e}", shown(path))))?;
+    let hash: String = sha2::Sha256::digest(text.as_bytes()).iter().map(|b| format!("{b:02x}")).collect();
+    let Some(sea) = scenario.sea.as_mut() else { return Ok(()) };
+    sea.raos = path.display().to_string();
+    sea.rao_sha256 = hash;
+    sea.check_against(&table)?;
+    sea.rao_table = Some(std::sync::Arc::new(table));
+    Ok(())
 }
 
 /// Largest motion file read, bytes (256 MiB: about 1.3 million rows of ten numbers, 22 minutes

@@ -299,7 +299,7 @@ impl Simulation<ModalStepper> {
     /// the static correction), checks the time steps and sets the initial conditions, with the
     /// production stepper.
     pub fn new(scenario: &Scenario) -> Result<Self> {
-        Self::starting_with(scenario, scenario.motion.at_start())
+        Self::starting_with(scenario, scenario.motion_at_start()?)
     }
 
     /// [`Simulation::new`] with the supports' motion at t = 0 given (an FMU's inputs at the end of
@@ -312,7 +312,7 @@ impl Simulation<ModalStepper> {
     /// them there (else computed and put there): the same run to the bit, without the eigen
     /// decompositions (see [`crate::solver::modal_cache`]).
     pub fn new_cached(scenario: &Scenario, cache: &ModalCache) -> Result<Self> {
-        Self::starting_with_cache(scenario, scenario.motion.at_start(), Some(cache))
+        Self::starting_with_cache(scenario, scenario.motion_at_start()?, Some(cache))
     }
 
     fn starting_with_cache(scenario: &Scenario, motion: SupportMotion, cache: Option<&ModalCache>) -> Result<Self> {
@@ -350,7 +350,7 @@ impl Simulation<DenseStepper> {
     pub fn new_dense(scenario: &Scenario) -> Result<Self> {
         let model = Model::new(&crate::discretise::printed(scenario)?)?;
         let modal = ModalSystem::new(&model)?;
-        let motion = scenario.motion.at_start();
+        let motion = scenario.motion_at_start()?;
         let physical = initial_physical_state(&model, &modal, &motion)?;
         let stepper = DenseStepper::new(&model, &modal);
         Self::with_stepper(model, modal, stepper, &physical, motion)
@@ -1774,7 +1774,7 @@ impl<S: Stepper> Simulation<S> {
         self.start_recording(recorder)?;
         let end_ns = self.model.scenario.duration_ns();
         let polynomial = self.polynomial_peaks();
-        for (at_ns, motion) in self.model.scenario.motion.changes(end_ns) {
+        for (at_ns, motion) in self.model.scenario.motion_changes(end_ns)? {
             if polynomial {
                 self.advance_outputs_to(at_ns, recorder, false)?;
             } else {

@@ -364,6 +364,16 @@ fn cached_answers_equal_uncached_ones_to_the_bit() {
         s.motion.time_shift = shift;
         per_run.push((format!("[(\"motion.time_shift\", {shift})]"), s));
     }
+    // A sea (issue 42) moves the supports, never the modes: its fields are per run too.
+    let sea_dir = crate::sea_scenario::folder("");
+    let text = crate::sea_scenario::sea_toml("").replace("duration = 1.0", "duration = 0.3");
+    let sea = beam_impact::scenario_file::from_text(&text, "sea", sea_dir.path(), &mut Vec::new()).unwrap();
+    for (name, value) in [("sea.time_shift", 100.0), ("sea.time_shift", 130.0), ("sea.significant_wave_height", 2.0)] {
+        let mut s = sea.clone();
+        s.sea.as_mut().unwrap().time_shift = 100.0;
+        apply_settings(&mut s, &[Setting { field: field(name).unwrap(), value }]).unwrap();
+        per_run.push((format!("[(\"{name}\", {value})]"), s));
+    }
     // Every per-run field is varied above.
     for name in beam_impact::solver::modal_cache::PER_RUN_FIELDS {
         assert!(per_run.iter().any(|(what, _)| what.contains(&format!("\"{name}\""))), "{name} is not varied");

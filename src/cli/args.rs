@@ -134,6 +134,27 @@ pub enum Command {
         #[arg(long, default_value_t = beam_impact::studies::verify::DEFAULT_TOLERANCE)]
         tolerance: f64,
     },
+    /// Write a scenario's sea (`[sea]`, issue 42) as a motion file: `time` (the record's, s),
+    /// `wave_elevation` at the vessel's motion reference point (m) and the nine support-motion
+    /// columns, from the record's time 0 to DURATION every SAMPLE-INTERVAL, in the format `run
+    /// --motion` reads (`run --motion FILE.csv --set motion.time_shift=S` is the `[sea]` run
+    /// with `sea.time_shift = S`, to the bit, on the same grid).
+    Sea {
+        /// Scenario file with a `[sea]` section.
+        file: PathBuf,
+        /// Change a scenario field, KEY=VALUE, as `run --set` (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// The record's length, s.
+        #[arg(long, value_name = "T")]
+        duration: f64,
+        /// The CSV file to write.
+        #[arg(long, value_name = "FILE.csv")]
+        out: PathBuf,
+        /// Interval of the rows, s (default: the scenario's `sea.sample_interval`).
+        #[arg(long, value_name = "S")]
+        sample_interval: Option<f64>,
+    },
     /// A design sweep: every combination of the `--vary` values (the last varying fastest), run in
     /// parallel without logs; one CSV row per scenario (peaks, peak times, energy approach,
     /// largest energy residual, trust verdict, error).

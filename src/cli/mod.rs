@@ -11,6 +11,7 @@ mod modes;
 mod pack;
 mod report;
 mod run;
+mod sea;
 mod sweep;
 pub mod usage;
 mod verify;
@@ -58,6 +59,9 @@ pub fn execute(command: Command) -> Result<Outcome> {
             done(verify::verify(file.as_deref(), &set, json.as_deref(), tolerance))
         }
         Command::Sweep(args) => done(sweep::sweep(&args)),
+        Command::Sea { file, set, duration, out, sample_interval } => {
+            done(sea::sea(&file, &set, duration, &out, sample_interval))
+        }
         Command::Completions { shell } => done(completions::completions(shell)),
     }
 }

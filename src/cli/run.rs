@@ -56,6 +56,9 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     if !scenario.motion.file.is_empty() {
         files.push(("the motion file", Path::new(&scenario.motion.file)));
     }
+    if let Some(sea) = &scenario.sea {
+        files.push(("the RAO file", Path::new(&sea.raos)));
+    }
     if let Some(json) = args.json.as_deref() {
         files.push(("--json", json));
     }
@@ -154,6 +157,27 @@ pub fn run(args: &RunArgs) -> Result<bool> {
                 .collect::<Vec<_>>()
                 .join(", "),
             scenario.motion.time_shift
+        );
+    }
+    if let Some(sea) = &scenario.sea {
+        let spectrum = sea.spectrum();
+        text += &format!(
+            "supports on a vessel in a sea state: Hs {} m, Tp {} s, {} (gamma {:.3}), heading {} deg, seed {}, {} \
+             components; the vessel's RAOs from {}; the record from its time {} s, sampled every {} s{}{}; \
+             deflections are relative to the supports, the energy approach's column assumes fixed ones\n\n",
+            sea.significant_wave_height,
+            sea.peak_period,
+            sea.spectrum.name(),
+            spectrum.gamma,
+            sea.heading,
+            sea.seed,
+            sea.components,
+            shown(Path::new(&sea.raos)),
+            sea.time_shift,
+            sea.sample_interval,
+            sea.hinge_point.map_or(String::new(), |p| format!("; hinge at {p:?} m")),
+            sea.clamp_point
+                .map_or(String::new(), |p| format!("; clamp at {p:?} m, arrestor at {} deg", sea.arrestor_direction)),
         );
     }
     text += &compare::comparison(summary, paper);

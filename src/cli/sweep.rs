@@ -32,6 +32,9 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
     if !sweep.base.motion.file.is_empty() {
         files.push(("the motion file", Path::new(&sweep.base.motion.file)));
     }
+    if let Some(sea) = &sweep.base.sea {
+        files.push(("the RAO file", Path::new(&sea.raos)));
+    }
     files.push(("--out", &args.out));
     files.extend(args.json.as_deref().map(|j| ("--json", j)));
     let data: Vec<&Path> = std::iter::once(args.out.as_path()).chain(args.json.as_deref()).collect();

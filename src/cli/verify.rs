@@ -21,6 +21,9 @@ pub fn verify(file: Option<&Path>, set: &[String], json: Option<&Path>, toleranc
     if !scenario.motion.file.is_empty() {
         files.push(("the motion file", Path::new(&scenario.motion.file)));
     }
+    if let Some(sea) = &scenario.sea {
+        files.push(("the RAO file", Path::new(&sea.raos)));
+    }
     files.extend(json.map(|j| ("--json", j)));
     check_distinct(&files)?;
     let json_file = match json {

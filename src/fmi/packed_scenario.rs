@@ -31,6 +31,14 @@ impl PackedScenario {
                     .into(),
             ));
         }
+        if scenario.sea.is_some() {
+            return Err(refuse(
+                "its [sea] is for the CLI (the record becomes a motion table there); an FMU takes the supports' motion \
+                 as its inputs (upper.hinge_heave, lower.clamp_heave, lower.clamp_rotation and their rates): leave [sea] \
+                 out, or write the record with `beam-impact sea` and feed it to the inputs"
+                    .into(),
+            ));
+        }
         // The file's name as a comment: no line break or control character may end the comment.
         let shown = crate::error::bounded_line(source);
         let text = format!(

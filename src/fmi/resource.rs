@@ -49,6 +49,13 @@ pub fn scenario_from_bytes(bytes: &[u8]) -> Result<Scenario, String> {
                 .to_string(),
         ));
     }
+    if scenario.sea.is_some() {
+        return Err(fail(
+            "[sea] is not for an FMU: the supports' motion is its inputs (upper.hinge_heave, lower.clamp_heave, \
+             lower.clamp_rotation and their rates), set by the importer"
+                .to_string(),
+        ));
+    }
     Ok(scenario)
 }
 

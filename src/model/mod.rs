@@ -9,6 +9,7 @@ pub mod mesh;
 pub mod motion_table;
 pub mod parameters;
 pub mod scenario;
+pub mod sea;
 pub mod section;
 pub mod stations;
 pub mod stress_recovery;

@@ -1,7 +1,8 @@
 //! A support-motion time series (`run --motion FILE.csv`, the scenario's `[motion]`): rows of
 //! `time` and any of the nine support-motion names, each support's three given together. Between
 //! rows each support moves as z_n + v_n tau + a_n tau^2 / 2 from the row before, as an FMU's inputs
-//! do between communication points. Parsed from text (the CLI reads the file): no I/O here.
+//! do between communication points. Parsed from text (the CLI reads the file): no I/O here. A
+//! `wave_elevation` column (`beam-impact sea`'s files, issue 42) is read as a number and left out.
 
 use super::support_motion::{check_motion_value, MotionMismatch, SupportMotion, MOTION_NAMES};
 
@@ -33,6 +34,10 @@ pub fn quote_cell(cell: &str) -> String {
     }
     out
 }
+
+/// A column a motion file may carry beside the support motion and that the run does not use: the
+/// wave elevation at the vessel's motion reference point, m, as `beam-impact sea` writes it.
+pub const WAVE_ELEVATION: &str = "wave_elevation";
 
 /// A parsed, checked support-motion time series.
 #[derive(Clone, Debug, PartialEq)]
@@ -76,7 +81,16 @@ impl MotionTable {
         let mut time_column = None;
         let mut slots: Vec<Option<usize>> = Vec::with_capacity(names.len());
         let mut columns = Vec::new();
+        let mut elevation_column = None;
         for (c, name) in names.iter().enumerate() {
+            if *name == WAVE_ELEVATION {
+                // `beam-impact sea`'s record of the waves (issue 42): read as a number, not used.
+                if elevation_column.replace(c).is_some() {
+                    return Err(format!("line {header_line}: column `{WAVE_ELEVATION}` appears twice"));
+                }
+                slots.push(None);
+                continue;
+            }
             if *name == "time" {
                 if time_column.replace(c).is_some() {
                     return Err(format!("line {header_line}: column `time` appears twice"));
@@ -144,6 +158,7 @@ impl MotionTable {
                     return Err(format!("row {row} (line {line}): `{}` = {value} is not finite", names[c]));
                 }
                 match slots[c] {
+                    None if Some(c) == elevation_column => {}
                     Some(k) => {
                         check_motion_value(k, value).map_err(|e| format!("row {row} (line {line}): {e}"))?;
                         values[k] = value;

@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 use super::contact_law::{ContactLaw, LawKind, EXPONENT_RANGE};
 use super::discretisation::{auto_count, auto_real, Method, PAPER_ELEMENTS};
 use super::motion_table::MotionTable;
+use super::sea::SeaSettings;
 use super::section::{self, SectionSpec};
 use super::stress_recovery::StressRecovery;
 use super::support_motion::SupportMotion;
@@ -340,6 +341,9 @@ pub struct Scenario {
     /// The supports' prescribed motion (none by default: fixed supports).
     #[serde(skip_serializing_if = "MotionSettings::is_unset")]
     pub motion: MotionSettings,
+    /// The supports on a vessel in a sea state (issue 42: `[sea]`), instead of a motion file.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sea: Option<SeaSettings>,
 }
 
 impl Default for Scenario {
@@ -364,6 +368,7 @@ impl Default for Scenario {
             lower: LowerBeam::default(),
             contact: ContactBar::default(),
             motion: MotionSettings::default(),
+            sea: None,
         }
     }
 }
@@ -659,6 +664,16 @@ impl Scenario {
                 format!("'{}', not loaded", self.motion.file),
             ));
         }
+        // A sea's RAO file is read by the CLI too (a log's replay carries the record instead).
+        if let Some(sea) = &self.sea {
+            match &sea.rao_table {
+                Some(raos) => sea.check_against(raos)?,
+                None if sea.recorded.is_some() => {}
+                None => {
+                    sea.motion_table(self.duration)?;
+                }
+            }
+        }
         Ok(())
     }
 
@@ -858,6 +873,21 @@ impl Scenario {
                 bound(m.time_shift),
             )));
         }
+        if let Some(sea) = &self.sea {
+            if !m.is_unset() {
+                check(Err(Error::Other(
+                    "[sea] and [motion] are both given: the supports follow one (the sea state through the vessel's \
+                     RAOs, or a motion file); leave one out"
+                        .into(),
+                )));
+            }
+            errors.extend(sea.validation_errors(self.duration));
+        }
+        let mut check = |result: Result<()>| {
+            if let Err(e) = result {
+                errors.push(e);
+            }
+        };
         match &m.table {
             Some(table) if m.time_shift.is_finite() && self.duration.is_finite() => {
                 check(table.check_covers(m.time_shift, m.time_shift + self.duration).map_err(|e| {
@@ -875,6 +905,25 @@ impl Scenario {
             _ => {}
         }
         errors
+    }
+
+    /// The supports' motion table the run follows, with the table's time at the run's t = 0: the
+    /// motion file's (`[motion]`, `--motion`), the sea's record (`[sea]`), or none (fixed supports).
+    pub fn motion_source(&self) -> Result<Option<(Arc<MotionTable>, f64)>> {
+        if let Some(sea) = &self.sea {
+            return Ok(Some((sea.motion_table(self.duration)?, sea.time_shift)));
+        }
+        Ok(self.motion.table.as_ref().map(|t| (Arc::clone(t), self.motion.time_shift)))
+    }
+
+    /// The supports' motion at the run's t = 0 (rest without a motion source).
+    pub fn motion_at_start(&self) -> Result<SupportMotion> {
+        Ok(self.motion_source()?.map(|(t, shift)| t.motion_at(shift)).unwrap_or_default())
+    }
+
+    /// The motion source's rows inside a run of `duration_ns` as (run time in ns, motion), in order.
+    pub fn motion_changes(&self, duration_ns: u64) -> Result<Vec<(u64, SupportMotion)>> {
+        Ok(self.motion_source()?.map(|(t, shift)| t.changes(shift, duration_ns)).unwrap_or_default())
     }
 
     /// The energy the impact brings, J: m_u g h for a drop (the paper's energy balance), or the

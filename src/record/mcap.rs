@@ -536,12 +536,17 @@ impl Recorder for McapRecorder {
         metadata.insert("paper".into(), info.scenario.is_paper().to_string());
         metadata.insert("beam_impact_version".into(), env!("CARGO_PKG_VERSION").into());
         metadata.insert(LOG_FORMAT_KEY.into(), LOG_FORMAT.to_string());
+        // A sea's RAO file by its hash (issue 42); its seed and sea state are among the fields.
+        if let Some(sea) = &info.scenario.sea {
+            metadata.insert("sea.raos_sha256".into(), sea.rao_sha256.clone());
+        }
         self.has_scene = self.options.scene_interval_ns > 0;
         let scene = self.has_scene.then(|| SceneBuilder::new(info));
         let stations = info.stations.map(|p| (p.layout.clone(), Arc::clone(&p.rows)));
         self.push(Item::Start(Box::new(StartRecord { model, metadata, scenario_toml: toml, scene, stations })));
         // The motion table travels with the log, so that it replays without the file (issue 27).
-        if let Some(table) = &info.scenario.motion.table {
+        // A sea's record too (issue 42): the log replays without the RAO file.
+        if let Ok(Some((table, _))) = info.scenario.motion_source() {
             self.push(Item::Attach {
                 name: MOTION_ATTACHMENT.into(),
                 media_type: MOTION_MEDIA_TYPE.into(),

@@ -268,6 +268,18 @@ impl LogData {
                 None => scenario.motion = Default::default(),
             }
         }
+        // A sea's record is the log's motion table (issue 42): replayed without the RAO file.
+        let duration = scenario.duration;
+        if let Some(sea) = &mut scenario.sea {
+            let csv = self.motion_csv.as_ref().ok_or_else(|| {
+                Error::Other(format!(
+                    "the log's [sea] run holds no record ({MOTION_ATTACHMENT}): it cannot be replayed"
+                ))
+            })?;
+            let table = MotionTable::parse(csv)
+                .map_err(|e| Error::Other(format!("the log's sea record ({MOTION_ATTACHMENT}) is refused: {e}")))?;
+            sea.recorded = Some((sea.key(duration), std::sync::Arc::new(table)));
+        }
         Ok(scenario)
     }
 

@@ -29,7 +29,9 @@ use crate::model::{Model, Scenario};
 /// The scenario fields no part of a [`ModalSystem`] depends on except its damping (which
 /// [`ModalSystem::with_damping`] sets per run), by their dotted names: a sweep over them shares
 /// the modes of each rung (the sweep runs rows that differ in other fields apart, see
-/// `studies::sweep`). `motion.file` and the motion table go with `motion.time_shift`.
+/// `studies::sweep`). `motion.file` and the motion table go with `motion.time_shift`; the key leaves
+/// out the whole `[sea]` (a sea moves the supports, never the modes: every `sea.*` field is per
+/// run, `tests/sweep.rs` holds its cached answers to the bit).
 pub const PER_RUN_FIELDS: [&str; 18] = [
     "drop_height",
     "impact_angular_velocity",
@@ -240,6 +242,7 @@ fn key(model: &Model) -> Option<Key> {
     s.lower.yield_stress = d.lower.yield_stress;
     s.lower.tip_force = d.lower.tip_force;
     s.motion = d.motion;
+    s.sea = d.sea;
     let scenario = serde_json::to_string(&s).ok()?;
     Some(Key { scenario, bar_stiffness: model.bar_stiffness.to_bits() })
 }

@@ -86,12 +86,17 @@ pub static MOTION_FIELDS: [Parameter; 1] = [Parameter {
 /// The field named `name` (the dotted names of `beam-impact scenario`).
 pub fn field(name: &str) -> Result<&'static Parameter> {
     parameters::find(name).or_else(|_| {
-        TIP_FORCES.iter().chain(&MOTION_FIELDS).find(|p| p.name == name).ok_or_else(|| {
-            Error::Other(format!(
-                "unknown parameter `{name}`: the names are those of `beam-impact scenario`, dotted ({})",
-                "drop_height, damping_ratio, upper.mass, lower.elements, ..."
-            ))
-        })
+        TIP_FORCES
+            .iter()
+            .chain(&MOTION_FIELDS)
+            .chain(&crate::model::sea::fields::SEA_FIELDS)
+            .find(|p| p.name == name)
+            .ok_or_else(|| {
+                Error::Other(format!(
+                    "unknown parameter `{name}`: the names are those of `beam-impact scenario`, dotted ({})",
+                    "drop_height, damping_ratio, upper.mass, lower.elements, ..."
+                ))
+            })
     })
 }
 
@@ -105,6 +110,9 @@ fn is_time_step(field: &Parameter) -> bool {
             | "upper.elements_to_contact"
             | "upper.elements_beyond_contact"
             | "modal_cutoff"
+            | "sea.peak_enhancement"
+            | "sea.frequency_min"
+            | "sea.frequency_max"
     )
 }
 
@@ -115,6 +123,7 @@ fn symbolic_names(field: &Parameter) -> Option<&'static [&'static str]> {
         "method" => Some(&METHOD_NAMES),
         "lower.kind" => Some(&SUPPORT_NAMES),
         "contact.law" => Some(&LAW_NAMES),
+        "sea.spectrum" => Some(&SPECTRUM_NAMES),
         _ => None,
     }
 }
@@ -130,6 +139,8 @@ const SUPPORT_NAMES: [&str; 2] = ["beam", "rigid"];
 const LAW_NAMES: [&str; 2] = ["linear", "power"];
 
 const METHOD_NAMES: [&str; 2] = ["converged", "paper"];
+/// `sea.spectrum`'s names, by index.
+const SPECTRUM_NAMES: [&str; 2] = ["jonswap", "pierson-moskowitz"];
 
 /// What a value of `field` looks like, for messages.
 fn expected(field: &Parameter) -> String {
@@ -774,7 +785,12 @@ impl Sweep {
     /// [`crate::solver::modal_cache::PER_RUN_FIELDS`], in grid order), so that a row finds its
     /// modes in the cache while at most a window of finished rows waits for its turn to be written.
     pub fn execution_order(&self) -> Vec<usize> {
-        let geometry: Vec<bool> = self.axes.iter().map(|a| !PER_RUN_FIELDS.contains(&a.field.name)).collect();
+        // A sea's fields move the supports, never the modes (issue 42): per run, as the motion's shift.
+        let geometry: Vec<bool> = self
+            .axes
+            .iter()
+            .map(|a| !PER_RUN_FIELDS.contains(&a.field.name) && !a.field.name.starts_with("sea."))
+            .collect();
         let positions = |mut index: usize| -> Vec<usize> {
             let mut key = vec![0; self.axes.len()];
             for ((k, axis), shape) in key.iter_mut().zip(&self.axes).zip(&geometry).rev() {

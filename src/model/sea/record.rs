@@ -1,0 +1,111 @@
+//! The supports' motion in a sea: for each support coordinate j (the hinge's heave, the clamp's
+//! heave and rotation, [`DeckPoints::supports`] of the six RAOs) the sum over the components
+//! x_j(t) = sum a_i |H_j(w_i)| cos(w_i t + phi_i + eps_j(w_i)) = Re(sum c_ij e^(i w_i t)) with
+//! c_ij = a_i e^(i phi_i) H_j(w_i), its velocity and acceleration the exact derivatives of the sum
+//! (i w_i and -w_i^2 times each term), t the record's time.
+//!
+//! Sampled every `dt` on the record's own grid (record times k dt, k whole), the samples are the
+//! support-motion table the solver takes from a motion file ([`MotionTable`]): between rows each
+//! support moves with the row's constant acceleration, so the motion followed departs from the
+//! sum by at most sum a|H| w^3 dt^3 / 6 in displacement, w^3 dt^2 / 2 in velocity and w^3 dt in
+//! acceleration (the third derivative over the interval): with the default dt = 5 ms, per metre
+//! of response at w = 1 rad/s, 2e-8 m, 1.3e-5 m/s and 0.5 % of the acceleration's amplitude (1.5 %
+//! at 3 rad/s). The grid being the record's, a `beam-impact sea` file and a `[sea]` run sample the
+//! same instants and give the same rows to the bit.
+
+use nalgebra::Complex;
+
+use super::components::WaveComponents;
+use super::deck_motion::DeckPoints;
+use super::raos::RaoTable;
+use crate::model::motion_table::MotionTable;
+use crate::model::support_motion::{check_motion_value, SupportMotion, Track, MOTION_NAMES};
+
+/// A realisation of the sea with the supports' response to it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SeaRecord {
+    /// The wave components.
+    pub components: WaveComponents,
+    /// Per component, c_ij = a_i e^(i phi_i) H_j(w_i) for the hinge's heave (m), the clamp's heave
+    /// (m) and rotation (rad).
+    coefficients: Vec<[Complex<f64>; 3]>,
+}
+
+impl SeaRecord {
+    /// The record of `components` for a vessel of `raos` in waves travelling at `heading` deg,
+    /// its supports at `deck`. Every component's frequency must lie in the RAO table's range.
+    pub fn new(components: WaveComponents, raos: &RaoTable, heading: f64, deck: &DeckPoints) -> Result<Self, String> {
+        let column = raos.at_heading(heading)?;
+        let mut coefficients = Vec::with_capacity(components.frequencies.len());
+        for i in 0..components.frequencies.len() {
+            let w = components.frequencies[i];
+            let six = raos.at_frequency(&column, w).ok_or_else(|| {
+                let (lo, hi) = raos.frequency_range();
+                format!("wave component at {w} rad/s is outside the RAO file's frequencies ({lo} to {hi} rad/s)")
+            })?;
+            let wave = Complex::from_polar(components.amplitudes[i], components.phases[i]);
+            let supports = deck.supports(&six);
+            coefficients.push(std::array::from_fn(|j| wave * supports[j]));
+        }
+        Ok(SeaRecord { components, coefficients })
+    }
+
+    /// The supports' motion at the record's time `t` (exact sums and derivatives).
+    pub fn motion(&self, t: f64) -> SupportMotion {
+        let mut v = [0.0; 9];
+        for (i, c) in self.coefficients.iter().enumerate() {
+            let w = self.components.frequencies[i];
+            let (s, co) = libm::sincos(w * t);
+            for (j, cj) in c.iter().enumerate() {
+                let re = cj.re * co - cj.im * s;
+                let rate = -(cj.re * s + cj.im * co);
+                v[3 * j] += re;
+                v[3 * j + 1] += w * rate;
+                v[3 * j + 2] -= w * w * re;
+            }
+        }
+        let track = |j: usize| Track { displacement: v[3 * j], velocity: v[3 * j + 1], acceleration: v[3 * j + 2] };
+        SupportMotion { hinge_heave: track(0), clamp_heave: track(1), clamp_rotation: track(2) }
+    }
+
+    /// The wave elevation at the motion reference point at the record's time `t`, m.
+    pub fn elevation(&self, t: f64) -> f64 {
+        self.components.elevation(t)
+    }
+
+    /// The whole `k` of the record's grid (times k dt) from the last at or before `start` to the
+    /// first at or after `end`.
+    pub fn grid(start: f64, end: f64, dt: f64) -> (i64, i64) {
+        let mut first = (start / dt).floor() as i64;
+        while first as f64 * dt > start {
+            first -= 1;
+        }
+        let mut last = (end / dt).ceil() as i64;
+        while (last as f64) * dt < end {
+            last += 1;
+        }
+        (first, last)
+    }
+
+    /// The support-motion table of the record from `start` to `end` (record times, s) sampled
+    /// every `dt` s on the record's grid, every value checked against the model's range. The
+    /// table has all nine columns (a support on a fixed platform: zeros).
+    pub fn table(&self, start: f64, end: f64, dt: f64) -> Result<MotionTable, String> {
+        let (first, last) = Self::grid(start, end, dt);
+        let rows = (last - first + 1).max(0) as usize;
+        let mut times = Vec::with_capacity(rows);
+        let mut motions = Vec::with_capacity(rows);
+        for k in first..=last {
+            let t = k as f64 * dt;
+            let motion = self.motion(t);
+            for (n, value) in motion.values().iter().enumerate() {
+                check_motion_value(n, *value).map_err(|e| {
+                    format!("at the record's time {t} s {e}: the sea drives the supports beyond the model's range")
+                })?;
+            }
+            times.push(t);
+            motions.push(motion);
+        }
+        Ok(MotionTable { columns: MOTION_NAMES.to_vec(), times, motions })
+    }
+}
