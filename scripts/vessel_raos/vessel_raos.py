@@ -30,14 +30,20 @@ origin is cos(w t), our heading is beta in degrees, and eps = -arg(X); rotations
 with Capytaine's right-handed dofs (rotation about +x, +y, +z) are our roll, pitch, yaw signs with
 y to port. The long-wave limits checked at the end prove it: heave -> 1 at 0 deg, pitch in head
 seas -> the wave slope k (rad/m) at -90 deg, roll in beam seas -> k at -90 deg (and pitch in
-following seas at +90 deg).
+following seas at +90 deg). Those limits are quasi-static: a time convention and a heading both
+taken the wrong way round would pass them too. The damping tells them apart: the roll at 0.1 rad/s
+lags its quasi-static phase (-91 deg), as a damped response does, and --compare finds VERES's
+head-sea pitch phases within 8 deg of ours.
+
+Cost (2026-11-29, a 2-core x86-64 VM shared with other builds): 2442 hull panels and 736 lid
+panels, 37 frequencies x 13 headings in 2.5-3.5 minutes, 0.5 GB; --convergence (9780 + 3124
+panels at 6 frequencies x 3 headings) 10 minutes, 5.4 GB.
 """
 
 from __future__ import annotations
 
 import argparse
 import math
-import os
 import sys
 import time
 from pathlib import Path
