@@ -494,7 +494,8 @@ fn slugs_and_links_follow_githubs_rules() {
 
 /// A scenario a page shows is one the program reads: every ```toml block of the README and the
 /// docs parses as a scenario (unknown fields are refused), and one without a `[motion]` file (which
-/// the page's own folder does not hold) validates as well.
+/// the page's own folder does not hold) validates as well, its `[sea] raos` read from `examples/`
+/// (where the example vessel's RAO file is).
 #[test]
 fn every_scenario_a_page_shows_is_read_by_the_program() {
     let mut shown = 0;
@@ -504,6 +505,12 @@ fn every_scenario_a_page_shows_is_read_by_the_program() {
             let at = format!("{page}:{}", block.line);
             let scenario = beam_impact::Scenario::from_toml(&block.body, &at).unwrap_or_else(|e| panic!("{e}"));
             if scenario.motion.file.is_empty() {
+                let examples = root().join("examples");
+                let scenario = match scenario.sea {
+                    Some(_) => beam_impact::scenario_file::from_text(&block.body, &at, &examples, &mut Vec::new())
+                        .unwrap_or_else(|e| panic!("{at}: {e}")),
+                    None => scenario,
+                };
                 scenario.validate().unwrap_or_else(|e| panic!("{at}: {e}"));
             }
             shown += 1;

@@ -5,8 +5,6 @@
 use std::path::Path;
 use std::process::Command;
 
-use beam_impact::Scenario;
-
 fn examples() -> Vec<std::path::PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
     let mut files: Vec<_> = std::fs::read_dir(dir)
@@ -23,15 +21,12 @@ fn every_example_scenario_is_valid_and_paper_toml_is_the_papers() {
     let files = examples();
     assert!(files.len() >= 2, "{files:?}");
     for file in &files {
-        let text = std::fs::read_to_string(file).unwrap();
-        let mut scenario = Scenario::from_toml(&text, &file.display().to_string()).unwrap();
-        if !scenario.motion.file.is_empty() {
-            // `[motion] file` is relative to the scenario file, read as the CLI reads it.
-            let csv = std::fs::read_to_string(file.parent().unwrap().join(&scenario.motion.file)).unwrap();
-            let table = beam_impact::model::motion_table::MotionTable::parse(&csv).unwrap();
-            assert!(table.mismatches().is_empty(), "{}: its rows describe one motion", scenario.motion.file);
-            scenario.motion.table = Some(std::sync::Arc::new(table));
-        }
+        // `[motion] file` and `[sea] raos` are relative to the scenario file, read as the CLI
+        // reads them; a motion file's rows describe one motion (no warning).
+        let mut warnings = Vec::new();
+        let scenario = beam_impact::scenario_file::read_file(file, &mut warnings)
+            .unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+        assert!(warnings.is_empty(), "{}: {warnings:?}", file.display());
         scenario.validate().unwrap();
         if file.ends_with("paper.toml") {
             assert!(scenario.is_paper(), "examples/paper.toml is the paper's scenario and method");
