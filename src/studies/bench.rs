@@ -99,6 +99,7 @@ pub fn stepper_benchmark(runs: usize) -> Result<String> {
     }
     out += &converged_benchmark(runs)?;
     out += &motion_benchmark(runs)?;
+    out += &sea_benchmark(runs)?;
     out += &contact_law_benchmark(runs)?;
     Ok(out)
 }
@@ -252,6 +253,68 @@ pub fn motion_benchmark(runs: usize) -> Result<String> {
         let _ =
             writeln!(out, "  {what}: {:8.2} ms  {n} steps  {ns:6.0} ns/step  x{:.2}", d.as_secs_f64() * 1e3, ns / base);
     }
+    Ok(out)
+}
+
+/// A ship-like RAO table for [`sea_benchmark`] (our CSV): in long waves heave 1 in phase with the
+/// wave and pitch the wave's slope k = w^2 / g (deg/m) a quarter period behind in head seas, both
+/// cut off in short waves by 1 / (1 + (w / 0.7)^4) (a hull averages waves shorter than itself);
+/// 30 frequencies 0.1 to 3 rad/s, headings 0 to 180 every 45 deg. Any table costs the same: the
+/// record sums one cosine per component and coordinate.
+fn long_wave_raos() -> String {
+    let mut text = String::from(
+        "frequency,heading,surge,surge_phase,sway,sway_phase,heave,heave_phase,roll,roll_phase,pitch,pitch_phase,yaw,yaw_phase\n",
+    );
+    for heading in [0.0, 45.0, 90.0, 135.0, 180.0] {
+        for k in 0..30 {
+            let w = 0.1 + 0.1 * k as f64;
+            let hull = 1.0 / (1.0 + (w / 0.7f64).powi(4));
+            let slope = hull * (w * w / 9.81).to_degrees() * (heading * std::f64::consts::PI / 180.0).cos().abs();
+            let _ = writeln!(text, "{w},{heading},0,0,0,0,{hull},0,0,0,{slope},-90,0,0");
+        }
+    }
+    text
+}
+
+/// The cost of a sea state (issue 42) beside fixed supports, side by side in one process: the
+/// default scenario (converged method, 3 s) with fixed supports, and on a vessel in a JONSWAP sea
+/// (Hs 2.5 m, Tp 8 s, head seas, 1000 components, the hinge 10 m aft and the clamp 15 m forward,
+/// the long-wave RAOs of [`long_wave_raos`]): the record's motion table built (1000 components
+/// at the 601 samples of 3 s every 5 ms), then the run with it; medians of `runs`.
+pub fn sea_benchmark(runs: usize) -> Result<String> {
+    use crate::model::sea::RaoTable;
+    let mut out = String::new();
+    let fixed = Scenario::default();
+    let text = "duration = 3.0\n[sea]\nsignificant_wave_height = 2.5\npeak_period = 8.0\nheading = 180.0\nseed = 1\n\
+                raos = \"long-wave.csv\"\nhinge_point = [-10.0, 0.0, 8.0]\nclamp_point = [15.0, 0.0, 8.0]\n";
+    let mut sea = Scenario::from_toml(text, "the bench's sea")?;
+    let table = RaoTable::parse_csv(&long_wave_raos()).map_err(crate::Error::Other)?;
+    if let Some(settings) = sea.sea.as_mut() {
+        settings.check_against(&table)?;
+        settings.rao_table = Some(std::sync::Arc::new(table));
+    }
+    let settings = sea.sea.clone().ok_or_else(|| crate::Error::Other("the bench's sea has no [sea]".into()))?;
+    let mut builds = Vec::with_capacity(runs);
+    for _ in 0..runs {
+        let start = Instant::now();
+        let record = settings.record()?;
+        let rows = record.table(settings.time_shift, settings.time_shift + sea.duration, settings.sample_interval);
+        builds.push(start.elapsed());
+        rows.map_err(crate::Error::Other)?;
+    }
+    let build = median(builds);
+    let (still, still_steps) = time_run(|| Simulation::new(&fixed), runs)?;
+    let (moving, moving_steps) = time_run(|| Simulation::new(&sea), runs)?;
+    let ms = |d: Duration| d.as_secs_f64() * 1e3;
+    let _ = writeln!(out, "sea state (default scenario, converged method's printed rung, 3 s, median of {runs} runs):");
+    let _ = writeln!(out, "  fixed supports                        : {:8.2} ms  {still_steps} steps  x1.00", ms(still));
+    let _ = writeln!(
+        out,
+        "  Hs 2.5 m, Tp 8 s, 1000 components     : {:8.2} ms  {moving_steps} steps  x{:.2} (the record's table {:.2} ms more)",
+        ms(moving),
+        moving.as_secs_f64() / still.as_secs_f64().max(f64::MIN_POSITIVE),
+        ms(build)
+    );
     Ok(out)
 }
 
