@@ -432,7 +432,7 @@ pub fn table_for(defaults: &Scenario) -> Vec<Variable> {
             Variability::Fixed,
             Some(true),
             unit,
-            p.description.to_string(),
+            format!("{}{}", p.description, crate::model::parameters::range_note(p.name).unwrap_or_default()),
             Some(start),
             Source::Parameter(p),
         )

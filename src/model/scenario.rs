@@ -474,7 +474,7 @@ fn elements(name: &'static str, value: u32) -> Result<()> {
 
 /// A stress limit: > 0, at most 1e12 Pa.
 fn stress(name: &'static str, value: f64) -> Result<()> {
-    size(name, "Pa", value, 1e-3, 1e12)
+    size(name, "Pa", value, super::parameters::SMALLEST_STRESS, 1e12)
 }
 
 /// An optional stress limit: 0 (none) or a stress.
@@ -495,7 +495,7 @@ fn optional_stress(name: &'static str, value: f64) -> Result<()> {
     if value == 0.0 {
         Ok(())
     } else {
-        within(name, "Pa (0: none)", value, 1e3, 1e12)
+        within(name, "Pa (0: none)", value, super::parameters::SMALLEST_YIELD_STRESS, 1e12)
     }
 }
 
@@ -799,7 +799,7 @@ impl Scenario {
         if let Some(k) = c.given_stiffness {
             let max = if c.law == LawKind::Linear { MAX_CONTACT_STIFFNESS } else { MAX_POWER_LAW_STIFFNESS };
             let unit = if c.law == LawKind::Linear { "N/m (the linear law's limit)" } else { "N/m^n" };
-            check(size("contact.stiffness", unit, k, 1e-3, max));
+            check(size("contact.stiffness", unit, k, super::parameters::SMALLEST_CONTACT_STIFFNESS, max));
         } else if c.law == LawKind::Linear
             && size("contact.area", "m^2", c.area, 1e-12, 1e3).is_ok()
             && size("contact.length", "m", c.length, 1e-6, 1e3).is_ok()
