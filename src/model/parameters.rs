@@ -249,7 +249,12 @@ pub const PARAMETERS: &[Parameter] = &[
             Ok(())
         },
     },
-    real!("contact.exponent", "1", "The power law's exponent n (1.5: Hertz)", contact.exponent),
+    real!(
+        "contact.exponent",
+        "1",
+        "The power law's exponent n; 0: not given (the power law's 1.5, Hertz; the linear law's own is 1)",
+        contact.exponent
+    ),
     real!(
         "contact.damping",
         "s/m",
@@ -337,7 +342,7 @@ pub const RANGES: &[(&str, Option<f64>, Option<f64>)] = &[
     ("contact.stiffness", Some(0.0), Some(crate::model::scenario::MAX_POWER_LAW_STIFFNESS)),
     ("contact.clearance", Some(0.0), Some(10.0)),
     ("contact.law", Some(0.0), Some(1.0)),
-    ("contact.exponent", Some(1.0), Some(3.0)),
+    ("contact.exponent", Some(0.0), Some(3.0)),
     ("contact.damping", Some(0.0), Some(1e3)),
     ("upper.shear_area", Some(0.0), Some(1e3)),
     ("upper.allowable_shear_stress", Some(0.0), Some(1e12)),
@@ -366,6 +371,7 @@ pub const NONZERO_MINIMA: &[(&str, f64)] = &[
     ("lower.yield_stress", SMALLEST_YIELD_STRESS),
     ("upper.yield_stress", SMALLEST_YIELD_STRESS),
     ("contact.stiffness", SMALLEST_CONTACT_STIFFNESS),
+    ("contact.exponent", crate::model::contact_law::EXPONENT_RANGE.0),
 ];
 
 /// The smallest allowable stress, Pa (any field of an allowable): 1 mPa.
@@ -390,6 +396,7 @@ pub const CONDITIONS: &[(&str, &str)] = &[
     ("drop_height", "at most upper.length / 2"),
     ("contact_position", "at most upper.length (its free end)"),
     ("gravity", "0 only with impact_angular_velocity given"),
+    ("contact.exponent", "only 0 or 1 with contact.law = \"linear\""),
     ("contact.stiffness", "at most 1e12 N/m with contact.law = \"linear\" (1e13 N/m^n: the power law's)"),
     ("contact.area", "with contact.law = \"linear\" and no contact.stiffness, E A_c / l_c at most 1e12 N/m"),
     ("contact.length", "with contact.law = \"linear\" and no contact.stiffness, E A_c / l_c at most 1e12 N/m"),
@@ -417,6 +424,7 @@ pub fn range_text(name: &str) -> Option<String> {
         "step_free" | "step_contact" | "modal_cutoff" => "\"auto\"",
         _ if name.contains("elements") => "\"auto\"",
         "contact.stiffness" => "0 (the bar's E A_c / l_c)",
+        "contact.exponent" => "0 (not given: 1.5 with the power law)",
         _ => "0 (none)",
     };
     let base = match name {

@@ -197,17 +197,18 @@ pub struct ContactBar {
     /// n = `exponent`; `stiffness` then in N/m^n and required).
     #[serde(skip_serializing_if = "LawKind::is_linear")]
     pub law: LawKind,
-    /// The power law's exponent n, 1 to 3 (default 1.5: Hertz).
-    #[serde(skip_serializing_if = "is_hertz")]
+    /// The power law's exponent n, 1 to 3; 0 (the default): not given, the power law's
+    /// [`HERTZ_EXPONENT`]. With the linear law only 0 or its own 1 (F = k delta^1): any other
+    /// would be ignored, so it is refused.
+    #[serde(skip_serializing_if = "is_zero")]
     pub exponent: f64,
     /// Hunt and Crossley's damping c, s/m (default 0): F = k delta^n (1 + c delta'), for either law.
     #[serde(skip_serializing_if = "is_zero")]
     pub damping: f64,
 }
 
-fn is_hertz(x: &f64) -> bool {
-    *x == 1.5
-}
+/// The power law's exponent when none is given: Hertz's 1.5 (Goldsmith, Impact, Eq. 4.7).
+pub const HERTZ_EXPONENT: f64 = 1.5;
 
 fn is_zero(x: &f64) -> bool {
     *x == 0.0
@@ -222,7 +223,7 @@ impl Default for ContactBar {
             given_stiffness: None,
             clearance: 0.0,
             law: LawKind::Linear,
-            exponent: 1.5,
+            exponent: 0.0,
             damping: 0.0,
         }
     }
@@ -237,7 +238,11 @@ impl ContactBar {
     /// The law the stepper solves as a scalar equation, or `None` for the paper's linear bar
     /// without damping (solved in closed form, Sherman-Morrison).
     pub fn nonlinear_law(&self) -> Option<ContactLaw> {
-        let exponent = if self.law == LawKind::Power { self.exponent } else { 1.0 };
+        let exponent = match self.law {
+            LawKind::Power if self.exponent == 0.0 => HERTZ_EXPONENT,
+            LawKind::Power => self.exponent,
+            LawKind::Linear => 1.0,
+        };
         (self.law == LawKind::Power || self.damping > 0.0).then(|| ContactLaw {
             stiffness: self.stiffness(),
             exponent,
@@ -821,19 +826,18 @@ impl Scenario {
             }
         }
         check(within("contact.clearance", "m", c.clearance, 0.0, 10.0));
-        check(within("contact.exponent", "", c.exponent, EXPONENT_RANGE.0, EXPONENT_RANGE.1));
+        if c.exponent != 0.0 {
+            check(within("contact.exponent", "(0: not given)", c.exponent, EXPONENT_RANGE.0, EXPONENT_RANGE.1));
+        }
         // The exponent is the power law's: given with the linear law it would be ignored. Its
-        // default (the FMU's start value, what every scenario holds) is no setting, and 1 is the
-        // linear law's own (F = k delta^1).
-        let linear_exponent = c.exponent == ContactBar::default().exponent || c.exponent == 1.0;
+        // default 0 (the FMU's start value) is no setting, and 1 is the linear law's own
+        // (F = k delta^1); any other is refused, Hertz's 1.5 too (issue 40).
+        let linear_exponent = c.exponent == 0.0 || c.exponent == 1.0;
         if c.law == LawKind::Linear && !linear_exponent && within_exponent(c.exponent) {
             check(Err(Error::invalid(
                 "contact.exponent",
-                format!(
-                    "left at its default {} (or 1) with contact.law = \"linear\" (F = k delta: the exponent is the \
-                     power law's; set contact.law = \"power\" for F = k delta^n)",
-                    ContactBar::default().exponent
-                ),
+                "0 (not given) or 1 with contact.law = \"linear\" (F = k delta: the exponent is the power law's; set \
+                 contact.law = \"power\" for F = k delta^n)",
                 bound(c.exponent),
             )));
         }
