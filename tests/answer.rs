@@ -388,3 +388,20 @@ fn a_run_stops_at_its_step_limit_during_the_run() {
     let options = answer::Options { max_steps: 1_000_000, ..Default::default() };
     assert!(answer::run(&scenario, &mut NullRecorder, options).is_ok());
 }
+
+/// Issue 40: a yield stress far below the peaks was printed "upper.yield_stress = 0.00 MPa", a
+/// number that is not the one given. Stresses below 1 MPa are printed to three significant
+/// digits (1 kPa: "0.00100 MPa"; 1 mPa: "0.000000001"), those above as before.
+#[test]
+fn a_small_yield_stress_is_printed_as_given() {
+    assert_eq!(answer::mpa(1e3, 2), "0.00100");
+    assert_eq!(answer::mpa(355e6, 2), "355.00");
+    assert_eq!(answer::mpa(533e6, 0), "533");
+    assert_eq!(answer::mpa(0.25e6, 0), "0.250");
+    assert_eq!(answer::mpa(1e-3, 0), "0.000000001");
+    let mut s = short(0.3);
+    s.upper.yield_stress = 1e3;
+    let a = answer::run(&s, &mut NullRecorder, answer::Options { sensitivity: false, ..Default::default() }).unwrap();
+    let reasons = a.quality.reasons.join("\n");
+    assert!(reasons.contains("against upper.yield_stress = 0.00100 MPa"), "{reasons}");
+}
