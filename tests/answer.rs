@@ -384,6 +384,21 @@ fn a_run_stops_at_its_step_limit_during_the_run() {
     assert!(error.starts_with("max_steps = 50 internal steps reached at t = "), "{error}");
     assert!(error.contains("of 0.3 s") && error.contains("--max-steps"), "{error}");
     assert_eq!(sim.result().step, 50);
+    // It says what happened: here the plan's own estimate (0.3 s at 2.36e-5 s) is above the limit,
+    // not a shrinking of the steps (issue 40: the message always blamed that).
+    let estimate = sim.step_estimate(scenario.duration_ns());
+    assert!(error.contains(&format!("the plan's estimate for the whole run {estimate} steps")), "{error}");
+    assert!(error.contains("the plan's own estimate is above the limit"), "{error}");
+    assert!(!error.contains("shrank"), "{error}");
+    // The paper method takes the plan's steps and a few more where it locates a contact change:
+    // a limit at the estimate is met a few steps short of the end, and the message says so.
+    let paper = beam_impact::Scenario { method: beam_impact::model::Method::Paper, ..short(0.3) };
+    let mut sim = beam_impact::Simulation::new(&paper).unwrap();
+    let estimate = sim.step_estimate(paper.duration_ns());
+    sim.set_max_steps(estimate);
+    let error = sim.run(&mut NullRecorder).unwrap_err().to_string();
+    assert!(error.contains("the run took more steps than the plan's estimate"), "{error}");
+    assert!(!error.contains("shrank"), "{error}");
     // The answer passes its own limit to every run it makes.
     let options = answer::Options { max_steps: 1_000_000, ..Default::default() };
     assert!(answer::run(&scenario, &mut NullRecorder, options).is_ok());
