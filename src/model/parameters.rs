@@ -3,7 +3,9 @@
 
 use super::contact_law::LawKind;
 use super::discretisation::Method;
-use super::scenario::{Scenario, SupportKind, MAX_ELEMENTS};
+use super::scenario::{
+    Scenario, SupportKind, MAX_ELEMENTS, SMALLEST_CONTACT_STIFFNESS, SMALLEST_STRESS, SMALLEST_YIELD_STRESS,
+};
 use super::stress_recovery::StressRecovery;
 use super::time_step::TimeStep;
 use crate::error::{Error, Result};
@@ -358,8 +360,8 @@ pub fn range(name: &str) -> (Option<f64>, Option<f64>) {
 
 /// Fields whose accepted values are 0, a setting of its own ("auto", none given, the bar's own
 /// rate, not given), or from a smallest nonzero value up to the range's `max`: a gap FMI's
-/// `min` / `max` cannot declare, so the FMU's description of each states it (see [`range_note`])
-/// and [`Scenario::validate`] takes the same numbers from here.
+/// `min` / `max` cannot declare, so the FMU's description of each states it (see [`range_note`]);
+/// the numbers are the constants [`Scenario::validate`] checks with (`MIN_STEP`, `SMALLEST_*`).
 pub const NONZERO_MINIMA: &[(&str, f64)] = &[
     ("step_free", crate::model::scenario::MIN_STEP),
     ("step_contact", crate::model::scenario::MIN_STEP),
@@ -373,16 +375,6 @@ pub const NONZERO_MINIMA: &[(&str, f64)] = &[
     ("contact.stiffness", SMALLEST_CONTACT_STIFFNESS),
     ("contact.exponent", crate::model::contact_law::EXPONENT_RANGE.0),
 ];
-
-/// The smallest allowable stress, Pa (any field of an allowable): 1 mPa.
-pub const SMALLEST_STRESS: f64 = 1e-3;
-
-/// The smallest yield stress given, Pa: 1 kPa, below any solid's (the softest elastomers yield
-/// above 1 MPa; a smaller one makes every utilisation overflow).
-pub const SMALLEST_YIELD_STRESS: f64 = 1e3;
-
-/// The softest contact given, N/m (N/m^n).
-pub const SMALLEST_CONTACT_STIFFNESS: f64 = 1e-3;
 
 /// The smallest nonzero value a field accepts where 0 is a setting of its own
 /// ([`NONZERO_MINIMA`]).

@@ -397,6 +397,16 @@ pub const MAX_STEPS: u64 = 100_000_000;
 /// Smallest time step: the stepper counts time in integer nanoseconds.
 pub const MIN_STEP: f64 = 1e-9;
 
+/// The smallest allowable stress, Pa (any field of an allowable): 1 mPa.
+pub const SMALLEST_STRESS: f64 = 1e-3;
+
+/// The smallest yield stress given, Pa: 1 kPa, below any solid's (the softest elastomers yield
+/// above 1 MPa; a smaller one makes every utilisation overflow).
+pub const SMALLEST_YIELD_STRESS: f64 = 1e3;
+
+/// The softest contact given, N/m (N/m^n).
+pub const SMALLEST_CONTACT_STIFFNESS: f64 = 1e-3;
+
 fn positive(name: &'static str, unit: &str, value: f64) -> Result<()> {
     if value.is_finite() && value > 0.0 {
         Ok(())
@@ -479,7 +489,7 @@ fn elements(name: &'static str, value: u32) -> Result<()> {
 
 /// A stress limit: > 0, at most 1e12 Pa.
 fn stress(name: &'static str, value: f64) -> Result<()> {
-    size(name, "Pa", value, super::parameters::SMALLEST_STRESS, 1e12)
+    size(name, "Pa", value, SMALLEST_STRESS, 1e12)
 }
 
 /// An optional stress limit: 0 (none) or a stress.
@@ -500,7 +510,7 @@ fn optional_stress(name: &'static str, value: f64) -> Result<()> {
     if value == 0.0 {
         Ok(())
     } else {
-        within(name, "Pa (0: none)", value, super::parameters::SMALLEST_YIELD_STRESS, 1e12)
+        within(name, "Pa (0: none)", value, SMALLEST_YIELD_STRESS, 1e12)
     }
 }
 
@@ -804,7 +814,7 @@ impl Scenario {
         if let Some(k) = c.given_stiffness {
             let max = if c.law == LawKind::Linear { MAX_CONTACT_STIFFNESS } else { MAX_POWER_LAW_STIFFNESS };
             let unit = if c.law == LawKind::Linear { "N/m (the linear law's limit)" } else { "N/m^n" };
-            check(size("contact.stiffness", unit, k, super::parameters::SMALLEST_CONTACT_STIFFNESS, max));
+            check(size("contact.stiffness", unit, k, SMALLEST_CONTACT_STIFFNESS, max));
         } else if c.law == LawKind::Linear
             && size("contact.area", "m^2", c.area, 1e-12, 1e3).is_ok()
             && size("contact.length", "m", c.length, 1e-6, 1e3).is_ok()
