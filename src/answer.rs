@@ -1054,6 +1054,18 @@ fn explain_run_reason(reason: &str, resolved: &Scenario, summary: &Summary) -> S
     }
 }
 
+/// A stress in MPa with `decimals` decimals, or below 1 MPa with as many as three significant
+/// digits need (at most nine): a yield stress of 1 kPa is "0.00100", not "0.00" (issue 40).
+pub fn mpa(pa: f64, decimals: usize) -> String {
+    let x = pa * 1e-6;
+    let decimals = if x.abs() >= 1.0 || x == 0.0 || !x.is_finite() {
+        decimals
+    } else {
+        decimals.max((2.0 - x.abs().log10().floor()).clamp(0.0, 9.0) as usize)
+    };
+    format!("{x:.decimals$}")
+}
+
 /// The yield reason: the stress that reaches the largest fraction of its yield stress.
 fn yield_reason(s: &Scenario, peaks: &Peaks, utilisation: f64) -> String {
     let mut worst: Option<(f64, String)> = None;
@@ -1069,15 +1081,15 @@ fn yield_reason(s: &Scenario, peaks: &Peaks, utilisation: f64) -> String {
             format!("{} {}", peak_label(1), peak_value(1, bending))
         } else {
             format!(
-                "{} {} (sqrt(3) tau_a = {:.2} MPa)",
+                "{} {} (sqrt(3) tau_a = {} MPa)",
                 peak_label(2),
                 peak_value(2, peaks.lower_clamp_shear_stress),
-                shear * 1e-6
+                mpa(shear, 2)
             )
         };
         consider(
             bending.max(shear) / s.lower.yield_stress,
-            format!("{text} against lower.yield_stress = {:.2} MPa", s.lower.yield_stress * 1e-6),
+            format!("{text} against lower.yield_stress = {} MPa", mpa(s.lower.yield_stress, 2)),
         );
     }
     if s.upper.yield_stress > 0.0 {
@@ -1085,10 +1097,10 @@ fn yield_reason(s: &Scenario, peaks: &Peaks, utilisation: f64) -> String {
         consider(
             sigma / s.upper.yield_stress,
             format!(
-                "{} {} against upper.yield_stress = {:.2} MPa",
+                "{} {} against upper.yield_stress = {} MPa",
                 peak_label(3),
                 peak_value(3, sigma),
-                s.upper.yield_stress * 1e-6
+                mpa(s.upper.yield_stress, 2)
             ),
         );
     }
@@ -1195,7 +1207,7 @@ pub fn table(answer: &Answer) -> String {
             spread.map_or("n/a".to_string(), |p| percent(p[k])),
             spread.map_or(" ", |p| flag(p[k])),
             first[k] * scale,
-            allowables[k].map_or("-".to_string(), |(a, _)| format!("{:.0}", a * 1e-6)),
+            allowables[k].map_or("-".to_string(), |(a, _)| mpa(a, 0)),
             allowables[k].map_or("-".to_string(), |(_, u)| format!("{u:.3}")),
         );
     }

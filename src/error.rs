@@ -175,16 +175,20 @@ pub enum Error {
         /// That step's number.
         step: u64,
     },
-    /// The run took as many internal steps as it may (`--max-steps`, the answer's limit) before
-    /// its end: checked at every step, so a run whose steps shrink far below the plan's stops.
+    /// The run took as many internal steps as it may (`--max-steps`, the answer's limit, the FMU's
+    /// `solver.max_steps`) before its end: checked at every step, so a run whose steps shrink far
+    /// below the plan's stops. The message says which happened (see [`step_limit_cause`]).
     #[error(
-        "max_steps = {limit} internal steps reached at t = {time} s of {duration} s (the last step {last_step:e} s, \
-         the plan's {planned:e} s): the run's steps shrank far below the plan's (a very stiff contact chattering, \
-         a motion that changes every instant); raise the limit with --max-steps, or soften the contact"
+        "max_steps = {limit} internal steps reached at t = {time} s of {duration} s (the plan's estimate for the \
+         whole run {estimate} steps of {planned:e} s; the last step {last_step:e} s): {}; raise the limit (--max-steps, \
+         max_steps=, solver.max_steps)",
+        step_limit_cause(*limit, *estimate, *last_step, *planned)
     )]
     StepLimit {
         /// The limit.
         limit: u64,
+        /// The plan's estimate of the whole run's steps (its duration over the smaller step).
+        estimate: u64,
         /// Simulated time reached, s.
         time: f64,
         /// The run's duration, s.
@@ -197,6 +201,21 @@ pub enum Error {
     /// Anything else, with its explanation.
     #[error("{0}")]
     Other(String),
+}
+
+/// Why a run met its step limit, from the numbers: the plan itself needs more steps than the
+/// limit; the steps shrank far (10x) below the plan's (a very stiff contact chattering, a motion
+/// that changes every instant); or the run took more than the plan's estimate (located contact
+/// changes and output times add steps to it).
+pub fn step_limit_cause(limit: u64, estimate: u64, last_step: f64, planned: f64) -> &'static str {
+    if estimate > limit {
+        "the plan's own estimate is above the limit"
+    } else if last_step < 0.1 * planned {
+        "the run's steps shrank far below the plan's (a very stiff contact chattering, a motion that changes every \
+         instant)"
+    } else {
+        "the run took more steps than the plan's estimate (located contact changes and output times add steps)"
+    }
 }
 
 impl Error {

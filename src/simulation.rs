@@ -1104,6 +1104,7 @@ impl<S: Stepper> Simulation<S> {
         if previous.step >= self.max_steps {
             return Err(Error::StepLimit {
                 limit: self.max_steps,
+                estimate: self.step_estimate(self.model.scenario.duration_ns()),
                 time: previous.time,
                 duration: self.model.scenario.duration,
                 last_step: previous.step_size,

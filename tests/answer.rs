@@ -384,7 +384,39 @@ fn a_run_stops_at_its_step_limit_during_the_run() {
     assert!(error.starts_with("max_steps = 50 internal steps reached at t = "), "{error}");
     assert!(error.contains("of 0.3 s") && error.contains("--max-steps"), "{error}");
     assert_eq!(sim.result().step, 50);
+    // It says what happened: here the plan's own estimate (0.3 s at 2.36e-5 s) is above the limit,
+    // not a shrinking of the steps (issue 40: the message always blamed that).
+    let estimate = sim.step_estimate(scenario.duration_ns());
+    assert!(error.contains(&format!("the plan's estimate for the whole run {estimate} steps")), "{error}");
+    assert!(error.contains("the plan's own estimate is above the limit"), "{error}");
+    assert!(!error.contains("shrank"), "{error}");
+    // The paper method takes the plan's steps and a few more where it locates a contact change:
+    // a limit at the estimate is met a few steps short of the end, and the message says so.
+    let paper = beam_impact::Scenario { method: beam_impact::model::Method::Paper, ..short(0.3) };
+    let mut sim = beam_impact::Simulation::new(&paper).unwrap();
+    let estimate = sim.step_estimate(paper.duration_ns());
+    sim.set_max_steps(estimate);
+    let error = sim.run(&mut NullRecorder).unwrap_err().to_string();
+    assert!(error.contains("the run took more steps than the plan's estimate"), "{error}");
+    assert!(!error.contains("shrank"), "{error}");
     // The answer passes its own limit to every run it makes.
     let options = answer::Options { max_steps: 1_000_000, ..Default::default() };
     assert!(answer::run(&scenario, &mut NullRecorder, options).is_ok());
+}
+
+/// Issue 40: a yield stress far below the peaks was printed "upper.yield_stress = 0.00 MPa", a
+/// number that is not the one given. Stresses below 1 MPa are printed to three significant
+/// digits (1 kPa: "0.00100 MPa"; 1 mPa: "0.000000001"), those above as before.
+#[test]
+fn a_small_yield_stress_is_printed_as_given() {
+    assert_eq!(answer::mpa(1e3, 2), "0.00100");
+    assert_eq!(answer::mpa(355e6, 2), "355.00");
+    assert_eq!(answer::mpa(533e6, 0), "533");
+    assert_eq!(answer::mpa(0.25e6, 0), "0.250");
+    assert_eq!(answer::mpa(1e-3, 0), "0.000000001");
+    let mut s = short(0.3);
+    s.upper.yield_stress = 1e3;
+    let a = answer::run(&s, &mut NullRecorder, answer::Options { sensitivity: false, ..Default::default() }).unwrap();
+    let reasons = a.quality.reasons.join("\n");
+    assert!(reasons.contains("against upper.yield_stress = 0.00100 MPa"), "{reasons}");
 }

@@ -311,6 +311,48 @@ fn declared_parameter_ranges_are_what_validation_accepts() {
     assert!(checked >= 27, "{checked}");
 }
 
+/// Issue 40: every range a user reads (the `scenario` listing, and each FMU parameter's
+/// description where `min` / `max` cannot say it all) comes from the table validation takes its
+/// numbers from, and holds: a gap's smallest nonzero value (a yield stress from 1 kPa, a step
+/// from 1 ns, ...) is accepted and the next value below it refused; the linear law's contact
+/// stiffness stops at 1e12 N/m as its rule says, the power law's at the declared 1e13 N/m^n.
+#[test]
+fn every_documented_range_and_gap_is_what_validation_accepts() {
+    let listing = parameters::annotate_toml(&Scenario::default().to_toml());
+    let table = table();
+    let mut gaps = 0;
+    for p in parameters::PARAMETERS {
+        let Some(text) = parameters::range_text(p.name) else { continue };
+        let key = p.name.rsplit('.').next().unwrap();
+        let listed = listing.lines().any(|l| {
+            (l.starts_with(&format!("{key} = ")) || l.starts_with(&format!("# {key} = ")))
+                && l.ends_with(&format!("; range {text}"))
+        });
+        assert!(listed || p.name == "duration", "{}: the listing does not say 'range {text}'", p.name);
+        if let Some(note) = parameters::range_note(p.name) {
+            let v = table.iter().find(|v| v.name == p.name).unwrap();
+            assert!(v.description.ends_with(&note), "{}: {}", p.name, v.description);
+        }
+        if let (Some(gap), parameters::Kind::Real) = (parameters::nonzero_minimum(p.name), p.kind) {
+            assert!(text.contains(", or "), "{}: {text}", p.name);
+            assert_eq!(accepted(p, gap), Ok(()), "{} at its smallest nonzero value {gap:e}", p.name);
+            assert!(accepted(p, gap.next_down()).is_err(), "{} just below {gap:e}: accepted", p.name);
+            assert_eq!(accepted(p, 0.0), Ok(()), "{} at 0", p.name);
+            gaps += 1;
+        }
+    }
+    assert!(gaps >= 7, "{gaps}");
+    // contact.stiffness: the linear law's rule, as its range states it.
+    let mut s = Scenario::default();
+    let stiffness = parameters::find("contact.stiffness").unwrap();
+    parameters::set(&mut s, stiffness, 1e12).unwrap();
+    assert!(s.validate().is_ok());
+    parameters::set(&mut s, stiffness, 1e12f64.next_up()).unwrap();
+    let e = s.validate().unwrap_err().to_string();
+    assert!(e.contains("contact.stiffness") && e.contains("1e12"), "{e}");
+    assert!(parameters::range_text("contact.stiffness").unwrap().contains("at most 1e12 N/m with contact.law"));
+}
+
 /// Issue 27: each support-motion input declares `min` / `max` in both descriptions, its range
 /// (`MOTION_LIMITS`, stated in its description too), and those are exactly what the FMU's setter
 /// accepts: the bounds are, one representable step beyond them is refused with an error.

@@ -550,3 +550,64 @@ fn a_refused_setter_names_the_variable_and_the_value() {
     let named = format!("`upper.elements_to_contact` (value reference {}) = 9", vr("upper.elements_to_contact"));
     assert!(line.contains(&named), "{log}");
 }
+
+/// Issue 40 item 3: the FMU's own step limit, `solver.max_steps` (an Integer parameter, 1 to
+/// 2^31 - 1, start 1e8: the CLI's), is enforced inside doStep: a run that reaches it stops there
+/// with fmi2Error and the reason in the importer's log (before, only a built-in 1e8 held, and
+/// the 1e13 N/m contact's doStep to 0.8 s took 318 s). 0 is refused naming the variable; FMI 3
+/// alike.
+#[test]
+fn a_do_step_stops_at_solver_max_steps_with_the_reason_logged() {
+    let fmu = fresh();
+    assert_eq!(fmu.set_integer("solver.max_steps", 0), ERROR);
+    let log = fmu.log.text();
+    assert!(log.contains("solver.max_steps must be a whole number >= 1 (internal steps), got 0"), "{log}");
+    assert_eq!(fmu.set_integer("solver.max_steps", 50), OK);
+    assert_eq!(fmu.initialize(), OK, "{}", fmu.log.text());
+    assert_eq!(fmu.get_integer("solver.max_steps"), 50);
+    // 0.5 ms: some 21 steps of the plan's 2.36e-5 s, within the limit.
+    assert_eq!(fmu.do_step(0.0, 5e-4), OK, "{}", fmu.log.text());
+    assert_eq!(fmu.do_step(5e-4, 0.3), ERROR);
+    let log = fmu.log.text();
+    assert!(log.contains("max_steps = 50 internal steps reached at t = "), "{log}");
+    assert!(log.contains("solver.max_steps"), "{log}");
+
+    let lib = load();
+    let fmu = Fmu3::try_new(&lib, None, false).0.unwrap();
+    assert_eq!(fmu.set_string("log.path", ""), OK);
+    assert_eq!(fmu.set_integer("solver.max_steps", -1), ERROR);
+    assert!(fmu.log.text().contains("solver.max_steps must be a whole number >= 1"), "{}", fmu.log.text());
+    assert_eq!(fmu.set_integer("solver.max_steps", 50), OK);
+    assert_eq!(fmu.initialize(), OK, "{}", fmu.log.text());
+    assert_eq!(fmu.do_step(0.0, 0.3).0, ERROR);
+    assert!(fmu.log.text().contains("max_steps = 50 internal steps reached"), "{}", fmu.log.text());
+}
+
+/// Issue 40: `solver.max_steps` through fmi2SetInteger on every edge of an Int32 and seeded
+/// random ones (`BEAM_IMPACT_FUZZ_ITERATIONS` sets how many): accepted from 1 up, anything else
+/// refused with fmi2Error and one line naming the variable and the value, never a panic; the
+/// last accepted value is the one the run takes.
+#[test]
+fn solver_max_steps_takes_any_whole_number_from_one_and_refuses_the_rest_in_one_line() {
+    let fmu = fresh();
+    let mut values = vec![i32::MIN, -1, 0, 1, 2, 100_000_000, i32::MAX - 1, i32::MAX];
+    let mut rng = crate::fuzz_support::Rng(40);
+    values.extend((0..crate::fuzz_support::iterations(2_000)).map(|_| rng.next_u64() as u32 as i32));
+    let mut last = 100_000_000;
+    for value in values {
+        fmu.log.clear();
+        let status = fmu.set_integer("solver.max_steps", value);
+        if value >= 1 {
+            assert_eq!(status, OK, "{value}: {}", fmu.log.text());
+            last = value;
+        } else {
+            assert_eq!(status, ERROR, "{value}");
+            let log = fmu.log.text();
+            let line = log.lines().find(|l| l.contains("solver.max_steps")).unwrap_or_else(|| panic!("{log}"));
+            assert!(line.ends_with(&format!("must be a whole number >= 1 (internal steps), got {value}")), "{line}");
+        }
+    }
+    assert_eq!(fmu.set_integer("solver.max_steps", last), OK);
+    assert_eq!(fmu.initialize(), OK, "{}", fmu.log.text());
+    assert_eq!(fmu.get_integer("solver.max_steps"), last);
+}

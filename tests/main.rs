@@ -62,6 +62,7 @@ mod modes_fine_mesh;
 mod no_circles;
 mod one_run;
 mod paper;
+mod rayleigh_damping;
 mod reactions;
 mod report_csv;
 mod robust_meshes;

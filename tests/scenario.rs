@@ -33,6 +33,8 @@ fn each_invalid_parameter_is_rejected_by_name() {
         "contact.clearance",
         "contact.law",
         "contact.damping",
+        // Not given: the power law's Hertz 1.5 (issue 40).
+        "contact.exponent",
         // None given: no shear stress for the bridge, its shear not checked (issue 30).
         "upper.shear_area",
         "upper.allowable_shear_stress",
@@ -138,8 +140,9 @@ fn hostile_scenarios_are_refused_naming_the_field() {
 
 /// Issue 40 (part 5) item 3: `contact.exponent` given with the linear law (the default) was
 /// silently ignored: the run was the linear bar's. Now it is refused, naming both fields and the
-/// value, from a file, `--set` and the FMU's parameters alike; the default exponent (1.5, what
-/// every scenario and the FMU's start value holds) and any exponent with the power law pass.
+/// value, from a file, `--set` and the FMU's parameters alike, Hertz's 1.5 too (issue 40's
+/// tester: it was taken as the default); 0 (not given: the default and the FMU's start value), 1
+/// (the linear law's own) and any exponent with the power law pass.
 #[test]
 fn an_exponent_with_the_linear_law_is_refused() {
     let message = Scenario::from_toml("[contact]\nexponent = 2.0\n", "x.toml").unwrap_err().to_string();
@@ -151,10 +154,28 @@ fn an_exponent_with_the_linear_law_is_refused() {
     parameters::set(&mut s, parameters::find("contact.exponent").unwrap(), 1.2).unwrap();
     let message = s.validate().unwrap_err().to_string();
     assert!(message.contains("contact.law") && message.contains("got 1.2"), "{message}");
-    // The default exponent stated, and any exponent with the power law, are accepted.
-    assert!(Scenario::from_toml("[contact]\nexponent = 1.5\n", "x.toml").is_ok());
+    // Hertz's 1.5 is the power law's too: refused with the linear law, by `--set` as in a file.
+    let message = Scenario::from_toml("[contact]\nexponent = 1.5\n", "x.toml").unwrap_err().to_string();
+    assert!(message.contains("contact.law") && message.contains("got 1.5"), "{message}");
+    let mut s = Scenario::default();
+    parameters::set(&mut s, parameters::find("contact.exponent").unwrap(), 1.5).unwrap();
+    assert!(s.validate().unwrap_err().to_string().contains("got 1.5"));
+    // Not given (0, the default), and any exponent with the power law, are accepted.
+    assert!(Scenario::from_toml("[contact]\nexponent = 0\n", "x.toml").is_ok());
     // 1 is the linear law's own exponent (F = k delta^1): no setting ignored.
     assert!(Scenario::from_toml("[contact]\nexponent = 1.0\n", "x.toml").is_ok());
     let power = "[contact]\nlaw = \"power\"\nexponent = 2.0\nstiffness = 1e9\n";
     assert!(Scenario::from_toml(power, "x.toml").is_ok());
+}
+
+/// The power law with its exponent not given (0, the default) is Hertz's: the same run, to the
+/// bit, as the exponent 1.5 stated (the one law the stepper sees).
+#[test]
+fn a_power_law_without_an_exponent_is_hertz() {
+    let text = |exponent: &str| format!("[contact]\nlaw = \"power\"\nstiffness = 6.8e12\n{exponent}");
+    let unstated = Scenario::from_toml(&text(""), "x.toml").unwrap();
+    let stated = Scenario::from_toml(&text("exponent = 1.5\n"), "x.toml").unwrap();
+    assert_eq!(unstated.contact.exponent, 0.0);
+    assert_eq!(unstated.contact.nonlinear_law(), stated.contact.nonlinear_law());
+    assert_eq!(unstated.contact.nonlinear_law().unwrap().exponent, beam_impact::model::scenario::HERTZ_EXPONENT);
 }

@@ -398,7 +398,9 @@ def simulate(
     the FMU's message when it refuses the parameters or the run fails, and, before the FMU is
     loaded, with the CLI's message when the run needs more than `max_steps` internal steps
     (default the CLI's 1e8, its `--max-steps`; the check builds the model's modes, stepping
-    nothing).
+    nothing); `max_steps` is also the FMU's `solver.max_steps` (at most 2^31 - 1), enforced at
+    every internal step of doStep: a run whose steps shrink far below its plan's stops there with
+    SimulationError naming the limit and the time reached.
 
     The FMU at a path is read only if it is a regular file of at most 1 GiB (held in memory whole;
     `beam_impact._native.MAX_FMU_BYTES`);
@@ -422,6 +424,9 @@ def simulate(
     if not 0 < stop_time <= 1e6:
         raise ScenarioError(f"stop time must be > 0 s and at most 1e6 s (the FMU's limit), got {stop_time}")
     _check_steps(start, stop_time, max_steps)
+    if max_steps is not None and "solver.max_steps" in entry.names:
+        # Enforced inside doStep too (issue 40): the FMU's Integer parameter, at most 2^31 - 1.
+        start["solver.max_steps"] = min(max_steps, _INT_MAX)
     start["log.path"] = log_text
     if output_interval is None:
         output_interval = min(1e-3, stop_time) if histories else stop_time

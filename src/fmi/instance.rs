@@ -88,6 +88,8 @@ pub struct Instance {
     checks: Option<Vec<Simulation>>,
     /// Whether `checks` ends with the reproducibility twin (the `check_sensitivity` parameter).
     check_sensitivity: bool,
+    /// The most internal steps of the run and each check run (`solver.max_steps`).
+    max_steps: u64,
     recorder: Option<McapRecorder>,
     start_time: f64,
     stop_time: Option<f64>,
@@ -324,6 +326,7 @@ impl Instance {
             simulation: None,
             checks: None,
             check_sensitivity: false,
+            max_steps: crate::model::scenario::MAX_STEPS,
             recorder: None,
             start_time: 0.0,
             stop_time: None,
@@ -568,8 +571,9 @@ impl Instance {
                 }
                 return Err(format!("invalid parameter: {last}"));
             }
-            let simulation = Simulation::starting_with(&self.scenario, self.motion)
+            let mut simulation = Simulation::starting_with(&self.scenario, self.motion)
                 .map_err(|e| format!("invalid parameters: {e}"))?;
+            simulation.set_max_steps(self.max_steps);
             let checks = self
                 .check_runs(&self.scenario)
                 .map_err(|e| format!("invalid parameters (discretisation check): {e}"))?;
@@ -1006,6 +1010,7 @@ impl Instance {
             | Source::ContactActive
             | Source::DesignPass
             | Source::Trusted
+            | Source::MaxSteps
             | Source::CheckSensitivity => return Err(format!("`{}` is not Real", v.name)),
         })
     }
@@ -1015,6 +1020,7 @@ impl Instance {
         let v = self.variable(vr, Type::Integer)?;
         match v.source {
             Source::Parameter(p) => Ok((p.get)(&self.scenario) as i32),
+            Source::MaxSteps => Ok(i32::try_from(self.max_steps).unwrap_or(i32::MAX)),
             _ => Err(format!("`{}` is not an Integer", v.name)),
         }
     }
@@ -1065,6 +1071,7 @@ impl Instance {
             | Source::LogPath
             | Source::LogChannels
             | Source::LogSampleInterval
+            | Source::MaxSteps
             | Source::CheckSensitivity => {
                 (super::status::allowed::SET_PARAMETER, "parameters are fixed at ExitInitializationMode")
             }
@@ -1163,6 +1170,15 @@ impl Instance {
     pub fn set_integer(&mut self, vr: u32, value: i32) -> Outcome<()> {
         let v = self.variable(vr, Type::Integer)?;
         self.check_settable(&v, &value)?;
+        if let Source::MaxSteps = v.source {
+            if value < 1 {
+                return Err(format!("{} must be a whole number >= 1 (internal steps), got {value}", v.name));
+            }
+            self.max_steps = value as u64;
+            self.simulation = None;
+            self.checks = None;
+            return Ok(());
+        }
         let Source::Parameter(p) = v.source else {
             return Err(format!("`{}` cannot be set: value reference {vr} = {value} is not set", v.name));
         };
@@ -1281,6 +1297,7 @@ impl Instance {
             simulation.restore(snapshot.run.clone()).map_err(|e| e.to_string())?;
         } else {
             let mut simulation = Simulation::new(&scenario).map_err(|e| format!("the state's scenario: {e}"))?;
+            simulation.set_max_steps(self.max_steps);
             simulation.restore(snapshot.run.clone()).map_err(|e| e.to_string())?;
             self.simulation = Some(simulation);
         }
@@ -1361,7 +1378,14 @@ impl Instance {
         if self.check_sensitivity {
             scenarios.push(crate::answer::twin_scenario(scenario));
         }
-        scenarios.iter().map(|s| Simulation::starting_with(s, self.motion)).collect()
+        scenarios
+            .iter()
+            .map(|s| {
+                let mut run = Simulation::starting_with(s, self.motion)?;
+                run.set_max_steps(self.max_steps);
+                Ok(run)
+            })
+            .collect()
     }
 
     /// The discretisation check's runs and the twin (when run), apart.

@@ -132,6 +132,9 @@ pub enum Source {
     LogChannels,
     /// The MCAP log's dense output, s (`log.sample_interval`, issue 41).
     LogSampleInterval,
+    /// The most internal steps a run may take (`solver.max_steps`, issue 40), enforced at every
+    /// step of doStep.
+    MaxSteps,
     /// An input tip force.
     Input(Tip),
     /// A support-motion input: its index in [`crate::model::support_motion::MOTION_NAMES`].
@@ -401,6 +404,7 @@ pub fn table_for(defaults: &Scenario) -> Vec<Variable> {
             Source::LogSampleInterval => {
                 (Some(0.0), Some(crate::record::options::SAMPLE_INTERVAL_BOUNDS_NS.1 as f64 * 1e-9))
             }
+            Source::MaxSteps => (Some(1.0), Some(f64::from(i32::MAX))),
             _ => (None, None),
         };
         v.push(Variable { name, vr, ty, causality, variability, exact, unit, min, max, description, start, source });
@@ -432,7 +436,7 @@ pub fn table_for(defaults: &Scenario) -> Vec<Variable> {
             Variability::Fixed,
             Some(true),
             unit,
-            p.description.to_string(),
+            format!("{}{}", p.description, crate::model::parameters::range_note(p.name).unwrap_or_default()),
             Some(start),
             Source::Parameter(p),
         )
@@ -710,6 +714,22 @@ pub fn table_for(defaults: &Scenario) -> Vec<Variable> {
             .into(),
         Some(format!("{}", crate::record::options::DEFAULT_SAMPLE_INTERVAL_NS as f64 * 1e-9)),
         Source::LogSampleInterval,
+    ));
+    push((
+        "solver.max_steps".into(),
+        Type::Integer,
+        Causality::Parameter,
+        Variability::Fixed,
+        Some(true),
+        None,
+        format!(
+            "The most internal steps the run may take, enforced at every step of doStep (and of the check runs): a \
+             run whose steps shrink far below its plan's (a very stiff contact chattering) stops with an error \
+             naming the time reached, instead of running on; 1 to {} (the CLI's --max-steps, Python's max_steps=)",
+            i32::MAX
+        ),
+        Some(format!("{}", crate::model::scenario::MAX_STEPS)),
+        Source::MaxSteps,
     ));
     v
 }

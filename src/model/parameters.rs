@@ -3,7 +3,9 @@
 
 use super::contact_law::LawKind;
 use super::discretisation::Method;
-use super::scenario::{Scenario, SupportKind, MAX_ELEMENTS};
+use super::scenario::{
+    Scenario, SupportKind, MAX_ELEMENTS, SMALLEST_CONTACT_STIFFNESS, SMALLEST_STRESS, SMALLEST_YIELD_STRESS,
+};
 use super::stress_recovery::StressRecovery;
 use super::time_step::TimeStep;
 use crate::error::{Error, Result};
@@ -249,7 +251,12 @@ pub const PARAMETERS: &[Parameter] = &[
             Ok(())
         },
     },
-    real!("contact.exponent", "1", "The power law's exponent n (1.5: Hertz)", contact.exponent),
+    real!(
+        "contact.exponent",
+        "1",
+        "The power law's exponent n; 0: not given (the power law's 1.5, Hertz; the linear law's own is 1)",
+        contact.exponent
+    ),
     real!(
         "contact.damping",
         "s/m",
@@ -337,7 +344,7 @@ pub const RANGES: &[(&str, Option<f64>, Option<f64>)] = &[
     ("contact.stiffness", Some(0.0), Some(crate::model::scenario::MAX_POWER_LAW_STIFFNESS)),
     ("contact.clearance", Some(0.0), Some(10.0)),
     ("contact.law", Some(0.0), Some(1.0)),
-    ("contact.exponent", Some(1.0), Some(3.0)),
+    ("contact.exponent", Some(0.0), Some(3.0)),
     ("contact.damping", Some(0.0), Some(1e3)),
     ("upper.shear_area", Some(0.0), Some(1e3)),
     ("upper.allowable_shear_stress", Some(0.0), Some(1e12)),
@@ -351,40 +358,96 @@ pub fn range(name: &str) -> (Option<f64>, Option<f64>) {
     RANGES.iter().find(|(n, _, _)| *n == name).map_or((None, None), |&(_, min, max)| (min, max))
 }
 
-/// A range as a comment reads it: "0 to 500", "> 0"; the rules that involve another field or
-/// the "auto" value spelled out; none for the named choices (`method`, `stress_recovery`), whose
-/// description lists them.
-fn range_text(name: &str) -> Option<String> {
-    let bound = |x: f64| {
-        if x == SMALLEST_POSITIVE {
-            "0".to_string()
-        } else if x.abs() >= 1e6 {
-            format!("{x:e}")
-        } else {
-            format!("{x}")
-        }
+/// Fields whose accepted values are 0, a setting of its own ("auto", none given, the bar's own
+/// rate, not given), or from a smallest nonzero value up to the range's `max`: a gap FMI's
+/// `min` / `max` cannot declare, so the FMU's description of each states it (see [`range_note`]);
+/// the numbers are the constants [`Scenario::validate`] checks with (`MIN_STEP`, `SMALLEST_*`).
+pub const NONZERO_MINIMA: &[(&str, f64)] = &[
+    ("step_free", crate::model::scenario::MIN_STEP),
+    ("step_contact", crate::model::scenario::MIN_STEP),
+    ("upper.elements_to_contact", 1.0),
+    ("upper.elements_beyond_contact", 1.0),
+    ("lower.elements", 1.0),
+    ("upper.shear_area", 1e-12),
+    ("upper.allowable_shear_stress", SMALLEST_STRESS),
+    ("lower.yield_stress", SMALLEST_YIELD_STRESS),
+    ("upper.yield_stress", SMALLEST_YIELD_STRESS),
+    ("contact.stiffness", SMALLEST_CONTACT_STIFFNESS),
+    ("contact.exponent", crate::model::contact_law::EXPONENT_RANGE.0),
+];
+
+/// The smallest nonzero value a field accepts where 0 is a setting of its own
+/// ([`NONZERO_MINIMA`]).
+pub fn nonzero_minimum(name: &str) -> Option<f64> {
+    NONZERO_MINIMA.iter().find(|(n, _)| *n == name).map(|&(_, m)| m)
+}
+
+/// The rules a field's range involves another field in, which FMI's `min` / `max` cannot say:
+/// each as [`range_text`] adds it, and in the FMU parameter's description.
+pub const CONDITIONS: &[(&str, &str)] = &[
+    ("drop_height", "at most upper.length / 2"),
+    ("contact_position", "at most upper.length (its free end)"),
+    ("gravity", "0 only with impact_angular_velocity given"),
+    ("contact.exponent", "only 0 or 1 with contact.law = \"linear\""),
+    ("contact.stiffness", "at most 1e12 N/m with contact.law = \"linear\" (1e13 N/m^n: the power law's)"),
+    ("contact.area", "with contact.law = \"linear\" and no contact.stiffness, E A_c / l_c at most 1e12 N/m"),
+    ("contact.length", "with contact.law = \"linear\" and no contact.stiffness, E A_c / l_c at most 1e12 N/m"),
+    ("contact.elastic_modulus", "with contact.law = \"linear\" and no contact.stiffness, E A_c / l_c at most 1e12 N/m"),
+];
+
+/// A bound as the ranges print it: "1e-12", "1e6", "0.01", "1000" ("0" for the smallest
+/// positive f64, the bound of "> 0").
+fn bound_text(x: f64) -> String {
+    if x == SMALLEST_POSITIVE {
+        "0".to_string()
+    } else if x != 0.0 && (x.abs() >= 1e6 || x.abs() < 1e-3) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
+/// A range as a comment reads it: "0 to 500", "> 0", "0 (none), or 1e3 to 1e12", with the rules
+/// that involve another field ([`CONDITIONS`]); none for the named choices (`method`,
+/// `stress_recovery`, `lower.kind`, `contact.law`), whose description lists them. Built from
+/// [`RANGES`], [`NONZERO_MINIMA`] and [`CONDITIONS`], the numbers validation takes.
+pub fn range_text(name: &str) -> Option<String> {
+    let zero = |name: &str| match name {
+        "step_free" | "step_contact" | "modal_cutoff" => "\"auto\"",
+        _ if name.contains("elements") => "\"auto\"",
+        "contact.stiffness" => "0 (the bar's E A_c / l_c)",
+        "contact.exponent" => "0 (not given: 1.5 with the power law)",
+        _ => "0 (none)",
     };
-    match name {
+    let base = match name {
         "method" | "stress_recovery" | "lower.kind" | "contact.law" => return None,
-        "drop_height" => return Some("0 to upper.length / 2 (500 at most)".into()),
-        "contact_position" => return Some("> 0, up to upper.length (its free end)".into()),
-        "step_free" | "step_contact" => return Some("\"auto\", or 1e-9 to 1".into()),
-        "upper.shear_area" => return Some("0 (none), or 1e-12 to 1000".into()),
-        "upper.allowable_shear_stress" => return Some("0 (none), or 1e-3 to 1e12".into()),
-        "modal_cutoff" => return Some("\"auto\", or > 0 up to 1e12".into()),
+        "modal_cutoff" => "\"auto\", or > 0 up to 1e12".to_string(),
         // A CLI field (the FMU's stop time is the importer's): Scenario::validate's bound.
-        "duration" => return Some("> 0, at most 1e6".into()),
-        _ if name.contains("elements") => return Some(format!("\"auto\", or 1 to {MAX_ELEMENTS}")),
-        _ => {}
-    }
-    match range(name) {
-        (Some(min), Some(max)) if min == SMALLEST_POSITIVE => Some(format!("> 0, at most {}", bound(max))),
-        (Some(min), Some(max)) => Some(format!("{} to {}", bound(min), bound(max))),
-        (Some(min), None) if min == SMALLEST_POSITIVE => Some("> 0".into()),
-        (Some(min), None) => Some(format!(">= {}", bound(min))),
-        (None, Some(max)) => Some(format!("<= {}", bound(max))),
-        (None, None) => None,
-    }
+        "duration" => "> 0, at most 1e6".to_string(),
+        _ => match (range(name), nonzero_minimum(name)) {
+            ((Some(_), Some(max)), Some(gap)) => {
+                format!("{}, or {} to {}", zero(name), bound_text(gap), bound_text(max))
+            }
+            ((Some(min), Some(max)), None) if min == SMALLEST_POSITIVE => format!("> 0, at most {}", bound_text(max)),
+            ((Some(min), Some(max)), None) => format!("{} to {}", bound_text(min), bound_text(max)),
+            ((Some(min), None), _) if min == SMALLEST_POSITIVE => "> 0".into(),
+            ((Some(min), None), _) => format!(">= {}", bound_text(min)),
+            ((None, Some(max)), _) => format!("<= {}", bound_text(max)),
+            ((None, None), _) => return None,
+        },
+    };
+    Some(match CONDITIONS.iter().find(|(n, _)| *n == name) {
+        Some((_, rule)) => format!("{base}; {rule}"),
+        None => base,
+    })
+}
+
+/// What an FMU parameter's description adds to its declared `min` / `max`: its [`range_text`]
+/// where a gap ([`NONZERO_MINIMA`]) or a rule ([`CONDITIONS`]) makes it more than they say, with
+/// the FMU's 0 for TOML's "auto".
+pub fn range_note(name: &str) -> Option<String> {
+    let more = nonzero_minimum(name).is_some() || CONDITIONS.iter().any(|(n, _)| *n == name);
+    more.then(|| range_text(name)).flatten().map(|r| format!("; range {}", r.replace("\"auto\"", "0 (automatic)")))
 }
 
 /// A field's comment in `beam-impact scenario`: its unit, description and range.
@@ -482,7 +545,9 @@ mod tests {
             let named_choice = matches!(*name, "method" | "stress_recovery" | "lower.kind" | "contact.law");
             assert_eq!(line.contains("; range "), !named_choice, "{name}: {line}");
         }
-        assert!(text.contains("drop_height = 0.567  # [m] ") && text.contains("range 0 to upper.length / 2"));
+        assert!(
+            text.contains("drop_height = 0.567  # [m] ") && text.contains("range 0 to 500; at most upper.length / 2")
+        );
         assert!(text.contains("range 0.01 to 1000\n"), "upper.length's range");
         assert_eq!(Scenario::from_toml(&text, "annotated").unwrap(), Scenario::default());
     }

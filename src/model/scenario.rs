@@ -198,17 +198,18 @@ pub struct ContactBar {
     /// n = `exponent`; `stiffness` then in N/m^n and required).
     #[serde(skip_serializing_if = "LawKind::is_linear")]
     pub law: LawKind,
-    /// The power law's exponent n, 1 to 3 (default 1.5: Hertz).
-    #[serde(skip_serializing_if = "is_hertz")]
+    /// The power law's exponent n, 1 to 3; 0 (the default): not given, the power law's
+    /// [`HERTZ_EXPONENT`]. With the linear law only 0 or its own 1 (F = k delta^1): any other
+    /// would be ignored, so it is refused.
+    #[serde(skip_serializing_if = "is_zero")]
     pub exponent: f64,
     /// Hunt and Crossley's damping c, s/m (default 0): F = k delta^n (1 + c delta'), for either law.
     #[serde(skip_serializing_if = "is_zero")]
     pub damping: f64,
 }
 
-fn is_hertz(x: &f64) -> bool {
-    *x == 1.5
-}
+/// The power law's exponent when none is given: Hertz's 1.5 (Goldsmith, Impact, Eq. 4.7).
+pub const HERTZ_EXPONENT: f64 = 1.5;
 
 fn is_zero(x: &f64) -> bool {
     *x == 0.0
@@ -223,7 +224,7 @@ impl Default for ContactBar {
             given_stiffness: None,
             clearance: 0.0,
             law: LawKind::Linear,
-            exponent: 1.5,
+            exponent: 0.0,
             damping: 0.0,
         }
     }
@@ -238,7 +239,11 @@ impl ContactBar {
     /// The law the stepper solves as a scalar equation, or `None` for the paper's linear bar
     /// without damping (solved in closed form, Sherman-Morrison).
     pub fn nonlinear_law(&self) -> Option<ContactLaw> {
-        let exponent = if self.law == LawKind::Power { self.exponent } else { 1.0 };
+        let exponent = match self.law {
+            LawKind::Power if self.exponent == 0.0 => HERTZ_EXPONENT,
+            LawKind::Power => self.exponent,
+            LawKind::Linear => 1.0,
+        };
         (self.law == LawKind::Power || self.damping > 0.0).then(|| ContactLaw {
             stiffness: self.stiffness(),
             exponent,
@@ -397,6 +402,16 @@ pub const MAX_STEPS: u64 = 100_000_000;
 /// Smallest time step: the stepper counts time in integer nanoseconds.
 pub const MIN_STEP: f64 = 1e-9;
 
+/// The smallest allowable stress, Pa (any field of an allowable): 1 mPa.
+pub const SMALLEST_STRESS: f64 = 1e-3;
+
+/// The smallest yield stress given, Pa: 1 kPa, below any solid's (the softest elastomers yield
+/// above 1 MPa; a smaller one makes every utilisation overflow).
+pub const SMALLEST_YIELD_STRESS: f64 = 1e3;
+
+/// The softest contact given, N/m (N/m^n).
+pub const SMALLEST_CONTACT_STIFFNESS: f64 = 1e-3;
+
 fn positive(name: &'static str, unit: &str, value: f64) -> Result<()> {
     if value.is_finite() && value > 0.0 {
         Ok(())
@@ -479,7 +494,7 @@ fn elements(name: &'static str, value: u32) -> Result<()> {
 
 /// A stress limit: > 0, at most 1e12 Pa.
 fn stress(name: &'static str, value: f64) -> Result<()> {
-    size(name, "Pa", value, 1e-3, 1e12)
+    size(name, "Pa", value, SMALLEST_STRESS, 1e12)
 }
 
 /// An optional stress limit: 0 (none) or a stress.
@@ -500,7 +515,7 @@ fn optional_stress(name: &'static str, value: f64) -> Result<()> {
     if value == 0.0 {
         Ok(())
     } else {
-        within(name, "Pa (0: none)", value, 1e3, 1e12)
+        within(name, "Pa (0: none)", value, SMALLEST_YIELD_STRESS, 1e12)
     }
 }
 
@@ -814,7 +829,7 @@ impl Scenario {
         if let Some(k) = c.given_stiffness {
             let max = if c.law == LawKind::Linear { MAX_CONTACT_STIFFNESS } else { MAX_POWER_LAW_STIFFNESS };
             let unit = if c.law == LawKind::Linear { "N/m (the linear law's limit)" } else { "N/m^n" };
-            check(size("contact.stiffness", unit, k, 1e-3, max));
+            check(size("contact.stiffness", unit, k, SMALLEST_CONTACT_STIFFNESS, max));
         } else if c.law == LawKind::Linear
             && size("contact.area", "m^2", c.area, 1e-12, 1e3).is_ok()
             && size("contact.length", "m", c.length, 1e-6, 1e3).is_ok()
@@ -836,19 +851,18 @@ impl Scenario {
             }
         }
         check(within("contact.clearance", "m", c.clearance, 0.0, 10.0));
-        check(within("contact.exponent", "", c.exponent, EXPONENT_RANGE.0, EXPONENT_RANGE.1));
+        if c.exponent != 0.0 {
+            check(within("contact.exponent", "(0: not given)", c.exponent, EXPONENT_RANGE.0, EXPONENT_RANGE.1));
+        }
         // The exponent is the power law's: given with the linear law it would be ignored. Its
-        // default (the FMU's start value, what every scenario holds) is no setting, and 1 is the
-        // linear law's own (F = k delta^1).
-        let linear_exponent = c.exponent == ContactBar::default().exponent || c.exponent == 1.0;
+        // default 0 (the FMU's start value) is no setting, and 1 is the linear law's own
+        // (F = k delta^1); any other is refused, Hertz's 1.5 too (issue 40).
+        let linear_exponent = c.exponent == 0.0 || c.exponent == 1.0;
         if c.law == LawKind::Linear && !linear_exponent && within_exponent(c.exponent) {
             check(Err(Error::invalid(
                 "contact.exponent",
-                format!(
-                    "left at its default {} (or 1) with contact.law = \"linear\" (F = k delta: the exponent is the \
-                     power law's; set contact.law = \"power\" for F = k delta^n)",
-                    ContactBar::default().exponent
-                ),
+                "0 (not given) or 1 with contact.law = \"linear\" (F = k delta: the exponent is the power law's; set \
+                 contact.law = \"power\" for F = k delta^n)",
                 bound(c.exponent),
             )));
         }

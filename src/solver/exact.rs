@@ -20,7 +20,10 @@
 //! Taylor series of the solution, whose derivatives follow from the equation itself
 //! (q^(k+2) = f^(k) - c q^(k+1) - omega^2 q^(k)): the closed form's differences such as h - B
 //! lose every digit as omega h -> 0 (a 1 ns step that locates a contact change; the bridge's rigid
-//! mode, omega = 0), the series is exact there.
+//! mode, omega = 0), the series is exact there. A mode at or beyond critical damping (Rayleigh's
+//! stiffness-proportional term makes the high modes so: zeta = beta omega / 2) over a step with
+//! c h >= [`SERIES_BELOW`] takes the series over h / 2^m and m exact doublings
+//! (`overdamped_responses`).
 //!
 //! In contact the bar's force is not taken linear over a step but as the cubic through its values
 //! and rates at both ends (Hermite; [`super::stepper`]): its departure from the chord,
@@ -51,10 +54,15 @@ pub struct ModeStep {
 }
 
 impl ModeStep {
-    /// The coefficients of q'' + `damping` q' + `omega2` q = f0 + r t over a step `h` > 0, s
-    /// (`damping` < 2 omega: every mode of the model is underdamped, damping ratios < 1).
+    /// The coefficients of q'' + `damping` q' + `omega2` q = f0 + r t over a step `h` > 0, s:
+    /// the underdamped closed form, the Taylor series, or for a mode at or beyond critical
+    /// damping (as stiffness-proportional damping makes the high modes) over a step the series
+    /// cannot take, `overdamped_responses`.
     pub fn new(omega2: f64, damping: f64, h: f64) -> ModeStep {
         let omega = libm::sqrt(omega2.max(0.0));
+        if overdamped_beyond_series(omega2, damping, h) {
+            return Self::from_responses(omega2, damping, &overdamped_responses(omega2, damping, h));
+        }
         if omega * h < SERIES_BELOW || omega2 <= 0.0 || damping >= 2.0 * omega {
             return Self::series(omega2, damping, h);
         }
@@ -78,6 +86,20 @@ impl ModeStep {
         let i_f = (h - hf - c * gf) / w2;
         let ir = (0.5 * h * h - hr - c * gr) / w2;
         ModeStep { q: [a, b, gf, gr], v: [cc, d, hf, hr], integral: [ix, iv, i_f, ir] }
+    }
+
+    /// The coefficients from the responses psi_-2 ..= psi_6 at the step's end (module
+    /// documentation): B = psi_-1, D = psi_-2, A = D + c B, C = -omega^2 B; the forced ones
+    /// psi_0 and psi_1, and each integral the next psi (psi_k' = psi_(k-1)).
+    fn from_responses(omega2: f64, damping: f64, psi: &[f64; 9]) -> ModeStep {
+        let p = |k: i32| psi[(k + 2) as usize];
+        let (b, d) = (p(-1), p(-2));
+        let a = d + damping * b;
+        ModeStep {
+            q: [a, b, p(0), p(1)],
+            v: [-omega2 * b, d, b, p(0)],
+            integral: [b + damping * p(0), p(0), p(1), p(2)],
+        }
     }
 
     /// The coefficients from the Taylor series at t = 0, summed until its terms fall below 1e-17
@@ -168,7 +190,9 @@ impl CubicStep {
         psi[2] = linear.q[2];
         psi[3] = linear.q[3];
         let scale = libm::sqrt(w2.abs()).max(c.abs()) * h;
-        if scale >= CUBIC_SERIES_BELOW && w2 > 0.0 {
+        if overdamped_beyond_series(w2, c, h) {
+            psi = overdamped_responses(w2, c, h);
+        } else if scale >= CUBIC_SERIES_BELOW && w2 > 0.0 {
             // h^k / k! as a running product (the same bits on every platform).
             let mut power = h;
             for k in 2..=6usize {
@@ -221,6 +245,161 @@ impl CubicStep {
         }
         CubicStep { q: [s2 * p(2), s3 * p(3)], v: [s2 * p(1), s3 * p(2)], integral: [s2 * p(3), s3 * p(4)], moments }
     }
+}
+
+/// True for a mode at or beyond critical damping (c >= 2 omega: its roots real) over a step
+/// the series cannot take (c h >= [`SERIES_BELOW`]): there the underdamped closed form does not
+/// apply, the series' alternating terms grow as (c h)^k / k! (at c h = 40, 1e16: nothing left;
+/// Rayleigh's beta = 1e-3 puts c h = 1.8e6 h on the paper mesh's top mode), and the recurrence of
+/// [`CubicStep::new`] loses 1 / (|lambda_slow| h) per order (lambda_slow ~ -omega^2 / c).
+fn overdamped_beyond_series(omega2: f64, damping: f64, h: f64) -> bool {
+    damping >= 2.0 * libm::sqrt(omega2.max(0.0)) && damping * h >= SERIES_BELOW
+}
+
+/// psi_-2 ..= psi_6 at `h` (index k + 2; module documentation) of a mode at or beyond critical
+/// damping, from its real roots l1 >= l2 (l2 = -(c/2 + s), l1 = omega^2 / l2, s = sqrt(c^2/4 -
+/// omega^2), each without cancellation).
+///
+/// Roots apart ((l1 - l2) h >= 1): the equation splits into x_j' = l_j x_j + f (x1 = v - l2 q,
+/// x2 = v - l1 q, q = (x1 - x2) / (l1 - l2)), each a first-order equation whose response from rest
+/// to t^k / k! is h^(k+1) phi_(k+1)(l_j h) (the phi functions of exponential integrators,
+/// [`phi_functions`]), so
+///
+/// ```text
+/// psi_k = h^(k+2) (phi_(k+1)(z1) - phi_(k+1)(z2)) / (z1 - z2)   (k >= -1, z_j = l_j h)
+/// psi_-2 = D = (z1 e^z1 - z2 e^z2) / (z1 - z2)
+/// ```
+///
+/// exact to a few eps however small the slow root's l1 h (1e-5 for Rayleigh's beta = 1 on a
+/// 2e-5 s step: the creep the closed form's differences lose, each of h / omega^2 and (A - 1) c /
+/// omega^4 being 1 / (|l1| h) times their sum) and however large the fast one's.
+///
+/// Roots close (below 1 / h apart, critical damping among them): the Taylor series over h / 2^m
+/// (c h / 2^m < [`SERIES_BELOW`]), then m doublings, each exact algebra: from rest under t^k / k!
+/// the state at h is (psi_k, psi_(k-1)) and the forcing over the second half is
+/// sum_i h^(k-i) / (k-i)! t'^i / i!, so
+///
+/// ```text
+/// psi_k(2h)  = A psi_k + B psi_(k-1) + sum_(i=0..k) h^(k-i) / (k-i)! psi_i      (k >= 0)
+/// psi_-1(2h) = B (A + D),    psi_-2(2h) = D^2 - omega^2 B^2
+/// ```
+///
+/// (A = D + c B). With real roots B and every psi_k (k >= 0) are positive, and so is A (no
+/// overshoot): the sums add positive terms. Squaring doubles the relative error of the
+/// exponentials, so m doublings cost about 2^m eps = c h eps / SERIES_BELOW: small here, where
+/// close roots bound c h by 1 + 2 |l1| h and the loss is the exponential's own |l1 h| eps.
+fn overdamped_responses(omega2: f64, damping: f64, h: f64) -> [f64; 9] {
+    let (w2, c) = (omega2.max(0.0), damping);
+    let sigma = 0.5 * c;
+    let omega = libm::sqrt(w2);
+    let s = libm::sqrt(((sigma - omega) * (sigma + omega)).max(0.0));
+    if 2.0 * s * h >= 1.0 {
+        let l2 = -(sigma + s);
+        let l1 = w2 / l2;
+        let (z1, z2) = (l1 * h, l2 * h);
+        let (p1, p2) = (phi_functions(z1), phi_functions(z2));
+        let gap = z1 - z2;
+        let mut psi = [0.0; 9];
+        psi[0] = (z1 * p1[0] - z2 * p2[0]) / gap;
+        let mut power = h;
+        for k in 1..9 {
+            psi[k] = power * (p1[k - 1] - p2[k - 1]) / gap;
+            power *= h;
+        }
+        return psi;
+    }
+    let mut doublings = 0;
+    let mut step = h;
+    // Halving is exact in binary: h = step 2^m to the bit.
+    while c * step >= SERIES_BELOW && doublings < 1100 {
+        step *= 0.5;
+        doublings += 1;
+    }
+    // psi_k(step) = step^(k+2) sum_n u_n / (n + k + 2)!, u_n = step^n D^(n)(0): u_0 = 1,
+    // u_1 = -c step, u_(n+2) = -c step u_(n+1) - (omega step)^2 u_n. The roots of the recurrence
+    // are lambda step, |lambda step| <= c step < 1/2, so |u_n| <= (n + 1) / 2^n: 24 terms leave
+    // less than 1e-23 of the first.
+    let (ch, wh2) = (c * step, w2 * step * step);
+    let mut psi = [0.0; 9];
+    let (mut u0, mut u1) = (1.0, -ch);
+    for n in 0..24 {
+        for (j, sum) in psi.iter_mut().enumerate() {
+            *sum += u0 * INVERSE_FACTORIALS[n + j];
+        }
+        let u2 = -ch * u1 - wh2 * u0;
+        u0 = u1;
+        u1 = u2;
+    }
+    let mut power = 1.0;
+    for value in &mut psi {
+        *value *= power;
+        power *= step;
+    }
+    for _ in 0..doublings {
+        let (d, b) = (psi[0], psi[1]);
+        let a = d + c * b;
+        let mut next = [0.0; 9];
+        next[0] = d * d - w2 * b * b;
+        next[1] = b * (a + d);
+        for k in 0..=6 {
+            let mut sum = a * psi[k + 2] + b * psi[k + 1];
+            // step^(k-i) / (k-i)!, from i = k down.
+            let mut power = 1.0;
+            for i in (0..=k).rev() {
+                sum += power * psi[i + 2];
+                power *= step / (k - i + 1) as f64;
+            }
+            next[k + 2] = sum;
+        }
+        psi = next;
+        step *= 2.0;
+    }
+    psi
+}
+
+/// phi_0 ..= phi_7 at a real z <= 0: phi_0 = e^z, phi_(n+1)(z) = (phi_n(z) - 1/n!) / z, i.e.
+/// phi_n(z) = sum_j z^j / (j + n)! (Hochbruck & Ostermann, Exponential integrators, Acta Numerica
+/// 19 (2010), Eq. 2.10), each positive. For z <= -8 by that recurrence, whose error shrinks by
+/// n / |z| < 1 a step; nearer 0 by the series at z / 2^m (|z / 2^m| <= 1/2, alternating terms at
+/// most 1/2^j of the first) and m doublings phi_k(2z) = 2^-k (phi_0 phi_k + sum_(j=1..k)
+/// phi_j / (k-j)!) (ibid., Eq. 2.14 in their notation), sums of positive terms.
+pub fn phi_functions(z: f64) -> [f64; 8] {
+    let mut phi = [0.0; 8];
+    if z <= -8.0 {
+        phi[0] = libm::exp(z);
+        for n in 1..8 {
+            phi[n] = (phi[n - 1] - INVERSE_FACTORIALS[n - 1]) / z;
+        }
+        return phi;
+    }
+    let mut doublings = 0;
+    let mut x = z;
+    while x < -0.5 {
+        x *= 0.5;
+        doublings += 1;
+    }
+    // 20 terms: |x|^20 / 20! < 1e-24.
+    let mut power = 1.0;
+    for j in 0..20 {
+        for (n, value) in phi.iter_mut().enumerate() {
+            *value += power * INVERSE_FACTORIALS[j + n];
+        }
+        power *= x;
+    }
+    for _ in 0..doublings {
+        let mut next = [0.0; 8];
+        let mut scale = 1.0;
+        for k in 0..8 {
+            let mut sum = phi[0] * phi[k];
+            for j in 1..=k {
+                sum += phi[j] * INVERSE_FACTORIALS[k - j];
+            }
+            next[k] = scale * sum;
+            scale *= 0.5;
+        }
+        phi = next;
+    }
+    phi
 }
 
 #[cfg(test)]
@@ -298,6 +477,100 @@ mod tests {
         assert!((q - exact).abs() < 1e-13, "{q} vs {exact}");
     }
 
+    /// An overdamped mode's free motion, the two real exponentials (Clough & Penzien, Eq. 2-53
+    /// in the form q = ((v0 - l2 q0) e^(l1 t) - (v0 - l1 q0) e^(l2 t)) / (l1 - l2), l1,2 = -zeta
+    /// omega +- omega sqrt(zeta^2 - 1)), and critical damping's q = e^(-omega t) (q0 + (v0 + omega
+    /// q0) t), for damping ratios from 1 to the 1.4e6 that rayleigh_beta = 1 gives the full
+    /// basis's top mode (2.8e6 rad/s) and steps far beyond the series' reach (c h up to 1e13).
+    /// The roots are taken without cancellation (l1 = omega^2 / l2); 1e-12 of the start's
+    /// amplitude covers the doublings' round-off (about 45 of them, a few eps each).
+    #[test]
+    fn an_overdamped_mode_creeps_as_its_two_exponentials_at_any_step() {
+        let cases = [(50.0, 1.0, 0.7), (50.0, 1.5, 0.7), (4e4, 22.0, 2.3e-5), (4e4, 1e3, 1e-3), (2.8e6, 1.4e6, 3e-4)];
+        for (w, zeta, h) in cases {
+            let (q0, v0) = (0.3, -2.0);
+            let s = ModeStep::new(w * w, 2.0 * zeta * w, h);
+            let (q, v, _) = s.apply(q0, v0, 0.0, 0.0);
+            let (exact_q, exact_v) = if zeta == 1.0 {
+                let e = (-w * h).exp();
+                (e * (q0 + (v0 + w * q0) * h), e * (v0 - w * (v0 + w * q0) * h))
+            } else {
+                let l2 = -w * (zeta + (zeta * zeta - 1.0).sqrt());
+                let l1 = w * w / l2;
+                let (e1, e2) = ((l1 * h).exp(), (l2 * h).exp());
+                let (k1, k2) = ((v0 - l2 * q0) / (l1 - l2), (v0 - l1 * q0) / (l1 - l2));
+                (k1 * e1 - k2 * e2, k1 * l1 * e1 - k2 * l2 * e2)
+            };
+            let amplitude = q0.abs() + v0.abs() / w;
+            assert!((q - exact_q).abs() < 1e-12 * amplitude, "w {w} zeta {zeta} h {h}: {q} vs {exact_q}");
+            assert!((v - exact_v).abs() < 1e-12 * amplitude * w, "w {w} zeta {zeta} h {h}: {v} vs {exact_v}");
+        }
+    }
+
+    /// An overdamped mode under a constant force creeps to its static deflection f / omega^2:
+    /// psi_0 = (1 - A) / omega^2 with A from the exponentials (where |l1| h >= 0.5, so that
+    /// 1 - A keeps its digits), and every coefficient keeps the equation's integral identity
+    /// omega^2 int q = int f - dv - c dq; both to 1e-12 relative (round-off of the doublings).
+    #[test]
+    fn an_overdamped_mode_under_a_force_creeps_to_its_static_deflection() {
+        for (w, zeta, h) in [(1e4f64, 1e3f64, 0.1f64), (1e4, 3.0, 1e-3), (2.8e6, 1.4e6, 0.5)] {
+            let (w2, c) = (w * w, 2.0 * zeta * w);
+            let l2 = -w * (zeta + (zeta * zeta - 1.0).sqrt());
+            let l1 = w2 / l2;
+            let a = (-l2 * (l1 * h).exp() + l1 * (l2 * h).exp()) / (l1 - l2);
+            let s = ModeStep::new(w2, c, h);
+            let expected = (1.0 - a) / w2;
+            assert!((s.q[2] - expected).abs() < 1e-12 * expected, "w {w} zeta {zeta}: {} vs {expected}", s.q[2]);
+            let (q0, v0, f0, r) = (0.01, -0.5, 30.0, 1e4);
+            let (q, v, i) = s.apply(q0, v0, f0, r);
+            let lhs = w2 * i;
+            let rhs = f0 * h + 0.5 * r * h * h - (v - v0) - c * (q - q0);
+            let scale = (f0 * h).abs() + 0.5 * r * h * h + c * (q.abs() + q0.abs());
+            assert!((lhs - rhs).abs() < 1e-12 * scale, "w {w} zeta {zeta}: {lhs} vs {rhs}");
+        }
+    }
+
+    /// The phi functions against their closed forms phi_1 = (e^z - 1) / z and phi_2 = (e^z - 1 -
+    /// z) / z^2 (with exp_m1: no cancellation for |z| >= 1, where phi_2's own is below 2 eps) on
+    /// both sides of the switch at z = -8, and each phi_n against phi_n(0) = 1/n! at z -> 0;
+    /// 1e-14 relative.
+    #[test]
+    fn the_phi_functions_match_their_closed_forms() {
+        for z in [-1.0, -3.0, -7.99, -8.01, -50.0, -1e6, -1e13] {
+            let phi = phi_functions(z);
+            let phi1 = z.exp_m1() / z;
+            let phi2 = (z.exp_m1() - z) / (z * z);
+            assert!((phi[1] - phi1).abs() <= 1e-14 * phi1, "z {z}: {} vs {phi1}", phi[1]);
+            assert!((phi[2] - phi2).abs() <= 1e-14 * phi2, "z {z}: {} vs {phi2}", phi[2]);
+            assert!(phi.iter().all(|p| *p >= 0.0 && p.is_finite()), "z {z}: {phi:?}");
+        }
+        let phi = phi_functions(-1e-9);
+        for (n, p) in phi.iter().enumerate() {
+            let exact = INVERSE_FACTORIALS[n];
+            assert!((p - exact).abs() <= 1e-8 * exact, "n {n}: {p} vs {exact}");
+        }
+    }
+
+    /// Where the roots part by 1 / h, the two forms of an overdamped mode's responses (the
+    /// roots apart, and the doublings) agree: all nine psi to 1e-13 relative (the doublings'
+    /// loss here, c h = 7, is about 2^4 eps; a 80-digit series gave both to 3e-16).
+    #[test]
+    fn the_overdamped_forms_agree_where_the_roots_part() {
+        let (w, zeta) = (100.0f64, 1.01f64);
+        let (w2, c) = (w * w, 2.0 * zeta * w);
+        // s as overdamped_responses takes it, so that the two calls fall either side.
+        let s = ((0.5 * c - w) * (0.5 * c + w)).sqrt();
+        let h = 1.0 / (2.0 * s);
+        // Two ulps either side of the switch (psi_6 ~ h^8 moves by 4e-15 between them).
+        let (above, below) = (f64::from_bits(h.to_bits() + 2), f64::from_bits(h.to_bits() - 2));
+        assert!(2.0 * s * above >= 1.0 && 2.0 * s * below < 1.0);
+        let apart = overdamped_responses(w2, c, above);
+        let close = overdamped_responses(w2, c, below);
+        for (k, (a, b)) in apart.iter().zip(close).enumerate() {
+            assert!((a - b).abs() <= 1e-13 * a.abs().max(b.abs()), "psi_{}: {a} vs {b}", k as i32 - 2);
+        }
+    }
+
     /// q'' + c q' + omega^2 q = f(t) integrated by the classical Runge-Kutta method at h / 20 000,
     /// with int q, int q s and int q s^2 (s = t/h) alongside: (q, v, int q, int q s, int q s^2).
     fn runge_kutta(w2: f64, c: f64, h: f64, q0: f64, v0: f64, f: impl Fn(f64) -> f64) -> [f64; 5] {
@@ -334,6 +607,11 @@ mod tests {
             (200.0, 0.05, 1.01 * CUBIC_SERIES_BELOW / 200.0),
             (4e4, 0.01, 1e-3),
             (0.0, 0.0, 0.5),
+            // Overdamped (Rayleigh's stiffness-proportional damping): critical, and beyond, with
+            // c h up to 400 (Runge-Kutta's own step takes c dt = 0.02).
+            (200.0, 1.0, 0.05),
+            (200.0, 3.0, 0.05),
+            (200.0, 50.0, 0.02),
         ];
         for (w, zeta, h) in cases {
             let (w2, c) = (w * w, 2.0 * zeta * w);

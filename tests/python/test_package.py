@@ -513,3 +513,19 @@ def test_examples_are_the_repository_s_scenarios_from_a_checkout():
     found = beam_impact.examples()
     assert sorted(found) == sorted(p.name for p in (Path(__file__).resolve().parents[2] / "examples").glob("*.toml"))
     assert all(Path(p).is_file() for p in found.values())
+
+
+def test_simulate_max_steps_is_enforced_inside_the_fmus_do_step():
+    """Issue 40: `simulate(max_steps=)` was only a check before the FMU ran (doStep had a built-in
+    1e8 alone); now it is also the FMU's `solver.max_steps`, enforced at every internal step of
+    doStep. The paper method adds a step wherever it locates a contact change: a limit at the
+    plan's own count passes the check before the run and is reached inside it, with the FMU's
+    message naming the limit and the time reached."""
+    from beam_impact import _native
+
+    needed = _native.check_run({"method": 1.0}, 0.3, 10**9)
+    with pytest.raises(beam_impact.SimulationError, match=rf"max_steps = {needed} internal steps reached at t = "):
+        beam_impact.simulate(fmu_path(), {"method": 1, "duration": 0.3}, max_steps=needed)
+    # A limit with room runs to the end.
+    assert beam_impact.simulate(fmu_path(), {"method": 1, "duration": 0.3}, max_steps=2 * needed)["trusted"] in (
+        True, False)

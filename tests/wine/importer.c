@@ -144,7 +144,7 @@ static void *need(lib_t lib, const char *name) {
 }
 
 /* From modelDescription.xml (FMI 2 guid = FMI 3 instantiationToken; the value references are the same). */
-#define TOKEN "{f7dc6564-56ec-05cf-1f94-af1c62e0d66c}"
+#define TOKEN "{3e81ad9f-aae8-290d-6fac-3c95a4a0dd02}"
 #define VR_LOG_PATH 27
 #define N_OUTPUTS 8
 #define N_PEAKS 5 /* the first N_PEAKS outputs */
