@@ -279,7 +279,7 @@ fn long_wave_raos() -> String {
 /// The cost of a sea state (issue 42) beside fixed supports, side by side in one process: the
 /// default scenario (converged method, 3 s) with fixed supports, and on a vessel in a JONSWAP sea
 /// (Hs 2.5 m, Tp 8 s, head seas, 1000 components, the hinge 10 m aft and the clamp 15 m forward,
-/// the long-wave RAOs of [`long_wave_raos`]): the record's motion table built (1000 components
+/// the ship-like RAOs of `long_wave_raos`): the record's motion table built (1000 components
 /// at the 601 samples of 3 s every 5 ms), then the run with it; medians of `runs`.
 pub fn sea_benchmark(runs: usize) -> Result<String> {
     use crate::model::sea::RaoTable;
