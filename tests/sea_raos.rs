@@ -2,8 +2,9 @@
 //! their interpolation.
 //!
 //! The real file is the Marine Systems Simulator's supply vessel (VERES 4.02.3, Lpp 82.8 m, MIT
-//! licence), read where the project keeps it, `../shared/data/mss-supply-vessel/supply.re1`
-//! (`BEAM_IMPACT_SUPPLY_RE1` points elsewhere); it is never copied into the repository.
+//! licence), read where the project keeps it, `../shared/data/mss-supply-vessel/supply.re1` (or
+//! beside a folder above the checkout, or `/work/shared/data/...`, see [`supply_path`];
+//! `BEAM_IMPACT_SUPPLY_RE1` points elsewhere); it is never copied into the repository.
 //!
 //! The long-wave limits that prove the axes, the phase convention and the heading (a body that
 //! follows a long wave's surface; Faltinsen, *Sea Loads on Ships and Offshore Structures*, 1990,
@@ -17,10 +18,19 @@
 use beam_impact::model::sea::raos::{RaoSource, RaoTable, MAX_ROWS};
 use nalgebra::Complex;
 
-fn supply_path() -> std::path::PathBuf {
-    std::env::var_os("BEAM_IMPACT_SUPPLY_RE1").map(Into::into).unwrap_or_else(|| {
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/mss-supply-vessel/supply.re1")
-    })
+/// Where the MSS supply vessel's `.re1` is: `BEAM_IMPACT_SUPPLY_RE1`, else `shared/data/...` beside
+/// the checkout or beside any folder above it (a clone elsewhere on this machine, as CI's), else
+/// the workplace's `/work/shared/data/...`; the first that exists (the first candidate when none
+/// does, for the message).
+pub fn supply_path() -> std::path::PathBuf {
+    if let Some(path) = std::env::var_os("BEAM_IMPACT_SUPPLY_RE1") {
+        return path.into();
+    }
+    let tail = "shared/data/mss-supply-vessel/supply.re1";
+    let manifest = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut candidates: Vec<std::path::PathBuf> = manifest.ancestors().skip(1).map(|a| a.join(tail)).collect();
+    candidates.push(std::path::Path::new("/work").join(tail));
+    candidates.iter().find(|p| p.is_file()).unwrap_or(&candidates[0]).clone()
 }
 
 fn supply() -> RaoTable {

@@ -48,9 +48,7 @@ fn three_hours_of_elevation_give_the_requested_hs_within_two_percent() {
 
 #[test]
 fn three_hours_of_a_deck_points_heave_match_the_spectral_integral_within_three_percent() {
-    let path = std::env::var_os("BEAM_IMPACT_SUPPLY_RE1").map(std::path::PathBuf::from).unwrap_or_else(|| {
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/mss-supply-vessel/supply.re1")
-    });
+    let path = crate::sea_raos::supply_path();
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let raos = RaoTable::parse_re1(&text).unwrap();
     let fixture = RaoTable::parse_csv(include_str!("fixtures/sea-raos.csv")).unwrap();
