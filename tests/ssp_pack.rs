@@ -64,8 +64,10 @@ fn pack_ssp_writes_the_ssd_and_both_fmus_under_resources() {
     // The vessel FMU: its description and the Linux library, exporting the FMI 2 functions.
     let vessel = unzip(&entries[2].1);
     let vessel_names: Vec<&str> = vessel.iter().map(|e| e.0.as_str()).collect();
-    assert_eq!(vessel_names, ["modelDescription.xml", "binaries/linux64/VesselMotion.so"]);
+    assert_eq!(vessel_names, ["modelDescription.xml", "binaries/linux64/VesselMotion.so", "resources/raos.csv"]);
     assert_eq!(vessel[0].1, beam_impact::ssp::vessel::DESCRIPTION.as_bytes());
+    // The irregular sea's RAO table: the example vessel's, byte for byte.
+    assert_eq!(vessel[2].1, std::fs::read("examples/vessel-sea-raos.csv").unwrap());
     let library = &vessel[1].1;
     assert_eq!(&library[..4], b"\x7fELF");
     assert!(library.windows(10).any(|w| w == b"fmi2DoStep"));

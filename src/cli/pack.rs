@@ -127,7 +127,13 @@ pub fn pack(request: &Request) -> Result<()> {
     let written = beam_impact::fmi::pack::pack_platforms_with(&binaries, &request.out, &tool, packed.as_ref())
         .and_then(|fmus| match (&ssd, &vessel) {
             (Some(ssd), Some(vessel)) => {
-                let ssp = beam_impact::ssp::archive::write_ssp(&request.out, ssd, &fmus[0], vessel)?;
+                let ssp = beam_impact::ssp::archive::write_ssp(
+                    &request.out,
+                    ssd,
+                    &fmus[0],
+                    vessel,
+                    beam_impact::ssp::vessel::EXAMPLE_RAOS,
+                )?;
                 Ok(fmus.into_iter().chain(std::iter::once(ssp)).collect())
             }
             _ => Ok(fmus),

@@ -168,16 +168,17 @@ pub fn system_structure(beam: &[Variable], generation_tool: &str) -> Result<Stri
     // Every unit a connector or binding names, with its base units (BeamImpact's table, else the
     // vessel's description).
     let vessel_units = vessel::units();
-    let mut units: Vec<(String, [i32; 4])> = Vec::new();
+    let mut units: Vec<(String, [i32; 4], f64)> = Vec::new();
     let named = vessel_connectors.iter().chain(&beam_connectors).filter_map(|c| c.unit.clone());
     for unit in named.chain(beam_bindings.iter().map(|b| b.2.clone())) {
         if units.iter().any(|u| u.0 == unit) {
             continue;
         }
-        let exponents = base_units(&unit)
-            .or_else(|| vessel_units.iter().find(|u| u.0 == unit).map(|u| u.1))
+        let (exponents, factor) = base_units(&unit)
+            .map(|e| (e, 1.0))
+            .or_else(|| vessel_units.iter().find(|u| u.0 == unit).map(|u| (u.1, u.2)))
             .ok_or_else(|| Error::Other(format!("cannot write the SSP: no base units known for the unit `{unit}`")))?;
-        units.push((unit, exponents));
+        units.push((unit, exponents, factor));
     }
 
     let (start, stop, _) = crate::fmi::description::DEFAULT_EXPERIMENT;
@@ -195,7 +196,8 @@ pub fn system_structure(beam: &[Variable], generation_tool: &str) -> Result<Stri
     let _ = writeln!(
         out,
         "  <ssd:System name=\"{SYSTEM_NAME}\" description=\"BeamImpact's gangway and arrestor on a vessel in a regular \
-         head sea: the vessel's heave and pitch drive the supports, the support reactions load its deck\">"
+         head sea (or, with sea.significant_wave_height > 0, an irregular sea through the vessel's RAO table): the \
+         vessel's motion drives the supports, the support reactions load its deck\">"
     );
     out.push_str("    <ssd:Elements>\n");
     component(&mut out, VESSEL_COMPONENT, VESSEL_SOURCE, &vessel_connectors, &vessel_bindings);
@@ -211,12 +213,15 @@ pub fn system_structure(beam: &[Variable], generation_tool: &str) -> Result<Stri
     out.push_str("    </ssd:Connections>\n");
     out.push_str("  </ssd:System>\n");
     out.push_str("  <ssd:Units>\n");
-    for (name, exponents) in &units {
+    for (name, exponents, factor) in &units {
         let mut attributes = String::new();
         for (base, e) in ["kg", "m", "s", "rad"].iter().zip(exponents) {
             if *e != 0 {
                 let _ = write!(attributes, " {base}=\"{e}\"");
             }
+        }
+        if *factor != 1.0 {
+            let _ = write!(attributes, " factor=\"{}\"", number(*factor));
         }
         let _ =
             writeln!(out, "    <ssc:Unit name=\"{}\">\n      <ssc:BaseUnit{attributes}/>\n    </ssc:Unit>", esc(name));
@@ -308,9 +313,14 @@ mod tests {
             )));
         }
         assert_eq!(text.matches("<ssd:Connection ").count(), 12);
-        for unit in ["m", "m/s2", "rad/s", "N", "N.m", "Pa", "kg"] {
+        for unit in ["m", "m/s2", "rad/s", "N", "N.m", "Pa", "kg", "deg"] {
             assert!(text.contains(&format!("<ssc:Unit name=\"{unit}\">")), "{unit}");
         }
+        assert!(text.contains("<ssc:Unit name=\"deg\">\n      <ssc:BaseUnit rad=\"1\" factor=\"0.017453292519943295\"/>"));
+        // The irregular sea's parameters are bound, the regular wave (Hs 0) the default.
+        assert!(text.contains(
+            "<ssv:Parameter name=\"sea.significant_wave_height\">\n                    <ssv:Real value=\"0.0\" unit=\"m\"/>"
+        ));
         assert!(text.contains(
             "<ssv:Parameter name=\"wave.period\">\n                    <ssv:Real value=\"9.0\" unit=\"s\"/>"
         ));
