@@ -107,8 +107,10 @@ fn number(value: f64) -> String {
 
 /// The text of `SystemStructure.ssd` for BeamImpact's variables `beam` (its description's table:
 /// the packed scenario's start values) and the embedded vessel description; `generation_tool`
-/// names this build. Errors name a variable the SSD needs that a description lacks.
-pub fn system_structure(beam: &[Variable], generation_tool: &str) -> Result<String> {
+/// names this build; `vessel_values` binds those vessel parameters to other values than their start
+/// values (a scenario's `[sea]`: [`vessel::sea_bindings`]). Errors name a variable the SSD needs
+/// that a description lacks.
+pub fn system_structure(beam: &[Variable], generation_tool: &str, vessel_values: &[(&str, f64)]) -> Result<String> {
     let vessel_vars = vessel::real_variables()?;
     let find_beam = |name: &str| -> Result<&Variable> {
         beam.iter().find(|v| v.name == name).ok_or_else(|| {
@@ -136,7 +138,15 @@ pub fn system_structure(beam: &[Variable], generation_tool: &str) -> Result<Stri
     }
     let vessel_parameters: Vec<&RealVariable> = vessel_vars.iter().filter(|v| v.causality == "parameter").collect();
     let mut vessel_bindings = Vec::new();
+    if let Some((name, _)) = vessel_values.iter().find(|(n, _)| !vessel_parameters.iter().any(|v| v.name == *n)) {
+        return Err(Error::Other(format!("cannot write the SSP: VesselMotion.xml has no Real parameter {name}")));
+    }
     for v in &vessel_parameters {
+        if let Some((_, value)) = vessel_values.iter().find(|(n, _)| *n == v.name) {
+            vessel_connectors.push(Connector { name: v.name.clone(), kind: "parameter", unit: Some(v.unit.clone()) });
+            vessel_bindings.push((v.name.clone(), number(*value), v.unit.clone()));
+            continue;
+        }
         let start = v.start.ok_or_else(|| {
             Error::Other(format!("cannot write the SSP: VesselMotion.xml gives the parameter {} no start", v.name))
         })?;
@@ -306,7 +316,7 @@ mod tests {
     /// is defined (what Ecos and libcosim check when they load the file).
     #[test]
     fn connections_name_declared_connectors_and_units_are_defined() {
-        let text = system_structure(&crate::fmi::variables::table(), "test").unwrap();
+        let text = system_structure(&crate::fmi::variables::table(), "test", &[]).unwrap();
         for name in MOTION_NAMES {
             assert!(text.contains(&format!(
                 "startElement=\"vessel\" startConnector=\"{name}\" endElement=\"gangway\" endConnector=\"{name}\""
@@ -316,7 +326,9 @@ mod tests {
         for unit in ["m", "m/s2", "rad/s", "N", "N.m", "Pa", "kg", "deg"] {
             assert!(text.contains(&format!("<ssc:Unit name=\"{unit}\">")), "{unit}");
         }
-        assert!(text.contains("<ssc:Unit name=\"deg\">\n      <ssc:BaseUnit rad=\"1\" factor=\"0.017453292519943295\"/>"));
+        assert!(
+            text.contains("<ssc:Unit name=\"deg\">\n      <ssc:BaseUnit rad=\"1\" factor=\"0.017453292519943295\"/>")
+        );
         // The irregular sea's parameters are bound, the regular wave (Hs 0) the default.
         assert!(text.contains(
             "<ssv:Parameter name=\"sea.significant_wave_height\">\n                    <ssv:Real value=\"0.0\" unit=\"m\"/>"

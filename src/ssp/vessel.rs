@@ -11,6 +11,8 @@ use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, ZipWriter};
 
 use crate::fmi::pack::Platform;
+use crate::model::sea::raos::RaoSource;
+use crate::model::sea::SeaSettings;
 use crate::{Error, Result};
 
 /// The FMU's model identifier (its library's file name without the extension).
@@ -104,6 +106,58 @@ pub fn units() -> Vec<(String, [i32; 4], f64)> {
         units.push((name, exponents, factor));
     }
     units
+}
+
+/// The vessel FMU's parameters for a scenario's `[sea]` (`pack --ssp --scenario`): the sea state,
+/// the deck points and the arrestor's direction, each under its FMU name (0 for a default left
+/// out: DNV's gamma, the default frequency range). The SSD binds them, so the SSP runs that sea.
+/// A support on a fixed platform (a deck point left out) is refused: the SSD binds Real parameters
+/// only, and `hinge.on_vessel` / `clamp.on_vessel` are Boolean.
+pub fn sea_bindings(sea: &SeaSettings) -> Result<Vec<(&'static str, f64)>> {
+    let (Some(hinge), Some(clamp)) = (sea.hinge_point, sea.clamp_point) else {
+        return Err(Error::Other(
+            "cannot pack the [sea] into GangwayOnVessel.ssp: sea.hinge_point and sea.clamp_point must both be given \
+             (the SSP binds the vessel FMU's Real parameters; a support on a fixed platform is its Boolean \
+             hinge.on_vessel or clamp.on_vessel, set in the tool)"
+                .into(),
+        ));
+    };
+    Ok(vec![
+        ("sea.significant_wave_height", sea.significant_wave_height),
+        ("sea.peak_period", sea.peak_period),
+        ("sea.spectrum", f64::from(sea.spectrum.index())),
+        ("sea.peak_enhancement", sea.peak_enhancement.unwrap_or(0.0)),
+        ("sea.heading", sea.heading),
+        ("sea.seed", sea.seed as f64),
+        ("sea.components", f64::from(sea.components)),
+        ("sea.frequency_min", sea.frequency_min.unwrap_or(0.0)),
+        ("sea.frequency_max", sea.frequency_max.unwrap_or(0.0)),
+        ("sea.time_shift", sea.time_shift),
+        ("hinge.x", hinge[0]),
+        ("hinge.y", hinge[1]),
+        ("clamp.x", clamp[0]),
+        ("clamp.y", clamp[1]),
+        ("sea.arrestor_direction", sea.arrestor_direction),
+    ])
+}
+
+/// The vessel FMU's RAO resource for a `[sea]` whose file was read as `text`: the text itself for
+/// our CSV (the FMU parses the very bytes the CLI did), the table written as our CSV for a VERES
+/// `.re1` ([`crate::model::sea::raos_write`]).
+pub fn rao_resource(sea: &SeaSettings, text: &str) -> Result<String> {
+    let table =
+        sea.rao_table.as_ref().ok_or_else(|| Error::Other(format!("{}: the RAO file is not loaded", sea.raos)))?;
+    Ok(match &table.source {
+        RaoSource::Csv => text.to_string(),
+        RaoSource::Veres { ship, .. } => crate::model::sea::raos_write::write_csv(
+            table,
+            &format!(
+                "The RAOs of {} (VERES .re1: {}), converted to our CSV by beam-impact pack --ssp (docs/sea-states.md)",
+                crate::error::bounded_line(ship),
+                crate::error::bounded_line(&sea.raos)
+            ),
+        ),
+    })
 }
 
 /// The largest library packed, bytes (the vessel's are tens of kB).
