@@ -40,6 +40,13 @@
  * that neglects (the accelerations the loads would give the vessel alone, before added mass and
  * hydrostatics resist).
  *
+ * The irregular sea (issue 42; docs/sea-states.md, docs/ssp.md): with sea.significant_wave_height
+ * > 0 the nine support motions, the elevation, heave and pitch are instead those of a long-crested
+ * irregular sea through the vessel's RAO table resources/raos.csv (our CSV), at the record's time
+ * t + sea.time_shift, from x forward, y to port (hinge.y, clamp.y) of the motion reference point, the
+ * clamp turning by -pitch cos psi + roll sin psi (psi = sea.arrestor_direction): the section "the
+ * irregular sea" below. 0 (the default) keeps the regular wave.
+ *
  * The outputs are algebraic in time and in the inputs; the FMU has no state, a step only
  * advances its time. The FMI 2 types come from fmi2_abi.h beside this file (written from the
  * standard: no header files of the standard are needed to build it). Every one of the 25 common and 9 co-simulation functions exists; the
