@@ -18,12 +18,15 @@ resource; `sea.significant_wave_height` above 0 switches it from the regular wav
   A component drawn out of order, a bin off by one, an RAO interpolated in amplitude and phase
   rather than in its complex value or a mirrored heading with the wrong signs would move the
   columns by percents.
+- `pack --ssp --scenario` with a [sea] naming a VERES .re1 (the MSS supply vessel's, when it lies
+  beside the repository): the SSD's bindings and the table written as our CSV give the same
+  columns as `beam-impact sea` reading the .re1 (6.6e-15 measured).
 - One regular-wave case equal to today's vessel FMU: a one-component sea over constant RAOs is a
   regular wave; the irregular and the regular branch give the same nine outputs to 1e-12.
 - A hostile RAO resource (NaN, a missing column, a file over the size limit, a folder) fails
   fmi2ExitInitializationMode with one line naming it; the FMU never crashes.
 
-About 10 s (two `beam-impact sea` records, five FMU runs of 12 000 steps at most).
+About 10 s (three `beam-impact sea` records, one `pack --ssp`, six FMU runs of 12 000 steps at most).
 """
 
 from __future__ import annotations
@@ -238,3 +241,49 @@ def test_a_hostile_rao_resource_is_one_line_and_no_crash(vessel_fmu, tmp_path, c
     errors = [m for status, _, m in vessel.messages if status == 3]
     assert len(errors) == 1 and "\n" not in errors[0] and expected in errors[0], vessel.messages
     vessel.fmu.freeInstance()
+
+
+SUPPLY = ROOT.parent / "shared" / "data" / "mss-supply-vessel" / "supply.re1"
+
+
+def host_library() -> Path:
+    exe = Path(binary())
+    for candidate in (exe.with_name("libbeam_impact.so"), exe.with_name("deps") / "libbeam_impact.so"):
+        if candidate.is_file():
+            return candidate
+    pytest.skip(f"no libbeam_impact.so beside {exe} to pack with")
+
+
+@pytest.mark.skipif(not SUPPLY.exists(), reason=f"{SUPPLY} (the MSS supply vessel's VERES RAOs) is not beside the repository")
+def test_a_veres_sea_packed_with_its_scenario_equals_beam_impact_sea(tmp_path):
+    """`pack --ssp --scenario` with a [sea] naming a VERES .re1 (the MSS supply vessel's, read where
+    it lies, copied beside the scenario only for this test): the SSD binds the sea, the vessel FMU's
+    resources/raos.csv is the table written as our CSV (src/model/sea/raos_write.rs), and the FMU with
+    the SSD's bindings gives `beam-impact sea`'s columns on that scenario (which reads the .re1
+    itself) to the same 1e-12: the CSV's amplitudes and phases in shortest round-trip form give back
+    each complex RAO to a few ulp. Heading 150 deg, between VERES's headings, on its mirrored side."""
+    shutil.copy(SUPPLY, tmp_path / "supply.re1")
+    (tmp_path / "supply.toml").write_text(
+        'duration = 3.0\n\n[sea]\nsignificant_wave_height = 2.0\npeak_period = 9.0\nheading = 150.0\nseed = 5\n'
+        'raos = "supply.re1"\nhinge_point = [-8.0, 2.0, 6.0]\nclamp_point = [12.0, 1.0, 6.0]\narrestor_direction = 160.0\n')
+    out = tmp_path / "fmu"
+    done = subprocess.run([binary(), "pack", "--ssp", "--no-zigbuild", "--library", str(host_library()), "--scenario",
+                           str(tmp_path / "supply.toml"), "--out", str(out)], capture_output=True, text=True, timeout=300,
+                          env={**os.environ, "PATH": "/usr/local/bin:/usr/bin:/bin"})
+    assert done.returncode == 0, done.stderr
+    ssp = out / "GangwayOnVessel.ssp"
+    with zipfile.ZipFile(ssp) as z:
+        z.extract("resources/VesselMotion.fmu", tmp_path)
+    fmu = tmp_path / "resources" / "VesselMotion.fmu"
+    with zipfile.ZipFile(fmu) as z:
+        assert z.read("resources/raos.csv").startswith(b"# The RAOs of ")
+    sys.path.insert(0, str(Path(__file__).parent))
+    import test_ssp
+
+    bound = test_ssp.bindings(ssp)["vessel"]
+    assert bound["sea.significant_wave_height"] == 2.0 and bound["sea.heading"] == 150.0 and bound["clamp.y"] == 1.0
+    record = sea_record(tmp_path, tmp_path / "supply.toml", 30.0)
+    got, messages = simulate(fmu, tmp_path / "supply", bound, len(record) - 1)
+    assert not messages, messages
+    worst = assert_columns_equal(got, record)
+    print(f"largest difference: {worst:.2e} of the column's largest value")
