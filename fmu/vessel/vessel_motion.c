@@ -724,12 +724,15 @@ static int sea_make(Sea *sea, const double *p, const fmi2Boolean *on, const char
     char *text;
     size_t len = 0;
     double wp, lo, hi, flo, fhi, dw, fraction;
-    int i, count = (int)p[VR_SEA_COMPONENTS], ok = 0;
-    uint64_t state = (uint64_t)p[VR_SEA_SEED];
+    int i, count, ok = 0;
+    uint64_t state;
     Cx(*column)[6] = NULL;
     char detail[400];
     sea_free(sea);
     if (!sea_parameters_valid(p, on, why, n)) return 0;
+    /* whole numbers in range now (converting them before the check could overflow) */
+    count = (int)p[VR_SEA_COMPONENTS];
+    state = (uint64_t)p[VR_SEA_SEED];
     text = read_rao_file(resources, &len, why, n);
     if (text == NULL) return 0;
     if (!parse_csv(text, len, &table, detail, sizeof detail)) {

@@ -24,7 +24,9 @@ resource; `sea.significant_wave_height` above 0 switches it from the regular wav
 - One regular-wave case equal to today's vessel FMU: a one-component sea over constant RAOs is a
   regular wave; the irregular and the regular branch give the same nine outputs to 1e-12.
 - A hostile RAO resource (NaN, a missing column, a file over the size limit, a folder) fails
-  fmi2ExitInitializationMode with one line naming it; the FMU never crashes.
+  fmi2ExitInitializationMode with one line naming it; the FMU never crashes. So does a sea.*
+  parameter out of its range (the ranges of the [sea] fields; a components' range holding less than
+  95 % of the variance with the number beam-impact gives).
 
 About 10 s (three `beam-impact sea` records, one `pack --ssp`, six FMU runs of 12 000 steps at most).
 """
@@ -287,3 +289,37 @@ def test_a_veres_sea_packed_with_its_scenario_equals_beam_impact_sea(tmp_path):
     assert not messages, messages
     worst = assert_columns_equal(got, record)
     print(f"largest difference: {worst:.2e} of the column's largest value")
+
+
+BAD_SEA = [
+    ({"sea.significant_wave_height": 30.0}, "sea.significant_wave_height (m) must be in (0, 20]"),
+    ({"sea.significant_wave_height": -1.0}, "sea.significant_wave_height (m) must be in (0, 20]"),
+    ({"sea.peak_period": 1.0}, "sea.peak_period (s) must be in [2, 30], got 1"),
+    ({"sea.peak_period": 3.0}, "steeper than a sea can be"),
+    ({"sea.spectrum": 2.0}, "sea.spectrum must be 0 (JONSWAP) or 1 (Pierson-Moskowitz), got 2"),
+    ({"sea.spectrum": 1.0, "sea.peak_enhancement": 3.3}, "sea.peak_enhancement must be 0 with sea.spectrum = 1"),
+    ({"sea.heading": 400.0}, "sea.heading (deg) must be in [0, 360], got 400"),
+    ({"sea.seed": 1e30}, "sea.seed must be a whole number from 0 to 2^53"),
+    ({"sea.seed": 0.5}, "sea.seed must be a whole number from 0 to 2^53"),
+    ({"sea.components": 0.0}, "sea.components must be a whole number from 1 to 100000, got 0"),
+    ({"sea.components": 1e12}, "sea.components must be a whole number from 1 to 100000"),
+    ({"sea.frequency_min": 0.05}, "not within the RAO file's frequencies, 0.1 to 3 rad/s"),
+    # 1.5 to 3 rad/s: the message beam-impact gives for this [sea] too
+    ({"sea.frequency_min": 1.5}, "range 1.5 to 3 rad/s holds 8.4 % of the spectrum's variance, less than 95 %"),
+    ({"clamp.y": 600.0}, "must be within 500 m of the motion reference point"),
+    ({"hinge.on_vessel": False, "clamp.on_vessel": False}, "no support is on the vessel"),
+]
+
+
+@pytest.mark.parametrize("parameters,expected", BAD_SEA, ids=[str(i) for i in range(len(BAD_SEA))])
+def test_a_bad_sea_parameter_is_one_line(vessel_fmu, tmp_path, parameters, expected):
+    vm.listen()
+    vessel = vm.Slave(vessel_fmu, "bad", tmp_path / "unzip")
+    vessel.fmu.setupExperiment(startTime=0.0)
+    vessel.fmu.enterInitializationMode()
+    vessel.set_values({"sea.significant_wave_height": 2.5, **parameters})
+    with pytest.raises(Exception, match="status 3"):
+        vessel.fmu.exitInitializationMode()
+    errors = [m for status, _, m in vessel.messages if status == 3]
+    assert len(errors) == 1 and "\n" not in errors[0] and expected in errors[0], vessel.messages
+    vessel.fmu.freeInstance()
