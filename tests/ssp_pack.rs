@@ -64,8 +64,10 @@ fn pack_ssp_writes_the_ssd_and_both_fmus_under_resources() {
     // The vessel FMU: its description and the Linux library, exporting the FMI 2 functions.
     let vessel = unzip(&entries[2].1);
     let vessel_names: Vec<&str> = vessel.iter().map(|e| e.0.as_str()).collect();
-    assert_eq!(vessel_names, ["modelDescription.xml", "binaries/linux64/VesselMotion.so"]);
+    assert_eq!(vessel_names, ["modelDescription.xml", "binaries/linux64/VesselMotion.so", "resources/raos.csv"]);
     assert_eq!(vessel[0].1, beam_impact::ssp::vessel::DESCRIPTION.as_bytes());
+    // The irregular sea's RAO table: the example vessel's, byte for byte.
+    assert_eq!(vessel[2].1, std::fs::read("examples/vessel-sea-raos.csv").unwrap());
     let library = &vessel[1].1;
     assert_eq!(&library[..4], b"\x7fELF");
     assert!(library.windows(10).any(|w| w == b"fmi2DoStep"));
@@ -142,4 +144,57 @@ fn pack_ssp_onto_a_link_is_refused_before_any_fmu_is_written() {
     assert_eq!(code, Some(2), "{stderr}");
     assert!(stderr.contains("fmi3") && stderr.contains("symbolic link"), "{stderr}");
     assert!(std::fs::read(&earlier[0]).unwrap() == b"an earlier FMU", "the FMI 2 FMU replaced");
+}
+
+/// `pack --ssp --scenario examples/vessel-sea.toml` (issue 42): the [sea] goes to the vessel FMU. The
+/// SSD binds the sea state and the deck points (Hs 2.5 m switches the FMU to the irregular sea), the
+/// vessel FMU's resources/raos.csv is the scenario's RAO file byte for byte, and the BeamImpact
+/// FMU's packed scenario has no [sea] (its supports move as the vessel says).
+#[test]
+fn pack_ssp_with_a_sea_scenario_binds_the_sea_and_packs_its_raos() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fmu");
+    let (code, _, stderr) = pack_ssp(&["--scenario", "examples/vessel-sea.toml", "--out", out.to_str().unwrap()]);
+    assert_eq!(code, Some(0), "{stderr}");
+    let entries = unzip(&std::fs::read(out.join("GangwayOnVessel.ssp")).unwrap());
+    let ssd = String::from_utf8(entries[0].1.clone()).unwrap();
+    for (name, value, unit) in [
+        ("sea.significant_wave_height", "2.5", "m"),
+        ("sea.peak_period", "8.0", "s"),
+        ("sea.heading", "180.0", "deg"),
+        ("sea.seed", "1.0", "1"),
+        ("hinge.x", "-10.0", "m"),
+        ("clamp.x", "15.0", "m"),
+        ("sea.arrestor_direction", "180.0", "deg"),
+    ] {
+        let binding = format!(
+            "<ssv:Parameter name=\"{name}\">\n                    <ssv:Real value=\"{value}\" unit=\"{unit}\"/>"
+        );
+        assert!(ssd.contains(&binding), "{binding}");
+    }
+    let vessel = unzip(&entries[2].1);
+    assert_eq!(vessel[2].0, "resources/raos.csv");
+    assert_eq!(vessel[2].1, std::fs::read("examples/vessel-sea-raos.csv").unwrap());
+    let beam = unzip(&entries[1].1);
+    let scenario = beam.iter().find(|e| e.0 == "resources/scenario.toml").expect("the packed scenario");
+    let text = String::from_utf8(scenario.1.clone()).unwrap();
+    assert!(!text.contains("[sea]") && text.contains("duration"), "{text}");
+}
+
+/// A [sea] with a support on a fixed platform cannot be bound (the SSD binds Real parameters; the
+/// supports' on_vessel switches are Boolean): one line, nothing written.
+#[test]
+fn pack_ssp_with_a_sea_on_one_support_is_one_line_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = dir.path().join("one.toml");
+    std::fs::copy("examples/vessel-sea-raos.csv", dir.path().join("vessel-sea-raos.csv")).unwrap();
+    let text = std::fs::read_to_string("examples/vessel-sea.toml").unwrap();
+    let one: String = text.lines().filter(|l| !l.starts_with("hinge_point")).map(|l| format!("{l}\n")).collect();
+    std::fs::write(&scenario, one).unwrap();
+    let out = dir.path().join("fmu");
+    let (code, _, stderr) = pack_ssp(&["--scenario", scenario.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert_ne!(code, Some(0));
+    assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("sea.hinge_point and sea.clamp_point must both be given"), "{stderr}");
+    assert!(!out.exists());
 }

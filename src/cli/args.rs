@@ -84,7 +84,9 @@ pub enum Command {
         /// A scenario file to pack as both FMUs' starting scenario, `resources/scenario.toml`
         /// (beams of sections included, which no FMU parameter can state): its values become the
         /// start values of the model descriptions, and the importer's parameters override its
-        /// uniform fields. Without it the FMUs start from the paper scenario.
+        /// uniform fields. Without it the FMUs start from the paper scenario. With --ssp a
+        /// scenario's [sea] goes to the vessel FMU: the SSD binds its sea state and deck points,
+        /// its RAO file becomes the vessel FMU's resources/raos.csv (docs/ssp.md).
         #[arg(long, value_name = "FILE.toml")]
         scenario: Option<PathBuf>,
         /// Also write DIR/GangwayOnVessel.ssp (SSP 1.0): the FMI 2.0 FMU and the vessel-motion

@@ -66,13 +66,22 @@ pub fn pack(request: &Request) -> Result<()> {
         beam_impact::ssp::archive::check_output(&request.out)?;
     }
     // The scenario is read, validated and checked for an FMU before anything is built.
+    // With --ssp a scenario's [sea] goes to the vessel FMU (issue 42): its sea state and deck points
+    // as the SSD's bindings of the vessel's parameters, its RAO table as the vessel FMU's resource;
+    // the BeamImpact FMU starts from the rest of the scenario (its supports move as the vessel says).
+    let mut sea_bindings = Vec::new();
+    let mut raos = beam_impact::ssp::vessel::EXAMPLE_RAOS.to_string();
     let packed = match &request.scenario {
         Some(path) => {
-            let scenario = super::common::read_scenario(path)?;
+            let mut scenario = super::common::read_scenario(path)?;
             let source = match path.file_name() {
                 Some(name) if path.as_os_str() != "-" => name.to_string_lossy().into_owned(),
                 _ => "standard input".to_string(),
             };
+            if let (true, Some(sea)) = (request.ssp, scenario.sea.take()) {
+                sea_bindings = beam_impact::ssp::vessel::sea_bindings(&sea)?;
+                raos = beam_impact::ssp::vessel::rao_resource(&sea, &read_raos(Path::new(&sea.raos))?)?;
+            }
             Some(beam_impact::fmi::pack::PackedScenario::new(&scenario, &source)?)
         }
         None => None,
@@ -109,7 +118,7 @@ pub fn pack(request: &Request) -> Result<()> {
         let table = packed
             .as_ref()
             .map_or_else(beam_impact::fmi::variables::table, |p| beam_impact::fmi::variables::table_for(&p.scenario));
-        Some(beam_impact::ssp::ssd::system_structure(&table, &tool)?)
+        Some(beam_impact::ssp::ssd::system_structure(&table, &tool, &sea_bindings)?)
     } else {
         None
     };
@@ -127,7 +136,7 @@ pub fn pack(request: &Request) -> Result<()> {
     let written = beam_impact::fmi::pack::pack_platforms_with(&binaries, &request.out, &tool, packed.as_ref())
         .and_then(|fmus| match (&ssd, &vessel) {
             (Some(ssd), Some(vessel)) => {
-                let ssp = beam_impact::ssp::archive::write_ssp(&request.out, ssd, &fmus[0], vessel)?;
+                let ssp = beam_impact::ssp::archive::write_ssp(&request.out, ssd, &fmus[0], vessel, &raos)?;
                 Ok(fmus.into_iter().chain(std::iter::once(ssp)).collect())
             }
             _ => Ok(fmus),
@@ -361,4 +370,15 @@ pub fn host_library() -> Result<PathBuf> {
             shown(&exe)
         ))
     })
+}
+
+/// The text of a `[sea]`'s RAO file, read again for the vessel FMU's resource (bounded as
+/// `scenario_file::load_raos` reads it).
+fn read_raos(path: &Path) -> Result<String> {
+    use beam_impact::record::output::{check_size, open_regular_input, read_bounded};
+    let limit = beam_impact::scenario_file::MAX_RAO_BYTES;
+    let file = open_regular_input(path, "cannot read RAO file")?;
+    check_size(&file, limit, "the RAO file")
+        .and_then(|()| read_bounded(file, limit, "the RAO file"))
+        .map_err(|source| super::common::io("cannot read RAO file", path, source))
 }

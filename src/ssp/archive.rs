@@ -27,15 +27,17 @@ pub fn check_output(out_dir: &Path) -> Result<()> {
 
 /// Writes `out_dir/GangwayOnVessel.ssp` from `ssd_text` (the text of [`ssd::system_structure`],
 /// made before the FMUs are packed so that a description it cannot be written for stops `pack`
-/// early), the BeamImpact FMI 2 FMU at `beam_fmu` and the vessel-motion libraries built for each
-/// platform. The archive replaces an earlier one only when complete. Returns its path.
+/// early), the BeamImpact FMI 2 FMU at `beam_fmu`, the vessel-motion libraries built for each
+/// platform and the vessel's RAO table `raos` (our CSV; the vessel FMU's resource). The archive
+/// replaces an earlier one only when complete. Returns its path.
 pub fn write_ssp(
     out_dir: &Path,
     ssd_text: &str,
     beam_fmu: &Path,
     vessel_libraries: &[(Platform, PathBuf)],
+    raos: &str,
 ) -> Result<PathBuf> {
-    let vessel_fmu = super::vessel::pack_fmu(vessel_libraries)?;
+    let vessel_fmu = super::vessel::pack_fmu(vessel_libraries, raos)?;
     let what = "cannot read the BeamImpact FMU";
     let mut beam_bytes = Vec::new();
     open_regular_input(beam_fmu, what)?.take(MAX_FMU + 1).read_to_end(&mut beam_bytes).map_err(|source| Error::Io {

@@ -107,8 +107,10 @@ fn number(value: f64) -> String {
 
 /// The text of `SystemStructure.ssd` for BeamImpact's variables `beam` (its description's table:
 /// the packed scenario's start values) and the embedded vessel description; `generation_tool`
-/// names this build. Errors name a variable the SSD needs that a description lacks.
-pub fn system_structure(beam: &[Variable], generation_tool: &str) -> Result<String> {
+/// names this build; `vessel_values` binds those vessel parameters to other values than their start
+/// values (a scenario's `[sea]`: [`vessel::sea_bindings`]). Errors name a variable the SSD needs
+/// that a description lacks.
+pub fn system_structure(beam: &[Variable], generation_tool: &str, vessel_values: &[(&str, f64)]) -> Result<String> {
     let vessel_vars = vessel::real_variables()?;
     let find_beam = |name: &str| -> Result<&Variable> {
         beam.iter().find(|v| v.name == name).ok_or_else(|| {
@@ -136,7 +138,15 @@ pub fn system_structure(beam: &[Variable], generation_tool: &str) -> Result<Stri
     }
     let vessel_parameters: Vec<&RealVariable> = vessel_vars.iter().filter(|v| v.causality == "parameter").collect();
     let mut vessel_bindings = Vec::new();
+    if let Some((name, _)) = vessel_values.iter().find(|(n, _)| !vessel_parameters.iter().any(|v| v.name == *n)) {
+        return Err(Error::Other(format!("cannot write the SSP: VesselMotion.xml has no Real parameter {name}")));
+    }
     for v in &vessel_parameters {
+        if let Some((_, value)) = vessel_values.iter().find(|(n, _)| *n == v.name) {
+            vessel_connectors.push(Connector { name: v.name.clone(), kind: "parameter", unit: Some(v.unit.clone()) });
+            vessel_bindings.push((v.name.clone(), number(*value), v.unit.clone()));
+            continue;
+        }
         let start = v.start.ok_or_else(|| {
             Error::Other(format!("cannot write the SSP: VesselMotion.xml gives the parameter {} no start", v.name))
         })?;
@@ -168,16 +178,17 @@ pub fn system_structure(beam: &[Variable], generation_tool: &str) -> Result<Stri
     // Every unit a connector or binding names, with its base units (BeamImpact's table, else the
     // vessel's description).
     let vessel_units = vessel::units();
-    let mut units: Vec<(String, [i32; 4])> = Vec::new();
+    let mut units: Vec<(String, [i32; 4], f64)> = Vec::new();
     let named = vessel_connectors.iter().chain(&beam_connectors).filter_map(|c| c.unit.clone());
     for unit in named.chain(beam_bindings.iter().map(|b| b.2.clone())) {
         if units.iter().any(|u| u.0 == unit) {
             continue;
         }
-        let exponents = base_units(&unit)
-            .or_else(|| vessel_units.iter().find(|u| u.0 == unit).map(|u| u.1))
+        let (exponents, factor) = base_units(&unit)
+            .map(|e| (e, 1.0))
+            .or_else(|| vessel_units.iter().find(|u| u.0 == unit).map(|u| (u.1, u.2)))
             .ok_or_else(|| Error::Other(format!("cannot write the SSP: no base units known for the unit `{unit}`")))?;
-        units.push((unit, exponents));
+        units.push((unit, exponents, factor));
     }
 
     let (start, stop, _) = crate::fmi::description::DEFAULT_EXPERIMENT;
@@ -195,7 +206,8 @@ pub fn system_structure(beam: &[Variable], generation_tool: &str) -> Result<Stri
     let _ = writeln!(
         out,
         "  <ssd:System name=\"{SYSTEM_NAME}\" description=\"BeamImpact's gangway and arrestor on a vessel in a regular \
-         head sea: the vessel's heave and pitch drive the supports, the support reactions load its deck\">"
+         head sea (or, with sea.significant_wave_height > 0, an irregular sea through the vessel's RAO table): the \
+         vessel's motion drives the supports, the support reactions load its deck\">"
     );
     out.push_str("    <ssd:Elements>\n");
     component(&mut out, VESSEL_COMPONENT, VESSEL_SOURCE, &vessel_connectors, &vessel_bindings);
@@ -211,12 +223,15 @@ pub fn system_structure(beam: &[Variable], generation_tool: &str) -> Result<Stri
     out.push_str("    </ssd:Connections>\n");
     out.push_str("  </ssd:System>\n");
     out.push_str("  <ssd:Units>\n");
-    for (name, exponents) in &units {
+    for (name, exponents, factor) in &units {
         let mut attributes = String::new();
         for (base, e) in ["kg", "m", "s", "rad"].iter().zip(exponents) {
             if *e != 0 {
                 let _ = write!(attributes, " {base}=\"{e}\"");
             }
+        }
+        if *factor != 1.0 {
+            let _ = write!(attributes, " factor=\"{}\"", number(*factor));
         }
         let _ =
             writeln!(out, "    <ssc:Unit name=\"{}\">\n      <ssc:BaseUnit{attributes}/>\n    </ssc:Unit>", esc(name));
@@ -301,16 +316,23 @@ mod tests {
     /// is defined (what Ecos and libcosim check when they load the file).
     #[test]
     fn connections_name_declared_connectors_and_units_are_defined() {
-        let text = system_structure(&crate::fmi::variables::table(), "test").unwrap();
+        let text = system_structure(&crate::fmi::variables::table(), "test", &[]).unwrap();
         for name in MOTION_NAMES {
             assert!(text.contains(&format!(
                 "startElement=\"vessel\" startConnector=\"{name}\" endElement=\"gangway\" endConnector=\"{name}\""
             )));
         }
         assert_eq!(text.matches("<ssd:Connection ").count(), 12);
-        for unit in ["m", "m/s2", "rad/s", "N", "N.m", "Pa", "kg"] {
+        for unit in ["m", "m/s2", "rad/s", "N", "N.m", "Pa", "kg", "deg"] {
             assert!(text.contains(&format!("<ssc:Unit name=\"{unit}\">")), "{unit}");
         }
+        assert!(
+            text.contains("<ssc:Unit name=\"deg\">\n      <ssc:BaseUnit rad=\"1\" factor=\"0.017453292519943295\"/>")
+        );
+        // The irregular sea's parameters are bound, the regular wave (Hs 0) the default.
+        assert!(text.contains(
+            "<ssv:Parameter name=\"sea.significant_wave_height\">\n                    <ssv:Real value=\"0.0\" unit=\"m\"/>"
+        ));
         assert!(text.contains(
             "<ssv:Parameter name=\"wave.period\">\n                    <ssv:Real value=\"9.0\" unit=\"s\"/>"
         ));

@@ -11,6 +11,8 @@ use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, ZipWriter};
 
 use crate::fmi::pack::Platform;
+use crate::model::sea::raos::RaoSource;
+use crate::model::sea::SeaSettings;
 use crate::{Error, Result};
 
 /// The FMU's model identifier (its library's file name without the extension).
@@ -21,6 +23,11 @@ pub const SOURCE: &str = include_str!("../../fmu/vessel/vessel_motion.c");
 pub const ABI_HEADER: &str = include_str!("../../fmu/vessel/fmi2_abi.h");
 /// Its `modelDescription.xml` (`fmu/vessel/VesselMotion.xml`).
 pub const DESCRIPTION: &str = include_str!("../../fmu/vessel/VesselMotion.xml");
+/// The example vessel's RAO table (`examples/vessel-sea-raos.csv`, our CSV), the FMU's
+/// `resources/raos.csv` unless a scenario's `[sea]` names another.
+pub const EXAMPLE_RAOS: &str = include_str!("../../examples/vessel-sea-raos.csv");
+/// Where the FMU holds the RAO table its irregular sea reads.
+pub const RAO_RESOURCE: &str = "resources/raos.csv";
 
 /// One Real variable of the description.
 #[derive(Clone, Debug, PartialEq)]
@@ -82,29 +89,84 @@ pub fn real_variables() -> Result<Vec<RealVariable>> {
     Ok(variables)
 }
 
-/// The base-unit exponents (kg, m, s, rad) of each unit the description defines, in its order.
-pub fn units() -> Vec<(String, [i32; 4])> {
+/// The base-unit exponents (kg, m, s, rad) and factor of each unit the description defines, in its
+/// order (`deg`: rad with the factor pi / 180).
+pub fn units() -> Vec<(String, [i32; 4], f64)> {
     let mut units = Vec::new();
     for block in DESCRIPTION.split("<Unit ").skip(1) {
         let head = &block[..block.find('>').unwrap_or(block.len())];
         let Some(name) = attribute(&format!(" {head}"), "name") else { continue };
         // `<Unit name="1"/>` has no base unit; otherwise the body runs to `</Unit>`.
         let body = if head.ends_with('/') { "" } else { &block[..block.find("</Unit>").unwrap_or(block.len())] };
-        let exponents = start_tags(body, "BaseUnit").first().map_or([0; 4], |tag| {
+        let tag = start_tags(body, "BaseUnit").first().copied();
+        let exponents = tag.map_or([0; 4], |tag| {
             ["kg", "m", "s", "rad"].map(|u| attribute(tag, u).and_then(|e| e.parse().ok()).unwrap_or(0))
         });
-        units.push((name, exponents));
+        let factor = tag.and_then(|tag| attribute(tag, "factor")).and_then(|f| f.parse().ok()).unwrap_or(1.0);
+        units.push((name, exponents, factor));
     }
     units
+}
+
+/// The vessel FMU's parameters for a scenario's `[sea]` (`pack --ssp --scenario`): the sea state,
+/// the deck points and the arrestor's direction, each under its FMU name (0 for a default left
+/// out: DNV's gamma, the default frequency range). The SSD binds them, so the SSP runs that sea.
+/// A support on a fixed platform (a deck point left out) is refused: the SSD binds Real parameters
+/// only, and `hinge.on_vessel` / `clamp.on_vessel` are Boolean.
+pub fn sea_bindings(sea: &SeaSettings) -> Result<Vec<(&'static str, f64)>> {
+    let (Some(hinge), Some(clamp)) = (sea.hinge_point, sea.clamp_point) else {
+        return Err(Error::Other(
+            "cannot pack the [sea] into GangwayOnVessel.ssp: sea.hinge_point and sea.clamp_point must both be given \
+             (the SSP binds the vessel FMU's Real parameters; a support on a fixed platform is its Boolean \
+             hinge.on_vessel or clamp.on_vessel, set in the tool)"
+                .into(),
+        ));
+    };
+    Ok(vec![
+        ("sea.significant_wave_height", sea.significant_wave_height),
+        ("sea.peak_period", sea.peak_period),
+        ("sea.spectrum", f64::from(sea.spectrum.index())),
+        ("sea.peak_enhancement", sea.peak_enhancement.unwrap_or(0.0)),
+        ("sea.heading", sea.heading),
+        ("sea.seed", sea.seed as f64),
+        ("sea.components", f64::from(sea.components)),
+        ("sea.frequency_min", sea.frequency_min.unwrap_or(0.0)),
+        ("sea.frequency_max", sea.frequency_max.unwrap_or(0.0)),
+        ("sea.time_shift", sea.time_shift),
+        ("hinge.x", hinge[0]),
+        ("hinge.y", hinge[1]),
+        ("clamp.x", clamp[0]),
+        ("clamp.y", clamp[1]),
+        ("sea.arrestor_direction", sea.arrestor_direction),
+    ])
+}
+
+/// The vessel FMU's RAO resource for a `[sea]` whose file was read as `text`: the text itself for
+/// our CSV (the FMU parses the very bytes the CLI did), the table written as our CSV for a VERES
+/// `.re1` ([`crate::model::sea::raos_write`]).
+pub fn rao_resource(sea: &SeaSettings, text: &str) -> Result<String> {
+    let table =
+        sea.rao_table.as_ref().ok_or_else(|| Error::Other(format!("{}: the RAO file is not loaded", sea.raos)))?;
+    Ok(match &table.source {
+        RaoSource::Csv => text.to_string(),
+        RaoSource::Veres { ship, .. } => crate::model::sea::raos_write::write_csv(
+            table,
+            &format!(
+                "The RAOs of {} (VERES .re1: {}), converted to our CSV by beam-impact pack --ssp (docs/sea-states.md)",
+                crate::error::bounded_line(ship),
+                crate::error::bounded_line(&sea.raos)
+            ),
+        ),
+    })
 }
 
 /// The largest library packed, bytes (the vessel's are tens of kB).
 const MAX_LIBRARY: u64 = 64 << 20;
 
 /// Packs the FMU from one library per platform (`binaries/<linux64|win64|darwin64>/VesselMotion.<so|dll|dylib>`),
-/// each read through the output guard's input check and required to name `fmi2Instantiate`;
-/// returns the FMU's bytes.
-pub fn pack_fmu(libraries: &[(Platform, PathBuf)]) -> Result<Vec<u8>> {
+/// each read through the output guard's input check and required to name `fmi2Instantiate`, and
+/// the RAO table `raos` (our CSV) as [`RAO_RESOURCE`]; returns the FMU's bytes.
+pub fn pack_fmu(libraries: &[(Platform, PathBuf)], raos: &str) -> Result<Vec<u8>> {
     let mut zip = ZipWriter::new(Cursor::new(Vec::new()));
     let options = SimpleFileOptions::default().compression_method(CompressionMethod::Deflated);
     let zip_error = |e: zip::result::ZipError| Error::Other(format!("cannot pack {MODEL_IDENTIFIER}.fmu: {e}"));
@@ -117,6 +179,8 @@ pub fn pack_fmu(libraries: &[(Platform, PathBuf)]) -> Result<Vec<u8>> {
         zip.start_file(entry.as_str(), options.unix_permissions(0o755)).map_err(zip_error)?;
         zip.write_all(&bytes).map_err(|e| Error::Other(format!("cannot pack {MODEL_IDENTIFIER}.fmu: {e}")))?;
     }
+    zip.start_file(RAO_RESOURCE, options).map_err(zip_error)?;
+    zip.write_all(raos.as_bytes()).map_err(|e| Error::Other(format!("cannot pack {MODEL_IDENTIFIER}.fmu: {e}")))?;
     Ok(zip.finish().map_err(zip_error)?.into_inner())
 }
 
@@ -182,19 +246,21 @@ pub fn universal_dylib(slices: &[Vec<u8>]) -> std::result::Result<Vec<u8>, Strin
 mod tests {
     use super::*;
 
-    /// The scan finds every Real variable of the hand-written description (33 of its 35; the
+    /// The scan finds every Real variable of the hand-written description (46 of its 48; the
     /// other two are Boolean) with the start values vessel_motion.c's START table also holds.
     #[test]
     fn the_description_scan_finds_the_real_variables_and_their_starts() {
         let vars = real_variables().unwrap();
-        assert_eq!(vars.len(), 33);
+        assert_eq!(vars.len(), 46);
         let find = |n: &str| vars.iter().find(|v| v.name == n).unwrap().clone();
         assert_eq!(find("wave.period").start, Some(9.0));
         assert_eq!(find("wave.period").unit, "s");
         assert_eq!(find("pitch.phase").start, Some(-1.9));
         assert_eq!(find("hinge_force").causality, "input");
         assert_eq!(find("deck.force").start, None);
-        assert_eq!(vars.iter().filter(|v| v.causality == "parameter").count(), 13);
+        assert_eq!(vars.iter().filter(|v| v.causality == "parameter").count(), 26);
+        assert_eq!(find("sea.significant_wave_height").start, Some(0.0), "the regular wave by default");
+        assert_eq!(find("sea.heading").unit, "deg");
     }
 
     /// Two thin slices come back whole at 16 KiB boundaries behind a header naming their CPUs (the
@@ -225,8 +291,10 @@ mod tests {
         let units = units();
         let find = |n: &str| units.iter().find(|u| u.0 == n).map(|u| u.1);
         assert_eq!(find("N.m"), Some([1, 2, -2, 0]));
+        let deg = units.iter().find(|u| u.0 == "deg").unwrap();
+        assert_eq!((deg.1, deg.2), ([0, 0, 0, 1], std::f64::consts::PI / 180.0));
         assert_eq!(find("rad/s2"), Some([0, 0, -2, 1]));
         assert_eq!(find("1"), Some([0, 0, 0, 0]));
-        assert_eq!(units.len(), 12);
+        assert_eq!(units.len(), 13);
     }
 }

@@ -8,7 +8,7 @@
 //! - [`components`]: the wave components a seed picks (splitmix64: the same bits on every
 //!   platform) and the elevation at the vessel's motion reference point;
 //! - [`raos`]: the RAO table (our CSV and VERES's `.re1`), interpolated between frequencies and
-//!   headings;
+//!   headings; [`raos_write`] the table as our CSV (the vessel FMU's resource);
 //! - [`deck_motion`]: deck points and the arrestor's axis, the six motions projected onto the
 //!   hinge's heave and the clamp's heave and rotation (small angles);
 //! - [`record`]: the supports' motion as the sum of the components, with exact derivatives, and
@@ -23,6 +23,7 @@ pub mod components;
 pub mod deck_motion;
 pub mod fields;
 pub mod raos;
+pub mod raos_write;
 pub mod record;
 pub mod settings;
 pub mod spectrum;
