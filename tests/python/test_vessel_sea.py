@@ -245,7 +245,18 @@ def test_a_hostile_rao_resource_is_one_line_and_no_crash(vessel_fmu, tmp_path, c
     vessel.fmu.freeInstance()
 
 
-SUPPLY = ROOT.parent / "shared" / "data" / "mss-supply-vessel" / "supply.re1"
+def supply_path() -> Path:
+    """The MSS supply vessel's .re1 as tests/sea_raos.rs finds it: BEAM_IMPACT_SUPPLY_RE1, else
+    shared/data/... beside the checkout or any folder above it (a clone elsewhere, as CI's), else
+    /work/shared/data/...; the first that exists."""
+    if os.environ.get("BEAM_IMPACT_SUPPLY_RE1"):
+        return Path(os.environ["BEAM_IMPACT_SUPPLY_RE1"])
+    tail = Path("shared") / "data" / "mss-supply-vessel" / "supply.re1"
+    candidates = [folder / tail for folder in ROOT.parents] + [Path("/work") / tail]
+    return next((c for c in candidates if c.is_file()), candidates[0])
+
+
+SUPPLY = supply_path()
 
 
 def host_library() -> Path:
