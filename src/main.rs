@@ -33,6 +33,8 @@ fn main() -> ExitCode {
     match cli::execute(cli.command.unwrap_or(Command::Run(cli.run))) {
         Ok(Outcome::Done) => ExitCode::SUCCESS,
         Ok(Outcome::Untrusted) => ExitCode::from(UNTRUSTED),
+        // As a shell reports a process stopped by SIGINT: 128 + 2.
+        Ok(Outcome::Interrupted) => ExitCode::from(130),
         Err(e) => {
             cli::common::note(&format!("beam-impact: {}", bounded_line(&e.to_string())));
             ExitCode::from(2)

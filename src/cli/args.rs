@@ -161,6 +161,12 @@ pub enum Command {
     /// parallel without logs; one CSV row per scenario (peaks, peak times, energy approach,
     /// largest energy residual, trust verdict, error).
     Sweep(SweepArgs),
+    /// A campaign of impacts in a sea state (docs/operability.md): EVENTS losses of the support at
+    /// instants drawn across SEEDS records, each a converged run with its verdict; one CSV row per
+    /// event, the statistics per design quantity (exceedance probability with its Clopper-Pearson
+    /// interval, a Gumbel fit of the records' maxima, the most probable maximum), and over a
+    /// `--vary` grid of Hs, Tp and heading the operability table.
+    Campaign(CampaignArgs),
     /// Print the completion script of a shell to standard output: `beam-impact completions bash >
     /// ~/.local/share/bash-completion/completions/beam-impact`, `completions zsh > ~/.zfunc/_beam-impact`,
     /// `completions fish > ~/.config/fish/completions/beam-impact.fish`.
@@ -267,6 +273,58 @@ pub struct SweepArgs {
     /// Scenarios run at once [default: every core].
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
     pub jobs: Option<u64>,
+    /// Refuse runs that need more internal steps than this (a row with the error).
+    #[arg(long, default_value_t = beam_impact::model::scenario::MAX_STEPS)]
+    pub max_steps: u64,
+}
+
+#[derive(Args)]
+pub struct CampaignArgs {
+    /// Scenario file (TOML) with a `[sea]` section (examples/vessel-sea.toml).
+    pub file: PathBuf,
+    /// Losses of the support per sea state (cell of the grid).
+    #[arg(long, default_value_t = 1000, value_parser = clap::value_parser!(u64).range(1..))]
+    pub events: u64,
+    /// Records (seeds sea.seed, sea.seed + 1, ...) the events are spread over.
+    #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u64).range(1..))]
+    pub seeds: u64,
+    /// Length of each record, s: the instants are drawn over [0, T - duration].
+    #[arg(long, value_name = "T", default_value_t = 10_800.0)]
+    pub record_length: f64,
+    /// A sea-state axis of the grid, KEY=SPEC as `sweep --vary` (sea.significant_wave_height,
+    /// sea.peak_period, sea.heading; repeatable).
+    #[arg(long, value_name = "KEY=SPEC")]
+    pub vary: Vec<String>,
+    /// Change a field of every event, KEY=VALUE (repeatable), as `run --set`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// The events, one row each in the plan's order, as CSV.
+    #[arg(long, value_name = "FILE.csv")]
+    pub out: PathBuf,
+    /// Also write the statistics (per cell and quantity) and the operability limits as JSON.
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+    /// Also draw the operability figure(s), SVG and PNG, into DIR.
+    #[arg(long, value_name = "DIR")]
+    pub figures: Option<PathBuf>,
+    /// The overload probability per loss of the support a sea state must stay below.
+    #[arg(long, default_value_t = 0.01)]
+    pub target: f64,
+    /// Confidence of the intervals (two-sided).
+    #[arg(long, default_value_t = 0.95)]
+    pub confidence: f64,
+    /// Judge a cell on the overload probability's estimate rather than its upper bound.
+    #[arg(long)]
+    pub on_estimate: bool,
+    /// Events the most probable maximum is of [default: 1 / target].
+    #[arg(long, value_name = "N")]
+    pub exposure: Option<f64>,
+    /// Events run at once [default: every core].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    pub jobs: Option<u64>,
+    /// Refuse a campaign of more runs (cells x events) than this.
+    #[arg(long, default_value_t = beam_impact::studies::campaign::DEFAULT_MAX_EVENTS)]
+    pub max_events: u64,
     /// Refuse runs that need more internal steps than this (a row with the error).
     #[arg(long, default_value_t = beam_impact::model::scenario::MAX_STEPS)]
     pub max_steps: u64,

@@ -4,6 +4,7 @@
 
 pub mod args;
 mod bench;
+mod campaign;
 pub mod common;
 mod completions;
 mod damping;
@@ -26,6 +27,8 @@ pub enum Outcome {
     Done,
     /// A run completed but its numbers are not trusted, and `--strict` asked to say so.
     Untrusted,
+    /// Stopped by Ctrl-C after writing what was done.
+    Interrupted,
 }
 
 /// Runs one subcommand.
@@ -59,6 +62,7 @@ pub fn execute(command: Command) -> Result<Outcome> {
             done(verify::verify(file.as_deref(), &set, json.as_deref(), tolerance))
         }
         Command::Sweep(args) => done(sweep::sweep(&args)),
+        Command::Campaign(args) => campaign::campaign(&args),
         Command::Sea { file, set, duration, out, sample_interval } => {
             done(sea::sea(&file, &set, duration, &out, sample_interval))
         }

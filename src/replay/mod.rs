@@ -10,5 +10,6 @@ pub mod damping_figures;
 pub mod envelope_figure;
 pub mod figures;
 pub mod mode_figures;
+pub mod operability_figure;
 pub mod report;
 pub mod safe_read;

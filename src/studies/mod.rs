@@ -5,6 +5,8 @@
 //! none of them reads or writes files (the CLI does).
 
 pub mod bench;
+pub mod campaign;
 pub mod damping;
+pub mod statistics;
 pub mod sweep;
 pub mod verify;

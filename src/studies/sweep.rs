@@ -711,6 +711,9 @@ pub struct Sweep {
     pub axes: Vec<Axis>,
     /// Largest number of internal steps a run may need (as `run --max-steps`).
     pub max_steps: u64,
+    /// The points to run, one value per axis each, when they are not the axes' product (a
+    /// campaign's events, issue 43); empty: the product grid.
+    pub points: Vec<Vec<f64>>,
 }
 
 /// How a sweep went.
@@ -728,12 +731,36 @@ impl Sweep {
     /// A sweep of `base` over `axes`; checks the grid's size.
     pub fn new(base: Scenario, axes: Vec<Axis>, max_steps: u64) -> Result<Sweep> {
         grid_len(&axes)?;
-        Ok(Sweep { base, axes, max_steps })
+        Ok(Sweep { base, axes, max_steps, points: Vec::new() })
+    }
+
+    /// A sweep of `base` over the given `points` (each one value per axis, in the axes' order),
+    /// run and written in their order; the axes name the columns.
+    pub fn of_points(base: Scenario, axes: Vec<Axis>, points: Vec<Vec<f64>>, max_steps: u64) -> Result<Sweep> {
+        if points.len() > MAX_SCENARIOS {
+            return Err(Error::Other(format!("{} scenarios, more than {MAX_SCENARIOS}", points.len())));
+        }
+        if let Some(p) = points.iter().find(|p| p.len() != axes.len()) {
+            return Err(Error::Other(format!("a point of {} values for {} axes", p.len(), axes.len())));
+        }
+        Ok(Sweep { base, axes, max_steps, points })
     }
 
     /// Scenarios in the grid.
     pub fn len(&self) -> usize {
-        self.axes.iter().map(|a| a.values.len()).product()
+        if self.points.is_empty() {
+            self.axes.iter().map(|a| a.values.len()).product()
+        } else {
+            self.points.len()
+        }
+    }
+
+    /// The values of scenario `index`, one per axis.
+    pub fn point(&self, index: usize) -> Vec<f64> {
+        match self.points.get(index) {
+            Some(point) => point.clone(),
+            None => grid_point(&self.axes, index),
+        }
     }
 
     /// Whether the grid is empty (never: an axis has at least one value).
@@ -754,7 +781,7 @@ impl Sweep {
     /// from `cache` (the same numbers to the bit); an error or a panic becomes the row's message.
     pub fn run_one(&self, index: usize, cache: &ModalCache) -> Row {
         let started = std::time::Instant::now();
-        let values = grid_point(&self.axes, index);
+        let values = self.point(index);
         let run = || -> Result<RowResults> {
             let scenario = self.scenario(&values)?;
             let options = crate::answer::Options {
@@ -803,7 +830,7 @@ impl Sweep {
             key
         };
         let mut order: Vec<usize> = (0..self.len()).collect();
-        if geometry.iter().any(|g| *g) {
+        if self.points.is_empty() && geometry.iter().any(|g| *g) {
             for window in order.chunks_mut(GROUP_WINDOW) {
                 window.sort_by_cached_key(|&i| positions(i));
             }
@@ -820,6 +847,18 @@ impl Sweep {
     pub fn run(
         &self,
         jobs: usize,
+        done: &mut dyn FnMut(usize),
+        write: &mut dyn FnMut(&Row) -> Result<()>,
+    ) -> Result<Tally> {
+        self.run_until(jobs, &AtomicBool::new(false), done, write)
+    }
+
+    /// [`Sweep::run`] until `cancel` is set: then no new scenario starts, the running ones finish
+    /// and the rows before the first not run are written (in order); the tally counts them.
+    pub fn run_until(
+        &self,
+        jobs: usize,
+        cancel: &AtomicBool,
         done: &mut dyn FnMut(usize),
         write: &mut dyn FnMut(&Row) -> Result<()>,
     ) -> Result<Tally> {
@@ -840,8 +879,11 @@ impl Sweep {
             let (next, stop, order, cache) = (&next, &stop, &order, &cache);
             scope.spawn(move || {
                 pool.broadcast(|_| loop {
+                    if stop.load(Ordering::Relaxed) || cancel.load(Ordering::Relaxed) {
+                        break;
+                    }
                     let k = next.fetch_add(1, Ordering::Relaxed);
-                    if k >= n || stop.load(Ordering::Relaxed) {
+                    if k >= n {
                         break;
                     }
                     let index = order[k];

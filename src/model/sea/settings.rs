@@ -129,6 +129,8 @@ pub struct SeaSettings {
     pub recorded: Option<(String, Arc<MotionTable>)>,
     #[serde(skip)]
     cache: RecordCache,
+    #[serde(skip)]
+    records: RealisationCache,
 }
 
 /// The records made for a scenario and its clones (a run's rungs and twin, a sweep's rows), by
@@ -140,6 +142,21 @@ struct RecordCache(Arc<Mutex<Vec<CachedRecord>>>);
 type CachedRecord = (String, Arc<RaoTable>, Arc<MotionTable>);
 
 impl PartialEq for RecordCache {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
+}
+
+/// The realisations (components and the supports' coefficients) made for a scenario and its
+/// clones, by the fields they depend on (all but `time_shift` and `sample_interval`): a campaign's
+/// events of one seed share one (issue 43). Shared between clones; a few kept.
+#[derive(Clone, Debug, Default)]
+struct RealisationCache(Arc<Mutex<Vec<CachedRealisation>>>);
+
+/// A realisation's key, the RAO table it was made from and the record.
+type CachedRealisation = (String, Arc<RaoTable>, Arc<SeaRecord>);
+
+impl PartialEq for RealisationCache {
     fn eq(&self, _: &Self) -> bool {
         true
     }
@@ -367,12 +384,28 @@ impl SeaSettings {
         Ok(())
     }
 
-    /// The record (components and the supports' response) for the loaded RAO table.
-    pub fn record(&self) -> Result<SeaRecord> {
+    /// The record (components and the supports' response) for the loaded RAO table: made once
+    /// per realisation and RAO table, and kept by the scenario and its clones.
+    pub fn record(&self) -> Result<Arc<SeaRecord>> {
         let raos = self.rao_table.as_ref().ok_or_else(|| not_loaded(&self.raos))?;
+        let key =
+            toml::to_string(&SeaSettings { time_shift: 0.0, sample_interval: 0.0, ..self.clone() }).unwrap_or_default();
+        if let Ok(entries) = self.records.0.lock() {
+            if let Some((_, _, record)) = entries.iter().find(|(k, r, _)| *k == key && Arc::ptr_eq(r, raos)) {
+                return Ok(Arc::clone(record));
+            }
+        }
         self.check_against(raos)?;
-        SeaRecord::new(self.components(Some(raos)), raos, self.heading, &self.deck())
-            .map_err(|e| Error::Other(format!("sea: {e}")))
+        let record = Arc::new(
+            SeaRecord::new(self.components(Some(raos)), raos, self.heading, &self.deck())
+                .map_err(|e| Error::Other(format!("sea: {e}")))?,
+        );
+        if let Ok(mut entries) = self.records.0.lock() {
+            entries.retain(|(k, r, _)| !(*k == key && Arc::ptr_eq(r, raos)));
+            entries.insert(0, (key, Arc::clone(raos), Arc::clone(&record)));
+            entries.truncate(CACHED_RECORDS);
+        }
+        Ok(record)
     }
 
     /// What a record depends on besides the RAO table: the section's fields and the run's

@@ -1,0 +1,296 @@
+//! Campaigns of impacts (issue 43): many losses of the gangway's support at instants drawn across
+//! several records of a sea state, each event a converged answer with its verdict, and what they
+//! say together: per design quantity the distribution of the peaks, the probability of exceeding
+//! the allowable with its confidence interval, a Gumbel fit of the records' maxima and the most
+//! probable maximum over an exposure ([`summary`]); over a grid of sea states, the operability
+//! table ([`operability`]; its figure: [`crate::replay::operability_figure`]).
+//!
+//! A campaign is a sweep over given points ([`Sweep::of_points`]): each event is the scenario with
+//! `sea.seed` and `sea.time_shift` set to its record and instant ([`events`]), each cell of the grid
+//! the scenario with its sea-state fields set. The rows come out in the plan's order whatever the
+//! number of threads, so the same command writes the same rows. The cells share their seeds (the
+//! same random phases, each scaled to its own spectrum): common random numbers, which keep the
+//! differences between neighbouring cells from being noise.
+
+pub mod events;
+pub mod operability;
+pub mod summary;
+
+use std::fmt::Write as _;
+use std::sync::atomic::AtomicBool;
+
+use crate::error::{Error, Result};
+use crate::model::scenario::Scenario;
+use crate::model::support_motion::{MOTION_NAMES, MOTION_UNITS};
+use crate::studies::sweep::{self, expand, field, Axis, Row, Sweep, Tally};
+
+pub use events::{plan, Event};
+pub use summary::{CellSummary, Options};
+
+/// The fields a campaign's grid may vary: the sea state's.
+pub const CELL_FIELDS: [&str; 3] = ["sea.significant_wave_height", "sea.peak_period", "sea.heading"];
+
+/// Most events a campaign runs unless told more (`--max-events`): about 40 minutes on two cores at
+/// the example vessel's 15 ms of a core per event... and a stated limit, not a guess of the machine.
+pub const DEFAULT_MAX_EVENTS: u64 = 100_000;
+
+/// One cell of the grid: its values (one per grid axis) and, for a sea state the model refuses (a
+/// breaking sea, a range outside the RAO file), the reason; its events are then not run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cell {
+    /// The grid axes' values.
+    pub values: Vec<f64>,
+    /// Why the cell's scenario is refused, if it is.
+    pub refused: Option<String>,
+}
+
+/// A campaign: the scenario, the grid of sea states, the events of each cell.
+#[derive(Clone, Debug)]
+pub struct Campaign {
+    /// The grid's axes (of [`CELL_FIELDS`]), outermost first; none: one cell, the scenario's sea.
+    pub cell_axes: Vec<Axis>,
+    /// The cells in grid order.
+    pub cells: Vec<Cell>,
+    /// The events every cell runs.
+    pub events: Vec<Event>,
+    /// The statistics' settings.
+    pub options: Options,
+    /// The runs: for each accepted cell, its events in order.
+    sweep: Sweep,
+    /// For each run of `sweep`, its cell and event index.
+    index: Vec<(usize, usize)>,
+}
+
+/// One event's row: where it is, the supports' motion at its instant and the run's results.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EventRow {
+    /// The cell's index in [`Campaign::cells`].
+    pub cell: usize,
+    /// The event's index in [`Campaign::events`].
+    pub event: usize,
+    /// The supports' motion at the instant, in [`MOTION_NAMES`]' order (None: the row failed).
+    pub motion: Option<[f64; 9]>,
+    /// The run's row (its values: the grid's, then seed and instant).
+    pub row: Row,
+}
+
+impl Campaign {
+    /// A campaign of `options.events` events on `options.seeds` records for each cell of
+    /// `cell_axes` over `base` (which must have a `[sea]`), at most `max_events` runs in all.
+    pub fn new(
+        base: Scenario,
+        cell_axes: Vec<Axis>,
+        options: Options,
+        max_events: u64,
+        max_steps: u64,
+    ) -> Result<Self> {
+        let Some(sea) = base.sea.as_ref() else {
+            return Err(Error::Other(
+                "campaign: the scenario has no [sea] section: a campaign draws its events from a sea state's records \
+                 (docs/sea-states.md, examples/vessel-sea.toml)"
+                    .into(),
+            ));
+        };
+        for axis in &cell_axes {
+            if !CELL_FIELDS.contains(&axis.field.name) {
+                return Err(Error::Other(format!(
+                    "campaign --vary {}: a campaign's grid is of sea states ({}); give other fields with --set",
+                    axis.field.name,
+                    CELL_FIELDS.join(", ")
+                )));
+            }
+        }
+        options.check()?;
+        let events = plan(options.events, options.seeds, sea.seed, options.record_length, base.duration)?;
+        let grid = sweep::grid_len(&cell_axes)?;
+        let total = (grid as u64).saturating_mul(events.len() as u64);
+        if total > max_events {
+            return Err(Error::Other(format!(
+                "campaign of {grid} cells x {} events = {total} runs, more than --max-events {max_events}: lower the \
+                 grid or --events, or raise --max-events (at the example vessel's ~15 ms of a core per event, {:.0} \
+                 min on two cores)",
+                events.len(),
+                total as f64 * 0.015 / 2.0 / 60.0
+            )));
+        }
+        let mut axes = cell_axes.clone();
+        axes.push(Axis { field: field("sea.seed")?, values: Vec::new() });
+        axes.push(Axis { field: field("sea.time_shift")?, values: Vec::new() });
+        let probe = Sweep::new(base.clone(), Vec::new(), max_steps)?;
+        let mut cells = Vec::new();
+        let mut points = Vec::new();
+        let mut index = Vec::new();
+        for (c, values) in expand(&cell_axes).into_iter().enumerate() {
+            // The cell's scenario at its first event: refused (a breaking sea) or its record made.
+            let mut point = values.clone();
+            point.extend([events[0].seed as f64, events[0].instant]);
+            let check = Sweep { axes: axes.clone(), ..probe.clone() }.scenario(&point).and_then(|s| {
+                let sea = s.sea.as_ref().ok_or_else(|| Error::Other("no [sea]".into()))?;
+                sea.record().map(|_| ())
+            });
+            let refused = check.err().map(|e| e.to_string());
+            if refused.is_none() {
+                for (k, e) in events.iter().enumerate() {
+                    let mut point = values.clone();
+                    point.extend([e.seed as f64, e.instant]);
+                    points.push(point);
+                    index.push((c, k));
+                }
+            }
+            cells.push(Cell { values, refused });
+        }
+        let sweep = Sweep::of_points(base, axes, points, max_steps)?;
+        Ok(Campaign { cell_axes, cells, events, options, sweep, index })
+    }
+
+    /// Runs to make (the accepted cells' events).
+    pub fn len(&self) -> usize {
+        self.sweep.len()
+    }
+
+    /// Whether there is nothing to run (every cell refused).
+    pub fn is_empty(&self) -> bool {
+        self.sweep.is_empty()
+    }
+
+    /// Runs every event on `jobs` threads until `cancel` is set, handing each row to `write` in
+    /// the plan's order (cells in grid order, then events); `done` after each run with the number
+    /// finished.
+    pub fn run(
+        &self,
+        jobs: usize,
+        cancel: &AtomicBool,
+        done: &mut dyn FnMut(usize),
+        write: &mut dyn FnMut(&EventRow) -> Result<()>,
+    ) -> Result<Tally> {
+        let mut next = 0;
+        self.sweep.run_until(jobs, cancel, done, &mut |row| {
+            let (cell, event) = self.index[next];
+            next += 1;
+            let motion = match &row.outcome {
+                Ok(_) => Some(self.motion_at(&row.values)?),
+                Err(_) => None,
+            };
+            write(&EventRow { cell, event, motion, row: row.clone() })
+        })
+    }
+
+    /// The supports' motion at the event's instant (the record's exact sums).
+    fn motion_at(&self, values: &[f64]) -> Result<[f64; 9]> {
+        let scenario = self.sweep.scenario(values)?;
+        let sea = scenario.sea.as_ref().ok_or_else(|| Error::Other("no [sea]".into()))?;
+        Ok(sea.record()?.motion(sea.time_shift).values())
+    }
+
+    /// The CSV columns with their units: the grid's fields, `event`, `seed`, `instant`, the supports'
+    /// motion at the instant, then a sweep row's results (`peak.<quantity>`, utilisations, design,
+    /// trust, wall time, error).
+    pub fn column_units(&self) -> Vec<(String, &'static str)> {
+        let mut c: Vec<(String, &'static str)> =
+            self.cell_axes.iter().map(|a| (a.field.name.to_string(), a.field.unit)).collect();
+        c.extend([("event".into(), "1"), ("seed".into(), "1"), ("instant".into(), "s")]);
+        c.extend(MOTION_NAMES.iter().zip(MOTION_UNITS).map(|(n, u)| (n.to_string(), u)));
+        c.extend(sweep::column_units(&[]));
+        c
+    }
+
+    /// The CSV header line.
+    pub fn csv_header(&self) -> String {
+        self.column_units().iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>().join(",") + "\n"
+    }
+
+    /// One event's CSV line (numbers as the shortest decimal that gives the same f64).
+    pub fn csv_line(&self, row: &EventRow) -> String {
+        let mut s = String::new();
+        for (axis, v) in self.cell_axes.iter().zip(&row.row.values) {
+            let _ = write!(s, "{},", sweep::format_value(axis.field, *v));
+        }
+        let event = &self.events[row.event];
+        let _ = write!(s, "{},{},{:?},", row.event, event.seed, event.instant);
+        match &row.motion {
+            Some(m) => m.iter().for_each(|v| {
+                let _ = write!(s, "{v:?},");
+            }),
+            None => s.push_str(&",".repeat(MOTION_NAMES.len())),
+        }
+        let results = Row { values: Vec::new(), ..row.row.clone() };
+        s + &sweep::csv_line(&[], &results)
+    }
+
+    /// The cell's name for messages and tables: `Hs 2.5 m, Tp 8 s`, or `the scenario's sea`.
+    pub fn cell_name(&self, cell: usize) -> String {
+        let names: Vec<String> = self
+            .cell_axes
+            .iter()
+            .zip(&self.cells[cell].values)
+            .map(|(a, v)| match a.field.name {
+                "sea.significant_wave_height" => format!("Hs {v} m"),
+                "sea.peak_period" => format!("Tp {v} s"),
+                _ => format!("heading {v} deg"),
+            })
+            .collect();
+        if names.is_empty() {
+            "the scenario's sea".into()
+        } else {
+            names.join(", ")
+        }
+    }
+}
+
+/// The campaign's statistics as one JSON document: the settings and methods stated, each cell with
+/// its grid values and summary (or why it was refused), and the operability limits.
+pub fn summary_document(
+    campaign: &Campaign,
+    summaries: &[Option<CellSummary>],
+    table: &[operability::TableCell],
+    options: &Options,
+) -> serde_json::Value {
+    use serde_json::json;
+    let cells: Vec<serde_json::Value> = campaign
+        .cells
+        .iter()
+        .zip(summaries)
+        .map(|(cell, summary)| {
+            let mut object = serde_json::Map::new();
+            for (axis, v) in campaign.cell_axes.iter().zip(&cell.values) {
+                object.insert(axis.field.name.to_string(), json!(v));
+            }
+            match (&cell.refused, summary) {
+                (Some(why), _) => {
+                    object.insert("refused".into(), json!(why));
+                }
+                (None, Some(s)) => {
+                    if let serde_json::Value::Object(m) = s.json(options) {
+                        object.extend(m);
+                    }
+                }
+                (None, None) => {
+                    object.insert("events".into(), json!(0));
+                }
+            }
+            serde_json::Value::Object(object)
+        })
+        .collect();
+    let limits: Vec<serde_json::Value> = operability::limits(table)
+        .iter()
+        .map(|l| json!({"heading": l.heading, "peak_period": l.peak_period, "significant_wave_height": l.significant_wave_height}))
+        .collect();
+    json!({
+        "campaign": {
+            "events_per_cell": options.events,
+            "records_per_cell": options.seeds,
+            "record_length": options.record_length,
+            "first_seed": campaign.events.first().map(|e| e.seed),
+            "target": options.target,
+            "confidence": options.confidence,
+            "criterion": if options.on_upper_bound { "upper bound" } else { "estimate" },
+            "exposure": options.exposure(),
+            "interval": "Clopper-Pearson (exact, two-sided)",
+            "gumbel_method": "maximum likelihood, of each record's largest peak",
+            "most_probable_maximum": "the mode of the largest of `exposure` events: location + scale ln(exposure / events_per_record)",
+            "overload": "any utilisation > 1 (the design check fails)",
+        },
+        "cells": cells,
+        "operability": {"limits": limits},
+    })
+}

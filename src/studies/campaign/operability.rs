@@ -1,0 +1,186 @@
+//! The operability table (issue 43): over a grid of sea states, per heading and peak period the
+//! largest significant wave height in which losing the support overloads the gangway with a
+//! probability below the target, laid out as offshore operability tables are (Hs down the rows,
+//! Tp across the columns, the limiting Hs at the foot). A Tp's limit is the largest Hs such that
+//! every cell up to it at that Tp is operable ([`super::summary::CellSummary::operable`]); a sea the
+//! model refuses (a breaking one) ends the column as a failing cell does.
+
+use std::fmt::Write as _;
+
+use super::summary::{CellSummary, Options};
+
+/// A cell as the table takes it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TableCell<'a> {
+    /// Significant wave height, m.
+    pub significant_wave_height: f64,
+    /// Peak period, s.
+    pub peak_period: f64,
+    /// Heading, deg.
+    pub heading: f64,
+    /// The summary, or why the sea state is refused.
+    pub outcome: std::result::Result<&'a CellSummary, &'a str>,
+}
+
+/// One column's limit: the heading and period, and the largest operable Hs (None: not even the
+/// smallest).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Limit {
+    /// Heading, deg.
+    pub heading: f64,
+    /// Peak period, s.
+    pub peak_period: f64,
+    /// The limiting Hs, m.
+    pub significant_wave_height: Option<f64>,
+}
+
+fn sorted_unique(mut v: Vec<f64>) -> Vec<f64> {
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    v
+}
+
+/// The headings, periods and heights of the grid, each ascending.
+pub fn axes(cells: &[TableCell]) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    (
+        sorted_unique(cells.iter().map(|c| c.heading).collect()),
+        sorted_unique(cells.iter().map(|c| c.peak_period).collect()),
+        sorted_unique(cells.iter().map(|c| c.significant_wave_height).collect()),
+    )
+}
+
+fn find<'a, 'b>(cells: &'b [TableCell<'a>], heading: f64, tp: f64, hs: f64) -> Option<&'b TableCell<'a>> {
+    cells.iter().find(|c| c.heading == heading && c.peak_period == tp && c.significant_wave_height == hs)
+}
+
+/// Each heading's and period's limiting Hs.
+pub fn limits(cells: &[TableCell]) -> Vec<Limit> {
+    let (headings, periods, heights) = axes(cells);
+    let mut out = Vec::new();
+    for &heading in &headings {
+        for &tp in &periods {
+            let mut limit = None;
+            for &hs in &heights {
+                match find(cells, heading, tp, hs).map(|c| &c.outcome) {
+                    Some(Ok(s)) if s.operable => limit = Some(hs),
+                    None => continue,
+                    _ => break,
+                }
+            }
+            out.push(Limit { heading, peak_period: tp, significant_wave_height: limit });
+        }
+    }
+    out
+}
+
+/// A cell's text: the overload probability (`<` its upper bound when no event overloads), `ok`
+/// or `x`; `breaking` or `refused` for a sea state the model refuses.
+pub fn cell_text(outcome: &std::result::Result<&CellSummary, &str>) -> String {
+    match outcome {
+        Ok(s) if s.overload.events == 0 => "no events".into(),
+        Ok(s) => {
+            let i = s.overload.interval;
+            let p =
+                if s.overload.exceeding == 0 { format!("<{:.1e}", i.high) } else { format!("{:.1e}", i.probability) };
+            format!("{p} {}", if s.operable { "ok" } else { "x" })
+        }
+        Err(why) if why.contains("steeper than a sea can be") => "breaking".into(),
+        Err(_) => "refused".into(),
+    }
+}
+
+/// The table as text: one block per heading.
+pub fn table(cells: &[TableCell], options: &Options) -> String {
+    let (headings, periods, heights) = axes(cells);
+    let limits = limits(cells);
+    let width = 12;
+    let mut s = String::new();
+    let criterion = if options.on_upper_bound {
+        format!("its {} % upper bound", 100.0 * options.confidence)
+    } else {
+        "its estimate".into()
+    };
+    let _ = writeln!(
+        s,
+        "operability: the probability that losing the support overloads the gangway (any utilisation > 1), per loss; \
+         a cell is ok when {criterion} is below the target {}",
+        options.target
+    );
+    for &heading in &headings {
+        let _ = writeln!(s, "heading {heading} deg");
+        let _ = write!(s, "{:<14}", "Hs [m] \\ Tp [s]");
+        for tp in &periods {
+            let _ = write!(s, "{:>width$}", format!("{tp}"));
+        }
+        s.push('\n');
+        for &hs in heights.iter().rev() {
+            let _ = write!(s, "{:<14}", format!("{hs}"));
+            for &tp in &periods {
+                let text = find(cells, heading, tp, hs).map_or("-".to_string(), |c| cell_text(&c.outcome));
+                let _ = write!(s, "{text:>width$}");
+            }
+            s.push('\n');
+        }
+        let _ = write!(s, "{:<14}", "limit Hs [m]");
+        for l in limits.iter().filter(|l| l.heading == heading) {
+            let text = l.significant_wave_height.map_or("none".to_string(), |h| format!("{h}"));
+            let _ = write!(s, "{text:>width$}");
+        }
+        s.push('\n');
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::studies::campaign::summary::{summarise, EventOutcome, EventResults};
+
+    fn summary(overloads: usize, events: usize) -> CellSummary {
+        let outcome = |k: usize| EventOutcome {
+            seed: 1 + k as u64 % 10,
+            results: Some(EventResults {
+                peaks: [Some(1.0 + k as f64 * 1e-3); 9],
+                utilisation: [Some(if k < overloads { 1.5 } else { 0.5 }); 9],
+                design_pass: k >= overloads,
+                trusted: true,
+            }),
+        };
+        let outcomes: Vec<EventOutcome> = (0..events).map(outcome).collect();
+        summarise(&outcomes, &Options { target: 0.05, on_upper_bound: false, ..Options::default() })
+    }
+
+    /// The limit is the largest Hs up to which every cell is operable: a failing cell (or a
+    /// breaking sea) ends the column even if a higher one passes by chance.
+    #[test]
+    fn the_limit_is_the_last_operable_height_before_the_first_failure() {
+        let (ok, bad) = (summary(0, 100), summary(20, 100));
+        let options = Options { target: 0.05, on_upper_bound: false, ..Options::default() };
+        let cell = |hs: f64, tp: f64, outcome| TableCell {
+            significant_wave_height: hs,
+            peak_period: tp,
+            heading: 180.0,
+            outcome,
+        };
+        let cells = vec![
+            cell(1.0, 6.0, Ok(&ok)),
+            cell(2.0, 6.0, Ok(&bad)),
+            cell(3.0, 6.0, Ok(&ok)),
+            cell(1.0, 8.0, Ok(&ok)),
+            cell(2.0, 8.0, Ok(&ok)),
+            cell(3.0, 8.0, Err("sea: ... is steeper than a sea can be ...")),
+            cell(1.0, 10.0, Ok(&bad)),
+            cell(2.0, 10.0, Ok(&ok)),
+            cell(3.0, 10.0, Ok(&ok)),
+        ];
+        let l: Vec<Option<f64>> = limits(&cells).iter().map(|l| l.significant_wave_height).collect();
+        assert_eq!(l, vec![Some(1.0), Some(2.0), None]);
+        let text = table(&cells, &options);
+        assert!(text.contains("breaking"), "{text}");
+        assert!(text.contains("2.0e-1 x"), "20 of 100 overload: {text}");
+        assert!(
+            text.lines().last().unwrap().split_whitespace().collect::<Vec<_>>().ends_with(&["1", "2", "none"]),
+            "{text}"
+        );
+    }
+}
