@@ -11,8 +11,8 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use beam_impact::record::output::{check_distinct, shown, OutputFile};
 use beam_impact::studies::campaign::operability::{self, TableCell};
-use beam_impact::studies::campaign::summary::{summarise, EventOutcome, EventResults};
-use beam_impact::studies::campaign::{Campaign, CellSummary, Options};
+use beam_impact::studies::campaign::summary::{EventOutcome, EventResults};
+use beam_impact::studies::campaign::{Campaign, Options};
 use beam_impact::studies::sweep::{apply_settings, default_jobs, parse_axes, parse_settings};
 use beam_impact::vocabulary::sweep_former_names;
 use beam_impact::{Error, Result};
@@ -85,12 +85,7 @@ pub fn campaign(args: &CampaignArgs) -> Result<Outcome> {
     units.dedup_by(|a, b| a.0 == b.0);
     let sidecars = write_units_sidecars(&sidecars, &units, &sweep_former_names())?;
 
-    let summaries: Vec<Option<CellSummary>> = campaign
-        .cells
-        .iter()
-        .zip(&outcomes)
-        .map(|(cell, o)| (cell.refused.is_none() && !o.is_empty()).then(|| summarise(o, &options)))
-        .collect();
+    let summaries = campaign.summaries(&outcomes);
     let sea = base.sea.as_ref().ok_or_else(|| Error::Other("no [sea]".into()))?;
     let value_of = |c: usize, name: &str, default: f64| {
         campaign.cell_axes.iter().position(|a| a.field.name == name).map_or(default, |k| campaign.cells[c].values[k])

@@ -59,6 +59,8 @@ pub struct Campaign {
     sweep: Sweep,
     /// For each run of `sweep`, its cell and event index.
     index: Vec<(usize, usize)>,
+    /// The modes of [`Campaign::run_event`]'s runs (one geometry: computed once).
+    cache: std::sync::Arc<crate::solver::ModalCache>,
 }
 
 /// One event's row: where it is, the supports' motion at its instant and the run's results.
@@ -140,7 +142,7 @@ impl Campaign {
             cells.push(Cell { values, refused });
         }
         let sweep = Sweep::of_points(base, axes, points, max_steps)?;
-        Ok(Campaign { cell_axes, cells, events, options, sweep, index })
+        Ok(Campaign { cell_axes, cells, events, options, sweep, index, cache: Default::default() })
     }
 
     /// Runs to make (the accepted cells' events).
@@ -175,8 +177,42 @@ impl Campaign {
         })
     }
 
+    /// Run `index` (0 to [`Campaign::len`]) alone, as [`Campaign::run`] runs it (the Python
+    /// package's tasks).
+    pub fn run_event(&self, index: usize) -> Result<EventRow> {
+        let &(cell, event) = self
+            .index
+            .get(index)
+            .ok_or_else(|| Error::Other(format!("event {index} of a campaign of {} runs", self.len())))?;
+        let row = self.sweep.run_one(index, &self.cache);
+        let motion = match &row.outcome {
+            Ok(_) => Some(self.motion_at(&row.values)?),
+            Err(_) => None,
+        };
+        Ok(EventRow { cell, event, motion, row })
+    }
+
+    /// Each run's cell and event index, in the order [`Campaign::run`] writes them.
+    pub fn runs(&self) -> &[(usize, usize)] {
+        &self.index
+    }
+
+    /// Each run's scenario values: the grid's, then `sea.seed` and `sea.time_shift`.
+    pub fn points(&self) -> &[Vec<f64>] {
+        &self.sweep.points
+    }
+
+    /// The summary of each cell from its events' outcomes (None: refused, or no event run).
+    pub fn summaries(&self, outcomes: &[Vec<summary::EventOutcome>]) -> Vec<Option<CellSummary>> {
+        self.cells
+            .iter()
+            .zip(outcomes)
+            .map(|(cell, o)| (cell.refused.is_none() && !o.is_empty()).then(|| summary::summarise(o, &self.options)))
+            .collect()
+    }
+
     /// The supports' motion at the event's instant (the record's exact sums).
-    fn motion_at(&self, values: &[f64]) -> Result<[f64; 9]> {
+    pub fn motion_at(&self, values: &[f64]) -> Result<[f64; 9]> {
         let scenario = self.sweep.scenario(values)?;
         let sea = scenario.sea.as_ref().ok_or_else(|| Error::Other("no [sea]".into()))?;
         Ok(sea.record()?.motion(sea.time_shift).values())
