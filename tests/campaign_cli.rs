@@ -191,7 +191,7 @@ fn ctrl_c_keeps_the_rows_run_so_far() {
     let stderr = String::from_utf8(o.stderr).unwrap();
     assert_eq!(o.status.code(), Some(130), "{stderr}");
     let n = rows(&d.join("k.csv")).len();
-    assert!(n >= 1 && n < 5000, "{n} rows");
+    assert!((1..5000).contains(&n), "{n} rows");
     assert!(stderr.contains(&format!("interrupted: {n} of 5000 events run and written to k.csv")), "{stderr}");
     let text = String::from_utf8(o.stdout).unwrap();
     assert!(text.contains(&format!("{n} events on")), "{text}");
