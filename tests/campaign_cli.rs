@@ -196,3 +196,12 @@ fn ctrl_c_keeps_the_rows_run_so_far() {
     let text = String::from_utf8(o.stdout).unwrap();
     assert!(text.contains(&format!("{n} events on")), "{text}");
 }
+
+/// `bench`'s campaign line runs its events (all converged, none failed) and prints the projection
+/// for 10 000 events beside the bar; its numbers are the machine's, not asserted.
+#[test]
+fn the_benchmarks_campaign_line_projects_ten_thousand_events() {
+    let text = beam_impact::studies::bench::campaign_benchmark(1).unwrap();
+    println!("{text}");
+    assert!(text.contains("20 events on") && text.contains("10 000 events:") && text.contains("projected"), "{text}");
+}
