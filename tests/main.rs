@@ -40,6 +40,7 @@ mod fmi_pack;
 mod fmi_quality;
 mod fmi_sections;
 mod fmi_state_restore;
+mod fuzz_campaign;
 mod fuzz_log_channels;
 mod fuzz_log_reader;
 mod fuzz_log_sample_interval;

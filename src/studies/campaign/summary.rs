@@ -257,14 +257,19 @@ fn one_sided(confidence: f64) -> f64 {
 }
 
 fn quantity(q: usize, ok: &[(u64, &EventResults)], seeds: &[u64], options: &Options) -> Option<QuantitySummary> {
-    let values: Vec<(u64, f64)> = ok.iter().filter_map(|(s, r)| r.peaks[q].map(|v| (*s, v))).collect();
+    let given: Vec<(u64, f64)> = ok.iter().filter_map(|(s, r)| r.peaks[q].map(|v| (*s, v))).collect();
+    // A converged answer's peaks are finite; one that is not is left out and said.
+    let values: Vec<(u64, f64)> = given.iter().copied().filter(|(_, v)| v.is_finite()).collect();
     if values.is_empty() {
         return None;
     }
+    let mut warnings = Vec::new();
+    if values.len() < given.len() {
+        warnings.push(format!("{} events' peaks are not finite and left out", given.len() - values.len()));
+    }
     let samples: Vec<f64> = values.iter().map(|(_, v)| *v).collect();
     let empirical = Empirical::new(&samples).ok()?;
-    let utilisations: Vec<f64> = ok.iter().filter_map(|(_, r)| r.utilisation[q]).collect();
-    let mut warnings = Vec::new();
+    let utilisations: Vec<f64> = ok.iter().filter_map(|(_, r)| r.utilisation[q]).filter(|u| !u.is_nan()).collect();
     let exceedance = (!utilisations.is_empty()).then(|| {
         let k = utilisations.iter().filter(|u| **u > 1.0).count() as u64;
         let e = Exceedance::new(k, utilisations.len() as u64, options.confidence);
