@@ -6,5 +6,6 @@
 
 pub mod bench;
 pub mod damping;
+pub mod statistics;
 pub mod sweep;
 pub mod verify;

@@ -1,0 +1,385 @@
+//! A campaign's statistics (issue 43): how likely a design quantity is to exceed its allowable,
+//! with a confidence interval, how many events that takes, and the extremes of the per-record
+//! maxima. Pure arithmetic on numbers handed in: no runs, no files.
+//!
+//! - [`clopper_pearson`] (exact, the interval a campaign states) and [`wilson`] (score) for the
+//!   probability that one event exceeds a threshold, from k exceeding events among n;
+//! - [`events_needed`]: the fewest events, none beyond, that show p < target (the "sample too small"
+//!   warning);
+//! - [`Gumbel`]: the type I extreme value distribution of maxima, fitted by maximum likelihood
+//!   (as `scipy.stats.gumbel_r.fit`) or by moments, and its most probable maximum over an exposure;
+//! - [`Empirical`]: the sorted sample, its exceedance count and its quantiles (Weibull plotting
+//!   position).
+//!
+//! Invalid arguments give NaN (or the documented value), never a panic: the callers check what the
+//! user typed with [`check_probability`] and friends, which give one-line errors.
+
+use serde::Serialize;
+use statrs::function::beta::{checked_beta_reg, inv_beta_reg};
+use statrs::function::erf::erf_inv;
+
+/// Euler-Mascheroni constant, the mean of the standard Gumbel distribution (Abramowitz and Stegun
+/// 6.1.3).
+pub const EULER_GAMMA: f64 = 0.577_215_664_901_532_9;
+
+/// A probability estimate with its confidence interval, all in [0, 1].
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Interval {
+    /// The point estimate k / n (NaN for n = 0).
+    pub probability: f64,
+    /// The interval's lower bound.
+    pub low: f64,
+    /// The interval's upper bound.
+    pub high: f64,
+}
+
+impl Interval {
+    const NAN: Interval = Interval { probability: f64::NAN, low: f64::NAN, high: f64::NAN };
+}
+
+/// `value` if it is a probability strictly inside (0, 1), else a one-line error naming `name`
+/// ("confidence must be in (0, 1), got 1.5").
+pub fn check_probability(name: &str, value: f64) -> Result<f64, String> {
+    if value > 0.0 && value < 1.0 {
+        Ok(value)
+    } else {
+        Err(format!("{name} must be in (0, 1), got {value}"))
+    }
+}
+
+/// Whether (`exceeding`, `events`, `confidence`) can make an interval: k <= n, confidence in (0, 1).
+fn valid(exceeding: u64, events: u64, confidence: f64) -> bool {
+    exceeding <= events && check_probability("confidence", confidence).is_ok()
+}
+
+/// The standard normal quantile z with P(|Z| < z) = `confidence` (two-sided): z = sqrt(2)
+/// erf^-1(confidence) (Abramowitz and Stegun 26.2.2 with 7.1.1); 1.959964 at 95 %.
+pub fn normal_two_sided(confidence: f64) -> f64 {
+    std::f64::consts::SQRT_2 * erf_inv(confidence)
+}
+
+/// The Wilson score interval (Wilson 1927; Agresti and Coull 1998, Eq. 2) for k = `exceeding`
+/// events beyond the threshold among n = `events`, at two-sided `confidence` (0.95 for 95 %):
+/// with p = k/n and z from [`normal_two_sided`],
+/// (p + z^2/(2n) -+ z sqrt(p(1-p)/n + z^2/(4n^2))) / (1 + z^2/n).
+/// k = 0 gives low 0 exactly, k = n high 1 exactly. n = 0 gives probability NaN and [0, 1] (no
+/// information); k > n or a confidence outside (0, 1) give NaN.
+pub fn wilson(exceeding: u64, events: u64, confidence: f64) -> Interval {
+    if !valid(exceeding, events, confidence) {
+        return Interval::NAN;
+    }
+    if events == 0 {
+        return Interval { probability: f64::NAN, low: 0.0, high: 1.0 };
+    }
+    let (k, n) = (exceeding as f64, events as f64);
+    let p = k / n;
+    let z = normal_two_sided(confidence);
+    let z2n = z * z / n;
+    let centre = (p + 0.5 * z2n) / (1.0 + z2n);
+    let half = z / (1.0 + z2n) * (p * (1.0 - p) / n + 0.25 * z2n / n).sqrt();
+    let low = if exceeding == 0 { 0.0 } else { (centre - half).max(0.0) };
+    let high = if exceeding == events { 1.0 } else { (centre + half).min(1.0) };
+    Interval { probability: p, low, high }
+}
+
+/// The Clopper-Pearson ("exact") interval (Clopper and Pearson 1934) for k = `exceeding` among
+/// n = `events` at two-sided `confidence`, alpha = 1 - confidence: low = B^-1(alpha/2; k, n-k+1),
+/// high = B^-1(1 - alpha/2; k+1, n-k), B^-1 the quantile of the Beta distribution
+/// ([`beta_quantile`]). k = 0: low 0, high 1 - (alpha/2)^(1/n); k = n the mirror, both in closed
+/// form. It never covers less than `confidence`. n = 0, k > n and a bad confidence as [`wilson`].
+pub fn clopper_pearson(exceeding: u64, events: u64, confidence: f64) -> Interval {
+    if !valid(exceeding, events, confidence) {
+        return Interval::NAN;
+    }
+    if events == 0 {
+        return Interval { probability: f64::NAN, low: 0.0, high: 1.0 };
+    }
+    let (k, n) = (exceeding as f64, events as f64);
+    let tail = 0.5 * (1.0 - confidence);
+    // 1 - tail^(1/n) without cancellation: -expm1(ln(tail) / n).
+    let closed = -(tail.ln() / n).exp_m1();
+    let low = if exceeding == 0 {
+        0.0
+    } else if exceeding == events {
+        1.0 - closed
+    } else {
+        beta_quantile(k, n - k + 1.0, tail)
+    };
+    // The upper bound through the mirror 1 - X ~ Beta(n-k, k+1): its small value keeps its digits.
+    let high = if exceeding == events {
+        1.0
+    } else if exceeding == 0 {
+        closed
+    } else {
+        1.0 - beta_quantile(n - k, k + 1.0, tail)
+    };
+    Interval { probability: k / n, low, high }
+}
+
+/// The `p` quantile of the Beta(`a`, `b`) distribution: x with I_x(a, b) = p, I the regularised
+/// incomplete beta function (statrs' `beta_reg`, the continued fraction of Numerical Recipes 6.4).
+/// statrs' own inverse (`inv_beta_reg`, AS 64/AS 109) only starts it: at a million events it is
+/// 4.5e-4 off scipy's `beta.ppf` (k = 1, 90 %), so the root is bracketed around that start and
+/// bisected until the bracket is 4 ulp wide; what is left is `beta_reg`'s own error (1e-9
+/// relative at a million events: its ln-gamma differences), measured against scipy in
+/// tests/campaign_statistics.rs. NaN unless a, b > 0 and p in [0, 1].
+pub fn beta_quantile(a: f64, b: f64, p: f64) -> f64 {
+    if !(a > 0.0 && b > 0.0 && (0.0..=1.0).contains(&p)) {
+        return f64::NAN;
+    }
+    if p == 0.0 || p == 1.0 {
+        return p;
+    }
+    // I_x - p, NaN where statrs refuses (it does not for a, b > 0 and x in [0, 1]).
+    let f = |x: f64| checked_beta_reg(a, b, x).map_or(f64::NAN, |v| v - p);
+    let start = inv_beta_reg(a, b, p);
+    // The bracket [lo, hi] with f(lo) <= 0 <= f(hi): around the start if it holds, else [0, 1].
+    let (mut lo, mut hi) = (0.0, 1.0);
+    if start > 0.0 && start < 1.0 {
+        let mut width = 1e-6 * start.min(1.0 - start);
+        for _ in 0..60 {
+            let (l, h) = ((start - width).max(0.0), (start + width).min(1.0));
+            if f(l) <= 0.0 && f(h) >= 0.0 {
+                (lo, hi) = (l, h);
+                break;
+            }
+            width *= 4.0;
+        }
+    }
+    for _ in 0..2200 {
+        // Halving the ratio while the bracket spans decades (a tail quantile of 1e-12 from [0, 1]).
+        let mid = if lo == 0.0 {
+            0.25 * hi
+        } else if hi > 4.0 * lo {
+            (lo * hi).sqrt()
+        } else {
+            0.5 * (lo + hi)
+        };
+        if mid <= lo || mid >= hi || hi - lo <= 4.0 * f64::EPSILON * hi {
+            break;
+        }
+        let v = f(mid);
+        if v.is_nan() {
+            return f64::NAN;
+        }
+        if v <= 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// The fewest events n that, with none beyond the threshold, show p < `target` at `confidence`
+/// (one-sided exact: (1 - target)^n <= alpha, so n = ceil(ln(alpha) / ln(1 - target)); the rule of
+/// three, n ~ 3/target, at 95 %). 2995 for 1e-3 at 95 %. Note the two-sided Clopper-Pearson
+/// high at k = 0, 1 - (alpha/2)^(1/n), needs ln(alpha/2)/ln(1 - target) events (3688 for 1e-3 at
+/// 95 %) to fall below the target. `u64::MAX` when an argument is outside (0, 1).
+pub fn events_needed(target: f64, confidence: f64) -> u64 {
+    if check_probability("target", target).is_err() || check_probability("confidence", confidence).is_err() {
+        return u64::MAX;
+    }
+    let ln_alpha = (1.0 - confidence).ln();
+    let ln_keep = (-target).ln_1p();
+    let ratio = ln_alpha / ln_keep;
+    if !ratio.is_finite() || ratio >= u64::MAX as f64 {
+        return u64::MAX;
+    }
+    let mut n = ratio.ceil().max(1.0) as u64;
+    // The rounding of the ratio may put an exact integer one above: check n - 1 itself.
+    if n > 1 && (n - 1) as f64 * ln_keep <= ln_alpha {
+        n -= 1;
+    }
+    n
+}
+
+/// The Gumbel (type I extreme value, maxima) distribution: F(x) = exp(-exp(-(x - location)/scale)),
+/// scipy's `gumbel_r(loc=location, scale=scale)`. Its mode is `location`, its mean
+/// location + 0.5772 scale, its standard deviation scale pi/sqrt(6).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Gumbel {
+    /// Location (the mode), in the unit of the samples.
+    pub location: f64,
+    /// Scale (> 0), in the unit of the samples.
+    pub scale: f64,
+}
+
+impl Gumbel {
+    /// F(x) = exp(-exp(-(x - location)/scale)).
+    pub fn cdf(&self, x: f64) -> f64 {
+        (-(-(x - self.location) / self.scale).exp()).exp()
+    }
+
+    /// x with F(x) = `p`: location - scale ln(-ln p); NaN outside [0, 1] (-inf at 0, +inf at 1).
+    pub fn quantile(&self, p: f64) -> f64 {
+        if !(0.0..=1.0).contains(&p) {
+            return f64::NAN;
+        }
+        self.location - self.scale * (-p.ln()).ln()
+    }
+
+    /// The most probable maximum (mode) over `exposure` events of the quantity whose maxima over
+    /// `events_per_sample` events were fitted: location + scale ln(exposure / events_per_sample).
+    /// Derivation: the maximum of k independent maxima, each Gumbel(mu, beta), has
+    /// F(x)^k = exp(-k exp(-(x - mu)/beta)) = exp(-exp(-(x - mu - beta ln k)/beta)), a Gumbel of the
+    /// same scale with its location (its mode) moved by beta ln k, here k = exposure /
+    /// events_per_sample (also for a k that is not whole, as the continuous extrapolation).
+    /// NaN unless both counts are finite and > 0.
+    pub fn most_probable_maximum(&self, events_per_sample: f64, exposure: f64) -> f64 {
+        let positive = |v: f64| v.is_finite() && v > 0.0;
+        if !positive(events_per_sample) || !positive(exposure) {
+            return f64::NAN;
+        }
+        self.location + self.scale * (exposure / events_per_sample).ln()
+    }
+
+    /// The maximum likelihood fit, what `scipy.stats.gumbel_r.fit(samples)` computes (its own
+    /// `fit`, scipy >= 1.7): the scale solves beta = mean(x) - sum(x w) / sum(w), w = exp(-x/beta)
+    /// (the likelihood's stationarity in location eliminated; Johnson, Kotz and Balakrishnan,
+    /// *Continuous Univariate Distributions* vol. 2, 22.7), then location = -beta ln(mean(exp(-x/beta))).
+    /// The samples are centred on their mean and the exponentials shifted by their largest exponent,
+    /// so nothing overflows and large offsets keep their digits. The scale's equation
+    /// g(beta) = mean - weighted mean - beta is strictly decreasing (the weighted mean rises with
+    /// beta) from mean - min > 0 at 0+ to < 0 at beta = mean - min, so its one root is bracketed;
+    /// Newton steps from the moments' scale, kept inside the bracket by bisection, to 1e-15
+    /// relative. Errors: fewer than 2 samples, a non-finite sample, all samples equal.
+    pub fn fit_maximum_likelihood(samples: &[f64]) -> Result<Gumbel, String> {
+        let (mean, std) = check_samples(samples)?;
+        let centred: Vec<f64> = samples.iter().map(|x| x - mean).collect();
+        let lowest = centred.iter().copied().fold(f64::INFINITY, f64::min);
+        // g(beta) and g'(beta) = -var_w(x)/beta^2 - 1 with the weights w = exp(-(x - lowest)/beta).
+        let g = |beta: f64| {
+            let (mut sw, mut swx, mut swxx) = (0.0, 0.0, 0.0);
+            for &x in &centred {
+                let w = (-(x - lowest) / beta).exp();
+                sw += w;
+                swx += w * x;
+                swxx += w * x * x;
+            }
+            let wmean = swx / sw;
+            let wvar = (swxx / sw - wmean * wmean).max(0.0);
+            (-wmean - beta, -wvar / (beta * beta) - 1.0)
+        };
+        let (mut lo, mut hi) = (0.0, -lowest);
+        let mut beta = (std * 6f64.sqrt() / std::f64::consts::PI).clamp(0.5 * hi, hi);
+        for _ in 0..200 {
+            let (value, slope) = g(beta);
+            if value > 0.0 {
+                lo = beta;
+            } else {
+                hi = beta;
+            }
+            let newton = beta - value / slope;
+            let next = if newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
+            let done = (next - beta).abs() <= 1e-15 * beta || hi - lo <= 1e-15 * hi;
+            beta = next;
+            if done {
+                break;
+            }
+        }
+        let sum: f64 = centred.iter().map(|x| (-(x - lowest) / beta).exp()).sum();
+        let location = mean + lowest - beta * (sum / samples.len() as f64).ln();
+        Ok(Gumbel { location, scale: beta })
+    }
+
+    /// The method of moments: scale = s sqrt(6)/pi, location = mean - 0.5772 scale, s the sample
+    /// standard deviation (n - 1 in the denominator). Errors as [`Gumbel::fit_maximum_likelihood`].
+    pub fn fit_moments(samples: &[f64]) -> Result<Gumbel, String> {
+        let (mean, std) = check_samples(samples)?;
+        let scale = std * 6f64.sqrt() / std::f64::consts::PI;
+        Ok(Gumbel { location: mean - EULER_GAMMA * scale, scale })
+    }
+}
+
+/// The mean and the sample standard deviation (n - 1) of samples a Gumbel can be fitted to.
+fn check_samples(samples: &[f64]) -> Result<(f64, f64), String> {
+    if samples.len() < 2 {
+        return Err(format!("a Gumbel fit needs at least 2 samples, got {}", samples.len()));
+    }
+    if let Some((i, x)) = samples.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+        return Err(format!("a Gumbel fit needs finite samples, sample {i} is {x}"));
+    }
+    let (mean, std) = mean_std(samples);
+    if samples.iter().all(|&x| x == samples[0]) {
+        return Err(format!("a Gumbel fit needs samples that differ, all {} are {}", samples.len(), samples[0]));
+    }
+    Ok((mean, std))
+}
+
+/// The mean and the sample standard deviation (n - 1; NaN for fewer than 2 samples), two-pass.
+fn mean_std(samples: &[f64]) -> (f64, f64) {
+    let n = samples.len() as f64;
+    let mean = samples.iter().sum::<f64>() / n;
+    let squares: f64 = samples.iter().map(|x| (x - mean) * (x - mean)).sum();
+    (mean, if samples.len() < 2 { f64::NAN } else { (squares / (n - 1.0)).sqrt() })
+}
+
+/// The empirical distribution of a sample, sorted ascending.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Empirical {
+    sorted: Vec<f64>,
+}
+
+impl Empirical {
+    /// The sample, sorted. Error: a sample that is not finite (named by its index and value).
+    pub fn new(samples: &[f64]) -> Result<Empirical, String> {
+        if let Some((i, x)) = samples.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+            return Err(format!("an empirical distribution needs finite samples, sample {i} is {x}"));
+        }
+        let mut sorted = samples.to_vec();
+        sorted.sort_by(f64::total_cmp);
+        Ok(Empirical { sorted })
+    }
+
+    /// The samples, ascending.
+    pub fn sorted(&self) -> &[f64] {
+        &self.sorted
+    }
+
+    /// The number of samples.
+    pub fn len(&self) -> usize {
+        self.sorted.len()
+    }
+
+    /// Whether there are no samples.
+    pub fn is_empty(&self) -> bool {
+        self.sorted.is_empty()
+    }
+
+    /// (k, n): the k samples strictly above `threshold` among n, for [`clopper_pearson`] or
+    /// [`wilson`]. A sample equal to the threshold does not exceed it.
+    pub fn exceedance(&self, threshold: f64) -> (u64, u64) {
+        let at_or_below = self.sorted.partition_point(|&x| x <= threshold);
+        ((self.sorted.len() - at_or_below) as u64, self.sorted.len() as u64)
+    }
+
+    /// The `p` quantile by the Weibull plotting position: the i-th smallest of n (1-based) is put at
+    /// probability i/(n+1), linear in between (Hyndman and Fan 1996, definition 6; numpy's
+    /// `quantile(.., method="weibull")`); below 1/(n+1) the smallest sample, above n/(n+1) the
+    /// largest. NaN for no samples or `p` outside [0, 1].
+    pub fn quantile(&self, p: f64) -> f64 {
+        let n = self.sorted.len();
+        if n == 0 || !(0.0..=1.0).contains(&p) {
+            return f64::NAN;
+        }
+        // 0-based position p (n + 1) - 1, clamped to the samples.
+        let h = (p * (n + 1) as f64 - 1.0).clamp(0.0, (n - 1) as f64);
+        let i = h.floor() as usize;
+        if i + 1 >= n {
+            return self.sorted[n - 1];
+        }
+        let x = self.sorted[i];
+        x + (h - i as f64) * (self.sorted[i + 1] - x)
+    }
+
+    /// The mean (NaN for no samples).
+    pub fn mean(&self) -> f64 {
+        mean_std(&self.sorted).0
+    }
+
+    /// The sample standard deviation, n - 1 in the denominator (NaN for fewer than 2 samples).
+    pub fn std(&self) -> f64 {
+        mean_std(&self.sorted).1
+    }
+}
