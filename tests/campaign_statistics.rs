@@ -312,6 +312,7 @@ fn empirical_exceedance_counts_strictly_above() {
     assert_eq!(e.exceedance(0.97), (2, 5)); // 0.97 itself does not exceed
     assert_eq!(e.exceedance(0.5), (5, 5));
     assert_eq!(e.exceedance(1.0), (0, 5));
+    assert_eq!(e.exceedance(f64::NAN), (0, 5));
     assert_eq!(Empirical::new(&[]).unwrap().exceedance(1.0), (0, 0));
 }
 

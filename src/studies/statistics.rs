@@ -175,7 +175,8 @@ pub fn beta_quantile(a: f64, b: f64, p: f64) -> f64 {
 /// (one-sided exact: (1 - target)^n <= alpha, so n = ceil(ln(alpha) / ln(1 - target)); the rule of
 /// three, n ~ 3/target, at 95 %). 2995 for 1e-3 at 95 %. Note the two-sided Clopper-Pearson
 /// high at k = 0, 1 - (alpha/2)^(1/n), needs ln(alpha/2)/ln(1 - target) events (3688 for 1e-3 at
-/// 95 %) to fall below the target. `u64::MAX` when an argument is outside (0, 1).
+/// 95 %) to fall below the target. `u64::MAX` when an argument is outside (0, 1) or the count
+/// would not fit (a target below about 1e-19).
 pub fn events_needed(target: f64, confidence: f64) -> u64 {
     if check_probability("target", target).is_err() || check_probability("confidence", confidence).is_err() {
         return u64::MAX;
@@ -225,7 +226,10 @@ impl Gumbel {
     /// F(x)^k = exp(-k exp(-(x - mu)/beta)) = exp(-exp(-(x - mu - beta ln k)/beta)), a Gumbel of the
     /// same scale with its location (its mode) moved by beta ln k, here k = exposure /
     /// events_per_sample (also for a k that is not whole, as the continuous extrapolation).
-    /// NaN unless both counts are finite and > 0.
+    /// NaN unless both counts are finite and > 0. For Rayleigh-like tails, whose maxima are Gumbel
+    /// in r^2 rather than r, the extrapolation leans to the safe side: fitted to the maxima of 100
+    /// Rayleigh peaks, the mode is 1.7 % under the exact one at the fitted exposure, 0.8 % over it
+    /// at 10 times and 4.8 % over at 100 times (tests/campaign_statistics.rs).
     pub fn most_probable_maximum(&self, events_per_sample: f64, exposure: f64) -> f64 {
         let positive = |v: f64| v.is_finite() && v > 0.0;
         if !positive(events_per_sample) || !positive(exposure) {
@@ -348,8 +352,12 @@ impl Empirical {
     }
 
     /// (k, n): the k samples strictly above `threshold` among n, for [`clopper_pearson`] or
-    /// [`wilson`]. A sample equal to the threshold does not exceed it.
+    /// [`wilson`]. A sample equal to the threshold does not exceed it; a NaN threshold is exceeded
+    /// by none.
     pub fn exceedance(&self, threshold: f64) -> (u64, u64) {
+        if threshold.is_nan() {
+            return (0, self.sorted.len() as u64);
+        }
         let at_or_below = self.sorted.partition_point(|&x| x <= threshold);
         ((self.sorted.len() - at_or_below) as u64, self.sorted.len() as u64)
     }
