@@ -12,7 +12,7 @@
 //!   position).
 //!
 //! Invalid arguments give NaN (or the documented value), never a panic: the callers check what the
-//! user typed with [`check_probability`] and friends, which give one-line errors.
+//! user typed with [`check_probability`], which gives a one-line error.
 
 use serde::Serialize;
 use statrs::function::beta::{checked_beta_reg, inv_beta_reg};
@@ -105,13 +105,12 @@ pub fn clopper_pearson(exceeding: u64, events: u64, confidence: f64) -> Interval
     } else {
         beta_quantile(k, n - k + 1.0, tail)
     };
-    // The upper bound through the mirror 1 - X ~ Beta(n-k, k+1): its small value keeps its digits.
     let high = if exceeding == events {
         1.0
     } else if exceeding == 0 {
         closed
     } else {
-        1.0 - beta_quantile(n - k, k + 1.0, tail)
+        beta_quantile(k + 1.0, n - k, 1.0 - tail)
     };
     Interval { probability: k / n, low, high }
 }
