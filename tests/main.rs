@@ -11,6 +11,7 @@ mod recording_support;
 mod answer;
 mod benchmarks;
 mod campaign_cli;
+mod campaign_statistics;
 mod cli;
 mod cli_defects;
 mod closed_form;

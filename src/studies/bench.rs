@@ -345,7 +345,10 @@ pub fn campaign_benchmark(runs: usize) -> Result<String> {
         let tally = campaign.run(jobs, &std::sync::atomic::AtomicBool::new(false), &mut |_| {}, &mut |_| Ok(()))?;
         samples.push(start.elapsed());
         if tally.failed > 0 {
-            return Err(crate::Error::Other(format!("the bench's campaign: {} of {EVENTS} events failed", tally.failed)));
+            return Err(crate::Error::Other(format!(
+                "the bench's campaign: {} of {EVENTS} events failed",
+                tally.failed
+            )));
         }
     }
     let wall = median(samples).as_secs_f64();

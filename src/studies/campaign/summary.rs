@@ -369,7 +369,10 @@ pub fn text(cell: &str, s: &CellSummary, options: &Options) -> String {
         s.events, s.records, s.failed, s.untrusted
     );
     let i = s.overload.interval;
-    let _ = writeln!(
+    if s.overload.events == 0 {
+        let _ = writeln!(t, "overload: no event ran without error, no estimate");
+    } else {
+        let _ = writeln!(
         t,
         "overload (any utilisation > 1): {} of {}, probability {:.3e} ({c} % Clopper-Pearson {:.3e} .. {:.3e}): {} \
          (target {} on {})",
@@ -381,7 +384,8 @@ pub fn text(cell: &str, s: &CellSummary, options: &Options) -> String {
         if s.operable { "operable" } else { "not operable" },
         options.target,
         if options.on_upper_bound { "the upper bound" } else { "the estimate" }
-    );
+        );
+    }
     let exposure = options.exposure();
     let _ = writeln!(
         t,
