@@ -357,6 +357,15 @@ fn printed_unit(unit: &str) -> (&'static str, f64) {
     }
 }
 
+/// A probability as printed: 0 as 0, others to four significant digits.
+fn probability(p: f64) -> String {
+    if p == 0.0 {
+        "0".into()
+    } else {
+        format!("{p:.3e}")
+    }
+}
+
 /// A cell's summary as printed: its events, the overload probability with its interval and
 /// verdict, a line per quantity, and the warnings.
 pub fn text(cell: &str, s: &CellSummary, options: &Options) -> String {
@@ -374,12 +383,12 @@ pub fn text(cell: &str, s: &CellSummary, options: &Options) -> String {
     } else {
         let _ = writeln!(
         t,
-        "overload (any utilisation > 1): {} of {}, probability {:.3e} ({c} % Clopper-Pearson {:.3e} .. {:.3e}): {} \
-         (target {} on {})",
+        "overload (any utilisation > 1): {} of {}, probability {} ({c} % Clopper-Pearson {} .. {:.3e}): {} (target \
+         {} on {})",
         s.overload.exceeding,
         s.overload.events,
-        i.probability,
-        i.low,
+        probability(i.probability),
+        probability(i.low),
         i.high,
         if s.operable { "operable" } else { "not operable" },
         options.target,
