@@ -27,6 +27,7 @@ from __future__ import annotations
 import hashlib
 import json
 import math
+import numbers
 import os
 import sys
 import threading
@@ -109,7 +110,7 @@ def _texts(name: str, spec: Any) -> list[str]:
 
 
 def _number(name: str, field: str, value: Any) -> str:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
         if isinstance(value, str):
             return value
         raise ValueError(f"{name}: {field} takes numbers, got {value!r}"[:300])
@@ -193,14 +194,18 @@ def campaign(
     path, text = scenario_source(scenario)
     if path is None and text is None:
         raise ValueError("campaign: give a scenario (a file with a [sea] section, or its TOML text)")
+    for what, count in (("events", events), ("seeds", seeds), ("max_events", max_events), ("max_steps", max_steps)):
+        if count is not None and (isinstance(count, bool) or not isinstance(count, numbers.Integral)
+                                  or not 0 <= count < 2**64):
+            raise ValueError(f"{what} must be a whole number from 1 to 2**64 - 1, got {count!r}"[:300])
     name, toml, raos_path, raos_text = _native.campaign_sources(path, text)
     arguments = dict(
         name=name, text=toml, raos_path=raos_path, raos_text=raos_text, set=_texts("set", set),
-        vary=_texts("vary", vary), events=events, seeds=seeds, record_length=float(record_length),
+        vary=_texts("vary", vary), events=int(events), seeds=int(seeds), record_length=float(record_length),
         target=float(target), confidence=float(confidence),
         exposure=None if exposure is None else float(exposure), on_estimate=bool(on_estimate),
-        max_events=_native.CAMPAIGN_MAX_EVENTS if max_events is None else max_events,
-        max_steps=_native.MAX_STEPS if max_steps is None else max_steps,
+        max_events=_native.CAMPAIGN_MAX_EVENTS if max_events is None else int(max_events),
+        max_steps=_native.MAX_STEPS if max_steps is None else int(max_steps),
     )
     native = _native.Campaign(**arguments)
     for cell_name, (_, refused) in zip(native.cell_names(), native.cells()):

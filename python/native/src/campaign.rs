@@ -17,6 +17,7 @@ use beam_impact::studies::campaign::summary::{self, EventOutcome, EventResults};
 use beam_impact::studies::campaign::{self as campaign, operability, EventRow, Options};
 use beam_impact::studies::sweep::{self, Row};
 use beam_impact::{Error, Scenario};
+use pyo3::exceptions::PyKeyboardInterrupt;
 use pyo3::prelude::*;
 
 use crate::value_error;
@@ -210,7 +211,12 @@ impl Campaign {
                         if let (Some(callback), true, None) = (&progress, n != shown, &failure) {
                             shown = n;
                             if let Err(e) = callback.call1(py, (n,)) {
-                                failure = Some(e);
+                                // Ctrl-C while the bar moved is Ctrl-C: the rows done are kept.
+                                if e.is_instance_of::<PyKeyboardInterrupt>(py) {
+                                    interrupted = true;
+                                } else {
+                                    failure = Some(e);
+                                }
                                 cancel.store(true, Ordering::SeqCst);
                             }
                         }
