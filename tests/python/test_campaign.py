@@ -24,6 +24,7 @@ import textwrap
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import beam_impact
@@ -129,8 +130,9 @@ def test_a_grid_and_its_figures_are_the_cli_campaigns(tmp_path):
 
 
 def test_one_thread_and_two_give_the_same_rows():
+    # With the bar (its callback from the native threads' watcher) and without.
     one = beam_impact.campaign(SCENARIO, events=6, seeds=2, set=SET, vary={"sea.peak_period": [6, 8]}, jobs=1,
-                               progress=False)
+                               progress=True)
     two = beam_impact.campaign(SCENARIO, events=6, seeds=2, set=SET, vary={"sea.peak_period": [6, 8]}, jobs=2,
                                progress=False)
     assert one.rows.drop(columns="wall_time").equals(two.rows.drop(columns="wall_time"))
@@ -139,24 +141,40 @@ def test_one_thread_and_two_give_the_same_rows():
     assert (one.rows["error"] == "").all() and one.rows["peak.contact.force"].gt(0).all()
 
 
+def test_a_scenario_text_reads_its_rao_file_from_the_current_folder(monkeypatch):
+    from_file = beam_impact.campaign(SCENARIO, events=2, seeds=1, set=SET, progress=False)
+    monkeypatch.chdir(SCENARIO.parent)
+    from_text = beam_impact.campaign(SCENARIO.read_text(), events=2, seeds=1, set=SET, progress=False)
+    assert from_text.rows.drop(columns="wall_time").equals(from_file.rows.drop(columns="wall_time"))
+    monkeypatch.chdir(SCENARIO.parent.parent)
+    with pytest.raises(ValueError, match="cannot read RAO file vessel-sea-raos.csv"):
+        beam_impact.campaign(SCENARIO.read_text(), events=2, seeds=1, progress=False)
+
+
 def built_campaigns() -> list:
     """In a worker: the keys of the campaigns it built."""
     return list(sys.modules["beam_impact.campaign"]._BUILT)
 
 
 def test_a_two_worker_dask_cluster_gives_the_threads_rows():
+    """The issue's grid shape, 8 Tp x 10 Hs, at one event a cell (its 500 are a cluster's work):
+    the 8 steepest seas are refused (breaking) and the other 72 cells' events run as tasks."""
     distributed = pytest.importorskip("distributed")
-    threads = beam_impact.campaign(SCENARIO, events=4, seeds=2, set=SET, vary=GRID, progress=False)
+    grid = {"sea.peak_period": np.arange(5, 13), "sea.significant_wave_height": np.linspace(0.5, 5, 10)}
+    with pytest.warns(RuntimeWarning, match="the waves would break"):
+        threads = beam_impact.campaign(SCENARIO, events=1, seeds=1, set=SET, vary=grid, progress=False)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster:
         with distributed.Client(cluster) as client:
-            tasks = beam_impact.campaign(SCENARIO, events=4, seeds=2, set=SET, vary=GRID, client=client,
-                                         progress=False)
+            with pytest.warns(RuntimeWarning, match="the waves would break"):
+                tasks = beam_impact.campaign(SCENARIO, events=1, seeds=1, set=SET, vary=grid, client=client,
+                                             progress=False)
             # Both workers ran events, each from the campaign it built of the texts it was sent.
             built = client.run(built_campaigns)
     assert len(built) == 2 and all(len(keys) == 1 for keys in built.values()), built
-    assert len(tasks.rows) == 16
+    refused = [c for c in tasks.summary["cells"] if "refused" in c]
+    assert len(refused) == 8 and len(tasks.rows) == 72 and (tasks.rows["error"] == "").all()
     assert tasks.rows.drop(columns="wall_time").equals(threads.rows.drop(columns="wall_time"))
-    assert tasks.summary == threads.summary
+    assert tasks.summary == threads.summary and tasks.table == threads.table
 
 
 def test_the_gumbel_fits_and_intervals_are_scipys_on_the_same_samples(one_cell):
