@@ -10,6 +10,8 @@ mod recording_support;
 
 mod answer;
 mod benchmarks;
+mod campaign_cli;
+mod campaign_statistics;
 mod cli;
 mod cli_defects;
 mod closed_form;
@@ -39,6 +41,7 @@ mod fmi_pack;
 mod fmi_quality;
 mod fmi_sections;
 mod fmi_state_restore;
+mod fuzz_campaign;
 mod fuzz_log_channels;
 mod fuzz_log_reader;
 mod fuzz_log_sample_interval;

@@ -100,6 +100,7 @@ pub fn stepper_benchmark(runs: usize) -> Result<String> {
     out += &converged_benchmark(runs)?;
     out += &motion_benchmark(runs)?;
     out += &sea_benchmark(runs)?;
+    out += &campaign_benchmark(runs)?;
     out += &contact_law_benchmark(runs)?;
     Ok(out)
 }
@@ -314,6 +315,52 @@ pub fn sea_benchmark(runs: usize) -> Result<String> {
         ms(moving),
         moving.as_secs_f64() / still.as_secs_f64().max(f64::MIN_POSITIVE),
         ms(build)
+    );
+    Ok(out)
+}
+
+/// A campaign's cost (issue 43): [`sea_benchmark`]'s vessel in its sea, 20 events a run on 4
+/// records of an hour, each a converged answer with its verdict (as `beam-impact campaign`), on
+/// every core; the wall time per event and what 10 000 events would take on this machine (the
+/// issue's bar: 60 s on two cores); medians of `runs`.
+pub fn campaign_benchmark(runs: usize) -> Result<String> {
+    use crate::model::sea::RaoTable;
+    use crate::studies::campaign::{Campaign, Options};
+    let mut out = String::new();
+    let text = "duration = 3.0\n[sea]\nsignificant_wave_height = 2.5\npeak_period = 8.0\nheading = 180.0\nseed = 1\n\
+                raos = \"long-wave.csv\"\nhinge_point = [-10.0, 0.0, 8.0]\nclamp_point = [15.0, 0.0, 8.0]\n";
+    let mut sea = Scenario::from_toml(text, "the bench's sea")?;
+    let table = std::sync::Arc::new(RaoTable::parse_csv(&long_wave_raos()).map_err(crate::Error::Other)?);
+    if let Some(settings) = sea.sea.as_mut() {
+        settings.rao_table = Some(table);
+    }
+    const EVENTS: u64 = 20;
+    let jobs = crate::studies::sweep::default_jobs();
+    let mut samples = Vec::with_capacity(runs);
+    for _ in 0..runs.max(1) {
+        // A fresh campaign each time: its records and modes computed inside the timing.
+        let options = Options { events: EVENTS, seeds: 4, record_length: 3600.0, ..Options::default() };
+        let campaign = Campaign::new(sea.clone(), Vec::new(), options, EVENTS, crate::model::scenario::MAX_STEPS)?;
+        let start = Instant::now();
+        let tally = campaign.run(jobs, &std::sync::atomic::AtomicBool::new(false), &mut |_| {}, &mut |_| Ok(()))?;
+        samples.push(start.elapsed());
+        if tally.failed > 0 {
+            return Err(crate::Error::Other(format!(
+                "the bench's campaign: {} of {EVENTS} events failed",
+                tally.failed
+            )));
+        }
+    }
+    let wall = median(samples).as_secs_f64();
+    let per = wall / EVENTS as f64;
+    let _ = writeln!(out, "campaign (the sea state above, 3 s runs, converged answers, median of {runs} runs):");
+    let _ = writeln!(
+        out,
+        "  {EVENTS} events on {jobs} threads: {:8.2} ms  {:.2} ms of wall per event; 10 000 events: {:.0} s projected on \
+         this machine (bar: 60 s on two cores)",
+        wall * 1e3,
+        per * 1e3,
+        per * 10_000.0
     );
     Ok(out)
 }

@@ -12,7 +12,7 @@
 //!   position).
 //!
 //! Invalid arguments give NaN (or the documented value), never a panic: the callers check what the
-//! user typed with [`check_probability`] and friends, which give one-line errors.
+//! user typed with [`check_probability`], which gives a one-line error.
 
 use serde::Serialize;
 use statrs::function::beta::{checked_beta_reg, inv_beta_reg};
@@ -105,13 +105,12 @@ pub fn clopper_pearson(exceeding: u64, events: u64, confidence: f64) -> Interval
     } else {
         beta_quantile(k, n - k + 1.0, tail)
     };
-    // The upper bound through the mirror 1 - X ~ Beta(n-k, k+1): its small value keeps its digits.
     let high = if exceeding == events {
         1.0
     } else if exceeding == 0 {
         closed
     } else {
-        1.0 - beta_quantile(n - k, k + 1.0, tail)
+        beta_quantile(k + 1.0, n - k, 1.0 - tail)
     };
     Interval { probability: k / n, low, high }
 }
@@ -175,7 +174,8 @@ pub fn beta_quantile(a: f64, b: f64, p: f64) -> f64 {
 /// (one-sided exact: (1 - target)^n <= alpha, so n = ceil(ln(alpha) / ln(1 - target)); the rule of
 /// three, n ~ 3/target, at 95 %). 2995 for 1e-3 at 95 %. Note the two-sided Clopper-Pearson
 /// high at k = 0, 1 - (alpha/2)^(1/n), needs ln(alpha/2)/ln(1 - target) events (3688 for 1e-3 at
-/// 95 %) to fall below the target. `u64::MAX` when an argument is outside (0, 1).
+/// 95 %) to fall below the target. `u64::MAX` when an argument is outside (0, 1) or the count
+/// would not fit (a target below about 1e-19).
 pub fn events_needed(target: f64, confidence: f64) -> u64 {
     if check_probability("target", target).is_err() || check_probability("confidence", confidence).is_err() {
         return u64::MAX;
@@ -225,7 +225,10 @@ impl Gumbel {
     /// F(x)^k = exp(-k exp(-(x - mu)/beta)) = exp(-exp(-(x - mu - beta ln k)/beta)), a Gumbel of the
     /// same scale with its location (its mode) moved by beta ln k, here k = exposure /
     /// events_per_sample (also for a k that is not whole, as the continuous extrapolation).
-    /// NaN unless both counts are finite and > 0.
+    /// NaN unless both counts are finite and > 0. For Rayleigh-like tails, whose maxima are Gumbel
+    /// in r^2 rather than r, the extrapolation leans to the safe side: fitted to the maxima of 100
+    /// Rayleigh peaks, the mode is 1.7 % under the exact one at the fitted exposure, 0.8 % over it
+    /// at 10 times and 4.8 % over at 100 times (tests/campaign_statistics.rs).
     pub fn most_probable_maximum(&self, events_per_sample: f64, exposure: f64) -> f64 {
         let positive = |v: f64| v.is_finite() && v > 0.0;
         if !positive(events_per_sample) || !positive(exposure) {
@@ -246,7 +249,9 @@ impl Gumbel {
     /// relative. Errors: fewer than 2 samples, a non-finite sample, all samples equal.
     pub fn fit_maximum_likelihood(samples: &[f64]) -> Result<Gumbel, String> {
         let (mean, std) = check_samples(samples)?;
-        let centred: Vec<f64> = samples.iter().map(|x| x - mean).collect();
+        // In units of the sample's standard deviation (the fit is equivariant: location and scale
+        // follow), so that neither 1e300 nor 1e-300 over- or underflows in the weighted sums.
+        let centred: Vec<f64> = samples.iter().map(|x| (x - mean) / std).collect();
         let lowest = centred.iter().copied().fold(f64::INFINITY, f64::min);
         // g(beta) and g'(beta) = -var_w(x)/beta^2 - 1 with the weights w = exp(-(x - lowest)/beta).
         let g = |beta: f64| {
@@ -279,8 +284,16 @@ impl Gumbel {
             }
         }
         let sum: f64 = centred.iter().map(|x| (-(x - lowest) / beta).exp()).sum();
-        let location = mean + lowest - beta * (sum / samples.len() as f64).ln();
-        Ok(Gumbel { location, scale: beta })
+        let location = mean + std * (lowest - beta * (sum / samples.len() as f64).ln());
+        let scale = std * beta;
+        if !(location.is_finite() && scale.is_finite() && scale > 0.0) {
+            return Err(format!(
+                "a Gumbel fit of these {} samples (mean {mean:e}, standard deviation {std:e}) gives no finite \
+                 location and positive scale",
+                samples.len()
+            ));
+        }
+        Ok(Gumbel { location, scale })
     }
 
     /// The method of moments: scale = s sqrt(6)/pi, location = mean - 0.5772 scale, s the sample
@@ -303,6 +316,13 @@ fn check_samples(samples: &[f64]) -> Result<(f64, f64), String> {
     let (mean, std) = mean_std(samples);
     if samples.iter().all(|&x| x == samples[0]) {
         return Err(format!("a Gumbel fit needs samples that differ, all {} are {}", samples.len(), samples[0]));
+    }
+    if !(mean.is_finite() && std.is_finite() && std > 0.0) {
+        return Err(format!(
+            "a Gumbel fit of {} samples with mean {mean:e} and standard deviation {std:e}: beyond the range of \
+             double precision",
+            samples.len()
+        ));
     }
     Ok((mean, std))
 }
@@ -348,8 +368,12 @@ impl Empirical {
     }
 
     /// (k, n): the k samples strictly above `threshold` among n, for [`clopper_pearson`] or
-    /// [`wilson`]. A sample equal to the threshold does not exceed it.
+    /// [`wilson`]. A sample equal to the threshold does not exceed it; a NaN threshold is exceeded
+    /// by none.
     pub fn exceedance(&self, threshold: f64) -> (u64, u64) {
+        if threshold.is_nan() {
+            return (0, self.sorted.len() as u64);
+        }
         let at_or_below = self.sorted.partition_point(|&x| x <= threshold);
         ((self.sorted.len() - at_or_below) as u64, self.sorted.len() as u64)
     }

@@ -352,6 +352,15 @@ impl SeaSettings {
     /// What needs the RAO table: the components' range inside its frequencies and holding
     /// [`MIN_ENERGY_FRACTION`] of the variance, the heading interpolable.
     pub fn check_against(&self, raos: &RaoTable) -> Result<()> {
+        // A realisation made for these fields and this table passed these checks when it was made
+        // (every run validates its scenario: a campaign's events would integrate the spectrum
+        // again each time).
+        if let Ok(entries) = self.records.0.lock() {
+            let key = self.realisation_key();
+            if entries.iter().any(|(k, r, _)| *k == key && std::ptr::eq(Arc::as_ptr(r), raos)) {
+                return Ok(());
+            }
+        }
         let (lo, hi) = self.frequency_range(Some(raos));
         let (flo, fhi) = raos.frequency_range();
         for (name, w) in [("sea.frequency_min", lo), ("sea.frequency_max", hi)] {
@@ -384,12 +393,17 @@ impl SeaSettings {
         Ok(())
     }
 
+    /// What a realisation depends on besides the RAO table: every field but `time_shift` and
+    /// `sample_interval`, as text.
+    fn realisation_key(&self) -> String {
+        toml::to_string(&SeaSettings { time_shift: 0.0, sample_interval: 0.0, ..self.clone() }).unwrap_or_default()
+    }
+
     /// The record (components and the supports' response) for the loaded RAO table: made once
     /// per realisation and RAO table, and kept by the scenario and its clones.
     pub fn record(&self) -> Result<Arc<SeaRecord>> {
         let raos = self.rao_table.as_ref().ok_or_else(|| not_loaded(&self.raos))?;
-        let key =
-            toml::to_string(&SeaSettings { time_shift: 0.0, sample_interval: 0.0, ..self.clone() }).unwrap_or_default();
+        let key = self.realisation_key();
         if let Ok(entries) = self.records.0.lock() {
             if let Some((_, _, record)) = entries.iter().find(|(k, r, _)| *k == key && Arc::ptr_eq(r, raos)) {
                 return Ok(Arc::clone(record));

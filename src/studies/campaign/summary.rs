@@ -257,14 +257,19 @@ fn one_sided(confidence: f64) -> f64 {
 }
 
 fn quantity(q: usize, ok: &[(u64, &EventResults)], seeds: &[u64], options: &Options) -> Option<QuantitySummary> {
-    let values: Vec<(u64, f64)> = ok.iter().filter_map(|(s, r)| r.peaks[q].map(|v| (*s, v))).collect();
+    let given: Vec<(u64, f64)> = ok.iter().filter_map(|(s, r)| r.peaks[q].map(|v| (*s, v))).collect();
+    // A converged answer's peaks are finite; one that is not is left out and said.
+    let values: Vec<(u64, f64)> = given.iter().copied().filter(|(_, v)| v.is_finite()).collect();
     if values.is_empty() {
         return None;
     }
+    let mut warnings = Vec::new();
+    if values.len() < given.len() {
+        warnings.push(format!("{} events' peaks are not finite and left out", given.len() - values.len()));
+    }
     let samples: Vec<f64> = values.iter().map(|(_, v)| *v).collect();
     let empirical = Empirical::new(&samples).ok()?;
-    let utilisations: Vec<f64> = ok.iter().filter_map(|(_, r)| r.utilisation[q]).collect();
-    let mut warnings = Vec::new();
+    let utilisations: Vec<f64> = ok.iter().filter_map(|(_, r)| r.utilisation[q]).filter(|u| !u.is_nan()).collect();
     let exceedance = (!utilisations.is_empty()).then(|| {
         let k = utilisations.iter().filter(|u| **u > 1.0).count() as u64;
         let e = Exceedance::new(k, utilisations.len() as u64, options.confidence);
@@ -364,7 +369,10 @@ pub fn text(cell: &str, s: &CellSummary, options: &Options) -> String {
         s.events, s.records, s.failed, s.untrusted
     );
     let i = s.overload.interval;
-    let _ = writeln!(
+    if s.overload.events == 0 {
+        let _ = writeln!(t, "overload: no event ran without error, no estimate");
+    } else {
+        let _ = writeln!(
         t,
         "overload (any utilisation > 1): {} of {}, probability {:.3e} ({c} % Clopper-Pearson {:.3e} .. {:.3e}): {} \
          (target {} on {})",
@@ -376,7 +384,8 @@ pub fn text(cell: &str, s: &CellSummary, options: &Options) -> String {
         if s.operable { "operable" } else { "not operable" },
         options.target,
         if options.on_upper_bound { "the upper bound" } else { "the estimate" }
-    );
+        );
+    }
     let exposure = options.exposure();
     let _ = writeln!(
         t,
