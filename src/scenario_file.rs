@@ -74,13 +74,20 @@ pub const MAX_RAO_BYTES: u64 = 32 << 20;
 /// Reads the vessel's RAO file `path` (`[sea] raos`: our CSV or VERES `.re1`) into the
 /// scenario's sea with its SHA-256, and checks the sea against it (its frequencies and headings).
 pub fn load_raos(scenario: &mut Scenario, path: &Path) -> Result<()> {
-    use sha2::Digest;
     let file = open_regular_input(path, "cannot read RAO file")?;
     let text = check_size(&file, MAX_RAO_BYTES, "the RAO file")
         .and_then(|()| read_bounded(file, MAX_RAO_BYTES, "the RAO file"))
         .map_err(|source| io("cannot read RAO file", path, source))?;
-    let table = crate::model::sea::RaoTable::parse(&text)
-        .map_err(|e| Error::Other(format!("RAO file {}: {e}", shown(path))))?;
+    attach_raos(scenario, path, &text)
+}
+
+/// [`load_raos`] with the RAO file's `text` already read from `path` (a cluster's worker gets the
+/// text its caller read, issue 43): the table parsed into the scenario's sea with its SHA-256 and
+/// the sea checked against it.
+pub fn attach_raos(scenario: &mut Scenario, path: &Path, text: &str) -> Result<()> {
+    use sha2::Digest;
+    let table =
+        crate::model::sea::RaoTable::parse(text).map_err(|e| Error::Other(format!("RAO file {}: {e}", shown(path))))?;
     let hash: String = sha2::Sha256::digest(text.as_bytes()).iter().map(|b| format!("{b:02x}")).collect();
     let Some(sea) = scenario.sea.as_mut() else { return Ok(()) };
     sea.raos = path.display().to_string();

@@ -2,11 +2,11 @@
 
 Goal: every ```python block of the page runs, in order, in one fresh working directory, and
 succeeds; what the page states about the results holds (the run's keys are `run --json`'s, the
-log and its steps, the sweep's rows and its CSV, the figure written, the FMU route giving the
-native numbers). The ```sh setup block (a venv, `pip install ./python`) is what the suite's
-environment has already done, so it is not run; `examples/` is a copy of the repository's and
-`target/fmu` is BEAM_IMPACT_FMU_DIR. Output blocks (```text) are not compared: their numbers are
-abbreviated and may move with the physics.
+log and its steps, the sweep's rows and its CSV, the figure written, the campaign's rows, table
+and figure, the FMU route giving the native numbers). The ```sh setup block (a venv, `pip
+install ./python`) is what the suite's environment has already done, so it is not run;
+`examples/` is a copy of the repository's and `target/fmu` is BEAM_IMPACT_FMU_DIR. Output blocks
+(```text) are not compared: their numbers are abbreviated and may move with the physics.
 """
 
 from __future__ import annotations
@@ -25,7 +25,7 @@ ROOT = Path(__file__).resolve().parents[2]
 PAGE = ROOT / "docs" / "python.md"
 FMU_DIR = Path(os.environ.get("BEAM_IMPACT_FMU_DIR", str(ROOT / "target" / "fmu")))
 FENCE = re.compile(r"^```([^\n`]*)\n(.*?)^```[ \t]*$", re.MULTILINE | re.DOTALL)
-TIMEOUT = 120  # s per block; the page takes about 15 s on two cores
+TIMEOUT = 120  # s per block; the page takes about 20 s on two cores (the campaign 6 s of it)
 
 
 def blocks(text: str) -> list[tuple[str, str]]:
@@ -64,17 +64,18 @@ def test_the_page_has_its_sections_and_blocks():
     every = blocks(text)
     assert [info for info, _ in every if info not in ("python", "text")] == ["sh setup"]
     assert "pip install" in every[0][1]
-    for heading in ["## Install", "## One run", "## A sweep", "## A plot", "## Reading a log", "## The FMU route"]:
+    for heading in ["## Install", "## One run", "## A sweep", "## A plot", "## Reading a log", "## Campaigns",
+                    "## The FMU route"]:
         assert heading in text, heading
     python = "\n".join(body for info, body in every if info == "python")
     for call in ["beam_impact.run(", "beam_impact.sweep(", "beam_impact.load_log(", "beam_impact.simulate(",
-                 'engine="fmu"', "savefig("]:
+                 'engine="fmu"', "savefig(", "beam_impact.campaign(", ".figures("]:
         assert call in python, call
 
 
 def test_every_block_runs_and_says_what_the_page_says(page):
     work, outputs = page
-    one_run, with_log, sweep, plot, log, fmu = outputs
+    one_run, with_log, sweep, plot, log, campaign, fmu = outputs
     # One run: the verdict line and the keys of `run --json`.
     assert "trusted: True [] | design passes: True" in one_run, one_run
     assert ("['design', 'discretisation', 'impact', 'merged_contact_windows', 'quality', 'scenario', "
@@ -97,5 +98,13 @@ def test_every_block_runs_and_says_what_the_page_says(page):
     passes = table.groupby("drop_height")["design.pass"].agg(list)
     assert passes[1.4] == [False, False] and passes[0.2] == [True, True], passes
     assert (work / "sweep.png").stat().st_size > 10_000
+    # The campaign: 40 events in each of two cells, none overloading, both cells operable at the
+    # target 0.1 (the 95 % upper bound of 0 in 40 is 1 - 0.025^(1/40) = 0.0881), its CSV and figure.
+    assert campaign.startswith("80 events: sea.significant_wave_height, event, seed, instant"), campaign
+    assert "0 of 40 events overload, probability below 0.088 (95 % Clopper-Pearson)" in campaign, campaign
+    assert "limit Hs [m]           2.5" in campaign, campaign
+    events = pd.read_csv(work / "events.csv", keep_default_na=False)
+    assert len(events) == 80 and (events["error"] == "").all() and events["seed"].isin([1, 2, 3, 4]).all()
+    assert (work / "figures" / "operability-heading-180.png").stat().st_size > 10_000
     # The FMU route gives the native numbers (the page prints True).
     assert fmu.rstrip().endswith("True"), fmu

@@ -9,7 +9,10 @@
 //! (`fmu_key`, `read_fmu`), issue 27. `run` runs the solver itself, as `beam-impact run` does
 //! (`run.rs`), for `beam_impact.run`; `sweep_row` and `sweep_columns` give the sweeps' native
 //! engine the rows and the columns of `beam-impact sweep`, from the CLI's own row code.
+//! `Campaign` and `campaign_sources` are `beam-impact campaign`'s plan, rows and statistics for
+//! `beam_impact.campaign` (`campaign.rs`).
 
+mod campaign;
 mod run;
 
 use std::collections::HashMap;
@@ -435,6 +438,9 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run::cancel_running, m)?)?;
     m.add_function(wrap_pyfunction!(run::sweep_columns, m)?)?;
     m.add_function(wrap_pyfunction!(run::sweep_row, m)?)?;
+    m.add_function(wrap_pyfunction!(campaign::campaign_sources, m)?)?;
+    m.add_class::<campaign::Campaign>()?;
+    m.add("CAMPAIGN_MAX_EVENTS", beam_impact::studies::campaign::DEFAULT_MAX_EVENTS)?;
     m.add("MAX_FMU_BYTES", MAX_FMU_BYTES)?;
     m.add("MAX_STEPS", beam_impact::model::scenario::MAX_STEPS)?;
     // One name per quantity: the step channel's columns as `report --csv` names them.

@@ -211,6 +211,38 @@ impl Campaign {
             .collect()
     }
 
+    /// The operability table's cells from the cells' summaries (those of [`Campaign::summaries`]): each
+    /// cell's Hs, Tp and heading (the grid's values, else the scenario's sea's), with its summary or
+    /// why it is refused; an accepted cell without events is left out.
+    pub fn table_cells<'a>(&'a self, summaries: &'a [Option<CellSummary>]) -> Vec<operability::TableCell<'a>> {
+        let sea = self.sweep.base.sea.as_ref();
+        let value_of = |c: usize, name: &str, default: f64| {
+            self.cell_axes.iter().position(|a| a.field.name == name).map_or(default, |k| self.cells[c].values[k])
+        };
+        self.cells
+            .iter()
+            .zip(summaries)
+            .enumerate()
+            .filter_map(|(c, (cell, summary))| {
+                let outcome = match (&cell.refused, summary) {
+                    (Some(why), _) => Err(why.as_str()),
+                    (None, Some(s)) => Ok(s),
+                    (None, None) => return None,
+                };
+                Some(operability::TableCell {
+                    significant_wave_height: value_of(
+                        c,
+                        "sea.significant_wave_height",
+                        sea.map_or(f64::NAN, |s| s.significant_wave_height),
+                    ),
+                    peak_period: value_of(c, "sea.peak_period", sea.map_or(f64::NAN, |s| s.peak_period)),
+                    heading: value_of(c, "sea.heading", sea.map_or(f64::NAN, |s| s.heading)),
+                    outcome,
+                })
+            })
+            .collect()
+    }
+
     /// The supports' motion at the event's instant (the record's exact sums).
     pub fn motion_at(&self, values: &[f64]) -> Result<[f64; 9]> {
         let scenario = self.sweep.scenario(values)?;
