@@ -6,7 +6,8 @@
 //! `PAGES_NOT_YET_UNDER_OUTPUT_MARKERS`):
 //!
 //! - `<!-- output: the block above -->`: this test runs the page's fenced block just above it (a
-//!   ```` ```sh ```` block) and compares what it prints with the block;
+//!   ```` ```sh ```` block) and compares what it prints with the block (a command block no other
+//!   test runs says so with `<!-- run by tests/doc_outputs.rs: ... -->` before its fence);
 //! - ``<!-- output: `COMMAND` -->``: this test runs COMMAND (for an output whose command the page
 //!   gives in prose, or the README's results);
 //! - `<!-- illustrative: why -->`: shown, not compared, and the reason says why (an abbreviated

@@ -10,7 +10,7 @@ use std::time::Instant;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use beam_impact::record::output::{check_distinct, shown, OutputFile};
-use beam_impact::studies::campaign::operability::{self, TableCell};
+use beam_impact::studies::campaign::operability;
 use beam_impact::studies::campaign::summary::{EventOutcome, EventResults};
 use beam_impact::studies::campaign::{Campaign, Options};
 use beam_impact::studies::sweep::{apply_settings, default_jobs, parse_axes, parse_settings};
@@ -86,25 +86,7 @@ pub fn campaign(args: &CampaignArgs) -> Result<Outcome> {
     let sidecars = write_units_sidecars(&sidecars, &units, &sweep_former_names())?;
 
     let summaries = campaign.summaries(&outcomes);
-    let sea = base.sea.as_ref().ok_or_else(|| Error::Other("no [sea]".into()))?;
-    let value_of = |c: usize, name: &str, default: f64| {
-        campaign.cell_axes.iter().position(|a| a.field.name == name).map_or(default, |k| campaign.cells[c].values[k])
-    };
-    let table_cells: Vec<TableCell> = (0..campaign.cells.len())
-        .filter_map(|c| {
-            let outcome = match (&campaign.cells[c].refused, &summaries[c]) {
-                (Some(why), _) => Err(why.as_str()),
-                (None, Some(s)) => Ok(s),
-                (None, None) => return None,
-            };
-            Some(TableCell {
-                significant_wave_height: value_of(c, "sea.significant_wave_height", sea.significant_wave_height),
-                peak_period: value_of(c, "sea.peak_period", sea.peak_period),
-                heading: value_of(c, "sea.heading", sea.heading),
-                outcome,
-            })
-        })
-        .collect();
+    let table_cells = campaign.table_cells(&summaries);
 
     let mut text = String::new();
     for (c, summary) in summaries.iter().enumerate() {
