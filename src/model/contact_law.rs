@@ -152,6 +152,14 @@ impl ContactLaw {
                 return (p, Some(t));
             }
             let newton = p - correction;
+            // Where h bends little over the correction (its curvature relative to its slope,
+            // (n - 1) / (2n) (a + f_r) F_x / P at most, times the correction, below 1e-8 of the
+            // correction's own size), the Newton step is the root to round-off: taken without a
+            // further evaluation, the law's terms kept from P (their compression off by
+            // (a + f_r) times the correction: below 1e-8 relative for in_series's f_r).
+            if correction.abs() <= 1e-8 * p && slope <= 2.0 && newton > lo && newton < hi {
+                return (newton, Some(t));
+            }
             if newton >= hi && !hi_checked {
                 let mut widen = 0;
                 while h(hi).0 < 0.0 && widen < 60 {
@@ -172,46 +180,74 @@ impl ContactLaw {
 
     /// The force and its partial derivatives at the contact's own compression x (m) under the
     /// kept modes' compression rate `rate` (m/s), in series with `f_r` (see
-    /// [`Self::solve_in_series`]): one x^n.
+    /// [`Self::solve_in_series`]): one x^n. With e = k x^n, s = 1 + f_r e' (the rate's share) and
+    /// phi = e / s the force is F = e + c V phi, so F_x = e' + c V phi', F_V = c phi,
+    /// F_xx = e'' + c V phi'', F_xV = c phi', F_VV = 0 (e's derivatives from e: e' = n e / x,
+    /// e'' = (n - 1) e' / x, e^(3) = (n - 2) e'' / x).
     fn series_terms(&self, x: f64, rate: f64, f_r: f64) -> SeriesTerms {
         if x <= 0.0 {
             return SeriesTerms::default();
         }
         let (n, c) = (self.exponent, self.damping);
         let e = self.elastic(x);
-        // The elastic tangent n k x^(n-1) and its slope n (n - 1) k x^(n-2).
+        // The elastic tangent n k x^(n-1) and its slopes.
         let tangent = n * e / x;
         let curvature = (n - 1.0) * tangent / x;
+        let third = (n - 2.0) * curvature / x;
         let share = 1.0 + f_r * tangent;
         let own_rate = rate / share;
         let force = e * (1.0 + c * own_rate);
         if force <= 0.0 {
             return SeriesTerms::default();
         }
+        let (s1, s2) = (f_r * curvature, f_r * third);
+        let share2 = share * share;
+        let phi1 = tangent / share - e * s1 / share2;
+        let phi2 =
+            curvature / share - 2.0 * tangent * s1 / share2 - e * s2 / share2 + 2.0 * e * s1 * s1 / (share2 * share);
         SeriesTerms {
             force,
-            by_compression: tangent * (1.0 + c * own_rate) - e * c * rate * f_r * curvature / (share * share),
+            by_compression: tangent * (1.0 + c * own_rate) - e * c * rate * f_r * curvature / share2,
             by_rate: e * c / share,
             elastic: e,
             own_rate,
+            by_compression2: curvature + c * rate * phi2,
+            by_both: c * phi1,
+            share,
+            psi1: tangent / share2 - 2.0 * e * s1 / (share2 * share),
         }
     }
 
     /// The force P = G(D, V) of the law in series with `f_r` at the kept modes' compression `D`
     /// and rate `V` ([`Self::solve_in_series`] with a = r = 0), and its partial derivatives
-    /// G_D = P_x / (1 + f_r P_x), G_V = P_V / (1 + f_r P_x) (from D - x - f_r P(x, V) = 0).
+    /// G_D = F_x / u, G_V = F_V / u with u = 1 + f_r F_x (from D - x - f_r P(x, V) = 0), and the
+    /// second ones by differentiating these again (x_D = 1 / u, x_V = -f_r G_V):
+    /// G_DD = F_xx / u^3, G_DV = (F_xx x_V + F_xV) / u^2,
+    /// G_VV = (F_xV x_V u - F_V f_r (F_xx x_V + F_xV)) / u^2; the dissipation W = c V^2 psi(x)
+    /// (psi = e / s^2) with W_D = c V^2 psi' x_D, W_V = 2 c V psi + c V^2 psi' x_V.
     pub fn in_series(&self, delta: f64, rate: f64, f_r: f64) -> SeriesForce {
         let (force, terms) = self.series_root(delta, 0.0, rate, 0.0, f_r);
         if force <= 0.0 {
             return SeriesForce::default();
         }
         let t = terms.unwrap_or_else(|| self.series_terms(delta - f_r * force, rate, f_r));
-        let scale = 1.0 / (1.0 + f_r * t.by_compression);
+        let u = 1.0 + f_r * t.by_compression;
+        let scale = 1.0 / u;
+        let (by_compression, by_rate) = (t.by_compression * scale, t.by_rate * scale);
+        let x_rate = -f_r * by_rate;
+        let mixed = t.by_compression2 * x_rate + t.by_both;
+        let c = self.damping;
+        let psi = t.elastic / (t.share * t.share);
         SeriesForce {
             force,
-            by_compression: t.by_compression * scale,
-            by_rate: t.by_rate * scale,
-            dissipation: (force - t.elastic) * t.own_rate,
+            by_compression,
+            by_rate,
+            dissipation: (t.force - t.elastic) * t.own_rate,
+            by_compression2: t.by_compression2 * scale * scale * scale,
+            by_both: mixed * scale * scale,
+            by_rate2: (t.by_both * x_rate * u - t.by_rate * f_r * mixed) * scale * scale,
+            dissipation_by_compression: c * rate * rate * t.psi1 * scale,
+            dissipation_by_rate: 2.0 * c * rate * psi + c * rate * rate * t.psi1 * x_rate,
         }
     }
 
@@ -239,6 +275,14 @@ struct SeriesTerms {
     elastic: f64,
     /// The contact's own rate x', m/s.
     own_rate: f64,
+    /// d2P/dx2, N/m^2.
+    by_compression2: f64,
+    /// d2P/dx dV, N s/m^2.
+    by_both: f64,
+    /// The rate's share s = 1 + f_r n k x^(n-1).
+    share: f64,
+    /// d/dx (k x^n / s^2), N/m.
+    psi1: f64,
 }
 
 /// x^n for x > 0 (m, the exponent 1 to 3): exact for n = 1, x sqrt(x) for n = 3/2 (Hertz), x^2,
@@ -274,12 +318,33 @@ pub struct SeriesForce {
     /// The power the damping dissipates, (P - k x^n) x' (x the contact's own compression, x' its
     /// quasi-static rate), W.
     pub dissipation: f64,
+    /// d2P/dD2, N/m^2.
+    pub by_compression2: f64,
+    /// d2P/dD dV, N s/m^2.
+    pub by_both: f64,
+    /// d2P/dV2, N s^2/m^2.
+    pub by_rate2: f64,
+    /// dW/dD, W/m.
+    pub dissipation_by_compression: f64,
+    /// dW/dV, W s/m.
+    pub dissipation_by_rate: f64,
 }
 
 impl SeriesForce {
     /// dP/dt from the rates of D and V, N/s.
     pub fn rate(&self, delta_rate: f64, rate_rate: f64) -> f64 {
         self.by_compression * delta_rate + self.by_rate * rate_rate
+    }
+
+    /// d2P/dt2 and dW/dt (the dissipation's rate) along a state whose compression D moves at
+    /// `rate` V, V at -`acceleration` A and A at `jerk` J: G_DD V^2 - 2 G_DV V A + G_VV A^2 -
+    /// G_D A - G_V J, and W_D V - W_V A.
+    pub fn second_rates(&self, rate: f64, acceleration: f64, jerk: f64) -> (f64, f64) {
+        let (v, a) = (rate, acceleration);
+        let second = self.by_compression2 * v * v - 2.0 * self.by_both * v * a + self.by_rate2 * a * a
+            - self.by_compression * a
+            - self.by_rate * jerk;
+        (second, self.dissipation_by_compression * v - self.dissipation_by_rate * a)
     }
 }
 
@@ -321,6 +386,46 @@ mod tests {
                     1.2e-14
                 };
                 assert!((ours - pow).abs() <= tolerance * pow, "{x}^{n}: {ours} against {pow}");
+            }
+        }
+    }
+
+    /// The series force's first and second partial derivatives and the dissipation's against
+    /// central differences of [`ContactLaw::in_series`] over 1e-5 of D and of V: the differences'
+    /// truncation error (h^2/6 of the third derivative, ~1e-10 relative here) and their round-off
+    /// (1e-16 / 1e-5 of the values, ~1e-11 relative) within 1e-5 relative, for a Hertz law, the
+    /// buffer's n = 1.3 with damping (opening and closing), a stiff residual flexibility, and
+    /// n = 2.5 with damping alone.
+    #[test]
+    fn the_series_forces_derivatives_are_its_differences() {
+        for (law, d, v, f_r) in [
+            (ContactLaw { stiffness: 1e9, exponent: 1.5, damping: 0.0 }, 1e-3, 0.5, 2e-9),
+            (ContactLaw { stiffness: 7.5e7, exponent: 1.3, damping: 0.2 }, 1.2e-2, -1.5, 4e-9),
+            (ContactLaw { stiffness: 7.5e7, exponent: 1.3, damping: 0.2 }, 3e-3, 2.0, 1e-7),
+            (ContactLaw { stiffness: 2e8, exponent: 2.5, damping: 0.4 }, 5e-3, 0.7, 0.0),
+        ] {
+            let g = law.in_series(d, v, f_r);
+            let (hd, hv) = (1e-5 * d, 1e-5 * v.abs());
+            let (gp, gm) = (law.in_series(d + hd, v, f_r), law.in_series(d - hd, v, f_r));
+            let (vp, vm) = (law.in_series(d, v + hv, f_r), law.in_series(d, v - hv, f_r));
+            let close = |analytic: f64, difference: f64, what: &str| {
+                let scale = analytic.abs().max(difference.abs()).max(1e-300);
+                assert!(
+                    (analytic - difference).abs() <= 1e-5 * scale,
+                    "{law:?} {what}: {analytic} against {difference}"
+                );
+            };
+            close(g.by_compression, (gp.force - gm.force) / (2.0 * hd), "G_D");
+            close(g.by_rate, (vp.force - vm.force) / (2.0 * hv), "G_V");
+            close(g.by_compression2, (gp.by_compression - gm.by_compression) / (2.0 * hd), "G_DD");
+            close(g.by_both, (vp.by_compression - vm.by_compression) / (2.0 * hv), "G_DV");
+            close(g.by_both, (gp.by_rate - gm.by_rate) / (2.0 * hd), "G_VD");
+            if law.damping > 0.0 && f_r > 0.0 {
+                close(g.by_rate2, (vp.by_rate - vm.by_rate) / (2.0 * hv), "G_VV");
+            }
+            if law.damping > 0.0 {
+                close(g.dissipation_by_compression, (gp.dissipation - gm.dissipation) / (2.0 * hd), "W_D");
+                close(g.dissipation_by_rate, (vp.dissipation - vm.dissipation) / (2.0 * hv), "W_V");
             }
         }
     }
