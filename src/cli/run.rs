@@ -38,6 +38,9 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     let paper = scenario.is_paper();
     let started = Instant::now();
     let planned_steps = beam_impact::one_run::check(&scenario, args.max_steps)?;
+    if let Some(line) = beam_impact::one_run::stiff_contact_note(&scenario) {
+        super::common::note(&format!("beam-impact: note: {line}"));
+    }
     if planned_steps > beam_impact::one_run::LARGE_RUN_STEPS {
         super::common::note(&format!(
             "beam-impact: note: this run may take up to {planned_steps} internal steps ({} s at its smaller time \

@@ -307,7 +307,7 @@ impl Model {
 /// largest tangent stiffness when it stores four times the impact's energy, or twice the static
 /// compression under the bridge's weight share (m_u g l_u / 2d), whichever is more: what the
 /// automatic contact step and Table 2's coupled column use. The law itself is solved each step.
-fn contact_rate(s: &Scenario) -> f64 {
+pub fn contact_rate(s: &Scenario) -> f64 {
     match s.contact.nonlinear_law() {
         None => s.contact.stiffness(),
         Some(law) => {
