@@ -61,7 +61,7 @@ fn a_campaign_writes_the_same_rows_on_one_thread_and_on_two() {
     // An event is the run of its seed and instant: `run` gives its peaks to the bit.
     let r = &one[4];
     let o = beam_impact()
-        .args(["run", "s.toml", "--no-mcap", "--json", "event.json"])
+        .args(["run", "s.toml", "--mcap", "event.mcap", "--json", "event.json"])
         .args(["--set", &format!("sea.seed={}", r["seed"]), "--set", &format!("sea.time_shift={}", r["instant"])])
         .current_dir(d)
         .output()
@@ -72,6 +72,16 @@ fn a_campaign_writes_the_same_rows_on_one_thread_and_on_two() {
     assert_eq!(r["peak.lower.clamp_bending_stress"].parse::<f64>().unwrap(), converged);
     // The supports' motion at the instant is the record's: the hinge moves.
     assert_ne!(r["upper.hinge_heave_velocity"].parse::<f64>().unwrap(), 0.0);
+    // Its log replays in `report` (the record travels in it: no RAO file needed) with the row's
+    // seed and instant and the run's peaks.
+    let data = beam_impact::replay::report::read_log(&d.join("event.mcap")).unwrap();
+    assert_eq!(data.metadata.get("sea.seed").map(String::as_str), Some(r["seed"].as_str()));
+    std::fs::remove_file(d.join("raos.csv")).unwrap();
+    let report = beam_impact().args(["report", "event.mcap", "--out", "figures"]).current_dir(d).output().unwrap();
+    assert!(report.status.success(), "{}", String::from_utf8_lossy(&report.stderr));
+    let text = String::from_utf8(report.stdout).unwrap();
+    let deflection = run["summary"]["peaks"]["lower.tip_deflection"].as_f64().unwrap();
+    assert!(text.contains(&format!("{deflection:.3}")), "{deflection}: {text}");
 }
 
 /// The statistics speak of the rows beside them: the exceedances are the rows' utilisations above

@@ -403,3 +403,13 @@ def test_the_peaks_shortcut_gives_one_name_per_quantity():
         assert set(document) - set(shortcut) == {name for name in document if "." not in name}
     assert "contact.force" in result.peaks and "contact_force" not in result.peaks
     assert "contact_force" in result["summary"]["peaks"]
+
+
+def test_a_contact_stiff_enough_to_chatter_is_noted_as_the_cli_notes_it():
+    """Issue 40 item 3: above 2e11 N/m the CLI notes before the run that the contact may chatter
+    and the run be long; `run` gives the same note among its warnings (and warns with it)."""
+    with pytest.warns(RuntimeWarning, match="can chatter"):
+        result = beam_impact.run(duration=0.002, contact__stiffness=1e12, check_sensitivity=False)
+    assert any("contact.stiffness" in w and "can chatter" in w for w in result.warnings), result.warnings
+    quiet = beam_impact.run(duration=0.002, check_sensitivity=False)
+    assert not any("can chatter" in w for w in quiet.warnings), quiet.warnings

@@ -242,6 +242,8 @@ fn answer_of(
         Ok(s)
     });
     let as_given = prepared.map_err(value_error)?;
+    // The CLI says it before the run (issue 40): a contact stiff enough to chatter may be long.
+    warnings.extend(beam_impact::one_run::stiff_contact_note(&as_given).map(|n| format!("note: {n}")));
     let mut inputs: Vec<(String, PathBuf)> = Vec::new();
     if let Some(path) = &scenario {
         inputs.push(("the scenario file".into(), path.clone()));
