@@ -82,7 +82,8 @@ pub fn cell_text(outcome: &std::result::Result<&CellSummary, &str>) -> String {
             let i = s.overload.interval;
             let p =
                 if s.overload.exceeding == 0 { format!("<{:.1e}", i.high) } else { format!("{:.1e}", i.probability) };
-            format!("{p} {}", if s.operable { "ok" } else { "x" })
+            let doubt = if s.failed > 0 || s.untrusted > 0 { "!" } else { "" };
+            format!("{p} {}{doubt}", if s.operable { "ok" } else { "x" })
         }
         Err(why) if why.contains("steeper than a sea can be") => "breaking".into(),
         Err(_) => "refused".into(),
@@ -128,6 +129,12 @@ pub fn table(cells: &[TableCell], options: &Options) -> String {
         }
         s.push('\n');
     }
+    if cells.iter().any(|c| matches!(c.outcome, Ok(s) if s.failed > 0 || s.untrusted > 0)) {
+        s.push_str(
+            "!: some of the cell's events failed (the sea beyond the model's range) or are not trusted: not operable \
+             whatever its probability\n",
+        );
+    }
     s
 }
 
@@ -148,6 +155,33 @@ mod tests {
         };
         let outcomes: Vec<EventOutcome> = (0..events).map(outcome).collect();
         summarise(&outcomes, &Options { target: 0.05, on_upper_bound: false, ..Options::default() })
+    }
+
+    /// A cell whose events did not all run, or are not all trusted, is not signed off: the
+    /// statistics of the events that ran may read low (issue 43's grid lost events where the
+    /// vessel's pitch left the model's 0.1 rad).
+    #[test]
+    fn a_cell_with_a_failed_or_untrusted_event_is_not_operable() {
+        let options = Options { target: 0.05, on_upper_bound: false, ..Options::default() };
+        let mut outcomes: Vec<EventOutcome> = (0..100)
+            .map(|k| EventOutcome {
+                seed: 1 + k % 10,
+                results: Some(EventResults {
+                    peaks: [Some(1.0 + k as f64 * 1e-3); 9],
+                    utilisation: [Some(0.5); 9],
+                    design_pass: true,
+                    trusted: true,
+                }),
+            })
+            .collect();
+        assert!(summarise(&outcomes, &options).operable);
+        outcomes[3].results = None;
+        let failed = summarise(&outcomes, &options);
+        assert!(!failed.operable && failed.failed == 1);
+        assert!(failed.warnings.iter().any(|w| w.contains("1 of 100 events failed")), "{:?}", failed.warnings);
+        assert_eq!(cell_text(&Ok(&failed)), "<3.7e-2 x!");
+        outcomes[3].results = outcomes[4].results.map(|r| EventResults { trusted: false, ..r });
+        assert!(!summarise(&outcomes, &options).operable);
     }
 
     /// The limit is the largest Hs up to which every cell is operable: a failing cell (or a

@@ -196,8 +196,8 @@ pub struct CellSummary {
     pub records: usize,
     /// The overload (the design check fails) probability.
     pub overload: Exceedance,
-    /// Whether the cell is operable: the overload's estimate or upper bound (as
-    /// [`Options::on_upper_bound`]) below the target.
+    /// Whether the cell is operable: every event ran and is trusted, and the overload's estimate
+    /// or upper bound (as [`Options::on_upper_bound`]) is below the target.
     pub operable: bool,
     /// Each quantity that any event has.
     pub quantities: Vec<QuantitySummary>,
@@ -236,16 +236,28 @@ pub fn summarise(outcomes: &[EventOutcome], options: &Options) -> CellSummary {
     }
     let untrusted = ok.iter().filter(|(_, r)| !r.trusted).count();
     if untrusted > 0 {
-        warnings.push(format!("{untrusted} of {n} events are not trusted (column quality.trusted)"));
+        warnings.push(format!(
+            "{untrusted} of {n} events are not trusted (column quality.trusted): the cell is not operable whatever its \
+             probability"
+        ));
+    }
+    let failed = outcomes.len() - ok.len();
+    if failed > 0 {
+        warnings.push(format!(
+            "{failed} of {} events failed (column error: e.g. the sea drove the supports beyond the model's range) and are \
+             left out of the statistics, which may then read low: the cell is not operable whatever its probability",
+            outcomes.len()
+        ));
     }
     let quantities = (0..QUANTITIES.len()).filter_map(|q| quantity(q, &ok, &seeds, options)).collect();
     CellSummary {
         events: outcomes.len(),
-        failed: outcomes.len() - ok.len(),
+        failed,
         untrusted,
         records: seeds.len(),
         overload,
-        operable: n > 0 && judged < options.target,
+        // A cell the model cannot vouch for in every event is not signed off.
+        operable: n > 0 && failed == 0 && untrusted == 0 && judged < options.target,
         quantities,
         warnings,
     }
