@@ -131,8 +131,8 @@ pub fn table(cells: &[TableCell], options: &Options) -> String {
     }
     if cells.iter().any(|c| matches!(c.outcome, Ok(s) if s.failed > 0 || s.untrusted > 0)) {
         s.push_str(
-            "!: some of the cell's events failed (the sea beyond the model's range) or are not trusted: not operable \
-             whatever its probability\n",
+            "!: some of the cell's events failed (the sea beyond the model's range) or are not trusted: the verdict \
+             counts them as overloads\n",
         );
     }
     s
@@ -157,11 +157,11 @@ mod tests {
         summarise(&outcomes, &Options { target: 0.05, on_upper_bound: false, ..Options::default() })
     }
 
-    /// A cell whose events did not all run, or are not all trusted, is not signed off: the
-    /// statistics of the events that ran may read low (issue 43's grid lost events where the
-    /// vessel's pitch left the model's 0.1 rad).
+    /// An event the model cannot vouch for counts as an overload in the verdict: a failed one
+    /// (issue 43's grid lost events where the vessel's pitch left the model's 0.1 rad) and an
+    /// untrusted one that passed; the statistics of the events that ran stay as they are.
     #[test]
-    fn a_cell_with_a_failed_or_untrusted_event_is_not_operable() {
+    fn failed_and_untrusted_events_count_as_overloads_in_the_verdict() {
         let options = Options { target: 0.05, on_upper_bound: false, ..Options::default() };
         let mut outcomes: Vec<EventOutcome> = (0..100)
             .map(|k| EventOutcome {
@@ -174,14 +174,30 @@ mod tests {
                 }),
             })
             .collect();
+        // None of 100 overloads: operable on the estimate 0 < 0.05.
         assert!(summarise(&outcomes, &options).operable);
-        outcomes[3].results = None;
+        // Five failed: 5 of 100 judged, 0.05, not below the target; the statistics of the 95 that
+        // ran show no overload.
+        for o in &mut outcomes[..5] {
+            o.results = None;
+        }
         let failed = summarise(&outcomes, &options);
-        assert!(!failed.operable && failed.failed == 1);
-        assert!(failed.warnings.iter().any(|w| w.contains("1 of 100 events failed")), "{:?}", failed.warnings);
-        assert_eq!(cell_text(&Ok(&failed)), "<3.7e-2 x!");
-        outcomes[3].results = outcomes[4].results.map(|r| EventResults { trusted: false, ..r });
-        assert!(!summarise(&outcomes, &options).operable);
+        assert!(!failed.operable && failed.failed == 5);
+        assert_eq!((failed.overload.exceeding, failed.overload.events), (0, 95));
+        assert_eq!((failed.judged_on.exceeding, failed.judged_on.events), (5, 100));
+        assert!(failed.warnings.iter().any(|w| w.contains("5 of 100 events failed")), "{:?}", failed.warnings);
+        assert_eq!(cell_text(&Ok(&failed)), "<3.8e-2 x!");
+        // Four failed and one untrusted: judged the same.
+        outcomes[0].results = outcomes[9].results.map(|r| EventResults { trusted: false, ..r });
+        let doubtful = summarise(&outcomes, &options);
+        assert_eq!((doubtful.judged_on.exceeding, doubtful.judged_on.events), (5, 100));
+        assert!(!doubtful.operable);
+        // One failed only: 1 of 100 judged, operable on the estimate.
+        let fine = outcomes[9].results;
+        for o in &mut outcomes[..4] {
+            o.results = fine;
+        }
+        assert!(summarise(&outcomes, &options).operable);
     }
 
     /// The limit is the largest Hs up to which every cell is operable: a failing cell (or a

@@ -194,10 +194,14 @@ pub struct CellSummary {
     pub untrusted: usize,
     /// Records with at least one event.
     pub records: usize,
-    /// The overload (the design check fails) probability.
+    /// The overload (the design check fails) probability, of the events that ran.
     pub overload: Exceedance,
-    /// Whether the cell is operable: every event ran and is trusted, and the overload's estimate
-    /// or upper bound (as [`Options::on_upper_bound`]) is below the target.
+    /// What the verdict judges: the overloads with every failed event and every untrusted one
+    /// that passed counted as overloads, of all the events (the overload's own when every event
+    /// ran and is trusted).
+    pub judged_on: Exceedance,
+    /// Whether the cell is operable: [`CellSummary::judged_on`]'s estimate or upper bound (as
+    /// [`Options::on_upper_bound`]) below the target.
     pub operable: bool,
     /// Each quantity that any event has.
     pub quantities: Vec<QuantitySummary>,
@@ -216,7 +220,12 @@ pub fn summarise(outcomes: &[EventOutcome], options: &Options) -> CellSummary {
     seeds.dedup();
     let overloads = ok.iter().filter(|(_, r)| !r.design_pass).count() as u64;
     let overload = Exceedance::new(overloads, n, options.confidence);
-    let judged = if options.on_upper_bound { overload.interval.high } else { overload.interval.probability };
+    // The verdict counts every event the model cannot vouch for as an overload: a failed one (the
+    // sea beyond the model's range) and an untrusted one that passed.
+    let failed = outcomes.len() - ok.len();
+    let doubtful = ok.iter().filter(|(_, r)| !r.trusted && r.design_pass).count() as u64;
+    let judged_on = Exceedance::new(overloads + doubtful + failed as u64, outcomes.len() as u64, options.confidence);
+    let judged = if options.on_upper_bound { judged_on.interval.high } else { judged_on.interval.probability };
     let mut warnings = Vec::new();
     let needed = events_needed(options.target, one_sided(options.confidence));
     if n < needed {
@@ -237,15 +246,13 @@ pub fn summarise(outcomes: &[EventOutcome], options: &Options) -> CellSummary {
     let untrusted = ok.iter().filter(|(_, r)| !r.trusted).count();
     if untrusted > 0 {
         warnings.push(format!(
-            "{untrusted} of {n} events are not trusted (column quality.trusted): the cell is not operable whatever its \
-             probability"
+            "{untrusted} of {n} events are not trusted (column quality.trusted): the verdict counts them as overloads"
         ));
     }
-    let failed = outcomes.len() - ok.len();
     if failed > 0 {
         warnings.push(format!(
-            "{failed} of {} events failed (column error: e.g. the sea drove the supports beyond the model's range) and are \
-             left out of the statistics, which may then read low: the cell is not operable whatever its probability",
+            "{failed} of {} events failed (column error: e.g. the sea drove the supports beyond the model's range): left \
+             out of the statistics, which may then read low, and counted as overloads in the verdict",
             outcomes.len()
         ));
     }
@@ -256,8 +263,8 @@ pub fn summarise(outcomes: &[EventOutcome], options: &Options) -> CellSummary {
         untrusted,
         records: seeds.len(),
         overload,
-        // A cell the model cannot vouch for in every event is not signed off.
-        operable: n > 0 && failed == 0 && untrusted == 0 && judged < options.target,
+        judged_on,
+        operable: n > 0 && judged < options.target,
         quantities,
         warnings,
     }
@@ -353,6 +360,7 @@ impl CellSummary {
         json!({
             "events": self.events, "failed": self.failed, "untrusted": self.untrusted, "records": self.records,
             "overload": self.overload.json(),
+            "judged_on": self.judged_on.json(),
             "operable": self.operable,
             "quantities": quantities,
             "warnings": self.warnings,
@@ -405,6 +413,20 @@ pub fn text(cell: &str, s: &CellSummary, options: &Options) -> String {
         if s.operable { "operable" } else { "not operable" },
         options.target,
         if options.on_upper_bound { "the upper bound" } else { "the estimate" }
+        );
+    }
+    if (s.judged_on.exceeding, s.judged_on.events) != (s.overload.exceeding, s.overload.events) {
+        let j = s.judged_on.interval;
+        let _ = writeln!(
+            t,
+            "judged with the {} failed and untrusted events as overloads: {} of {}, probability {} ({c} % \
+             Clopper-Pearson {} .. {:.3e})",
+            s.judged_on.exceeding - s.overload.exceeding,
+            s.judged_on.exceeding,
+            s.judged_on.events,
+            probability(j.probability),
+            probability(j.low),
+            j.high
         );
     }
     let exposure = options.exposure();
