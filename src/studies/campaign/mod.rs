@@ -30,8 +30,9 @@ pub use summary::{CellSummary, Options};
 /// The fields a campaign's grid may vary: the sea state's.
 pub const CELL_FIELDS: [&str; 3] = ["sea.significant_wave_height", "sea.peak_period", "sea.heading"];
 
-/// Most events a campaign runs unless told more (`--max-events`): about 40 minutes on two cores at
-/// the example vessel's 15 ms of a core per event... and a stated limit, not a guess of the machine.
+/// Most runs (cells x events) a campaign makes unless told more (`--max-events`): about 35
+/// minutes on two cores at the example vessel's 42 ms of a core per 3 s event (measured,
+/// docs/operability.md).
 pub const DEFAULT_MAX_EVENTS: u64 = 100_000;
 
 /// One cell of the grid: its values (one per grid axis) and, for a sea state the model refuses (a
@@ -109,10 +110,10 @@ impl Campaign {
         if total > max_events {
             return Err(Error::Other(format!(
                 "campaign of {grid} cells x {} events = {total} runs, more than --max-events {max_events}: lower the \
-                 grid or --events, or raise --max-events (at the example vessel's ~15 ms of a core per event, {:.0} \
+                 grid or --events, or raise --max-events (at the example vessel's 42 ms of a core per 3 s event, {:.0} \
                  min on two cores)",
                 events.len(),
-                total as f64 * 0.015 / 2.0 / 60.0
+                total as f64 * 0.042 / 2.0 / 60.0
             )));
         }
         let mut axes = cell_axes.clone();
