@@ -7,8 +7,6 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::Instant;
 
-use indicatif::{ProgressBar, ProgressStyle};
-
 use beam_impact::record::output::{check_distinct, shown, OutputFile};
 use beam_impact::studies::campaign::operability;
 use beam_impact::studies::campaign::summary::{EventOutcome, EventResults};
@@ -62,12 +60,7 @@ pub fn campaign(args: &CampaignArgs) -> Result<Outcome> {
             warn(&format!("{}: refused, its events not run: {why}", campaign.cell_name(c)));
         }
     }
-    let bar = ProgressBar::new(campaign.len() as u64);
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} events, {elapsed} ({eta} left)")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    bar.enable_steady_tick(std::time::Duration::from_secs(1));
+    let bar = super::common::progress_bar(campaign.len(), "events");
     let started = Instant::now();
     let mut outcomes: Vec<Vec<EventOutcome>> = vec![Vec::new(); campaign.cells.len()];
     let tally = campaign.run(jobs, &interrupted, &mut |n| bar.set_position(n as u64), &mut |row| {

@@ -4,8 +4,6 @@ use std::io::Write;
 use std::path::Path;
 use std::time::Instant;
 
-use indicatif::{ProgressBar, ProgressStyle};
-
 use beam_impact::record::output::{check_distinct, shown, OutputFile};
 use beam_impact::{Result, Scenario};
 
@@ -44,14 +42,7 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
     let create = |path: &Path| OutputFile::create(path, true, "cannot create").map(std::io::BufWriter::new);
     let mut csv = create(&args.out)?;
     let mut json = args.json.as_deref().map(create).transpose()?;
-    let bar = ProgressBar::new(sweep.len() as u64);
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} scenarios, {elapsed} ({eta} left)")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    // Redrawn every second, so the elapsed time moves while the first rows run (indicatif draws
-    // only on a terminal; without one the last line gives the sweep's wall time).
-    bar.enable_steady_tick(std::time::Duration::from_secs(1));
+    let bar = super::common::progress_bar(sweep.len(), "scenarios");
     let started = Instant::now();
     let tally = sweep
         .write(jobs, &mut csv, json.as_mut().map(|j| j as &mut dyn Write), &mut |n| bar.set_position(n as u64))

@@ -21,6 +21,25 @@ use super::raos::RaoTable;
 use crate::model::motion_table::MotionTable;
 use crate::model::support_motion::{check_motion_value, SupportMotion, Track, MOTION_NAMES};
 
+/// Adds one component's terms to the sums `v` (displacement, velocity, acceleration of each
+/// support coordinate): Re(c e^(i w t)) and its exact derivatives, with cos(w t) = `co`,
+/// sin(w t) = `s`.
+fn add_terms(v: &mut [f64; 9], c: &[Complex<f64>; 3], w: f64, co: f64, s: f64) {
+    for (j, cj) in c.iter().enumerate() {
+        let re = cj.re * co - cj.im * s;
+        let rate = -(cj.re * s + cj.im * co);
+        v[3 * j] += re;
+        v[3 * j + 1] += w * rate;
+        v[3 * j + 2] -= w * w * re;
+    }
+}
+
+/// The sums as the supports' motion.
+fn support_motion(v: &[f64; 9]) -> SupportMotion {
+    let track = |j: usize| Track { displacement: v[3 * j], velocity: v[3 * j + 1], acceleration: v[3 * j + 2] };
+    SupportMotion { hinge_heave: track(0), clamp_heave: track(1), clamp_rotation: track(2) }
+}
+
 /// Rows between the exact phases of [`SeaRecord::motions`].
 pub const ANCHOR_ROWS: usize = 32;
 
@@ -59,16 +78,9 @@ impl SeaRecord {
         for (i, c) in self.coefficients.iter().enumerate() {
             let w = self.components.frequencies[i];
             let (s, co) = libm::sincos(w * t);
-            for (j, cj) in c.iter().enumerate() {
-                let re = cj.re * co - cj.im * s;
-                let rate = -(cj.re * s + cj.im * co);
-                v[3 * j] += re;
-                v[3 * j + 1] += w * rate;
-                v[3 * j + 2] -= w * w * re;
-            }
+            add_terms(&mut v, c, w, co, s);
         }
-        let track = |j: usize| Track { displacement: v[3 * j], velocity: v[3 * j + 1], acceleration: v[3 * j + 2] };
-        SupportMotion { hinge_heave: track(0), clamp_heave: track(1), clamp_rotation: track(2) }
+        support_motion(&v)
     }
 
     /// The wave elevation at the motion reference point at the record's time `t`, m.
@@ -118,23 +130,10 @@ impl SeaRecord {
                     z = if k.rem_euclid(ANCHOR_ROWS as i64) == 0 { phase(k) } else { z * step };
                 }
                 // As [`Self::motion`] sums each term (the same bits where z is exact).
-                let (co, s) = (z.re, z.im);
-                for (j, cj) in c.iter().enumerate() {
-                    let re = cj.re * co - cj.im * s;
-                    let rate = -(cj.re * s + cj.im * co);
-                    row[3 * j] += re;
-                    row[3 * j + 1] += w * rate;
-                    row[3 * j + 2] -= w * w * re;
-                }
+                add_terms(row, c, w, z.re, z.im);
             }
         }
-        sums.iter()
-            .map(|v| {
-                let track =
-                    |j: usize| Track { displacement: v[3 * j], velocity: v[3 * j + 1], acceleration: v[3 * j + 2] };
-                SupportMotion { hinge_heave: track(0), clamp_heave: track(1), clamp_rotation: track(2) }
-            })
-            .collect()
+        sums.iter().map(support_motion).collect()
     }
 
     /// The support-motion table of the record from `start` to `end` (record times, s) sampled
