@@ -233,6 +233,10 @@ pub struct Answer {
     pub quality: AnswerQuality,
     /// The runs behind the answer, printed first.
     pub runs: Vec<RungRun>,
+    /// The scenario's load cases judged (issue 44; none without `[[load_cases]]`): with them,
+    /// `design.pass` is every case's verdict.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub load_cases: Option<crate::load_cases::LoadCaseResults>,
 }
 
 /// What to run besides the printed run.
@@ -296,6 +300,7 @@ pub fn run_cancellable(
     cache: &ModalCache,
     cancel: &AtomicBool,
 ) -> Result<Answer> {
+    crate::load_cases::check_cases(scenario)?;
     let mut printed = Simulation::new_cached(scenario, cache)?;
     printed.check_step_count(scenario.duration_ns(), options.max_steps)?;
     printed.set_max_steps(options.max_steps);
@@ -348,7 +353,24 @@ pub fn run_cancellable(
     );
     let (summary, printed_rung) = printed_run?;
     let others = others?;
-    Ok(assemble(&resolved, summary, printed_rung, others))
+    let mut answer = assemble(&resolved, summary, printed_rung, others);
+    let case_options = Options { station_envelope: false, ..options };
+    let mut answer_of = |s: &Scenario| run_cancellable(s, &mut NullRecorder, case_options, cache, cancel);
+    let static_of = crate::load_cases::static_values;
+    if let Some(cases) = crate::load_cases::judge(scenario, &answer, &mut answer_of, &static_of)? {
+        answer.design.pass = cases.pass;
+        if !cases.trusted {
+            answer.quality.trusted = false;
+            for case in cases.cases.iter().filter(|c| !c.trusted) {
+                answer.quality.reasons.push(format!(
+                    "load case {:?}: its own converged answer is not trusted, so its verdict is not vouched for",
+                    case.name
+                ));
+            }
+        }
+        answer.load_cases = Some(cases);
+    }
+    Ok(answer)
 }
 
 /// The scenarios that judge the printed run's discretisation: the next coarser rung and the one
@@ -773,6 +795,7 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
         design,
         quality,
         runs,
+        load_cases: None,
     }
 }
 
@@ -1254,12 +1277,25 @@ pub fn table(answer: &Answer) -> String {
     let all_u = u.into_iter().chain(envelope_u.map(|u| u.unwrap_or(f64::NEG_INFINITY)));
     let (worst, worst_u) =
         names.zip(all_u).fold(("", f64::NEG_INFINITY), |best, (n, v)| if v > best.1 { (n, v) } else { best });
-    let _ = writeln!(
-        s,
-        "design: {} (largest utilisation {worst_u:.3}, {}; converged peaks and envelopes against the allowables)",
-        if answer.design.pass { "PASS" } else { "FAIL" },
-        crate::vocabulary::quantity_name(worst)
-    );
+    match &answer.load_cases {
+        None => {
+            let _ = writeln!(
+                s,
+                "design: {} (largest utilisation {worst_u:.3}, {}; converged peaks and envelopes against the allowables)",
+                if answer.design.pass { "PASS" } else { "FAIL" },
+                crate::vocabulary::quantity_name(worst)
+            );
+        }
+        Some(cases) => {
+            s += &crate::load_cases::text(cases);
+            let _ = writeln!(
+                s,
+                "design: {} (every load case; unfactored, the largest utilisation is {worst_u:.3}, {})",
+                if answer.design.pass { "PASS" } else { "FAIL" },
+                crate::vocabulary::quantity_name(worst)
+            );
+        }
+    }
     let q = &answer.quality;
     let c = &q.checks;
     let figure = |c: Option<Check>| {

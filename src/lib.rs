@@ -13,6 +13,7 @@ pub mod compare;
 pub mod discretise;
 pub mod error;
 pub mod fmi;
+pub mod load_cases;
 pub mod model;
 pub mod one_run;
 pub mod paper;

@@ -23,6 +23,7 @@ pub fn document(as_given: &Scenario, answer: &Answer, wall_time_s: f64) -> Resul
         "design": answer.design,
         "discretisation": discretisation_json(answer),
         "impact": summary.impact,
+        "load_cases": answer.load_cases,
         "merged_contact_windows": crate::compare::merged_windows(&summary.contact_windows, crate::results::BOUNCE_GAP),
         "units": json_units(),
         "wall_time_s": wall_time_s,
@@ -40,6 +41,7 @@ pub fn answer_attachment(answer: &Answer) -> serde_json::Value {
         "converged_peaks": answer.converged_peaks,
         "converged_first_contact_peaks": answer.converged_first_contact_peaks,
         "discretisation": discretisation_json(answer),
+        "load_cases": answer.load_cases,
     });
     crate::vocabulary::add_quantity_names(&mut doc);
     doc

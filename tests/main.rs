@@ -54,6 +54,7 @@ mod fuzz_state;
 mod hostile_logs;
 mod hostile_motion;
 mod hostile_outputs;
+mod load_cases;
 mod log_peaks;
 mod mcap_channels;
 mod mcap_format2;

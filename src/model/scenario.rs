@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use super::contact_law::{ContactLaw, LawKind, EXPONENT_RANGE};
 use super::discretisation::{auto_count, auto_real, Method, PAPER_ELEMENTS};
+use super::load_case::{self, LoadCase};
 use super::motion_table::MotionTable;
 use super::sea::SeaSettings;
 use super::section::{self, SectionSpec};
@@ -349,6 +350,10 @@ pub struct Scenario {
     /// The supports on a vessel in a sea state (issue 42: `[sea]`), instead of a motion file.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sea: Option<SeaSettings>,
+    /// The load cases checked beside the plain design check (issue 44: `[[load_cases]]`; none by
+    /// default): each case's factors and the fields it changes ([`LoadCase`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub load_cases: Vec<LoadCase>,
 }
 
 impl Default for Scenario {
@@ -374,6 +379,7 @@ impl Default for Scenario {
             contact: ContactBar::default(),
             motion: MotionSettings::default(),
             sea: None,
+            load_cases: Vec::new(),
         }
     }
 }
@@ -918,6 +924,7 @@ impl Scenario {
             }
             _ => {}
         }
+        errors.extend(load_case::validation_errors(&self.load_cases));
         errors
     }
 

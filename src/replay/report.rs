@@ -1037,7 +1037,10 @@ pub fn stored_verdict(answer_json: Option<&str>) -> String {
         Some(false) => "FAIL",
         None => "unknown",
     };
-    format!("verdict stored with the run: {trust}; design: {design}")
+    let cases = serde_json::from_value::<crate::load_cases::LoadCaseResults>(doc["load_cases"].clone())
+        .map(|cases| format!("\n{}", crate::load_cases::text(&cases).trim_end()))
+        .unwrap_or_default();
+    format!("verdict stored with the run: {trust}; design: {design}{cases}")
 }
 
 /// Reads the log at `mcap`, prints the summary to `out` and writes Figures 6-12 (SVG and PNG)

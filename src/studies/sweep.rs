@@ -507,8 +507,10 @@ pub struct RowResults {
     pub yield_utilisation: f64,
     /// Each stress peak's utilisation, converged peak / allowable.
     pub utilisation: crate::answer::DesignUtilisation,
-    /// Whether every utilisation is <= 1.
+    /// Whether every utilisation is <= 1 (with load cases: every case passes).
     pub design_pass: bool,
+    /// The largest factored utilisation over the scenario's load cases (NaN: none given).
+    pub load_case_utilisation: f64,
     /// Each beam's worst stress along it (issue 30), in the order of
     /// [`crate::results::ENVELOPE_PEAK_NAMES`].
     pub envelope_peaks: [Option<crate::results::EnvelopePeak>; 4],
@@ -530,6 +532,10 @@ impl From<&crate::answer::Answer> for RowResults {
             yield_utilisation: c.yield_stress.map_or(f64::NAN, |c| c.value),
             utilisation: a.design.utilisation,
             design_pass: a.design.pass,
+            load_case_utilisation: a
+                .load_cases
+                .as_ref()
+                .map_or(f64::NAN, |c| c.cases.iter().map(|c| c.utilisation).fold(f64::NEG_INFINITY, f64::max)),
             envelope_peaks: a.envelope_peaks,
             trusted: a.quality.trusted,
         }
@@ -538,7 +544,7 @@ impl From<&crate::answer::Answer> for RowResults {
 
 /// The columns of the checks and the design, between `max_energy_residual` and `quality.trusted`,
 /// with their units.
-pub const CHECK_COLUMNS: [(&str, &str); 7] = [
+pub const CHECK_COLUMNS: [(&str, &str); 8] = [
     ("quality.discretisation_error", "1"),
     ("quality.sensitivity_spread", "1"),
     ("yield_utilisation", "1"),
@@ -546,6 +552,7 @@ pub const CHECK_COLUMNS: [(&str, &str); 7] = [
     ("utilisation.lower.clamp_shear_stress", "1"),
     ("utilisation.upper.contact_bending_stress", "1"),
     ("design.pass", "true/false"),
+    ("load_cases.utilisation", "1"),
 ];
 
 /// The SI units of [`ENERGY_METHOD_FIELDS`], in their order.
@@ -617,7 +624,12 @@ fn cells(axes: &[Axis], row: &Row) -> Vec<Cell> {
             let optional = |v: f64| if v.is_nan() { Cell::Empty } else { Cell::Number(v) };
             c.extend([optional(r.discretisation_error), optional(r.sensitivity_spread), optional(r.yield_utilisation)]);
             c.extend(r.utilisation.as_array().map(Cell::Number));
-            c.extend([Cell::Bool(r.design_pass), Cell::Bool(r.trusted), Cell::Number(row.wall_time)]);
+            c.extend([
+                Cell::Bool(r.design_pass),
+                optional(r.load_case_utilisation),
+                Cell::Bool(r.trusted),
+                Cell::Number(row.wall_time),
+            ]);
             c.push(Cell::Text(String::new()));
         }
         Err(message) => {
