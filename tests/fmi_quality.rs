@@ -99,3 +99,20 @@ fn stress_recovery_is_an_integer_parameter() {
     let got = fmu.get("peak.upper.contact_bending_stress");
     assert!((got / expected.upper_contact_bending_stress - 1.0).abs() < 1e-9, "{got} vs {expected:?}");
 }
+
+/// Issue 40: a contact stiffer than `one_run::CHATTER_STIFFNESS` is said before the first doStep,
+/// as the CLI says it (the run may chatter and take many times the default's time), through the
+/// logger's warning category; initialization still returns OK. The default contact says nothing.
+#[test]
+fn a_stiff_contact_is_noted_to_the_logger_before_the_first_step() {
+    for (stiffness, noted) in [(0.0, false), (1e12, true)] {
+        let lib = fmi_common::importer::load();
+        let fmu = Fmu2::new(&lib);
+        assert_eq!(fmu.setup(0.0, Some(0.01)), OK);
+        assert_eq!(fmu.set_string("log.path", ""), OK);
+        assert_eq!(fmu.set("contact.stiffness", stiffness), OK);
+        assert_eq!(fmu.initialize(), OK, "{}", fmu.log.text());
+        let log = fmu.log.text();
+        assert_eq!(log.contains("can chatter"), noted, "{stiffness}: {log}");
+    }
+}

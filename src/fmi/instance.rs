@@ -696,6 +696,10 @@ impl Instance {
     /// A default log that cannot be created is a warning (the run goes on without it).
     pub fn exit_initialization(&mut self) -> Outcome<Status> {
         self.simulation()?;
+        // What may make the run long is said before the first doStep, as the CLI says it (issue 40).
+        if let Some(note) = crate::one_run::stiff_contact_note(&self.scenario) {
+            self.log(Status::Warning, Status::Warning.category(), &format!("note: {note}"));
+        }
         let (recorder, warning) = self.open_log()?;
         self.recorder = recorder;
         let dropped = self.start_log()?;
