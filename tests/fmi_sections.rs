@@ -389,3 +389,25 @@ fn every_sweep_peak_and_utilisation_column_is_an_fmu_output_of_its_unit() {
     }
     assert_eq!(checked, 5 + 3 * ENVELOPE_PEAK_NAMES.len() + 3);
 }
+
+/// Issue 44: a packed scenario's `[[load_cases]]` are not judged by the FMU (each needs a
+/// converged answer of its own); the FMU says so to the logger at initialization, and its
+/// `design.pass` stays the plain check's.
+#[test]
+fn a_packed_scenarios_load_cases_are_said_not_judged_by_the_fmu() {
+    let lib = fmi_common::importer::load();
+    let text = format!(
+        "{}\n{}",
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/tapered-arrestor.toml")).unwrap(),
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/load-cases.toml")).unwrap()
+    );
+    let scenario = Scenario::from_toml(&text, "cases.toml").unwrap();
+    let dir = resources_with(text.as_bytes());
+    let (fmu, log) = Fmu2::try_new_in(&lib, Some(&token_of(&scenario)), true, "cases", &uri(dir.path()));
+    let fmu = fmu.unwrap_or_else(|| panic!("{}", log.text()));
+    assert_eq!(fmu.setup(0.0, Some(0.01)), OK);
+    assert_eq!(fmu.set_string("log.path", ""), OK);
+    assert_eq!(fmu.initialize(), OK, "{}", fmu.log.text());
+    let text = fmu.log.text();
+    assert!(text.contains("3 load case(s) are not judged by the FMU"), "{text}");
+}

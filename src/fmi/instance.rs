@@ -700,6 +700,19 @@ impl Instance {
         if let Some(note) = crate::one_run::stiff_contact_note(&self.scenario) {
             self.log(Status::Warning, Status::Warning.category(), &format!("note: {note}"));
         }
+        // A resource scenario's load cases (issue 44) need a converged answer per case, which
+        // `beam-impact run` gives; the FMU's design.pass is the plain check, and says so.
+        if !self.scenario.load_cases.is_empty() {
+            self.log(
+                Status::Warning,
+                Status::Warning.category(),
+                &format!(
+                    "note: the scenario's {} load case(s) are not judged by the FMU: design.pass and utilisation.* \
+                     are the plain design check; `beam-impact run` judges the cases",
+                    self.scenario.load_cases.len()
+                ),
+            );
+        }
         let (recorder, warning) = self.open_log()?;
         self.recorder = recorder;
         let dropped = self.start_log()?;
