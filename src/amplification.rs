@@ -243,8 +243,8 @@ impl Amplification {
         let psi = self.crane_psi.psi.map_or("-".to_string(), |p| format!("{p:.3}"));
         let c = &self.crane_psi;
         text += &format!(
-            "  energy method's DAF {em}; crane-style psi = 1 + v sqrt(k / (g^2 m)) = {psi} (v {:.4} m/s, k {:.4e} N/m, \
-             m {:.1} kg, g {} m/s^2)\n",
+            "  energy method's DAF {em}; crane-style psi = 1 + (v / g) sqrt(k / m) = {psi} (v {:.4} m/s closing \
+             speed, k {:.4e} N/m arrestor and contact in series, m {:.1} kg bridge reduced to the contact, g {} m/s^2)\n",
             c.v, c.k, c.m, c.g
         );
         text
