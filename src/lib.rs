@@ -8,6 +8,7 @@
 
 #![warn(missing_docs)]
 
+pub mod amplification;
 pub mod answer;
 pub mod compare;
 pub mod discretise;

@@ -249,7 +249,9 @@ pub fn text(results: &LoadCaseResults) -> String {
     out
 }
 
-/// The static values of `scenario` by quantity name (TEMPORARY until the static solution lands).
-pub fn static_values(_scenario: &Scenario, _answer: &Answer) -> Result<StaticValues> {
-    Ok(None)
+/// The static values of `scenario` by quantity name, Pa (the bridge resting on the arrestor on the
+/// printed rung's mesh: [`crate::solver::static_contact`]), None where it cannot rest.
+pub fn static_values(scenario: &Scenario, _answer: &Answer) -> Result<StaticValues> {
+    Ok(crate::solver::static_contact::static_response(scenario)?
+        .map(|r| r.values().into_iter().map(|(name, value)| (name.to_string(), value)).collect()))
 }

@@ -28,6 +28,7 @@ pub fn document(as_given: &Scenario, answer: &Answer, wall_time_s: f64) -> Resul
         "units": json_units(),
         "wall_time_s": wall_time_s,
     });
+    doc["dynamic_amplification"] = amplification_json(answer);
     crate::vocabulary::add_quantity_names(&mut doc);
     Ok(doc)
 }
@@ -43,6 +44,7 @@ pub fn answer_attachment(answer: &Answer) -> serde_json::Value {
         "discretisation": discretisation_json(answer),
         "load_cases": answer.load_cases,
     });
+    doc["dynamic_amplification"] = amplification_json(answer);
     crate::vocabulary::add_quantity_names(&mut doc);
     doc
 }
@@ -102,4 +104,14 @@ pub fn json_units() -> serde_json::Value {
         "scenario": "SI, as in `beam-impact scenario`",
         "wall_time_s": "s"
     })
+}
+
+/// The `dynamic_amplification` block (issue 44, [`crate::amplification`]): the static values, the
+/// DAF per design quantity, the energy method's and the crane-style psi; `{"error": ...}` where
+/// the static solution fails.
+pub fn amplification_json(answer: &Answer) -> serde_json::Value {
+    match crate::amplification::amplification(answer) {
+        Ok(a) => a.to_json(),
+        Err(e) => serde_json::json!({ "error": e.to_string() }),
+    }
 }

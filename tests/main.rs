@@ -19,6 +19,7 @@ mod contact_laws;
 mod converged_references;
 mod doc_outputs;
 mod docs;
+mod dynamic_amplification;
 mod energy_account_off;
 mod energy_method;
 mod energy_safety;

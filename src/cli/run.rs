@@ -189,6 +189,9 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     }
     text += "\n";
     text += &beam_impact::answer::table(&answer);
+    if let Ok(amplification) = beam_impact::amplification::amplification(&answer) {
+        text += &amplification.lines();
+    }
     let quality = &answer.quality;
     text += &format!(
         "time steps: {:e} s out of contact, {:e} s in contact{}\n",

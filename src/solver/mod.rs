@@ -15,6 +15,7 @@ pub mod modal;
 pub mod modal_cache;
 pub mod model_range;
 pub mod secular;
+pub mod static_contact;
 pub mod static_correction;
 pub mod step_extrema;
 pub mod step_plan;
