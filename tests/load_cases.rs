@@ -183,3 +183,33 @@ fn report_replays_the_cases_the_run_printed() {
         assert!(report.contains(line), "report lacks {line:?}:\n{report}");
     }
 }
+
+/// The static part is the bridge resting on the arrestor (`solver::static_contact`, the case's own
+/// printed mesh): each quantity's S is that solution's value, and the factors act on S and on
+/// P - S as `LoadCase::utilisation` states: gamma_S = 2, gamma_D = 0.5 gives (2 S + 0.5 (P - S)) / A
+/// (1e-12: round-off of a few products).
+#[test]
+fn the_static_part_is_the_resting_solution_and_each_factor_acts_on_its_part() {
+    let case = LoadCase { static_factor: 2.0, dynamic_factor: 0.5, ..LoadCase::named("parts") };
+    let s = scenario(0.6, vec![case]);
+    let a = answer_of(&s);
+    let resting = beam_impact::solver::static_contact::static_response(&s).unwrap().expect("the bridge rests");
+    let judged = &a.load_cases.as_ref().unwrap().cases[0];
+    assert!(judged.static_solution);
+    for (name, q) in &judged.quantities {
+        let expected_s = resting.value(name).unwrap().abs();
+        assert_eq!(q.static_value, expected_s, "{name}");
+        assert!(q.static_value > 0.0 && q.static_value < q.peak, "{name}: S {} P {}", q.static_value, q.peak);
+        let u = (2.0 * q.static_value + 0.5 * (q.peak - q.static_value)) / q.allowable;
+        assert!((q.utilisation - u).abs() <= 1e-12 * u, "{name}: {} vs {u}", q.utilisation);
+    }
+    // Without gravity the bridge cannot rest: S = 0, said, and the dynamic factor takes the peak.
+    let weightless = Scenario { gravity: 0.0, impact_angular_velocity: Some(0.2), drop_height: 0.0, ..s };
+    let a = answer_of(&weightless);
+    let judged = &a.load_cases.as_ref().unwrap().cases[0];
+    assert!(!judged.static_solution);
+    for (name, q) in &judged.quantities {
+        assert_eq!(q.static_value, 0.0, "{name}");
+        assert!((q.utilisation - 0.5 * q.peak / q.allowable).abs() <= 1e-12 * q.utilisation, "{name}");
+    }
+}
