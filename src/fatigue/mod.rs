@@ -4,9 +4,11 @@
 //! the CLI's `beam-impact fatigue` and the runs' per-station fatigue read their histories and call
 //! these.
 
+pub mod history;
 pub mod miner;
 pub mod rainflow;
 pub mod sn_curve;
+pub mod summary;
 
 pub use miner::{damage, life_years, SnOptions};
 pub use rainflow::{count, count_history, reversals, turning_points, Cycle, NonFiniteSample, ReversalTracker};

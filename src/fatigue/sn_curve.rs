@@ -246,8 +246,23 @@ impl SnCurve {
     pub fn by_name(name: &str) -> Result<SnCurve, String> {
         Self::all().into_iter().find(|c| c.name.eq_ignore_ascii_case(name.trim())).ok_or_else(|| {
             let shown: String = name.chars().take(40).flat_map(char::escape_default).collect();
-            format!("unknown S-N curve `{shown}`: known curves are {}", Self::names().join(", "))
+            format!("unknown S-N curve `{shown}`: known curves are {}", Self::known())
         })
+    }
+
+    /// The known names, shortly: the classes in air, then the suffixes and the 2024 curves.
+    pub fn known() -> String {
+        let classes: Vec<&str> = CLASSES.iter().map(|(c, _)| *c).collect();
+        let c2024: Vec<String> = C_FAMILY_2024.iter().map(|row| format!("{}-2024", row.0)).collect();
+        format!(
+            "{} in air (2016 Table 2-1), each also as NAME{} (Table 2-2) and NAME{} (Table 2-4); {} in air and as \
+             NAME{} (2024)",
+            classes.join(", "),
+            Environment::SeawaterCp.suffix(),
+            Environment::FreeCorrosion.suffix(),
+            c2024.join(", "),
+            Environment::SeawaterCp.suffix()
+        )
     }
 
     /// The stress range, MPa, where the two branches meet: the first branch's S at `n_switch`
@@ -327,5 +342,6 @@ mod tests {
         assert_eq!(SnCurve::by_name("d-Seawater-CP").unwrap().name, "D-seawater-cp");
         let e = SnCurve::by_name("Z9").unwrap_err();
         assert!(e.starts_with("unknown S-N curve `Z9`: known curves are B1, B2, C,"), "{e}");
+        assert!(e.ends_with("C-2024, C1-2024, C2-2024 in air and as NAME-seawater-cp (2024)"), "{e}");
     }
 }
