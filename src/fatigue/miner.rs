@@ -71,7 +71,8 @@ impl SnOptions {
 /// options are taken as validated ([`SnOptions::validate`]); a zero range adds nothing.
 pub fn damage(cycles: &[Cycle], curve: &SnCurve, options: &SnOptions) -> f64 {
     let factor = options.range_factor(curve);
-    let sum: f64 = cycles.iter().map(|c| c.count / curve.cycles_to_failure(c.range * factor)).sum();
+    // From +0 (an empty `sum()` of f64 is -0, printed `-0`).
+    let sum = cycles.iter().map(|c| c.count / curve.cycles_to_failure(c.range * factor)).fold(0.0, |a, b| a + b);
     options.design_fatigue_factor * sum
 }
 
