@@ -11,9 +11,11 @@
 //!
 //! At the end every range still unused, between neighbouring reversals of the residue, counts as
 //! one-half cycle (step 6). The residue is not closed on itself (no "repeating history"
-//! concatenation): a history of one event is counted as given. The full cycles are the same as
-//! the four-point method's (the residue of that method is what the half cycles here are drawn
-//! from: the start-point half cycles of step 5 and the ranges left at the end of step 6).
+//! concatenation): a history of one event is counted as given. Against the four-point method
+//! (its closed cycles, and its residue's neighbouring ranges as half cycles) the count per range
+//! and mean is the same; where two neighbouring ranges tie (a, b, a) step 5 counts two half
+//! cycles a-b, b-a where the four-point method closes one full cycle: the same range, mean and
+//! damage (`tests/python/test_fatigue.py` checks both against PyPI `rainflow` and `fatpack`).
 //!
 //! Reversals are the first sample, every sample where the direction changes and the last sample
 //! (Sec. 3.2.11 peak and valley); a plateau (equal neighbours) is one point, at its first sample.
