@@ -13,6 +13,7 @@ pub mod answer;
 pub mod compare;
 pub mod discretise;
 pub mod error;
+pub mod fatigue;
 pub mod fmi;
 pub mod load_cases;
 pub mod model;
