@@ -16,6 +16,8 @@ use crate::Simulation;
 /// internal steps (builds the model and its modes, steps nothing); else the most steps its plan
 /// takes ([`Simulation::step_estimate`]), for the caller to say where it is large.
 pub fn check(scenario: &Scenario, max_steps: u64) -> Result<u64> {
+    // A load case's fields (issue 44) are the scenario's too: refused here, before anything runs.
+    crate::load_cases::check_cases(scenario)?;
     Simulation::new(scenario)?.check_step_count(scenario.duration_ns(), max_steps)
 }
 
