@@ -51,6 +51,7 @@ mod fuzz_resource_scenario;
 mod fuzz_scenario;
 mod fuzz_sea_raos;
 mod fuzz_state;
+mod html_report;
 mod hostile_logs;
 mod hostile_motion;
 mod hostile_outputs;

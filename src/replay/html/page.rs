@@ -30,7 +30,7 @@ pub const BLOCKS: [(&str, &str); 4] = [
 ];
 
 /// Keys of the document not shown in its "every number" section (shown elsewhere, or text).
-const SHOWN_ELSEWHERE: [&str; 4] = ["scenario", "scenario_as_given", "units", "merged_contact_windows"];
+const SHOWN_ELSEWHERE: [&str; 6] = ["scenario", "scenario_as_given", "units", "merged_contact_windows", "quality", "design"];
 
 /// What a run's page is built from.
 pub struct RunPage<'a> {
@@ -367,7 +367,26 @@ pub fn run_page(p: &RunPage) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::base64;
+    use super::{base64, history, SLICES};
+    use crate::results::StepResult;
+
+    /// A history of 100 001 steps with one spike of one step: the decimated history keeps at most
+    /// two points per slice, and the spike's value exactly (the min/max of its slice).
+    #[test]
+    fn a_decimated_history_keeps_its_spike() {
+        let steps: Vec<StepResult> = (0..=100_000)
+            .map(|k| StepResult {
+                time: k as f64 * 1e-5,
+                contact_force: if k == 61_234 { -9.7e6 } else { (k as f64 * 1e-3).sin() * 1e5 },
+                ..StepResult::default()
+            })
+            .collect();
+        let points = history(&steps, |r| r.contact_force, 1e-3);
+        assert!(points.len() <= 2 * SLICES + 2, "{} points", points.len());
+        let lowest = points.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+        assert_eq!(lowest, -9.7e3);
+        assert!(points.iter().any(|p| p.0 == 0.61234));
+    }
 
     /// RFC 4648 section 10's test vectors.
     #[test]

@@ -141,8 +141,9 @@ pub fn render(ptr: &str, v: &Value, depth: usize) -> String {
         return format!("<pre>{}</pre>\n", escape(&v.to_string()));
     }
     // Every child an object (or array) of scalars, or all objects: one grid.
-    let all_objects = children.iter().all(|(_, c)| matches!(c, Value::Object(_)));
-    if all_objects && children.len() > 1 {
+    let objects = children.iter().filter(|(_, c)| matches!(c, Value::Object(_))).count();
+    let all_objects = children.iter().all(|(_, c)| matches!(c, Value::Object(_) | Value::Null));
+    if all_objects && objects > 1 {
         let labels: Vec<String> = children.iter().map(|(k, _)| k.clone()).collect();
         let rows: Vec<Vec<(String, String, Value)>> = children
             .iter()
