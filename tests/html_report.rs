@@ -95,7 +95,18 @@ fn the_paper_page_is_one_file_under_5_mb_with_every_section_and_figure() {
     let doc = beam_impact::run_document::document(&run.0, &run.1, 0.1).unwrap();
     let page = page_of(&run, &doc, "run of the paper scenario");
     assert!(page.len() < 5_000_000, "{} bytes", page.len());
-    for id in ["scenario", "table1", "verdicts", "load_cases", "dynamic_amplification", "fatigue", "envelope", "histories", "contact", "numbers"] {
+    for id in [
+        "scenario",
+        "table1",
+        "verdicts",
+        "load_cases",
+        "dynamic_amplification",
+        "fatigue",
+        "envelope",
+        "histories",
+        "contact",
+        "numbers",
+    ] {
         assert!(page.contains(&format!("<section id=\"{id}\">")), "section {id}");
     }
     for id in ["envelope-arrestor", "envelope-bridge", "h-deflection", "h-force", "h-clamp", "h-bridge"] {
@@ -121,7 +132,8 @@ fn every_number_of_the_run_document_is_on_the_page_with_its_pointer() {
     let page = page_of(&run, &doc, "run");
     let mut all = Vec::new();
     numbers("", &doc, &mut all);
-    let all: Vec<_> = all.into_iter().filter(|(p, _)| !p.starts_with("/scenario_as_given") && !p.starts_with("/units")).collect();
+    let all: Vec<_> =
+        all.into_iter().filter(|(p, _)| !p.starts_with("/scenario_as_given") && !p.starts_with("/units")).collect();
     assert!(all.len() > 200, "{} numbers", all.len());
     for (ptr, value) in &all {
         assert!(page.contains(&format!("data-key=\"{}\" data-value=\"{value}\"", escape(ptr))), "{ptr} = {value}");
@@ -186,7 +198,9 @@ fn the_sweep_page_draws_a_chart_per_peak_with_its_verdict_colours() {
         assert!(page.contains(&format!("fill=\"{colour}\"")), "{colour}");
     }
     assert!(page.contains("data-key=\"/2/peak.lower.clamp_bending_stress\" data-value=\"620000000.0\""));
-    assert!(page.contains("&lt;script&gt;alert(1)&lt;/script&gt;") && page.contains("sweep of &lt;b&gt;x&lt;/b&gt;.toml"));
+    assert!(
+        page.contains("&lt;script&gt;alert(1)&lt;/script&gt;") && page.contains("sweep of &lt;b&gt;x&lt;/b&gt;.toml")
+    );
     assert_eq!(page.matches("<script").count(), 1);
 }
 
@@ -212,7 +226,12 @@ fn report_html_of_a_file_that_is_not_a_log_is_one_line_and_writes_nothing() {
         .output()
         .unwrap();
     assert_ne!(out.status.code(), Some(0));
-    assert_eq!(String::from_utf8_lossy(&out.stderr).trim().lines().count(), 1, "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr).trim().lines().count(),
+        1,
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(!html.exists());
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -75,7 +75,7 @@ if ! command -v chromium > /dev/null; then
     exit 1
   fi
 fi
-chromium --version
+chromium --version 2> /dev/null
 
 stage "pytest"
 BEAM_IMPACT_FMU_DIR="$PWD/target/fmu" BEAM_IMPACT_BIN="$(cd "$(dirname "$bin")" && pwd)/beam-impact" \

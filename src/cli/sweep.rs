@@ -104,13 +104,14 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
         let rows: serde_json::Value = serde_json::from_slice(&kept)
             .map_err(|e| beam_impact::Error::Other(format!("the sweep's rows do not parse as JSON: {e}")))?;
         let named = column_units(&sweep.axes).len() - sweep_former_names().len();
-        let page = beam_impact::replay::html::sweep_page::sweep_page(&beam_impact::replay::html::sweep_page::SweepPage {
-            title: format!("sweep of {}", args.file.as_deref().map_or("the default scenario".into(), shown)),
-            source: vec![format!("{} scenarios; the rows also in {}", tally.scenarios, shown(&args.out))],
-            axes: sweep.axes.iter().map(|a| a.field.name.to_string()).collect(),
-            columns: column_units(&sweep.axes).into_iter().take(named).collect(),
-            rows: &rows,
-        });
+        let page =
+            beam_impact::replay::html::sweep_page::sweep_page(&beam_impact::replay::html::sweep_page::SweepPage {
+                title: format!("sweep of {}", args.file.as_deref().map_or("the default scenario".into(), shown)),
+                source: vec![format!("{} scenarios; the rows also in {}", tally.scenarios, shown(&args.out))],
+                axes: sweep.axes.iter().map(|a| a.field.name.to_string()).collect(),
+                columns: column_units(&sweep.axes).into_iter().take(named).collect(),
+                rows: &rows,
+            });
         beam_impact::replay::html::write_page(target, path, &page)?;
         text += &format!("\nHTML report written to {}", shown(path));
     }

@@ -92,13 +92,17 @@ pub fn ticks(lo: f64, hi: f64) -> Vec<(f64, String)> {
     if last < first || last - first > 100 {
         return Vec::new();
     }
-    (first..=last).map(|k| k as f64 * step).map(|v| (v, format!("{:.*}", decimals, if v == 0.0 { 0.0 } else { v }))).collect()
+    (first..=last)
+        .map(|k| k as f64 * step)
+        .map(|v| (v, format!("{:.*}", decimals, if v == 0.0 { 0.0 } else { v })))
+        .collect()
 }
 
 /// The range of `values` padded by 5 % of its span (a single value: +-1 or +-5 % of it), and
 /// (0, 1) when there is none.
 fn padded(values: impl Iterator<Item = f64>, pad: bool) -> (f64, f64) {
-    let (lo, hi) = values.filter(|v| v.is_finite()).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    let (lo, hi) =
+        values.filter(|v| v.is_finite()).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
     if !lo.is_finite() {
         return (0.0, 1.0);
     }
@@ -119,7 +123,13 @@ fn px(v: f64) -> String {
 /// The chart as a `<figure>` with its SVG and its legend.
 pub fn figure(chart: &Chart) -> String {
     let finite = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite();
-    let points = || chart.lines.iter().flat_map(|l| l.points.iter().copied().filter(finite)).chain(chart.marks.iter().map(|m| m.at).filter(finite));
+    let points = || {
+        chart
+            .lines
+            .iter()
+            .flat_map(|l| l.points.iter().copied().filter(finite))
+            .chain(chart.marks.iter().map(|m| m.at).filter(finite))
+    };
     let (x0, x1) = padded(points().map(|p| p.0), !chart.zoom);
     let (y0, y1) = padded(points().map(|p| p.1), true);
     let (w, h) = (WIDTH - LEFT - RIGHT, HEIGHT - TOP - BOTTOM);
@@ -153,7 +163,12 @@ pub fn figure(chart: &Chart) -> String {
         if a.is_finite() && b.is_finite() {
             let (xa, xb) = (sx(a.max(x0)), sx(b.min(x1)));
             if xb >= xa {
-                let _ = write!(s, "<rect class=\"shade\" x=\"{}\" y=\"{TOP}\" width=\"{}\" height=\"{h}\"/>", px(xa), px((xb - xa).max(0.5)));
+                let _ = write!(
+                    s,
+                    "<rect class=\"shade\" x=\"{}\" y=\"{TOP}\" width=\"{}\" height=\"{h}\"/>",
+                    px(xa),
+                    px((xb - xa).max(0.5))
+                );
             }
         }
     }
@@ -188,9 +203,9 @@ pub fn figure(chart: &Chart) -> String {
         );
     }
     s.push_str("</g></g>");
-    let _ = write!(
+    let _ = writeln!(
         s,
-        "<text class=\"label\" x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text><text class=\"label\" transform=\"translate(14 {}) rotate(-90)\" text-anchor=\"middle\">{}</text></svg>\n",
+        "<text class=\"label\" x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text><text class=\"label\" transform=\"translate(14 {}) rotate(-90)\" text-anchor=\"middle\">{}</text></svg>",
         LEFT + w / 2.0,
         HEIGHT - 6.0,
         escape(&chart.x_label),
@@ -199,7 +214,13 @@ pub fn figure(chart: &Chart) -> String {
     );
     s.push_str("<ul class=\"legend\">");
     for line in &chart.lines {
-        let _ = write!(s, "<li><span class=\"swatch{}\" style=\"border-color:{}\"></span>{}</li>", if line.dashed { " dashed" } else { "" }, line.color, escape(&line.name));
+        let _ = write!(
+            s,
+            "<li><span class=\"swatch{}\" style=\"border-color:{}\"></span>{}</li>",
+            if line.dashed { " dashed" } else { "" },
+            line.color,
+            escape(&line.name)
+        );
     }
     for m in chart.marks.iter().filter(|m| m.legend) {
         let _ = write!(s, "<li><span class=\"dot\" style=\"background:{}\"></span>{}</li>", m.color, escape(&m.name));
@@ -278,7 +299,12 @@ mod tests {
         let chart = Chart {
             id: "c".into(),
             title: "<b>t</b>".into(),
-            lines: vec![Line { name: "<script>x</script>".into(), color: "#000", dashed: false, points: vec![(0.0, 1.0), (1.0, 2.0)] }],
+            lines: vec![Line {
+                name: "<script>x</script>".into(),
+                color: "#000",
+                dashed: false,
+                points: vec![(0.0, 1.0), (1.0, 2.0)],
+            }],
             ..Chart::default()
         };
         let svg = figure(&chart);

@@ -70,7 +70,13 @@ pub fn log_page(mcap: &Path) -> Result<String> {
     } else {
         format!(
             "{}: {}; the {} step messages before it",
-            if data.complete { "STOPPED EARLY" } else if data.damaged { "DAMAGED" } else { "CUT SHORT" },
+            if data.complete {
+                "STOPPED EARLY"
+            } else if data.damaged {
+                "DAMAGED"
+            } else {
+                "CUT SHORT"
+            },
             data.stopped_early.as_deref().or(data.problem.as_deref()).unwrap_or("unknown"),
             data.steps.len()
         )
@@ -99,7 +105,11 @@ pub fn log_page(mcap: &Path) -> Result<String> {
 /// as given (`scenario`), and the steps read back from its log at `mcap`.
 pub fn run_page(scenario: &Scenario, summary: &Summary, doc: &Value, title: &str, mcap: &Path) -> Result<String> {
     let data = read_log(mcap)?;
-    let mut source = vec![format!("the run's log {} read back for the time histories ({} step messages)", shown(mcap), data.steps.len())];
+    let mut source = vec![format!(
+        "the run's log {} read back for the time histories ({} step messages)",
+        shown(mcap),
+        data.steps.len()
+    )];
     if let Some(reason) = &data.stopped_early {
         source.push(format!("the log stopped early: {reason}; the histories cover the steps before it"));
     }
@@ -118,9 +128,11 @@ pub fn run_page(scenario: &Scenario, summary: &Summary, doc: &Value, title: &str
 /// Writes `html` into `target` (an output opened through [`crate::record::output`]), then commits it.
 pub fn write_page(mut target: crate::record::output::OutputFile, path: &Path, html: &str) -> Result<()> {
     use std::io::Write;
-    target
-        .write_all(html.as_bytes())
-        .map_err(|source| Error::Io { action: "cannot write HTML report", path: path.display().to_string(), source })?;
+    target.write_all(html.as_bytes()).map_err(|source| Error::Io {
+        action: "cannot write HTML report",
+        path: path.display().to_string(),
+        source,
+    })?;
     target.commit()
 }
 

@@ -30,7 +30,8 @@ pub const BLOCKS: [(&str, &str); 4] = [
 ];
 
 /// Keys of the document not shown in its "every number" section (shown elsewhere, or text).
-const SHOWN_ELSEWHERE: [&str; 6] = ["scenario", "scenario_as_given", "units", "merged_contact_windows", "quality", "design"];
+const SHOWN_ELSEWHERE: [&str; 6] =
+    ["scenario", "scenario_as_given", "units", "merged_contact_windows", "quality", "design"];
 
 /// What a run's page is built from.
 pub struct RunPage<'a> {
@@ -164,11 +165,13 @@ fn history(steps: &[StepResult], value: fn(&StepResult) -> f64, scale: f64) -> V
     crate::replay::figures::min_max_decimate(&points, SLICES)
 }
 
+/// A history's curve: its name, colour, value of a step and the scale it is shown at.
+type Curve = (&'static str, &'static str, fn(&StepResult) -> f64, f64);
+
 /// The time histories the reader can zoom: deflections, contact force, clamp stresses, the
 /// bridge's stress at the contact point; contact windows shaded.
 fn histories(steps: &[StepResult], shaded: &[(f64, f64)]) -> Vec<Chart> {
-    type Pick = fn(&StepResult) -> f64;
-    let specs: [(&str, &str, &str, Vec<(&str, &'static str, Pick, f64)>); 4] = [
+    let specs: [(&str, &str, &str, Vec<Curve>); 4] = [
         (
             "h-deflection",
             "Tip deflection",
@@ -178,7 +181,12 @@ fn histories(steps: &[StepResult], shaded: &[(f64, f64)]) -> Vec<Chart> {
                 ("bridge deflection at the contact point", "#1f5ac8", |r| r.upper_contact_deflection, 1.0),
             ],
         ),
-        ("h-force", "Contact force", "force, kN", vec![("contact bar force F_c", "#288c3c", |r| r.contact_force, 1e-3)]),
+        (
+            "h-force",
+            "Contact force",
+            "force, kN",
+            vec![("contact bar force F_c", "#288c3c", |r| r.contact_force, 1e-3)],
+        ),
         (
             "h-clamp",
             "Clamp stresses of the arrestor",
@@ -192,7 +200,12 @@ fn histories(steps: &[StepResult], shaded: &[(f64, f64)]) -> Vec<Chart> {
             "h-bridge",
             "Bridge stress at the contact point",
             "stress, MPa",
-            vec![("bending stress of the bridge at contact sigma_b", "#1f5ac8", |r| r.upper_contact_bending_stress, 1e-6)],
+            vec![(
+                "bending stress of the bridge at contact sigma_b",
+                "#1f5ac8",
+                |r| r.upper_contact_bending_stress,
+                1e-6,
+            )],
         ),
     ];
     specs
@@ -230,14 +243,24 @@ fn envelope_chart(id: &str, title: &str, x_label: &str, beam: [&StationEnvelope;
             lines.push(Line { name: name.into(), color, dashed: false, points });
         }
     }
-    for (e, (name, color)) in beam.iter().zip([("allowable bending stress", "#1f5ac8"), ("allowable shear stress", "#288c3c")]) {
+    for (e, (name, color)) in
+        beam.iter().zip([("allowable bending stress", "#1f5ac8"), ("allowable shear stress", "#288c3c")])
+    {
         let points: Vec<(f64, f64)> =
             e.positions.iter().zip(&e.allowable).filter(|(_, &a)| a > 0.0).map(|(&x, &a)| (x, a * 1e-6)).collect();
         if !points.is_empty() {
             lines.push(Line { name: name.into(), color, dashed: true, points });
         }
     }
-    Chart { id: id.into(), title: title.into(), x_label: x_label.into(), y_label: "stress, MPa".into(), lines, marks, ..Chart::default() }
+    Chart {
+        id: id.into(),
+        title: title.into(),
+        x_label: x_label.into(),
+        y_label: "stress, MPa".into(),
+        lines,
+        marks,
+        ..Chart::default()
+    }
 }
 
 /// A section with its heading.
@@ -250,8 +273,12 @@ pub fn run_page(p: &RunPage) -> String {
     let doc = p.doc;
     let paper = p.scenario.is_paper();
     let mut body = format!("<h1>beam-impact: {}</h1>\n", escape(&p.title));
-    let _ = write!(body, "<p class=\"note\">beam-impact {}; every number below is the run's JSON document's (its key in the \
-         element's data-key, a JSON Pointer); figures drawn from the run's recorded steps.</p>\n<ul>", env!("CARGO_PKG_VERSION"));
+    let _ = write!(
+        body,
+        "<p class=\"note\">beam-impact {}; every number below is the run's JSON document's (its key in the \
+         element's data-key, a JSON Pointer); figures drawn from the run's recorded steps.</p>\n<ul>",
+        env!("CARGO_PKG_VERSION")
+    );
     for line in &p.source {
         let _ = write!(body, "<li>{}</li>", escape(line));
     }
@@ -274,16 +301,26 @@ pub fn run_page(p: &RunPage) -> String {
         Some(v) => scenario.push_str(&render("/scenario", v, 0)),
         None => scenario.push_str("<p class=\"note\">(not in the document)</p>"),
     }
-    let _ = write!(scenario, "<details><summary>as TOML</summary><pre>{}</pre></details>\n", escape(&p.scenario.to_toml()));
-    section(&mut body, "scenario", if paper { "Scenario: the paper's (Catipovic, Vladimir, Reljic 2008)" } else { "Scenario" }, &scenario);
+    let _ =
+        writeln!(scenario, "<details><summary>as TOML</summary><pre>{}</pre></details>", escape(&p.scenario.to_toml()));
+    section(
+        &mut body,
+        "scenario",
+        if paper { "Scenario: the paper's (Catipovic, Vladimir, Reljic 2008)" } else { "Scenario" },
+        &scenario,
+    );
 
     let mut t1 = table1(doc, paper);
-    let _ = write!(t1, "<details><summary>as `run` prints it</summary><pre>{}</pre></details>\n", escape(&p.comparison));
+    let _ =
+        writeln!(t1, "<details><summary>as `run` prints it</summary><pre>{}</pre></details>", escape(&p.comparison));
     section(&mut body, "table1", if paper { "Table 1 beside the paper" } else { "Table 1" }, &t1);
 
     // Verdicts: the quality checks and the design check per quantity.
     let mut checks = String::new();
-    for (key, heading) in [("quality", "Quality: the checks behind the verdict"), ("design", "Design check per quantity (utilisation = converged peak / allowable)")] {
+    for (key, heading) in [
+        ("quality", "Quality: the checks behind the verdict"),
+        ("design", "Design check per quantity (utilisation = converged peak / allowable)"),
+    ] {
         if let Some(v) = doc.get(key) {
             let _ = write!(checks, "<h3>{}</h3>\n{}", escape(heading), render(&format!("/{key}"), v, 0));
         }
@@ -303,11 +340,25 @@ pub fn run_page(p: &RunPage) -> String {
     let peaks = &p.summary.peaks;
     let mut env = format!("<p class=\"note\">Envelope {}.</p>\n", escape(&p.envelope_source));
     let arrestor_marks = vec![
-        Mark { name: format!("paper's sigma_din,a at the clamp: {:.1} MPa", peaks.lower_clamp_bending_stress * 1e-6), color: "#d7231e", at: (0.0, peaks.lower_clamp_bending_stress * 1e-6), legend: true },
-        Mark { name: format!("paper's tau_din,a at the clamp: {:.1} MPa", peaks.lower_clamp_shear_stress * 1e-6), color: "#963caf", at: (0.0, peaks.lower_clamp_shear_stress * 1e-6), legend: true },
+        Mark {
+            name: format!("paper's sigma_din,a at the clamp: {:.1} MPa", peaks.lower_clamp_bending_stress * 1e-6),
+            color: "#d7231e",
+            at: (0.0, peaks.lower_clamp_bending_stress * 1e-6),
+            legend: true,
+        },
+        Mark {
+            name: format!("paper's tau_din,a at the clamp: {:.1} MPa", peaks.lower_clamp_shear_stress * 1e-6),
+            color: "#963caf",
+            at: (0.0, peaks.lower_clamp_shear_stress * 1e-6),
+            legend: true,
+        },
     ];
     let bridge_marks = vec![Mark {
-        name: format!("paper's sigma_din,b at the contact point ({} m): {:.1} MPa", shown_number(p.scenario.contact_position), peaks.upper_contact_bending_stress * 1e-6),
+        name: format!(
+            "paper's sigma_din,b at the contact point ({} m): {:.1} MPa",
+            shown_number(p.scenario.contact_position),
+            peaks.upper_contact_bending_stress * 1e-6
+        ),
         color: "#d7231e",
         at: (p.scenario.contact_position, peaks.upper_contact_bending_stress * 1e-6),
         legend: true,
@@ -315,8 +366,20 @@ pub fn run_page(p: &RunPage) -> String {
     if e.lower.bending.max.is_empty() && e.upper.bending.max.is_empty() {
         env.push_str("<p>No envelope to draw.</p>");
     } else {
-        env.push_str(&figure(&envelope_chart("envelope-arrestor", "Arrestor: stress envelope from the clamp", "x from the clamp, m", [&e.lower.bending, &e.lower.shear], arrestor_marks)));
-        env.push_str(&figure(&envelope_chart("envelope-bridge", "Bridge: stress envelope from the hinge", "x from the hinge, m", [&e.upper.bending, &e.upper.shear], bridge_marks)));
+        env.push_str(&figure(&envelope_chart(
+            "envelope-arrestor",
+            "Arrestor: stress envelope from the clamp",
+            "x from the clamp, m",
+            [&e.lower.bending, &e.lower.shear],
+            arrestor_marks,
+        )));
+        env.push_str(&figure(&envelope_chart(
+            "envelope-bridge",
+            "Bridge: stress envelope from the hinge",
+            "x from the hinge, m",
+            [&e.upper.bending, &e.upper.shear],
+            bridge_marks,
+        )));
     }
     section(&mut body, "envelope", "Stress envelope along each beam", &env);
 
@@ -355,7 +418,12 @@ pub fn run_page(p: &RunPage) -> String {
             if SHOWN_ELSEWHERE.contains(&key.as_str()) || BLOCKS.iter().any(|(k, _)| k == key) {
                 continue;
             }
-            let _ = write!(rest, "<details><summary>{}</summary>\n{}</details>\n", escape(key), render(&super::tables::pointer("", key), v, 0));
+            let _ = write!(
+                rest,
+                "<details><summary>{}</summary>\n{}</details>\n",
+                escape(key),
+                render(&super::tables::pointer("", key), v, 0)
+            );
         }
     }
     if let Some(units) = doc.get("units") {
@@ -391,7 +459,15 @@ mod tests {
     /// RFC 4648 section 10's test vectors.
     #[test]
     fn base64_gives_the_rfc_4648_vectors() {
-        for (input, output) in [("", ""), ("f", "Zg=="), ("fo", "Zm8="), ("foo", "Zm9v"), ("foob", "Zm9vYg=="), ("fooba", "Zm9vYmE="), ("foobar", "Zm9vYmFy")] {
+        for (input, output) in [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("fooba", "Zm9vYmE="),
+            ("foobar", "Zm9vYmFy"),
+        ] {
             assert_eq!(base64(input.as_bytes()), output);
         }
     }

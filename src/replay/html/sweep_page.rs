@@ -56,7 +56,10 @@ pub fn sweep_page(p: &SweepPage) -> String {
     for line in &p.source {
         let _ = write!(body, "<li>{}</li>", escape(line));
     }
-    let verdict = |r: &Value| match (r.get("quality.trusted").and_then(Value::as_bool), r.get("design.pass").and_then(Value::as_bool)) {
+    let verdict = |r: &Value| match (
+        r.get("quality.trusted").and_then(Value::as_bool),
+        r.get("design.pass").and_then(Value::as_bool),
+    ) {
         (None, _) => None,
         (_, Some(false)) => Some(FAIL),
         (Some(false), _) => Some(UNTRUSTED),
@@ -100,7 +103,16 @@ pub fn sweep_page(p: &SweepPage) -> String {
         format!("{first} (0, 1, ...: {})", words.join(", "))
     };
     let group = |r: &Value| -> String {
-        p.axes[1..].iter().map(|a| format!("{a} = {}", r.get(a.as_str()).map_or("-".into(), |v| v.to_string().trim_matches('"').to_string()))).collect::<Vec<_>>().join(", ")
+        p.axes[1..]
+            .iter()
+            .map(|a| {
+                format!(
+                    "{a} = {}",
+                    r.get(a.as_str()).map_or("-".into(), |v| v.to_string().trim_matches('"').to_string())
+                )
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
     };
     let mut charts = format!(
         "<p class=\"note\">Each point a scenario of the grid: <span style=\"color:{PASS}\">&#9679;</span> trusted and passing the design check, \
@@ -121,7 +133,13 @@ pub fn sweep_page(p: &SweepPage) -> String {
                 None => groups.push((g.clone(), vec![(x, y * scale)])),
             }
             let color = verdict(r).unwrap_or("#999999");
-            let name = format!("{}{}{}: {} {shown_unit}", escape_free_value(r, first), if g.is_empty() { "" } else { ", " }, g, shown_number(y * scale));
+            let name = format!(
+                "{}{}{}: {} {shown_unit}",
+                escape_free_value(r, first),
+                if g.is_empty() { "" } else { ", " },
+                g,
+                shown_number(y * scale)
+            );
             marks.push(Mark { name, color, at: (x, y * scale), legend: false });
         }
         if marks.is_empty() {
@@ -166,7 +184,10 @@ pub fn sweep_page(p: &SweepPage) -> String {
         table.push_str("</tr>");
     }
     table.push_str("</tbody></table>\n");
-    let _ = write!(body, "<section id=\"rows-section\"><h2>Every row</h2>\n<div style=\"overflow-x:auto\">{table}</div></section>\n");
+    let _ = write!(
+        body,
+        "<section id=\"rows-section\"><h2>Every row</h2>\n<div style=\"overflow-x:auto\">{table}</div></section>\n"
+    );
     shell(&format!("beam-impact: {}", p.title), &body)
 }
 

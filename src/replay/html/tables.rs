@@ -62,7 +62,15 @@ pub fn cell(ptr: &str, v: &Value) -> String {
                 (true, false) => ("verdict fail", "FAIL"),
                 (false, b) => ("", if *b { "true" } else { "false" }),
             };
-            let text = if ptr.ends_with("/trusted") { if *b { "TRUSTED" } else { "NOT TRUSTED" } } else { text };
+            let text = if ptr.ends_with("/trusted") {
+                if *b {
+                    "TRUSTED"
+                } else {
+                    "NOT TRUSTED"
+                }
+            } else {
+                text
+            };
             format!("<td class=\"{class}\" data-key=\"{key}\" data-value=\"{b}\">{text}</td>")
         }
         Value::Null => format!("<td class=\"none\" data-key=\"{key}\" data-value=\"null\">-</td>"),
@@ -157,8 +165,10 @@ pub fn render(ptr: &str, v: &Value, depth: usize) -> String {
             return grid(&labels, &rows);
         }
     }
-    let scalars: Vec<&(String, &Value)> =
-        children.iter().filter(|(_, c)| is_scalar(c) || matches!(c, Value::Array(a) if a.iter().all(is_scalar))).collect();
+    let scalars: Vec<&(String, &Value)> = children
+        .iter()
+        .filter(|(_, c)| is_scalar(c) || matches!(c, Value::Array(a) if a.iter().all(is_scalar)))
+        .collect();
     if !scalars.is_empty() {
         s.push_str("<table class=\"pairs\"><tbody>");
         for (k, c) in &scalars {
@@ -166,8 +176,15 @@ pub fn render(ptr: &str, v: &Value, depth: usize) -> String {
         }
         s.push_str("</tbody></table>\n");
     }
-    for (k, c) in children.iter().filter(|(_, c)| !(is_scalar(c) || matches!(c, Value::Array(a) if a.iter().all(is_scalar)))) {
-        let _ = write!(s, "<div class=\"block\"><h4>{}</h4>\n{}</div>\n", escape(k), render(&pointer(ptr, k), c, depth + 1));
+    for (k, c) in
+        children.iter().filter(|(_, c)| !(is_scalar(c) || matches!(c, Value::Array(a) if a.iter().all(is_scalar))))
+    {
+        let _ = write!(
+            s,
+            "<div class=\"block\"><h4>{}</h4>\n{}</div>\n",
+            escape(k),
+            render(&pointer(ptr, k), c, depth + 1)
+        );
     }
     s
 }
