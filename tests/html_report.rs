@@ -235,3 +235,45 @@ fn report_html_of_a_file_that_is_not_a_log_is_one_line_and_writes_nothing() {
     assert!(!html.exists());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Nothing in a log is trusted (issue 9): the page of every log of the committed corpus, of the
+/// crafted ones and of seeded mutations of a real log is made or refused with an error, never a
+/// panic; a page made holds the one script and no number a browser cannot draw.
+#[test]
+fn the_page_of_a_hostile_log_is_made_or_refused_without_panic() {
+    use crate::fuzz_support::{corpus_files, crafted_logs, iterations, mutate_log, real_log_bytes, Rng};
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("log.mcap");
+    let real = real_log_bytes();
+    let mut rng = Rng(44);
+    let mutations: Vec<(String, Vec<u8>)> =
+        (0..iterations(200)).map(|i| (format!("mutation {i}"), mutate_log(&real, &mut rng))).collect();
+    let (mut made, mut refused) = (0, 0);
+    for (name, bytes) in
+        corpus_files("logs").into_iter().chain(crafted_logs()).chain([("real".into(), real.clone())]).chain(mutations)
+    {
+        std::fs::write(&path, &bytes).unwrap();
+        let outcome = std::panic::catch_unwind(|| beam_impact::replay::html::log_page(&path));
+        match outcome {
+            Err(_) => panic!("{name}: the page panicked"),
+            Ok(Ok(page)) => {
+                made += 1;
+                assert_eq!(page.matches("<script").count(), 1, "{name}");
+                for svg in page.split("<svg").skip(1).map(|s| s.split("</svg>").next().unwrap_or("")) {
+                    // The drawing without its tooltips (text, which may say "NaN").
+                    let drawn: String =
+                        svg.split("<title>").map(|part| part.split("</title>").last().unwrap_or("")).collect();
+                    assert!(
+                        !drawn.contains("NaN") && !drawn.contains("inf"),
+                        "{name}: a number the browser cannot draw"
+                    );
+                }
+            }
+            Ok(Err(e)) => {
+                refused += 1;
+                assert_eq!(e.to_string().lines().count(), 1, "{name}: {e}");
+            }
+        }
+    }
+    assert!(made > 0 && refused > 0, "{made} made, {refused} refused");
+}

@@ -106,6 +106,9 @@ fn padded(values: impl Iterator<Item = f64>, pad: bool) -> (f64, f64) {
     if !lo.is_finite() {
         return (0.0, 1.0);
     }
+    // A forged log's 1e308 would make the span infinite: the figures' limit (a run's values are far within).
+    let limit = crate::replay::figures::PLOTTABLE;
+    let (lo, hi) = (lo.clamp(-limit, limit), hi.clamp(-limit, limit));
     if hi <= lo {
         let d = if lo == 0.0 { 1.0 } else { 0.05 * lo.abs() };
         return (lo - d, hi + d);
@@ -116,7 +119,8 @@ fn padded(values: impl Iterator<Item = f64>, pad: bool) -> (f64, f64) {
 
 /// A number for a path: two decimals of a pixel.
 fn px(v: f64) -> String {
-    let r = (v * 100.0).round() / 100.0;
+    // Pixels of values beyond the figures' limit, clamped to it, stay finite but may be huge.
+    let r = ((v * 100.0).round() / 100.0).clamp(-1e9, 1e9);
     format!("{r}")
 }
 

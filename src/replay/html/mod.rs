@@ -135,14 +135,3 @@ pub fn write_page(mut target: crate::record::output::OutputFile, path: &Path, ht
     })?;
     target.commit()
 }
-
-/// Writes `html` to `path` through [`crate::record::output::write_by_path`].
-pub fn write_page_by_path(path: &Path, html: &str) -> Result<()> {
-    crate::record::output::write_by_path(path, "cannot write HTML report", |partial| {
-        std::fs::write(partial, html).map_err(|source| Error::Io {
-            action: "cannot write HTML report",
-            path: partial.display().to_string(),
-            source,
-        })
-    })
-}
