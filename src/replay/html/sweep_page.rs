@@ -145,7 +145,7 @@ pub fn sweep_page(p: &SweepPage) -> String {
         if marks.is_empty() {
             continue;
         }
-        let lines = groups
+        let mut lines: Vec<Line> = groups
             .into_iter()
             .enumerate()
             .map(|(i, (name, points))| Line {
@@ -155,6 +155,17 @@ pub fn sweep_page(p: &SweepPage) -> String {
                 points,
             })
             .collect();
+        // A utilisation's allowable: 1.
+        if column.starts_with("utilisation.") {
+            let (lo, hi) =
+                marks.iter().map(|m| m.at.0).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
+            lines.push(Line {
+                name: "allowable: utilisation 1".into(),
+                color: FAIL,
+                dashed: true,
+                points: vec![(lo, 1.0), (hi, 1.0)],
+            });
+        }
         charts.push_str(&figure(&Chart {
             id: format!("sweep-{k}"),
             title: format!("{column} against {first}"),
