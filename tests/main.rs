@@ -58,6 +58,7 @@ mod hostile_logs;
 mod hostile_motion;
 mod hostile_outputs;
 mod load_cases;
+mod html_report;
 mod log_peaks;
 mod mcap_channels;
 mod mcap_format2;

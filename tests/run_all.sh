@@ -64,6 +64,19 @@ BEAM_IMPACT_WHEEL_TOOLS="$PWD/.venv" scripts/build-wheels.sh target/wheels --fmu
 .venv/bin/python -m pip uninstall --quiet --yes beam_impact > /dev/null 2>&1 || true
 .venv/bin/python -m pip install --quiet --disable-pip-version-check target/wheels/beam_impact-*.whl
 
+# The HTML report's browser test (tests/python/test_html_report.py) drives Debian's chromium with
+# Playwright: installed here where missing (CI runs as root), never by `playwright install`.
+stage "chromium for the HTML report's browser test"
+if ! command -v chromium > /dev/null; then
+  mkdir -p target
+  if ! { apt-get install -y chromium || { apt-get update && apt-get install -y chromium; }; } > target/chromium-install.log 2>&1; then
+    cat target/chromium-install.log
+    echo "apt-get install -y chromium failed (its output above)" >&2
+    exit 1
+  fi
+fi
+chromium --version 2> /dev/null
+
 stage "pytest"
 BEAM_IMPACT_FMU_DIR="$PWD/target/fmu" BEAM_IMPACT_BIN="$(cd "$(dirname "$bin")" && pwd)/beam-impact" \
   BEAM_IMPACT_REQUIRE_GLIBC_2_17=1 BEAM_IMPACT_REQUIRE_WHEEL=1 .venv/bin/python -m pytest -q tests/python

@@ -111,6 +111,11 @@ pub enum Command {
         /// moment N m, velocities m/s, energies J; contact true/false.
         #[arg(long, value_name = "FILE.csv")]
         csv: Option<PathBuf>,
+
+        /// Also write the run as one self-contained HTML page (docs/html-report.md): the scenario,
+        /// Table 1, every number with its verdict, the envelope, zoomable time histories.
+        #[arg(long, value_name = "FILE.html")]
+        html: Option<PathBuf>,
     },
     /// Time the production stepper against the dense oracle, the per-step cost at finer
     /// meshes, and the recorded run.
@@ -251,6 +256,10 @@ pub struct RunArgs {
     /// acceleration. `--set motion.time_shift=S` starts the run at the file's time S.
     #[arg(long, value_name = "FILE.csv")]
     pub motion: Option<PathBuf>,
+    /// Also write the run as one self-contained HTML page (docs/html-report.md), its numbers those
+    /// of --json and its time histories read back from the run's log (so not with --no-mcap).
+    #[arg(long, value_name = "FILE.html", conflicts_with = "no_mcap")]
+    pub html: Option<PathBuf>,
 }
 
 #[derive(Args)]
@@ -280,6 +289,9 @@ pub struct SweepArgs {
     /// Refuse runs that need more internal steps than this (a row with the error).
     #[arg(long, default_value_t = beam_impact::model::scenario::MAX_STEPS)]
     pub max_steps: u64,
+    /// Also write the response over the grid as one self-contained HTML page (docs/html-report.md).
+    #[arg(long, value_name = "FILE.html")]
+    pub html: Option<PathBuf>,
 }
 
 #[derive(Args)]

@@ -8,8 +8,16 @@ use beam_impact::{Error, Result};
 
 use super::common::{io, units_sidecars, write_units_sidecars};
 
-pub fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>) -> Result<()> {
+pub fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>, html: Option<&Path>) -> Result<()> {
     let out = out.unwrap_or_else(|| beam_impact::replay::report::default_out_dir(file));
+    // Opened before the log is read, so that a bad path fails at once.
+    let html = match html {
+        Some(path) => {
+            check_distinct(&[("the log", file), ("--html", path)])?;
+            Some((path, OutputFile::create(path, true, "cannot create HTML report")?))
+        }
+        None => None,
+    };
     let stdout = std::io::stdout();
     let mut lock = stdout.lock();
     let csv_to_stdout = csv.is_some_and(|path| path.as_os_str() == "-");
@@ -68,6 +76,11 @@ pub fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>) -> Result<(
     match beam_impact::replay::report::report(file, &out, summary) {
         Err(Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::BrokenPipe => return Ok(()),
         outcome => outcome?,
+    }
+    if let Some((path, target)) = html {
+        let page = beam_impact::replay::html::log_page(file)?;
+        beam_impact::replay::html::write_page(target, path, &page)?;
+        writeln!(summary, "HTML report written to {}", shown(path)).ok();
     }
     lock.flush().ok();
     Ok(())

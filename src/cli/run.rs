@@ -65,6 +65,9 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     if let Some(json) = args.json.as_deref() {
         files.push(("--json", json));
     }
+    if let Some(html) = args.html.as_deref() {
+        files.push(("--html", html));
+    }
     if !args.no_mcap {
         if mcap.as_os_str() == "-" {
             return Err(beam_impact::Error::Other(
@@ -79,6 +82,10 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     let json_file = match &args.json {
         Some(path) if path.as_os_str() == "-" => Some((path, None)),
         Some(path) => Some((path, Some(OutputFile::create(path, true, "cannot create JSON")?))),
+        None => None,
+    };
+    let html_file = match &args.html {
+        Some(path) => Some((path, OutputFile::create(path, true, "cannot create HTML report")?)),
         None => None,
     };
     let mut recorder: Box<dyn Recorder + Send> = if args.no_mcap {
@@ -214,6 +221,16 @@ pub fn run(args: &RunArgs) -> Result<bool> {
         text += &format!(", recorded to {}", shown(&mcap));
     }
     text += ")\n";
+    if let Some((path, target)) = html_file {
+        let doc = beam_impact::run_document::document(&scenario, &answer, wall.as_secs_f64())?;
+        let title = match &args.file {
+            Some(file) => format!("run of {}", shown(file)),
+            None => format!("run of the {} scenario", if paper { "paper" } else { "default" }),
+        };
+        let page = beam_impact::replay::html::run_page(&scenario, summary, &doc, &title, &mcap)?;
+        beam_impact::replay::html::write_page(target, path, &page)?;
+        text += &format!("HTML report written to {}\n", shown(path));
+    }
     if let Some((path, file)) = json_file {
         let doc = beam_impact::run_document::document(&scenario, &answer, wall.as_secs_f64())?;
         let json = serde_json::to_string_pretty(&doc).map_err(|e| Error::Other(format!("JSON: {e}")))?;

@@ -35,6 +35,7 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
     }
     files.push(("--out", &args.out));
     files.extend(args.json.as_deref().map(|j| ("--json", j)));
+    files.extend(args.html.as_deref().map(|h| ("--html", h)));
     let data: Vec<&Path> = std::iter::once(args.out.as_path()).chain(args.json.as_deref()).collect();
     let sidecars = units_sidecars(&data);
     files.extend(sidecars.iter().map(|(path, _)| ("the units sidecar", path.as_path())));
@@ -42,10 +43,14 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
     let create = |path: &Path| OutputFile::create(path, true, "cannot create").map(std::io::BufWriter::new);
     let mut csv = create(&args.out)?;
     let mut json = args.json.as_deref().map(create).transpose()?;
+    let html = args.html.as_deref().map(|h| OutputFile::create(h, true, "cannot create HTML report")).transpose()?;
+    // With --html the JSON rows are kept too (beside the --json file, if any): the page is made of them.
+    let mut rows = Tee { file: json.as_mut().map(|j| j as &mut dyn Write), kept: html.as_ref().map(|_| Vec::new()) };
+    let keep = rows.file.is_some() || rows.kept.is_some();
     let bar = super::common::progress_bar(sweep.len(), "scenarios");
     let started = Instant::now();
     let tally = sweep
-        .write(jobs, &mut csv, json.as_mut().map(|j| j as &mut dyn Write), &mut |n| bar.set_position(n as u64))
+        .write(jobs, &mut csv, keep.then_some(&mut rows as &mut dyn Write), &mut |n| bar.set_position(n as u64))
         .map_err(|e| match e {
             SweepWriteError::Csv(source) => io("cannot write", &args.out, source),
             SweepWriteError::Json(source) => {
@@ -58,6 +63,8 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
     let commit = |writer: std::io::BufWriter<OutputFile>, path: &Path| {
         writer.into_inner().map_err(|e| io("cannot write", path, e.into_error()))?.commit()
     };
+    let kept = rows.kept.take();
+    drop(rows);
     commit(csv, &args.out)?;
     if let (Some(json), Some(path)) = (json, args.json.as_deref()) {
         commit(json, path)?;
@@ -93,5 +100,41 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
     for path in sidecars {
         text += &format!(", units in {}", shown(&path));
     }
+    if let (Some(target), Some(path), Some(kept)) = (html, args.html.as_deref(), kept) {
+        let rows: serde_json::Value = serde_json::from_slice(&kept)
+            .map_err(|e| beam_impact::Error::Other(format!("the sweep's rows do not parse as JSON: {e}")))?;
+        let named = column_units(&sweep.axes).len() - sweep_former_names().len();
+        let page =
+            beam_impact::replay::html::sweep_page::sweep_page(&beam_impact::replay::html::sweep_page::SweepPage {
+                title: format!("sweep of {}", args.file.as_deref().map_or("the default scenario".into(), shown)),
+                source: vec![format!("{} scenarios; the rows also in {}", tally.scenarios, shown(&args.out))],
+                axes: sweep.axes.iter().map(|a| a.field.name.to_string()).collect(),
+                columns: column_units(&sweep.axes).into_iter().take(named).collect(),
+                rows: &rows,
+            });
+        beam_impact::replay::html::write_page(target, path, &page)?;
+        text += &format!("\nHTML report written to {}", shown(path));
+    }
     emit(&(text + "\n"))
+}
+
+/// The sweep's JSON rows into the --json file, if any, and kept in memory for --html, if asked.
+struct Tee<'a> {
+    file: Option<&'a mut dyn Write>,
+    kept: Option<Vec<u8>>,
+}
+
+impl Write for Tee<'_> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        if let Some(file) = self.file.as_mut() {
+            file.write_all(buf)?;
+        }
+        if let Some(kept) = self.kept.as_mut() {
+            kept.extend_from_slice(buf);
+        }
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.file.as_mut().map_or(Ok(()), |f| f.flush())
+    }
 }
