@@ -69,6 +69,7 @@ BEAM_IMPACT_WHEEL_TOOLS="$PWD/.venv" scripts/build-wheels.sh target/wheels --fmu
 stage "chromium for the HTML report's browser test"
 if ! command -v chromium > /dev/null; then
   mkdir -p target
+  export DEBIAN_FRONTEND=noninteractive
   if ! { apt-get install -y chromium || { apt-get update && apt-get install -y chromium; }; } > target/chromium-install.log 2>&1; then
     cat target/chromium-install.log
     echo "apt-get install -y chromium failed (its output above)" >&2
