@@ -90,6 +90,10 @@ fn table() -> Vec<[f64; 5]> {
         .map(|&ratio| {
             let rigid = amplification_of(&rigid_bridge_on_a_spring(ratio, true, 0.0));
             let beam = amplification_of(&rigid_bridge_on_a_spring(ratio, false, 0.0));
+            // The energy method's spring on a rigid support is the contact: its DAF is the
+            // closed form itself (to round-off).
+            let energy = rigid.energy_method.daf.unwrap();
+            assert!((energy / closed_form(ratio) - 1.0).abs() < 1e-9, "{ratio}: energy method {energy}");
             [
                 ratio,
                 closed_form(ratio),
