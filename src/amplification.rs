@@ -233,6 +233,15 @@ impl Amplification {
             "energy_method": self.energy_method,
             "crane_psi": self.crane_psi,
             "note": self.note,
+            "units": {
+                "static": "the quantity's own: m (tip_deflection), Pa (*_stress), N (force)",
+                "static_positions": "m from the beam's support", "static_compression": "m",
+                "daf, energy_method.daf, crane_psi.psi": "1",
+                "energy_method.force, energy_method.static_force": "N",
+                "energy_method.stiffness, crane_psi.k, crane_psi.k_arrestor, crane_psi.k_contact": "N/m",
+                "crane_psi.v": "m/s", "crane_psi.g": "m/s^2", "crane_psi.m": "kg", "crane_psi.j_hinge": "kg m^2",
+                "crane_psi.d": "m"
+            },
         })
     }
 
