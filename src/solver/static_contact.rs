@@ -72,8 +72,11 @@ impl StaticResponse {
     /// The static value of a design quantity by the name `summary.peaks` uses in a run's JSON:
     /// the former field names (`lower_clamp_bending_stress`), the quantity names
     /// (`lower.clamp_bending_stress`) and the envelope peaks (`upper.bending_stress`, ...). None
-    /// for an unknown name or an envelope peak the model has no station for.
+    /// for an unknown name or an envelope peak the model has no station for. A sweep's `peak.`
+    /// prefix (`peak.lower.clamp_bending_stress`) is accepted.
     pub fn value(&self, name: &str) -> Option<f64> {
+        // A sweep's column name (`peak.contact.force`) names the same quantity.
+        let name = name.strip_prefix("peak.").unwrap_or(name);
         let five = self.peaks.as_array();
         if let Some(k) = crate::vocabulary::PEAK_FIELDS.iter().position(|n| *n == name) {
             return Some(five[k]);
@@ -389,6 +392,7 @@ mod tests {
     fn values_are_found_by_the_run_documents_names() {
         let r = static_response(&Scenario::default()).unwrap().unwrap();
         assert_eq!(r.value("contact_force"), r.value("contact.force"));
+        assert_eq!(r.value("peak.contact.force"), Some(r.peaks.contact_force));
         assert_eq!(r.value("lower.clamp_bending_stress"), Some(r.peaks.lower_clamp_bending_stress));
         assert!(r.value("lower.bending_stress").unwrap() >= r.peaks.lower_clamp_bending_stress * (1.0 - 1e-12));
         assert_eq!(r.value("upper.shear_stress"), None);
