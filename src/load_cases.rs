@@ -249,9 +249,11 @@ pub fn text(results: &LoadCaseResults) -> String {
     out
 }
 
-/// The static values of `scenario` by quantity name, Pa (the bridge resting on the arrestor on the
-/// printed rung's mesh: [`crate::solver::static_contact`]), None where it cannot rest.
-pub fn static_values(scenario: &Scenario, _answer: &Answer) -> Result<StaticValues> {
-    Ok(crate::solver::static_contact::static_response(scenario)?
+/// The static values of `answer`'s scenario by quantity name, Pa (the bridge resting on the
+/// arrestor on the mesh its converged peaks come from: [`crate::amplification::amplification`]),
+/// None where it cannot rest.
+pub fn static_values(_scenario: &Scenario, answer: &Answer) -> Result<StaticValues> {
+    Ok(crate::amplification::amplification(answer)?
+        .static_response
         .map(|r| r.values().into_iter().map(|(name, value)| (name.to_string(), value)).collect()))
 }

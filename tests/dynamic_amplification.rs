@@ -90,6 +90,10 @@ fn table() -> Vec<[f64; 5]> {
         .map(|&ratio| {
             let rigid = amplification_of(&rigid_bridge_on_a_spring(ratio, true, 0.0));
             let beam = amplification_of(&rigid_bridge_on_a_spring(ratio, false, 0.0));
+            // The energy method's spring on a rigid support is the contact: its DAF is the
+            // closed form itself (to round-off).
+            let energy = rigid.energy_method.daf.unwrap();
+            assert!((energy / closed_form(ratio) - 1.0).abs() < 1e-9, "{ratio}: energy method {energy}");
             [
                 ratio,
                 closed_form(ratio),
@@ -157,4 +161,65 @@ fn every_daf_is_at_least_one_and_the_static_values_do_not_depend_on_the_drop() {
             }
         }
     }
+}
+
+/// The static solve on scenarios at and beyond their fields' bounds (seeded random choices of
+/// hostile literals for the fields it reads): a resting state with finite values, None with a
+/// reason, or one line of error naming the field; never a panic. `BEAM_IMPACT_FUZZ_ITERATIONS`
+/// sets the number of cases.
+#[test]
+fn the_static_solve_on_hostile_scenarios_gives_a_state_a_reason_or_one_line() {
+    use crate::fuzz_support::{iterations, Rng};
+    use beam_impact::model::contact_law::LawKind;
+    use beam_impact::solver::static_contact::{static_outcome, StaticOutcome};
+    const REALS: &[f64] =
+        &[f64::NAN, f64::INFINITY, -1.0, 0.0, 1e-12, 1e-3, 0.5, 1.0, 3.0, 29.0, 1e6, 1e9, 1e13, 1e300];
+    let mut rng = Rng(44);
+    let (mut resting, mut not_resting, mut refused) = (0, 0, 0);
+    for _ in 0..iterations(120) {
+        let mut s = Scenario::default();
+        for _ in 0..1 + rng.below(4) {
+            let x = *rng.pick(REALS);
+            match rng.below(12) {
+                0 => s.gravity = x,
+                1 => s.upper.tip_force = x * rng.pick(&[1.0, -1.0]),
+                2 => s.lower.tip_force = x * rng.pick(&[1.0, -1.0]),
+                3 => s.upper.mass = x,
+                4 => s.upper.elastic_modulus = x,
+                5 => s.lower.mass = x,
+                6 => s.lower.second_moment = x,
+                7 => s.contact.given_stiffness = Some(x),
+                8 => s.contact.clearance = x,
+                9 => {
+                    s.contact.law = LawKind::Power;
+                    s.contact.exponent = *rng.pick(&[0.0, 1.0, 1.5, 3.0, 3.5, x]);
+                }
+                10 => s.contact_position = x,
+                _ => s.lower.kind = SupportKind::Rigid,
+            }
+        }
+        s.lower.elements = 7;
+        s.upper.elements_to_contact = 7;
+        s.upper.elements_beyond_contact = if s.contact_at_free_end() { 0 } else { 7 };
+        s.modal_cutoff = 1e3;
+        match std::panic::catch_unwind(|| static_outcome(&s)) {
+            Err(_) => panic!("the static solve panicked on {s:?}"),
+            Ok(Ok(StaticOutcome::Resting(r))) => {
+                resting += 1;
+                assert!(r.peaks.as_array().iter().all(|v| v.is_finite()), "{:?} on {s:?}", r.peaks);
+                assert!(r.peaks.contact_force > 0.0 && r.compression > 0.0, "{:?}", r.peaks);
+            }
+            Ok(Ok(StaticOutcome::NotResting(why))) => {
+                not_resting += 1;
+                assert!(!why.contains('\n') && why.contains("does not rest"), "{why}");
+            }
+            Ok(Err(e)) => {
+                refused += 1;
+                let line = e.to_string();
+                assert!(!line.contains('\n') && line.len() < 1000, "{line}");
+            }
+        }
+    }
+    println!("resting {resting}, not resting {not_resting}, refused {refused}");
+    assert!(resting > 0 && refused > 0, "resting {resting}, not resting {not_resting}, refused {refused}");
 }

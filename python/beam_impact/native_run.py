@@ -25,7 +25,7 @@ from typing import Any
 class RunResult(dict):
     """The `beam-impact run --json` document of one run (the same keys: `scenario`,
     `scenario_as_given`, `summary`, `quality`, `design`, `discretisation`, `impact`,
-    `merged_contact_windows`, `units`, `wall_time_s`), with shortcuts:
+    `merged_contact_windows`, `units`, `wall_time_s`, `dynamic_amplification`), with shortcuts:
 
     - `peaks`, `peak_times`: `summary.peaks` / `summary.peak_times` by the FMU's names, one per
       quantity (the document also holds the former names until 0.2.0); SI

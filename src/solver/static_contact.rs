@@ -11,8 +11,8 @@
 //! delta = -(b . u + c) (c the contact's clearance, closed first: the bridge rotates down by c
 //! before the contact acts, as in a run). The hinged bridge alone is a mechanism, so K_0 is
 //! singular; with a reference rate k_r > 0 (`reference_rate`: about the rate the bridge rests at)
-//! K_r = K_0 + k_r b b^T is positive definite (the full stiffness with a contact bar of rate k_r), and with A = K_r^-1 f, B = K_r^-1 b, a = b . A,
-//! beta = b . B the one scalar contact equation is
+//! K_r = K_0 + k_r b b^T is positive definite (the full stiffness with a contact bar of rate k_r),
+//! and with A = K_r^-1 f, B = K_r^-1 b, a = b . A, beta = b . B the one scalar contact equation is
 //!
 //! g(delta) = beta P(delta) + a + (delta + c) (1 - k_r beta) = 0,
 //!
@@ -72,8 +72,11 @@ impl StaticResponse {
     /// The static value of a design quantity by the name `summary.peaks` uses in a run's JSON:
     /// the former field names (`lower_clamp_bending_stress`), the quantity names
     /// (`lower.clamp_bending_stress`) and the envelope peaks (`upper.bending_stress`, ...). None
-    /// for an unknown name or an envelope peak the model has no station for.
+    /// for an unknown name or an envelope peak the model has no station for. A sweep's `peak.`
+    /// prefix (`peak.lower.clamp_bending_stress`) is accepted.
     pub fn value(&self, name: &str) -> Option<f64> {
+        // A sweep's column name (`peak.contact.force`) names the same quantity.
+        let name = name.strip_prefix("peak.").unwrap_or(name);
         let five = self.peaks.as_array();
         if let Some(k) = crate::vocabulary::PEAK_FIELDS.iter().position(|n| *n == name) {
             return Some(five[k]);
@@ -165,12 +168,12 @@ pub fn solve(model: &Model) -> Result<StaticOutcome> {
 
 /// The reference rate k_r, N/m: the arrestor's own end stiffness (its flexion's, as the energy
 /// method takes it, [`crate::solver::EnergyMethod`]; a rigid support's: the contact's) or the
-/// contact's rate, whichever is smaller: about the rate at which the bridge really rests. Any
-/// k_r > 0 makes K_r positive definite and gives the same solution in exact arithmetic; in f64,
-/// P = -a / beta takes the gap a = y_u - y_l of two deflections, and a k_r far above the real
-/// rate makes that gap (-P / k_r) a tiny difference of the arrestor's large deflections (the
-/// contact's 2.8e10 N/m on the paper model: 2e-8 of P lost), a k_r far below it leaves A and B a
-/// huge rigid rotation that u = A + (P + k_r s) B cancels.
+/// contact's rate, whichever is smaller: about the rate at which the bridge really rests, so that
+/// A and B are deflections of the real state's size (a k_r far below it leaves them a huge rigid
+/// rotation that u = A + (P + k_r s) B cancels; far above it, a = -P / k_r is a small difference
+/// of two large deflections). Any k_r > 0 gives the same solution in exact arithmetic; on the
+/// paper model P moved by round-off only (1.5e-8 of it here, 2.7e-8 with the contact's
+/// 2.8e10 N/m), the Cholesky solve's own error (see the tests).
 fn reference_rate(model: &Model) -> f64 {
     let own = crate::solver::EnergyMethod::new(&model.scenario).flexion_stiffness;
     if own > 0.0 && own.is_finite() {
@@ -389,6 +392,7 @@ mod tests {
     fn values_are_found_by_the_run_documents_names() {
         let r = static_response(&Scenario::default()).unwrap().unwrap();
         assert_eq!(r.value("contact_force"), r.value("contact.force"));
+        assert_eq!(r.value("peak.contact.force"), Some(r.peaks.contact_force));
         assert_eq!(r.value("lower.clamp_bending_stress"), Some(r.peaks.lower_clamp_bending_stress));
         assert!(r.value("lower.bending_stress").unwrap() >= r.peaks.lower_clamp_bending_stress * (1.0 - 1e-12));
         assert_eq!(r.value("upper.shear_stress"), None);
