@@ -2,7 +2,8 @@
 //! a case that changes fields is the converged answer of that scenario, to the bit; the factors act
 //! on their own parts as `model::load_case` states; `design.pass` is every case's verdict; the
 //! governing case of a quantity is its largest factored utilisation; bad cases are refused in one
-//! line naming the case; `report` and the log's `answer.json` replay the cases the run printed.
+//! line naming the case; `report` and the log's `answer.json` replay the cases the run printed and
+//! its dynamic amplification.
 
 use std::collections::BTreeMap;
 use std::process::Command;
@@ -181,6 +182,12 @@ fn report_replays_the_cases_the_run_printed() {
     let report = String::from_utf8_lossy(&r.stdout).to_string();
     for line in &block {
         assert!(report.contains(line), "report lacks {line:?}:\n{report}");
+    }
+    // The dynamic amplification the run stored, each DAF as the run's JSON has it (3 decimals).
+    let daf = doc["dynamic_amplification"]["daf"].as_object().unwrap();
+    let line = report.lines().find(|l| l.starts_with("dynamic amplification stored")).expect("a DAF line");
+    for (name, value) in daf.iter().filter(|(_, v)| v.is_number()) {
+        assert!(line.contains(&format!("{name} {:.3}", value.as_f64().unwrap())), "{name}: {line}");
     }
 }
 

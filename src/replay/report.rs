@@ -1040,7 +1040,28 @@ pub fn stored_verdict(answer_json: Option<&str>) -> String {
     let cases = serde_json::from_value::<crate::load_cases::LoadCaseResults>(doc["load_cases"].clone())
         .map(|cases| format!("\n{}", crate::load_cases::text(&cases).trim_end()))
         .unwrap_or_default();
-    format!("verdict stored with the run: {trust}; design: {design}{cases}")
+    format!("verdict stored with the run: {trust}; design: {design}{cases}{}", stored_amplification(&doc))
+}
+
+/// The dynamic amplification the log's `answer.json` stores (issue 44), one line: each quantity's
+/// DAF (names escaped and cut, as everything read from a log), or nothing where none is stored.
+fn stored_amplification(doc: &serde_json::Value) -> String {
+    let Some(daf) = doc["dynamic_amplification"]["daf"].as_object() else {
+        return String::new();
+    };
+    let shown: Vec<String> = daf
+        .iter()
+        .take(16)
+        .filter_map(|(name, v)| v.as_f64().map(|v| (name, v)))
+        .map(|(name, v)| {
+            let name: String = name.chars().take(48).map(|c| if c.is_control() { '?' } else { c }).collect();
+            format!("{name} {v:.3}")
+        })
+        .collect();
+    if shown.is_empty() {
+        return "\ndynamic amplification stored with the run: none (the bridge does not rest on the arrestor)".into();
+    }
+    format!("\ndynamic amplification stored with the run (peak / static): {}", shown.join(", "))
 }
 
 /// Reads the log at `mcap`, prints the summary to `out` and writes Figures 6-12 (SVG and PNG)
