@@ -233,10 +233,11 @@ pub struct Answer {
     pub quality: AnswerQuality,
     /// The runs behind the answer, printed first.
     pub runs: Vec<RungRun>,
-    /// The scenario's load cases judged (issue 44; none without `[[load_cases]]`): with them,
+    /// The scenario's load cases judged (issue 44; none without `[[load_cases]]`, and none where
+    /// the caller did not judge them: [`crate::studies::sweep::answer_with_cases`]): with them,
     /// `design.pass` is every case's verdict.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub load_cases: Option<crate::load_cases::LoadCaseResults>,
+    pub load_cases: Option<crate::load_cases::results::LoadCaseResults>,
 }
 
 /// What to run besides the printed run.
@@ -300,7 +301,6 @@ pub fn run_cancellable(
     cache: &ModalCache,
     cancel: &AtomicBool,
 ) -> Result<Answer> {
-    crate::load_cases::check_cases(scenario)?;
     let mut printed = Simulation::new_cached(scenario, cache)?;
     printed.check_step_count(scenario.duration_ns(), options.max_steps)?;
     printed.set_max_steps(options.max_steps);
@@ -353,24 +353,7 @@ pub fn run_cancellable(
     );
     let (summary, printed_rung) = printed_run?;
     let others = others?;
-    let mut answer = assemble(&resolved, summary, printed_rung, others);
-    let case_options = Options { station_envelope: false, ..options };
-    let mut answer_of = |s: &Scenario| run_cancellable(s, &mut NullRecorder, case_options, cache, cancel);
-    let static_of = crate::load_cases::static_values;
-    if let Some(cases) = crate::load_cases::judge(scenario, &answer, &mut answer_of, &static_of)? {
-        answer.design.pass = cases.pass;
-        if !cases.trusted {
-            answer.quality.trusted = false;
-            for case in cases.cases.iter().filter(|c| !c.trusted) {
-                answer.quality.reasons.push(format!(
-                    "load case {:?}: its own converged answer is not trusted, so its verdict is not vouched for",
-                    case.name
-                ));
-            }
-        }
-        answer.load_cases = Some(cases);
-    }
-    Ok(answer)
+    Ok(assemble(&resolved, summary, printed_rung, others))
 }
 
 /// The scenarios that judge the printed run's discretisation: the next coarser rung and the one
@@ -1287,7 +1270,7 @@ pub fn table(answer: &Answer) -> String {
             );
         }
         Some(cases) => {
-            s += &crate::load_cases::text(cases);
+            s += &crate::load_cases::results::text(cases);
             let _ = writeln!(
                 s,
                 "design: {} (every load case; unfactored, the largest utilisation is {worst_u:.3}, {})",

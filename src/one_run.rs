@@ -17,7 +17,7 @@ use crate::Simulation;
 /// takes ([`Simulation::step_estimate`]), for the caller to say where it is large.
 pub fn check(scenario: &Scenario, max_steps: u64) -> Result<u64> {
     // A load case's fields (issue 44) are the scenario's too: refused here, before anything runs.
-    crate::load_cases::check_cases(scenario)?;
+    crate::studies::sweep::check_cases(scenario)?;
     Simulation::new(scenario)?.check_step_count(scenario.duration_ns(), max_steps)
 }
 
@@ -60,7 +60,13 @@ pub fn run(
     cancel: &AtomicBool,
 ) -> Result<Answer> {
     let mut deferred = FinishLater { inner: recorder, finish_requested: false };
-    let answer = crate::answer::run_cancellable(scenario, &mut deferred, options, &crate::answer::own_cache(), cancel)?;
+    let answer = crate::studies::sweep::answer_with_cases(
+        scenario,
+        &mut deferred,
+        options,
+        &crate::answer::own_cache(),
+        cancel,
+    )?;
     if deferred.finish_requested {
         let doc = crate::run_document::answer_attachment(&answer);
         let bytes = serde_json::to_vec_pretty(&doc).map_err(|e| Error::Other(format!("JSON: {e}")))?;

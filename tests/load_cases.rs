@@ -23,8 +23,18 @@ fn scenario(duration: f64, cases: Vec<LoadCase>) -> Scenario {
     Scenario { duration, load_cases: cases, ..Scenario::default() }
 }
 
+/// The answer with its cases judged, as `run` (CLI and Python), a sweep's rows and a campaign's
+/// events make it.
 fn answer_of(s: &Scenario) -> Answer {
-    answer::run(s, &mut NullRecorder, Default::default()).unwrap()
+    let cache = answer::own_cache();
+    beam_impact::studies::sweep::answer_with_cases(
+        s,
+        &mut NullRecorder,
+        Default::default(),
+        &cache,
+        &Default::default(),
+    )
+    .unwrap()
 }
 
 /// The plain check's utilisation of each quantity by the FMU's names.

@@ -1037,8 +1037,8 @@ pub fn stored_verdict(answer_json: Option<&str>) -> String {
         Some(false) => "FAIL",
         None => "unknown",
     };
-    let cases = serde_json::from_value::<crate::load_cases::LoadCaseResults>(doc["load_cases"].clone())
-        .map(|cases| format!("\n{}", crate::load_cases::text(&cases).trim_end()))
+    let cases = serde_json::from_value::<crate::load_cases::results::LoadCaseResults>(doc["load_cases"].clone())
+        .map(|cases| format!("\n{}", crate::load_cases::results::text(&cases).trim_end()))
         .unwrap_or_default();
     format!("verdict stored with the run: {trust}; design: {design}{cases}{}", stored_amplification(&doc))
 }

@@ -313,6 +313,75 @@ pub fn apply_settings(scenario: &mut Scenario, settings: &[Setting]) -> Result<(
     validate(scenario)
 }
 
+/// The scenario a case runs: `scenario` with the case's fields set as `--set` sets them, its
+/// load cases removed. Errors name the case.
+pub fn case_scenario(scenario: &Scenario, case: &crate::model::load_case::LoadCase) -> Result<Scenario> {
+    let mut s = scenario.clone();
+    s.load_cases.clear();
+    if case.set.is_empty() {
+        return Ok(s);
+    }
+    let settings = serde_json::Value::Object(
+        case.set
+            .iter()
+            .map(|(k, v)| {
+                let value = match v {
+                    crate::model::load_case::SetValue::Number(x) => serde_json::json!(x),
+                    crate::model::load_case::SetValue::Word(w) => serde_json::json!(w),
+                };
+                (k.clone(), value)
+            })
+            .collect(),
+    );
+    apply_fixture_settings(&mut s, &settings)
+        .map_err(|e| Error::Other(format!("load case {:?}: {}", case.name, e.to_string().replace("--set ", "set "))))?;
+    Ok(s)
+}
+
+/// Checks every case's fields before any run: the first error names the case and the field.
+pub fn check_cases(scenario: &Scenario) -> Result<()> {
+    for case in &scenario.load_cases {
+        case_scenario(scenario, case)?;
+    }
+    Ok(())
+}
+
+/// The converged answer of `scenario` as [`crate::answer::run_cancellable`] gives it, with the
+/// scenario's load cases judged (issue 44, [`crate::load_cases`]): each case that changes fields
+/// is a converged answer of its own (unrecorded, with `options` less the station envelope), and
+/// with cases `design.pass` is every case's verdict; a case whose answer is not trusted makes the
+/// answer not trusted, the case named in the reasons. Without cases: the answer alone.
+pub fn answer_with_cases(
+    scenario: &Scenario,
+    recorder: &mut (dyn crate::record::Recorder + Send),
+    options: crate::answer::Options,
+    cache: &ModalCache,
+    cancel: &std::sync::atomic::AtomicBool,
+) -> Result<crate::answer::Answer> {
+    check_cases(scenario)?;
+    let mut answer = crate::answer::run_cancellable(scenario, recorder, options, cache, cancel)?;
+    let case_options = crate::answer::Options { station_envelope: false, ..options };
+    let mut answer_of = |case: &crate::model::load_case::LoadCase| {
+        let s = case_scenario(scenario, case)?;
+        crate::answer::run_cancellable(&s, &mut NullRecorder, case_options, cache, cancel)
+    };
+    if let Some(cases) = crate::load_cases::judge(scenario, &answer, &mut answer_of, &crate::load_cases::static_values)?
+    {
+        answer.design.pass = cases.pass;
+        if !cases.trusted {
+            answer.quality.trusted = false;
+            for case in cases.cases.iter().filter(|c| !c.trusted) {
+                answer.quality.reasons.push(format!(
+                    "load case {:?}: its own converged answer is not trusted, so its verdict is not vouched for",
+                    case.name
+                ));
+            }
+        }
+        answer.load_cases = Some(cases);
+    }
+    Ok(answer)
+}
+
 /// The default log of a `run` with `--set`: `<stem>-set-<hash>.mcap` in the working directory,
 /// the stem the scenario file's (`paper` without one) and the hash the resolved scenario's
 /// (FNV-1a of its TOML, 32 bits in hex), so that it never overwrites the unmodified run's
@@ -802,7 +871,7 @@ impl Sweep {
                 station_envelope: false,
                 ..Default::default()
             };
-            let answer = crate::answer::run_with(&scenario, &mut NullRecorder, options, cache)?;
+            let answer = answer_with_cases(&scenario, &mut NullRecorder, options, cache, &Default::default())?;
             Ok(RowResults::from(&answer))
         };
         let outcome = match std::panic::catch_unwind(std::panic::AssertUnwindSafe(run)) {
