@@ -12,6 +12,7 @@ pub mod answer;
 pub mod compare;
 pub mod discretise;
 pub mod error;
+pub mod fatigue;
 pub mod fmi;
 pub mod model;
 pub mod one_run;

@@ -175,6 +175,10 @@ pub enum Command {
         #[arg(value_enum)]
         shell: clap_complete::Shell,
     },
+    /// The fatigue of a stress history (docs/fatigue.md): per stress column of HISTORY.csv (a
+    /// `time` column in s and stress columns in Pa) the rainflow cycles (ASTM E1049-85) and the
+    /// Palmgren-Miner damage on a DNV-RP-C203 S-N curve, with an SCF, a thickness and a DFF.
+    Fatigue(FatigueArgs),
 }
 
 #[derive(Args)]
@@ -328,4 +332,27 @@ pub struct CampaignArgs {
     /// Refuse runs that need more internal steps than this (a row with the error).
     #[arg(long, default_value_t = beam_impact::model::scenario::MAX_STEPS)]
     pub max_steps: u64,
+}
+
+#[derive(Args)]
+pub struct FatigueArgs {
+    /// The stress history: CSV with a `time` column (s, increasing) and stress columns (Pa).
+    pub history: PathBuf,
+    /// The S-N curve: `D`, `D-seawater-cp`, `D-free-corrosion`, `C-2024`, ... (an unknown name
+    /// lists them all).
+    #[arg(long, value_name = "NAME")]
+    pub curve: String,
+    /// Stress concentration factor on the nominal range, 1 to 20.
+    #[arg(long, value_name = "X", default_value_t = 1.0)]
+    pub scf: f64,
+    /// The detail's thickness, m, for the thickness correction (t / t_ref)^k (none: no correction).
+    #[arg(long, value_name = "T")]
+    pub thickness: Option<f64>,
+    /// Design fatigue factor multiplying the damage, 1 to 10.
+    #[arg(long, value_name = "F", default_value_t = 1.0)]
+    pub dff: f64,
+    /// Write the cycles and damage per column as JSON to this file; `-`: to standard output,
+    /// instead of the table.
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
 }

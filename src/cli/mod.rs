@@ -8,6 +8,7 @@ mod campaign;
 pub mod common;
 mod completions;
 mod damping;
+mod fatigue;
 mod modes;
 mod pack;
 mod report;
@@ -67,5 +68,6 @@ pub fn execute(command: Command) -> Result<Outcome> {
             done(sea::sea(&file, &set, duration, &out, sample_interval))
         }
         Command::Completions { shell } => done(completions::completions(shell)),
+        Command::Fatigue(args) => done(fatigue::fatigue(&args)),
     }
 }
