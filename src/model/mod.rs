@@ -5,6 +5,7 @@ pub mod beam;
 pub mod contact_law;
 pub mod damping;
 pub mod discretisation;
+pub mod fatigue_settings;
 pub mod mesh;
 pub mod motion_table;
 pub mod parameters;

@@ -349,6 +349,10 @@ pub struct Scenario {
     /// The supports on a vessel in a sea state (issue 42: `[sea]`), instead of a motion file.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sea: Option<SeaSettings>,
+    /// The S-N curve and factors of a run's fatigue (issue 44: `[fatigue]`); absent: the
+    /// defaults ([`super::fatigue_settings::FatigueSettings`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fatigue: Option<super::fatigue_settings::FatigueSettings>,
 }
 
 impl Default for Scenario {
@@ -374,6 +378,7 @@ impl Default for Scenario {
             contact: ContactBar::default(),
             motion: MotionSettings::default(),
             sea: None,
+            fatigue: None,
         }
     }
 }
@@ -896,6 +901,9 @@ impl Scenario {
                 )));
             }
             errors.extend(sea.validation_errors(self.duration));
+        }
+        if let Some(fatigue) = &self.fatigue {
+            errors.extend(fatigue.validation_errors());
         }
         let mut check = |result: Result<()>| {
             if let Err(e) = result {
