@@ -293,11 +293,21 @@ impl RunFatigue {
             None => "fatigue: no bending station".to_string(),
         };
         let second = match (self.life_years, self.events_per_year) {
-            (Some(life), Some(n)) => format!("fatigue life at {n} impacts a year: {life:.3e} years"),
+            (Some(life), Some(n)) => format!("fatigue life at {n} impacts a year: {} years", years(life)),
             (None, Some(n)) => format!("fatigue life at {n} impacts a year: unbounded (no damage)"),
             _ => "fatigue life: give [fatigue] events_per_year (or --set fatigue.events_per_year=N)".to_string(),
         };
         [first, second]
+    }
+}
+
+/// A life in years as the lines print it: three decimals from 0.001 to a million, else
+/// scientific.
+fn years(life: f64) -> String {
+    if (1e-3..1e6).contains(&life) {
+        format!("{life:.3}")
+    } else {
+        format!("{life:.3e}")
     }
 }
 

@@ -111,6 +111,14 @@ pub enum Command {
         /// moment N m, velocities m/s, energies J; contact true/false.
         #[arg(long, value_name = "FILE.csv")]
         csv: Option<PathBuf>,
+        /// Print the run's fatigue instead (issue 44): every bending station's rainflow cycles and
+        /// Miner's damage on the scenario's `[fatigue]` curve and factors, the hot spots, each
+        /// beam's worst, the life; from the log's fatigue.json, else rebuilt from /beam/stations.
+        #[arg(long, conflicts_with_all = ["csv", "out"])]
+        fatigue: bool,
+        /// With --fatigue: this S-N curve instead of the scenario's (`D`, `C-2024`, ...).
+        #[arg(long, value_name = "NAME", requires = "fatigue")]
+        curve: Option<String>,
     },
     /// Time the production stepper against the dense oracle, the per-step cost at finer
     /// meshes, and the recorded run.

@@ -8,6 +8,7 @@
 pub mod csv;
 pub mod damping_figures;
 pub mod envelope_figure;
+pub mod fatigue;
 pub mod figures;
 pub mod mode_figures;
 pub mod operability_figure;
