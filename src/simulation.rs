@@ -2152,6 +2152,14 @@ impl<S: Stepper> Simulation<S> {
         self.stepper.keep_energies(false);
     }
 
+    /// Every station's stress, Pa, at the modal coordinates `q` of a full basis (the paper
+    /// method's: no static correction), into `out` (one per station, in the order of
+    /// [`crate::model::stations::Stations::all`]): the envelope's own product, to the bit. For
+    /// tests that rebuild the stations' histories from a recorder's coordinates (issue 44).
+    pub fn station_stresses(&self, q: &[f64], out: &mut [f64]) {
+        self.stations.stresses(q, None, out);
+    }
+
     /// Takes no stress envelope from here on (its stations' values stay as they are): the
     /// bench's side-by-side measure of what the envelope costs per step.
     pub fn without_envelope(&mut self) {
