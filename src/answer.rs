@@ -321,9 +321,9 @@ pub fn run_cancellable(
         || -> Result<(Summary, RungRun, Option<crate::run_fatigue::StationHistories>)> {
             let summary = printed.run(&mut Cancellable::new(recorder, cancel))?;
             let run = rung_run("printed", &printed, &summary);
-            let histories = printed.turning_points().map(|(points, stride)| {
-                crate::run_fatigue::StationHistories::of_run(printed.model(), &points, stride)
-            });
+            let histories = printed
+                .turning_points()
+                .map(|(points, stride)| crate::run_fatigue::StationHistories::of_run(printed.model(), &points, stride));
             Ok((summary, run, histories))
         },
         || -> Result<Vec<(Summary, RungRun)>> {

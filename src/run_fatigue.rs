@@ -94,8 +94,8 @@ impl StationHistories {
     /// Reads `fatigue.json`'s text, checking what a stranger's file could break (the format,
     /// the beams' names, finite numbers).
     pub fn from_json(text: &str) -> Result<StationHistories> {
-        let h: StationHistories =
-            serde_json::from_str(text).map_err(|e| Error::Other(format!("fatigue.json: not a station history: {e}")))?;
+        let h: StationHistories = serde_json::from_str(text)
+            .map_err(|e| Error::Other(format!("fatigue.json: not a station history: {e}")))?;
         if h.format != FORMAT {
             return Err(Error::Other(format!("fatigue.json: format {} (this build reads {FORMAT})", h.format)));
         }
@@ -237,7 +237,8 @@ pub fn assess(histories: &StationHistories, settings: &FatigueSettings) -> Resul
         if let Some(&k) = indices.iter().max_by(|&&a, &&b| peak(a).total_cmp(&peak(b))) {
             hot_spots.push(named(k, "largest stress"));
         }
-        let w = indices.iter().copied().max_by(|&a, &b| all[a].damage.total_cmp(&all[b].damage)).map(|k| named(k, "worst"));
+        let w =
+            indices.iter().copied().max_by(|&a, &b| all[a].damage.total_cmp(&all[b].damage)).map(|k| named(k, "worst"));
         let damage = BeamDamage {
             positions: indices.iter().map(|&k| all[k].position).collect(),
             damage: indices.iter().map(|&k| all[k].damage).collect(),

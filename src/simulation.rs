@@ -15,10 +15,10 @@ use crate::results::{
 };
 use crate::solver::contact::{self, Stage};
 use crate::solver::envelope::{EnvelopeScope, Running, StationRows, StationState};
-use crate::solver::turning_points::TurningPoints;
 use crate::solver::initial::{initial_state, Pitching};
 use crate::solver::model_range::{ModelRange, RangeCheck, RangeRows, StrainPeak};
 use crate::solver::static_correction::LOADS;
+use crate::solver::turning_points::TurningPoints;
 use crate::solver::{
     DenseStepper, Energies, EnergyMethod, Excitation, Kinematics, ModalCache, ModalStepper, ModalSystem, StepPlan,
     Stepper, TipForces,

@@ -76,9 +76,14 @@ fn damage_scales_as_scf_to_the_slope_and_with_the_dff() {
     let one = assess(&histories, &base).unwrap();
     let scaled = assess(&histories, &FatigueSettings { scf: 1.7, design_fatigue_factor: 3.0, ..base.clone() }).unwrap();
     let factor = 1.7f64.powi(3) * 3.0;
-    for (a, b) in one.stations.lower.damage.iter().chain(&one.stations.upper.damage).zip(
-        scaled.stations.lower.damage.iter().chain(&scaled.stations.upper.damage),
-    ) {
+    for (a, b) in one
+        .stations
+        .lower
+        .damage
+        .iter()
+        .chain(&one.stations.upper.damage)
+        .zip(scaled.stations.lower.damage.iter().chain(&scaled.stations.upper.damage))
+    {
         assert!((b - a * factor).abs() <= 1e-12 * b.abs(), "{a} {b}");
     }
     // On the bilinear D in air, between the branches' SCF^3 and SCF^5.
@@ -167,7 +172,8 @@ fn hostile_fatigue_fields_are_refused_in_one_line() {
         ("fatigue.curve=-1", "fatigue.curve"),
     ];
     for (setting, name) in cases {
-        let out = beam_impact().args(["run", "--no-mcap", "--set", "duration=0.01", "--set", setting]).output().unwrap();
+        let out =
+            beam_impact().args(["run", "--no-mcap", "--set", "duration=0.01", "--set", setting]).output().unwrap();
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{setting}: {err}");
         assert!(err.contains(name) && err.trim().lines().count() == 1, "{setting}: {err}");

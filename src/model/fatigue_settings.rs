@@ -81,7 +81,11 @@ impl FatigueSettings {
         }
         if let Some(n) = self.events_per_year {
             if !(n > 0.0 && n <= MAX_EVENTS_PER_YEAR) {
-                errors.push(Error::invalid("fatigue.events_per_year", format!("> 0 and <= {MAX_EVENTS_PER_YEAR:e}"), n));
+                errors.push(Error::invalid(
+                    "fatigue.events_per_year",
+                    format!("> 0 and <= {MAX_EVENTS_PER_YEAR:e}"),
+                    n,
+                ));
             }
         }
         errors
@@ -180,7 +184,8 @@ mod tests {
     #[test]
     fn each_fatigue_bound_is_refused_by_name() {
         assert!(FatigueSettings::default().validation_errors().is_empty());
-        let cases: [(fn(&mut FatigueSettings), &str); 6] = [
+        type Change = fn(&mut FatigueSettings);
+        let cases: [(Change, &str); 6] = [
             (|f| f.curve = "Z9".into(), "fatigue.curve"),
             (|f| f.scf = 0.5, "fatigue.scf"),
             (|f| f.thickness = Some(-0.01), "fatigue.thickness"),

@@ -248,11 +248,16 @@ pub fn stationary_values(p0: f64, p1: f64, d0: f64, d1: f64) -> ([f64; 2], usize
 mod tests {
     use super::*;
 
+    /// The first `n` stations, followed.
+    fn first(n: usize) -> Vec<Range<usize>> {
+        std::iter::once(0..n).collect()
+    }
+
     /// A sine's turning points: sin(2 pi t) sampled at 1/8 s for 2 s has peaks +1 at t = 1/4,
     /// 5/4 and valleys -1 at 3/4, 7/4; with the first (0) and last (0) samples, six points.
     #[test]
     fn a_sampled_sine_turns_at_its_crests() {
-        let mut t = TurningPoints::new(vec![0..1]);
+        let mut t = TurningPoints::new(first(1));
         for i in 0..=16 {
             t.begin_step(i, i);
             t.push(&[(std::f64::consts::TAU * i as f64 / 8.0).sin()]);
@@ -269,7 +274,7 @@ mod tests {
     /// Plateaus and steps that only extend a run add no turning point.
     #[test]
     fn plateaus_and_monotone_runs_are_no_turning_points() {
-        let mut t = TurningPoints::new(vec![0..1]);
+        let mut t = TurningPoints::new(first(1));
         for (i, x) in [0.0, 1.0, 1.0, 2.0, 2.0, 2.0, 1.0, 1.0, 0.5, 3.0].iter().enumerate() {
             t.begin_step(i as u64, i as u64 + 1);
             t.push(&[*x]);
@@ -282,7 +287,7 @@ mod tests {
     /// the run's end is undone: the turning points are those of the steps kept.
     #[test]
     fn a_retaken_step_and_a_step_past_the_end_are_undone() {
-        let mut t = TurningPoints::new(vec![0..2]);
+        let mut t = TurningPoints::new(first(2));
         t.begin_step(0, 0);
         t.push(&[0.0, 0.0]);
         t.begin_step(0, 10);
@@ -313,7 +318,7 @@ mod tests {
         let want = 3f64.sqrt() / 36.0;
         assert!((values[0] + want).abs() < 1e-15 && (values[1] - want).abs() < 1e-15, "{values:?}");
         // Pushed as a step of h = 2 s (rates per s are d / h).
-        let mut t = TurningPoints::new(vec![0..1]);
+        let mut t = TurningPoints::new(first(1));
         t.begin_step(0, 0);
         t.push(&[0.0]);
         t.begin_step(0, 2);
