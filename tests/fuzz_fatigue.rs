@@ -121,7 +121,7 @@ fn check(name: &str, text: &str, curve: &SnCurve) -> bool {
 fn seeded_mutations_and_random_bytes_never_panic() {
     let seeds = seeds();
     let curves = SnCurve::all();
-    let mut rng = Rng(0xFA71_6E);
+    let mut rng = Rng(0x00FA_716E);
     let (mut accepted, mut refused) = (0, 0);
     for i in 0..iterations(4000) {
         let seed = rng.pick(&seeds).clone();
@@ -147,7 +147,7 @@ fn seeded_mutations_and_random_bytes_never_panic() {
 /// subnormal and equal neighbours give finite ranges where the inputs are finite, and no panic.
 #[test]
 fn counting_hostile_reversals_never_panics() {
-    let mut rng = Rng(0x0C0_FFEE);
+    let mut rng = Rng(0x00C0_FFEE);
     let values = [0.0, -0.0, 5e-324, -5e-324, 1e12, -1e12, 1.0, -1.0, 1e-300, 7.0];
     for _ in 0..iterations(2000) {
         let reversals: Vec<f64> = (0..rng.below(60)).map(|_| *rng.pick(&values)).collect();
@@ -164,7 +164,7 @@ fn counting_hostile_reversals_never_panics() {
 fn the_command_on_hostile_files_exits_0_or_2_with_one_line() {
     let dir = tempfile::tempdir().unwrap();
     let seeds = seeds();
-    let mut rng = Rng(0xBAD_F11E);
+    let mut rng = Rng(0x0BAD_F11E);
     for i in 0..40 {
         let bytes = if i % 2 == 0 {
             (0..rng.below(2000)).map(|_| rng.next_u64() as u8).collect()

@@ -180,5 +180,7 @@ mod tests {
         );
         assert_eq!(e("time,s\n"), "no data rows after the header (line 1)");
         assert!(e("time,s\n0,1e300\n").contains("beyond +-1e12 Pa"));
+        let wide = format!("time{}\n", (0..=MAX_COLUMNS).map(|i| format!(",s{i}")).collect::<String>());
+        assert_eq!(e(&wide), "line 1: 1001 stress columns, more than 1000 (the limit)");
     }
 }

@@ -11,5 +11,7 @@ pub mod sn_curve;
 pub mod summary;
 
 pub use miner::{damage, life_years, SnOptions};
-pub use rainflow::{count, count_history, reversals, turning_points, Cycle, NonFiniteSample, ReversalTracker};
+pub use rainflow::{
+    count, count_history, reversals, turning_points, Cycle, NonFiniteSample, RainflowCounter, ReversalTracker,
+};
 pub use sn_curve::{Environment, SnCurve};

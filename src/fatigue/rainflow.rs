@@ -162,28 +162,100 @@ fn count_indexed(points: &[(usize, f64)]) -> Vec<Cycle> {
     // The unused reversals; `stack[0]` is the starting point S.
     let mut stack: Vec<(usize, f64)> = Vec::new();
     for &point in points {
-        stack.push(point);
-        while stack.len() >= 3 {
-            let n = stack.len();
-            let x = (stack[n - 1].1 - stack[n - 2].1).abs();
-            let y = (stack[n - 2].1 - stack[n - 3].1).abs();
-            if x < y {
-                break;
-            }
-            if n == 3 {
-                // Step 5: Y holds S: a half cycle, S moves to Y's second point.
-                cycles.push(cycle(stack[0], stack[1], 0.5));
-                stack.remove(0);
-            } else {
-                // Step 4: a full cycle; Y's two points are discarded.
-                cycles.push(cycle(stack[n - 3], stack[n - 2], 1.0));
-                stack.drain(n - 3..n - 1);
-            }
+        absorb(&mut stack, &mut cycles, point);
+    }
+    residue(&stack, &mut cycles);
+    cycles
+}
+
+/// Steps 1-5 for one more reversal: pushes it on the unused reversals and counts what it closes.
+fn absorb(stack: &mut Vec<(usize, f64)>, cycles: &mut Vec<Cycle>, point: (usize, f64)) {
+    stack.push(point);
+    while stack.len() >= 3 {
+        let n = stack.len();
+        let x = (stack[n - 1].1 - stack[n - 2].1).abs();
+        let y = (stack[n - 2].1 - stack[n - 3].1).abs();
+        if x < y {
+            break;
+        }
+        if n == 3 {
+            // Step 5: Y holds S: a half cycle, S moves to Y's second point.
+            cycles.push(cycle(stack[0], stack[1], 0.5));
+            stack.remove(0);
+        } else {
+            // Step 4: a full cycle; Y's two points are discarded.
+            cycles.push(cycle(stack[n - 3], stack[n - 2], 1.0));
+            stack.drain(n - 3..n - 1);
         }
     }
-    // Step 6: the residue's ranges, each one-half cycle.
+}
+
+/// Step 6: the residue's ranges, each one-half cycle.
+fn residue(stack: &[(usize, f64)], cycles: &mut Vec<Cycle>) {
     cycles.extend(stack.windows(2).map(|w| cycle(w[0], w[1], 0.5)));
-    cycles
+}
+
+/// [`count_history`] one sample at a time, keeping only the unused reversals (the residue, a
+/// few points for a decaying impact) and the cycles counted: for a run's stations, step by step.
+/// [`RainflowCounter::cycles`] equals [`count_history`] of the samples taken, in the same order;
+/// [`RainflowCounter::take_closed`] hands over the cycles closed so far (for a running damage).
+#[derive(Clone, Debug, Default)]
+pub struct RainflowCounter {
+    /// The reversals: what is not yet a certain turning point stays in its `tail`.
+    tracker: ReversalTracker,
+    /// Whether the tracker's one kept turning point is counted already.
+    counted_last: bool,
+    /// The unused reversals; `stack[0]` is the starting point.
+    stack: Vec<(usize, f64)>,
+    /// Cycles closed (steps 4 and 5) and not yet taken.
+    closed: Vec<Cycle>,
+}
+
+impl RainflowCounter {
+    /// An empty counter.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Takes the next sample; a non-finite sample is refused (the counter is unchanged).
+    pub fn push(&mut self, value: f64) -> Result<(), NonFiniteSample> {
+        self.tracker.push(value)?;
+        // The certain turning points not yet counted move on to the count; the tracker keeps only
+        // the newest (its reference for the direction while it has no tail).
+        let points = &mut self.tracker.points;
+        let fresh = usize::from(self.counted_last).min(points.len());
+        for &point in &points[fresh..] {
+            absorb(&mut self.stack, &mut self.closed, point);
+        }
+        if points.len() > 1 {
+            points.drain(..points.len() - 1);
+        }
+        self.counted_last = !points.is_empty();
+        Ok(())
+    }
+
+    /// The samples taken.
+    pub fn samples(&self) -> usize {
+        self.tracker.samples()
+    }
+
+    /// Hands over the cycles closed so far (full cycles and start half cycles); later calls give
+    /// only newer ones.
+    pub fn take_closed(&mut self) -> Vec<Cycle> {
+        std::mem::take(&mut self.closed)
+    }
+
+    /// The cycles of the samples taken if the history ended here: the closed cycles not taken,
+    /// then those the last sample closes and the residue's half cycles (the counter goes on).
+    pub fn cycles(&self) -> Vec<Cycle> {
+        let mut cycles = self.closed.clone();
+        let mut stack = self.stack.clone();
+        if let Some(tail) = self.tracker.tail {
+            absorb(&mut stack, &mut cycles, tail);
+        }
+        residue(&stack, &mut cycles);
+        cycles
+    }
 }
 
 #[cfg(test)]
@@ -233,5 +305,28 @@ mod tests {
         let cycles = count_history(&history).unwrap();
         let halves: f64 = cycles.iter().map(|c| 2.0 * c.count).sum();
         assert_eq!(halves, (n - 1) as f64);
+    }
+
+    /// The streaming counter gives the batch count, in the same order, at every length of a
+    /// history with plateaus and ties (small integers: exact).
+    #[test]
+    fn the_streaming_counter_equals_the_batch_count_at_every_sample() {
+        let history: Vec<f64> = (0..300).map(|i| (((i * 7919) % 13) as f64 - 6.0).abs().min(4.0)).collect();
+        let mut counter = RainflowCounter::new();
+        let mut taken = Vec::new();
+        for (n, &x) in history.iter().enumerate() {
+            counter.push(x).unwrap();
+            if n % 17 == 0 {
+                taken.extend(counter.take_closed());
+            }
+            let mut all = taken.clone();
+            all.extend(counter.cycles());
+            assert_eq!(all, count_history(&history[..=n]).unwrap(), "after sample {n}");
+        }
+        assert_eq!(counter.samples(), history.len());
+        let mut astm = RainflowCounter::new();
+        [-2.0, 1.0, -3.0, 5.0, -1.0, 3.0, -4.0, 4.0, -2.0].iter().for_each(|&x| astm.push(x).unwrap());
+        assert_eq!(astm.cycles(), count_history(&[-2.0, 1.0, -3.0, 5.0, -1.0, 3.0, -4.0, 4.0, -2.0]).unwrap());
+        assert!(astm.push(f64::INFINITY).is_err());
     }
 }

@@ -85,7 +85,7 @@ impl HistoryFatigue {
         }
     }
 
-    /// The printed table: the curve and the factors, then per column its cycles (at most
+    /// The printed table: the curve and the factors, then per column its cycles in MPa (at most
     /// `max_cycles`, the largest ranges first when cut) and its damage.
     pub fn table(&self, max_cycles: usize) -> String {
         let c = &self.curve;
@@ -119,10 +119,10 @@ impl HistoryFatigue {
                     &format!("  the {max_cycles} largest ranges of {} cycles (all in --json):\n", column.cycles.len());
             }
             if !shown.is_empty() {
-                text += &format!("  {:>14} {:>14} {:>5}\n", "range (Pa)", "mean (Pa)", "count");
+                text += &format!("  {:>14} {:>14} {:>5}\n", "range (MPa)", "mean (MPa)", "count");
             }
             for row in shown {
-                text += &format!("  {:>14} {:>14} {:>5}\n", row.range, row.mean, row.count);
+                text += &format!("  {:>14} {:>14} {:>5}\n", row.range / 1e6, row.mean / 1e6, row.count);
             }
         }
         text
