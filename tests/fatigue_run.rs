@@ -229,3 +229,18 @@ fn only_a_run_with_every_stations_envelope_keeps_the_histories() {
     let doc = beam_impact::run_document::document(&scenario, &row, 0.0).unwrap();
     assert!(doc["fatigue"].is_null());
 }
+
+/// Keeping the turning points changes nothing of the run: its summary (peaks, times, envelope,
+/// energies) is the same to the bit with and without, on the exact advance and the paper method.
+#[test]
+fn keeping_turning_points_changes_nothing_of_the_run() {
+    for scenario in [Scenario { duration: 0.5, ..Scenario::default() }, Scenario { duration: 0.3, ..Scenario::paper() }]
+    {
+        let mut plain = Simulation::new(&scenario).unwrap();
+        let a = plain.run(&mut NullRecorder).unwrap();
+        let mut kept = Simulation::new(&scenario).unwrap();
+        kept.keep_turning_points();
+        let b = kept.run(&mut NullRecorder).unwrap();
+        assert_eq!(format!("{a:?}"), format!("{b:?}"));
+    }
+}
