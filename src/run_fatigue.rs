@@ -260,7 +260,8 @@ pub fn assess(histories: &StationHistories, settings: &FatigueSettings) -> Resul
         sampled_every: histories.sampled_every,
         hot_spots,
         worst,
-        life_years: settings.events_per_year.and_then(|n| life_years(largest, n)),
+        // A damage too small for its life to be a finite number (below ~1e-300) has none.
+        life_years: settings.events_per_year.and_then(|n| life_years(largest, n)).filter(|l| l.is_finite()),
         stations,
         note: (histories.source != EVERY_STEP).then(|| LOG_ROWS_NOTE.to_string()),
     })

@@ -244,3 +244,66 @@ fn keeping_turning_points_changes_nothing_of_the_run() {
         assert_eq!(format!("{a:?}"), format!("{b:?}"));
     }
 }
+
+/// Hostile values for every `[fatigue]` field through `--set`'s parser and the scenario's
+/// validation (random bit patterns, the extremes, the words): each is accepted within its bounds
+/// or refused in one line naming the field; a fatigue assessed with an accepted one is finite or
+/// zero, never NaN, and nothing panics.
+#[test]
+fn random_fatigue_settings_are_bounded_or_refused() {
+    use beam_impact::studies::sweep::{apply_settings, parse_setting};
+    let mut seed = 0x00FA_7165u64;
+    let mut random = || {
+        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        seed
+    };
+    let histories = StationHistories {
+        format: 1,
+        source: "x".into(),
+        sampled_every: 1,
+        contact_position: 0.0,
+        stations: vec![beam_impact::run_fatigue::StationHistory {
+            beam: "lower".into(),
+            position: 0.0,
+            reversals: vec![0.0, 3e8, -2e8, 1e8, -4e8, 0.0],
+        }],
+    };
+    let fields = [
+        "fatigue.curve",
+        "fatigue.scf",
+        "fatigue.thickness",
+        "fatigue.design_fatigue_factor",
+        "fatigue.events_per_year",
+    ];
+    let words = ["nan", "inf", "-inf", "-0", "0", "1e-320", "1e308", "D", "W3-free-corrosion", "", "x", "1e999"];
+    let (mut accepted, mut refused) = (0, 0);
+    for i in 0..3000 {
+        let field = fields[i % fields.len()];
+        let value = if i % 3 == 0 {
+            words[(i / 3) % words.len()].to_string()
+        } else {
+            format!("{:e}", f64::from_bits(random()))
+        };
+        let Ok(setting) = parse_setting(&format!("{field}={value}")) else {
+            refused += 1;
+            continue;
+        };
+        let mut scenario = Scenario::default();
+        match apply_settings(&mut scenario, &[setting]) {
+            Ok(()) => {
+                accepted += 1;
+                let settings = scenario.fatigue.clone().unwrap_or_default();
+                let f = assess(&histories, &settings).unwrap();
+                let d = f.worst().unwrap().damage;
+                assert!(d.is_finite() && d > 0.0, "{field}={value}: {d}");
+                assert!(f.life_years.is_none_or(|l| l.is_finite() && l > 0.0), "{field}={value}");
+            }
+            Err(e) => {
+                refused += 1;
+                let text = e.to_string();
+                assert!(text.contains(field) && text.lines().count() == 1, "{field}={value}: {text}");
+            }
+        }
+    }
+    assert!(accepted > 50 && refused > 500, "{accepted} accepted, {refused} refused");
+}

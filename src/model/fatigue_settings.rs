@@ -57,6 +57,10 @@ impl Default for FatigueSettings {
 /// gangway's landings; the bound keeps the life a finite, printable number.
 pub const MAX_EVENTS_PER_YEAR: f64 = 1e9;
 
+/// Fewest impacts a year the life takes: one in a million years; fewer would only print lives
+/// beyond any structure's (and at 1e-320 an infinite one).
+pub const MIN_EVENTS_PER_YEAR: f64 = 1e-6;
+
 impl FatigueSettings {
     /// The curve and the factors, as the fatigue library takes them.
     pub fn options(&self) -> SnOptions {
@@ -80,10 +84,10 @@ impl FatigueSettings {
             Err(e) => errors.push(e),
         }
         if let Some(n) = self.events_per_year {
-            if !(n > 0.0 && n <= MAX_EVENTS_PER_YEAR) {
+            if !(MIN_EVENTS_PER_YEAR..=MAX_EVENTS_PER_YEAR).contains(&n) {
                 errors.push(Error::invalid(
                     "fatigue.events_per_year",
-                    format!("> 0 and <= {MAX_EVENTS_PER_YEAR:e}"),
+                    format!(">= {MIN_EVENTS_PER_YEAR:e} and <= {MAX_EVENTS_PER_YEAR:e}"),
                     n,
                 ));
             }
