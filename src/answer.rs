@@ -238,6 +238,12 @@ pub struct Answer {
     /// `design.pass` is every case's verdict.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub load_cases: Option<crate::load_cases::results::LoadCaseResults>,
+    /// The printed run's bending stations' stress histories as turning points (issue 44: its
+    /// fatigue, [`crate::run_fatigue`]); kept with every station's envelope
+    /// ([`Options::station_envelope`]), else none. Not part of the answer's JSON (the run
+    /// document carries the fatigue, the log the histories as `fatigue.json`).
+    #[serde(skip)]
+    pub station_histories: Option<crate::run_fatigue::StationHistories>,
 }
 
 /// What to run besides the printed run.
@@ -304,7 +310,10 @@ pub fn run_cancellable(
     let mut printed = Simulation::new_cached(scenario, cache)?;
     printed.check_step_count(scenario.duration_ns(), options.max_steps)?;
     printed.set_max_steps(options.max_steps);
-    if !options.station_envelope {
+    if options.station_envelope {
+        // Every station's turning points too, for the run's fatigue (issue 44).
+        printed.keep_turning_points();
+    } else {
         printed.set_envelope_scope(EnvelopeScope::Peaks);
     }
     let resolved = printed.scenario().clone();
@@ -314,10 +323,13 @@ pub fn run_cancellable(
     }
     let twin = options.sensitivity.then(|| twin_scenario(scenario));
     let (printed_run, others) = rayon::join(
-        || -> Result<(Summary, RungRun)> {
+        || -> Result<(Summary, RungRun, Option<crate::run_fatigue::StationHistories>)> {
             let summary = printed.run(&mut Cancellable::new(recorder, cancel))?;
             let run = rung_run("printed", &printed, &summary);
-            Ok((summary, run))
+            let histories = printed
+                .turning_points()
+                .map(|(points, stride)| crate::run_fatigue::StationHistories::of_run(printed.model(), &points, stride));
+            Ok((summary, run, histories))
         },
         || -> Result<Vec<(Summary, RungRun)>> {
             use rayon::prelude::*;
@@ -351,9 +363,11 @@ pub fn run_cancellable(
                 .collect()
         },
     );
-    let (summary, printed_rung) = printed_run?;
+    let (summary, printed_rung, histories) = printed_run?;
     let others = others?;
-    Ok(assemble(&resolved, summary, printed_rung, others))
+    let mut answer = assemble(&resolved, summary, printed_rung, others);
+    answer.station_histories = histories;
+    Ok(answer)
 }
 
 /// The scenarios that judge the printed run's discretisation: the next coarser rung and the one
@@ -779,6 +793,7 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
         quality,
         runs,
         load_cases: None,
+        station_histories: None,
     }
 }
 

@@ -23,6 +23,7 @@ pub mod record;
 pub mod replay;
 pub mod results;
 pub mod run_document;
+pub mod run_fatigue;
 pub mod scenario_file;
 pub mod simulation;
 pub mod solver;

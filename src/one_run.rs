@@ -1,7 +1,8 @@
 //! One run as `beam-impact run` makes it, shared by the CLI and the Python package's native
 //! module: the answer (the printed run into the caller's recorder, the check rungs and the twin
 //! unrecorded; all stoppable between steps), then the answer with its checks attached to the
-//! record (`answer.json`, so that `report` can say the run's verdict) before the record is finished.
+//! record (`answer.json`, so that `report` can say the run's verdict) and the bending stations'
+//! stress histories (`fatigue.json`, issue 44) before the record is finished.
 
 use std::sync::atomic::AtomicBool;
 
@@ -71,6 +72,9 @@ pub fn run(
         let doc = crate::run_document::answer_attachment(&answer);
         let bytes = serde_json::to_vec_pretty(&doc).map_err(|e| Error::Other(format!("JSON: {e}")))?;
         deferred.inner.attach(crate::record::mcap::ANSWER_ATTACHMENT, "application/json", &bytes)?;
+        if let Some(bytes) = crate::run_document::fatigue_attachment(&answer)? {
+            deferred.inner.attach(crate::record::log_format::FATIGUE_ATTACHMENT, "application/json", &bytes)?;
+        }
         deferred.inner.finish()?;
     }
     Ok(answer)

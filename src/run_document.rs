@@ -30,6 +30,7 @@ pub fn document(as_given: &Scenario, answer: &Answer, wall_time_s: f64) -> Resul
     });
     doc["dynamic_amplification"] = amplification_json(answer);
     crate::vocabulary::add_quantity_names(&mut doc);
+    doc["fatigue"] = fatigue_json(answer)?;
     Ok(doc)
 }
 
@@ -45,6 +46,9 @@ pub fn answer_attachment(answer: &Answer) -> serde_json::Value {
         "load_cases": answer.load_cases,
     });
     doc["dynamic_amplification"] = amplification_json(answer);
+    // The printed run's fatigue on the scenario's curve (the log keeps its histories too, as
+    // `fatigue.json`, for `report --fatigue` on any curve): null without them.
+    doc["fatigue"] = fatigue_json(answer).unwrap_or_else(|e| serde_json::json!({ "error": e.to_string() }));
     crate::vocabulary::add_quantity_names(&mut doc);
     doc
 }
@@ -114,4 +118,24 @@ pub fn amplification_json(answer: &Answer) -> serde_json::Value {
         Ok(a) => a.to_json(),
         Err(e) => serde_json::json!({ "error": e.to_string() }),
     }
+}
+
+/// The `fatigue` block of `run --json` (issue 44): the printed run's fatigue on the scenario's
+/// curve and factors ([`crate::run_fatigue::assess`]); null without the stations' histories (a
+/// run without every station's envelope).
+pub fn fatigue_json(answer: &Answer) -> Result<serde_json::Value> {
+    let Some(histories) = &answer.station_histories else { return Ok(serde_json::Value::Null) };
+    let settings = crate::model::fatigue_settings::of(&answer.resolved);
+    let fatigue = crate::run_fatigue::assess(histories, &settings)?;
+    serde_json::to_value(&fatigue).map_err(|e| Error::Other(format!("JSON: {e}")))
+}
+
+/// The log's `fatigue.json` of `answer`: every bending station's turning points (None without
+/// them), from which `report --fatigue` applies any curve.
+pub fn fatigue_attachment(answer: &Answer) -> Result<Option<Vec<u8>>> {
+    answer
+        .station_histories
+        .as_ref()
+        .map(|h| serde_json::to_vec(h).map_err(|e| Error::Other(format!("JSON: {e}"))))
+        .transpose()
 }

@@ -18,6 +18,7 @@ use crate::solver::envelope::{EnvelopeScope, Running, StationRows, StationState}
 use crate::solver::initial::{initial_state, Pitching};
 use crate::solver::model_range::{ModelRange, RangeCheck, RangeRows, StrainPeak};
 use crate::solver::static_correction::LOADS;
+use crate::solver::turning_points::TurningPoints;
 use crate::solver::{
     DenseStepper, Energies, EnergyMethod, Excitation, Kinematics, ModalCache, ModalStepper, ModalSystem, StepPlan,
     Stepper, TipForces,
@@ -282,6 +283,8 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     envelope_work: crate::solver::envelope::EnvelopeWork,
     /// The recorder's feed of the stations' per-step loads and the run's envelope (issue 30).
     feed: FeedEnd,
+    /// Every station's turning points, when kept (issue 44: [`Self::keep_turning_points`]).
+    turning_points: Option<TurningPoints>,
     /// Every node's deflection and rotation rows, for the model's range (issue 40).
     range_rows: std::sync::Arc<RangeRows>,
     /// The most internal steps the run may take, checked at every step (issue 40).
@@ -492,6 +495,7 @@ impl<S: Stepper> Simulation<S> {
             stations,
             envelope_work: Default::default(),
             feed: FeedEnd::default(),
+            turning_points: None,
             range_rows: std::sync::Arc::new(range_rows),
             max_steps: crate::model::scenario::MAX_STEPS,
             peak_instants: Vec::new(),
@@ -507,6 +511,62 @@ impl<S: Stepper> Simulation<S> {
     /// to the bit, the run faster).
     pub fn set_envelope_scope(&mut self, scope: EnvelopeScope) {
         self.envelope_work.set_scope(scope);
+        if scope == EnvelopeScope::Peaks {
+            // Its stations' values are partial: no history.
+            self.turning_points = None;
+        }
+    }
+
+    /// Keeps every station's turning points from here on (issue 44, fatigue: each station's
+    /// signed stress at every step the envelope takes, with the crests inside the exact
+    /// advance's contact steps; [`crate::solver::turning_points`]), starting with the current
+    /// state. Only with every station's envelope ([`EnvelopeScope::Stations`], the default) and
+    /// before the first step; else nothing is kept.
+    pub fn keep_turning_points(&mut self) {
+        if self.stations.is_empty()
+            || self.envelope_work.scope() != EnvelopeScope::Stations
+            || self.state.result.step != 0
+        {
+            return;
+        }
+        let excitation = self.excitation_at(self.state.result.time_ns);
+        let loads = self.correction_loads(own(&self.state.kinematics), Stage::Free, &excitation);
+        let mut values = vec![0.0; self.stations.len()];
+        self.stations.stresses(self.state.kinematics.displacement.as_slice(), loads.as_ref(), &mut values);
+        // The bending stations (the curves are of direct stress ranges): the arrestor's first, then
+        // the bridge's, after the arrestor's shear stations.
+        let st = &self.model.stations;
+        let (lower, upper) = (st.lower.bending.len(), st.upper.bending.len());
+        let upper_start = lower + st.lower.shear.len();
+        let mut points = TurningPoints::new(vec![0..lower, upper_start..upper_start + upper]);
+        let at = self.state.result.time_ns;
+        points.begin_step(at, at);
+        points.push(&values);
+        self.turning_points = Some(points);
+    }
+
+    /// Every station's turning points up to the run's last internal step, if kept
+    /// ([`Self::keep_turning_points`]), in the order of [`crate::model::stations::Stations::all`];
+    /// with the stride every station was sampled at (1: every step; see
+    /// [`crate::solver::envelope::ENVELOPE_BUDGET`]).
+    pub fn turning_points(&self) -> Option<(TurningPoints, u64)> {
+        let mut points = self.turning_points.clone()?;
+        points.finish(self.state.result.time_ns);
+        Some((points, self.stations.stride))
+    }
+
+    /// Adds the step `span` (ns) the envelope took as `observed` to the turning points, if kept.
+    fn observe_turning_points(&mut self, span: (u64, u64), observed: Observed) {
+        let Some(points) = &mut self.turning_points else { return };
+        points.begin_step(span.0, span.1);
+        match observed {
+            Observed::Nothing => {}
+            Observed::End => points.push(self.envelope_work.values()),
+            Observed::Cubic(h) => {
+                let (start, end) = self.envelope_work.step_ends();
+                points.push_cubic(start, end, h);
+            }
+        }
     }
 
     /// Chunks of stations the envelope was asked to evaluate and those it skipped by their bound.
@@ -516,10 +576,10 @@ impl<S: Stepper> Simulation<S> {
 
     /// Raises the stress envelope by the current state, whose correction load coefficients are
     /// `loads` ([`Self::correction_loads`]), at `time` s.
-    fn observe_envelope(&mut self, loads: Option<&[f64; LOADS]>, time: f64, step: u64) {
+    fn observe_envelope(&mut self, loads: Option<&[f64; LOADS]>, time: f64, step: u64) -> Observed {
         self.envelope_work.release_end();
         if self.stations.is_empty() || !step.is_multiple_of(self.stations.stride) {
-            return;
+            return Observed::Nothing;
         }
         let state = &mut self.state;
         self.stations.observe(
@@ -529,6 +589,7 @@ impl<S: Stepper> Simulation<S> {
             time,
             Running { max: &mut state.envelope, times: &mut state.envelope_times },
         );
+        Observed::End
     }
 
     /// Raises the model's range (every node's deflection and rotation) by the current state,
@@ -552,7 +613,7 @@ impl<S: Stepper> Simulation<S> {
         (start_ns, end_ns): (u64, u64),
         step: u64,
         loads: Option<&[f64; LOADS]>,
-    ) {
+    ) -> Observed {
         let stride = self.stations.stride;
         if !(stage.is_contact() && self.stepper.adapts_steps() && stride == 1) || self.stations.is_empty() {
             return self.observe_envelope(loads, seconds(end_ns), step);
@@ -579,6 +640,7 @@ impl<S: Stepper> Simulation<S> {
             seconds(end_ns - start_ns),
             Running { max: envelope, times: envelope_times },
         );
+        Observed::Cubic(seconds(end_ns - start_ns))
     }
 
     /// The rates of [`Self::correction_loads`] for `kinematics`: only the contact load moves
@@ -679,7 +741,7 @@ impl<S: Stepper> Simulation<S> {
         let (probes, energies) = self.stepper.measure(&self.state.kinematics, Stage::Free, &excitation);
         // The state's correction load coefficients, once for the envelope and the range.
         let loads = self.correction_loads(own(&self.state.kinematics), Stage::Free, &excitation);
-        self.observe_envelope(loads.as_ref(), 0.0, 0);
+        let _ = self.observe_envelope(loads.as_ref(), 0.0, 0);
         self.observe_range(loads.as_ref(), 0.0);
         let mut result = self.outputs(&probes, Stage::Free, 0, 0.0);
         self.set_support_and_tips(&mut result, &self.state.kinematics, &excitation);
@@ -1142,7 +1204,8 @@ impl<S: Stepper> Simulation<S> {
         let span = (previous.time_ns, previous.time_ns + step_ns);
         // The end state's correction load coefficients, once for the envelope and the range.
         let loads = self.correction_loads(own(&self.state.kinematics), stage, &excitation);
-        self.observe_envelope_over_step(stage, &excitation, span, previous.step + 1, loads.as_ref());
+        let observed = self.observe_envelope_over_step(stage, &excitation, span, previous.step + 1, loads.as_ref());
+        self.observe_turning_points(span, observed);
         self.observe_range(loads.as_ref(), seconds(span.1));
         let rate = self.gap_rate(&self.state.kinematics, stage, &excitation);
         energies.dissipation_rate += self.contact_dissipation_rate(self.state.gap, rate, stage);
@@ -1969,8 +2032,9 @@ impl<S: Stepper> Simulation<S> {
     /// [`RunState::validate`]; a refused state leaves the simulation as it was.
     pub fn restore(&mut self, state: RunState) -> Result<()> {
         state.validate(self.modal.dofs(), self.longest_step_ns())?;
-        // The envelope's held step end belongs to the run before.
+        // The envelope's held step end belongs to the run before, and so do the turning points.
         self.envelope_work.forget();
+        self.turning_points = None;
         // The stress envelope: one value per station of this model, each a finite |stress|
         // reached at a time within the run.
         let stations = self.model.stations.len();
@@ -2088,10 +2152,19 @@ impl<S: Stepper> Simulation<S> {
         self.stepper.keep_energies(false);
     }
 
+    /// Every station's stress, Pa, at the modal coordinates `q` of a full basis (the paper
+    /// method's: no static correction), into `out` (one per station, in the order of
+    /// [`crate::model::stations::Stations::all`]): the envelope's own product, to the bit. For
+    /// tests that rebuild the stations' histories from a recorder's coordinates (issue 44).
+    pub fn station_stresses(&self, q: &[f64], out: &mut [f64]) {
+        self.stations.stresses(q, None, out);
+    }
+
     /// Takes no stress envelope from here on (its stations' values stay as they are): the
     /// bench's side-by-side measure of what the envelope costs per step.
     pub fn without_envelope(&mut self) {
         self.stations = std::sync::Arc::default();
+        self.turning_points = None;
     }
 
     /// The running peaks and their times at the run's last record: a stop point inside the next
@@ -2170,6 +2243,15 @@ impl<S: Stepper> Simulation<S> {
     pub fn impact(&self) -> Impact {
         self.impact
     }
+}
+
+/// How the envelope took a step: not at all (a stride's skipped step), by its end, or by the
+/// cubic over it (its length, s).
+#[derive(Clone, Copy, Debug)]
+enum Observed {
+    Nothing,
+    End,
+    Cubic(f64),
 }
 
 /// True when `given` is `expected` to round-off (1e-12 of each value, or of 1): a master that sends

@@ -28,6 +28,7 @@ mod envelope_sampling;
 mod envelope_scope;
 mod examples;
 mod fatigue;
+mod fatigue_run;
 mod figures;
 mod fmi_answer;
 mod fmi_default_log;

@@ -67,7 +67,9 @@ fn with_the_flag_clear_the_answer_is_answer_run_s_and_the_record_ends_with_it() 
     assert_eq!(got.quality, want.quality);
     assert_eq!(got.runs, want.runs);
     assert!(watch.finished && watch.steps == got.summary.steps + 1, "{} steps recorded", watch.steps);
-    assert_eq!(watch.attachments.len(), 1);
+    // answer.json, then the bending stations' histories (issue 44: fatigue.json).
+    assert_eq!(watch.attachments.len(), 2);
+    assert_eq!(watch.attachments[1].0, "fatigue.json");
     let (name, bytes) = &watch.attachments[0];
     assert_eq!(name, "answer.json");
     let doc: serde_json::Value = serde_json::from_slice(bytes).unwrap();

@@ -24,6 +24,8 @@
     log.stations            the stress stations: DataFrame (column, beam, stress, position, allowable, node)
     log.station_stresses    the signed stress at every station, every 1 ms of the rows: DataFrame (step, time,
                             then one column per station, `lower.bending.0`, ...; Pa), or None when not recorded
+    log.fatigue             the run's fatigue (issue 44) as `report --fatigue` has it, with the keys of `run --json`'s
+                            `fatigue` block (dict), or None (`log.fatigue_note` says why)
 
 The file is read by the Rust reader of `beam-impact report` (the native module
 `beam_impact._native`, built by `pip install ./python`), not by a second reader in Python: every
@@ -55,6 +57,7 @@ leaves out `time` (= time_ns / 1e9, computed here). Format 1 had float32 coordin
 
 from __future__ import annotations
 
+import json
 import os
 import sys
 from dataclasses import dataclass, field
@@ -150,6 +153,13 @@ class Log:
     station_steps: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.uint64))
     station_times: np.ndarray = field(default_factory=lambda: np.zeros(0))
     station_values: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+    #: The run's fatigue (issue 44), as `beam-impact report LOG --fatigue` has it and with the keys
+    #: of `run --json`'s `fatigue` block: from the log's `fatigue.json` (every step of the printed
+    #: run), else rebuilt from the `/beam/stations` rows (`source` says which, `note` why it is a
+    #: lower bound); None when the log holds neither (then `fatigue_note` says why).
+    fatigue: dict | None = None
+    #: Why `fatigue` is None ("" otherwise).
+    fatigue_note: str = ""
 
     @property
     def envelope(self):
@@ -326,6 +336,8 @@ def _from_native(raw: dict) -> Log:
         station_steps=station_steps,
         station_times=np.frombuffer(raw["station_times_ns"], dtype=np.uint64) / 1e9,
         station_values=np.frombuffer(raw["station_values"], dtype=np.float64).reshape(len(station_steps), width),
+        fatigue=None if raw.get("fatigue_json") is None else json.loads(raw["fatigue_json"]),
+        fatigue_note=raw.get("fatigue_note", ""),
     )
 
 

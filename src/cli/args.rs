@@ -116,6 +116,14 @@ pub enum Command {
         /// Table 1, every number with its verdict, the envelope, zoomable time histories.
         #[arg(long, value_name = "FILE.html")]
         html: Option<PathBuf>,
+        /// Print the run's fatigue instead (issue 44): every bending station's rainflow cycles and
+        /// Miner's damage on the scenario's `[fatigue]` curve and factors, the hot spots, each
+        /// beam's worst, the life; from the log's fatigue.json, else rebuilt from /beam/stations.
+        #[arg(long, conflicts_with_all = ["csv", "out", "html"])]
+        fatigue: bool,
+        /// With --fatigue: this S-N curve instead of the scenario's (`D`, `C-2024`, ...).
+        #[arg(long, value_name = "NAME", requires = "fatigue")]
+        curve: Option<String>,
     },
     /// Time the production stepper against the dense oracle, the per-step cost at finer
     /// meshes, and the recorded run.

@@ -57,7 +57,8 @@ pub fn execute(command: Command) -> Result<Outcome> {
                 ssp,
             }))
         }
-        Command::Report { file, out, csv, html } => done(report::report(&file, out, csv.as_deref(), html.as_deref())),
+        Command::Report { file, fatigue: true, curve, .. } => done(report::fatigue(&file, curve.as_deref())),
+        Command::Report { file, out, csv, html, .. } => done(report::report(&file, out, csv.as_deref(), html.as_deref())),
         Command::Bench { runs } => done(bench::bench(runs)),
         Command::Verify { file, set, json, tolerance } => {
             done(verify::verify(file.as_deref(), &set, json.as_deref(), tolerance))

@@ -85,3 +85,11 @@ pub fn report(file: &Path, out: Option<PathBuf>, csv: Option<&Path>, html: Optio
     lock.flush().ok();
     Ok(())
 }
+
+/// `report LOG --fatigue [--curve NAME]`: the run's fatigue (issue 44,
+/// [`beam_impact::replay::fatigue`]) to standard output.
+pub fn fatigue(file: &Path, curve: Option<&str>) -> Result<()> {
+    let data = beam_impact::replay::report::read_log(file)?;
+    let fatigue = beam_impact::replay::fatigue::fatigue_of_log(&data, curve)?;
+    super::common::emit(&beam_impact::replay::fatigue::fatigue_text(&fatigue))
+}

@@ -210,6 +210,7 @@ pub fn run(args: &RunArgs) -> Result<bool> {
             ""
         },
     );
+    text += &fatigue_lines(&answer)?;
     for line in quality.advisories.iter() {
         super::common::note(&format!("beam-impact: note: {}", super::common::bounded_line(line)));
     }
@@ -346,4 +347,13 @@ impl Recorder for Progress<'_> {
     fn stopped_early(&self) -> Option<&str> {
         self.inner.stopped_early()
     }
+}
+
+/// The run's two fatigue lines (issue 44): the worst station's damage per impact and the life
+/// ([`beam_impact::run_fatigue::RunFatigue::lines`]); none without the stations' histories.
+fn fatigue_lines(answer: &beam_impact::answer::Answer) -> Result<String> {
+    let Some(histories) = &answer.station_histories else { return Ok(String::new()) };
+    let settings = beam_impact::model::fatigue_settings::of(&answer.resolved);
+    let fatigue = beam_impact::run_fatigue::assess(histories, &settings)?;
+    Ok(fatigue.lines().iter().map(|l| format!("{l}\n")).collect())
 }

@@ -6,6 +6,7 @@ pub mod contact_law;
 pub mod damping;
 pub mod discretisation;
 pub mod load_case;
+pub mod fatigue_settings;
 pub mod mesh;
 pub mod motion_table;
 pub mod parameters;

@@ -354,6 +354,10 @@ pub struct Scenario {
     /// default): each case's factors and the fields it changes ([`LoadCase`]).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub load_cases: Vec<LoadCase>,
+    /// The S-N curve and factors of a run's fatigue (issue 44: `[fatigue]`); absent: the
+    /// defaults ([`super::fatigue_settings::FatigueSettings`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fatigue: Option<super::fatigue_settings::FatigueSettings>,
 }
 
 impl Default for Scenario {
@@ -380,6 +384,7 @@ impl Default for Scenario {
             motion: MotionSettings::default(),
             sea: None,
             load_cases: Vec::new(),
+            fatigue: None,
         }
     }
 }
@@ -902,6 +907,9 @@ impl Scenario {
                 )));
             }
             errors.extend(sea.validation_errors(self.duration));
+        }
+        if let Some(fatigue) = &self.fatigue {
+            errors.extend(fatigue.validation_errors());
         }
         let mut check = |result: Result<()>| {
             if let Err(e) = result {

@@ -24,6 +24,10 @@ pub const ANSWER_ATTACHMENT: &str = "answer.json";
 /// as JSON, each beam's bending and shear stations with their largest |stress|, when, and the
 /// allowable), added when the log is finished: by the CLI and the FMU alike.
 pub const ENVELOPE_ATTACHMENT: &str = "envelope.json";
+/// The attachment holding the printed run's bending stations' stress histories as turning points
+/// (issue 44: [`crate::run_fatigue::StationHistories`] as JSON), added after the run's last step
+/// by `run` (the CLI's and Python's), from which `report --fatigue` applies any S-N curve.
+pub const FATIGUE_ATTACHMENT: &str = "fatigue.json";
 /// Name of the scenario's Metadata record.
 pub const SCENARIO_METADATA: &str = "scenario";
 /// Name of the scenario's TOML attachment.

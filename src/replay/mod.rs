@@ -9,6 +9,7 @@
 pub mod csv;
 pub mod damping_figures;
 pub mod envelope_figure;
+pub mod fatigue;
 pub mod figures;
 pub mod html;
 pub mod mode_figures;

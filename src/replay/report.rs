@@ -70,6 +70,9 @@ pub struct LogData {
     /// The run's stress envelope as stored when the log was finished (`envelope.json`, issue 30),
     /// if the log holds it: read by [`replay_envelope`], which checks it.
     pub envelope_json: Option<String>,
+    /// The bending stations' stress histories as turning points (`fatigue.json`, issue 44), if
+    /// the log holds them: read by [`crate::replay::fatigue`], which checks them.
+    pub fatigue_json: Option<String>,
     /// The stress stations (from the model message) and their stresses at every recorded step
     /// (`/beam/stations`), issue 30; empty for logs written before them.
     pub stations: StationRecord,
@@ -623,7 +626,8 @@ impl ReadState {
                 let answer = name == ANSWER_ATTACHMENT;
                 let motion = name == MOTION_ATTACHMENT;
                 let envelope = name == ENVELOPE_ATTACHMENT;
-                let kept = scenario || answer || motion || envelope;
+                let fatigue = name == crate::record::log_format::FATIGUE_ATTACHMENT;
+                let kept = scenario || answer || motion || envelope || fatigue;
                 let size = name.len() + media_type.len() + 64 + if kept { bytes.len() } else { 0 };
                 self.keep(size, at, "attachment record")?;
                 if scenario {
@@ -637,6 +641,9 @@ impl ReadState {
                 }
                 if envelope {
                     data.envelope_json = Some(String::from_utf8_lossy(bytes).into_owned());
+                }
+                if fatigue {
+                    data.fatigue_json = Some(String::from_utf8_lossy(bytes).into_owned());
                 }
                 data.attachments.push((name.to_string(), media_type.to_string(), bytes.len()));
             }

@@ -233,6 +233,25 @@ impl EnvelopeWork {
         self.scope = scope;
         self.forget();
     }
+
+    /// Which running values are kept exact.
+    pub fn scope(&self) -> EnvelopeScope {
+        self.scope
+    }
+
+    /// Every station's stress, Pa, at the end of the step [`StationRows::observe`] took last with
+    /// [`EnvelopeScope::Stations`] (issue 44: the stations' histories for fatigue).
+    pub fn values(&self) -> &[f64] {
+        &self.values
+    }
+
+    /// Every station's stress and its rate (Pa, Pa/s) at the start and at the end of the step
+    /// [`StationRows::observe_step`] took last with [`EnvelopeScope::Stations`]: ((start values,
+    /// start rates), (end values, end rates)). The end is held as the next step's start.
+    #[allow(clippy::type_complexity)]
+    pub fn step_ends(&self) -> ((&[f64], &[f64]), (&[f64], &[f64])) {
+        ((&self.values, &self.rates), (&self.start_values, &self.start_rates))
+    }
 }
 
 /// One end of a step as the envelope's cubic takes it: the own coordinates and their rates, the

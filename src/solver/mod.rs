@@ -21,6 +21,7 @@ pub mod step_extrema;
 pub mod step_plan;
 pub mod stepper;
 pub mod truncation;
+pub mod turning_points;
 
 pub use contact::Stage;
 pub use dense::DenseStepper;

@@ -243,6 +243,7 @@ fn key(model: &Model) -> Option<Key> {
     s.lower.tip_force = d.lower.tip_force;
     s.motion = d.motion;
     s.sea = d.sea;
+    s.fatigue = d.fatigue;
     let scenario = serde_json::to_string(&s).ok()?;
     Some(Key { scenario, bar_stiffness: model.bar_stiffness.to_bits() })
 }

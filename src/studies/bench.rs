@@ -396,6 +396,13 @@ pub fn converged_benchmark(runs: usize) -> Result<String> {
         simulation.without_envelope();
         simulation.run(&mut NullRecorder).map(|_| ())
     })?;
+    // The fatigue's cost (issue 44): the printed rung keeping every bending station's turning
+    // points, as `run` does.
+    let with_fatigue = time(&|| {
+        let mut simulation = Simulation::new(&converged)?;
+        simulation.keep_turning_points();
+        simulation.run(&mut NullRecorder).map(|_| ())
+    })?;
     let mut checks = crate::answer::check_scenarios(&converged)?;
     checks.push(crate::answer::twin_scenario(&converged));
     let check_runs = time(&|| checks.iter().try_for_each(run))?;
@@ -414,6 +421,14 @@ pub fn converged_benchmark(runs: usize) -> Result<String> {
         ratio(bare),
         (printed.as_secs_f64() - bare.as_secs_f64()) / steps as f64 * 1e9,
         printed.as_secs_f64() / bare.as_secs_f64()
+    );
+    let _ = writeln!(
+        out,
+        "  the same keeping turning points     : {:8.1} ms  x{:.2}: the fatigue's histories {:.0} ns per step ({:.2}x the rung)",
+        ms(with_fatigue),
+        ratio(with_fatigue),
+        (with_fatigue.as_secs_f64() - printed.as_secs_f64()) / steps as f64 * 1e9,
+        with_fatigue.as_secs_f64() / printed.as_secs_f64()
     );
     let _ = writeln!(
         out,

@@ -90,6 +90,7 @@ pub fn field(name: &str) -> Result<&'static Parameter> {
             .iter()
             .chain(&MOTION_FIELDS)
             .chain(&crate::model::sea::fields::SEA_FIELDS)
+            .chain(&crate::model::fatigue_settings::FATIGUE_FIELDS)
             .find(|p| p.name == name)
             .ok_or_else(|| {
                 Error::Other(format!(
@@ -124,6 +125,7 @@ fn symbolic_names(field: &Parameter) -> Option<&'static [&'static str]> {
         "lower.kind" => Some(&SUPPORT_NAMES),
         "contact.law" => Some(&LAW_NAMES),
         "sea.spectrum" => Some(&SPECTRUM_NAMES),
+        "fatigue.curve" => Some(crate::model::fatigue_settings::curve_names()),
         _ => None,
     }
 }

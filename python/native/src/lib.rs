@@ -140,7 +140,27 @@ fn to_python<'py>(py: Python<'py>, data: &LogData) -> PyResult<Bound<'py, PyDict
     out.set_item("answer_json", data.answer_json.clone())?;
     out.set_item("motion_csv", data.motion_csv.clone())?;
     stations_to_python(py, data, &out)?;
+    fatigue_to_python(data, &out)?;
     Ok(out)
+}
+
+/// The run's fatigue (issue 44: as `report --fatigue` has it, from the log's `fatigue.json` or
+/// rebuilt from its stations' rows) as the `run --json` block's JSON text, or None with the
+/// reason in `fatigue_note`.
+fn fatigue_to_python(data: &LogData, out: &Bound<'_, PyDict>) -> PyResult<()> {
+    let fatigue = beam_impact::replay::fatigue::fatigue_of_log(data, None)
+        .and_then(|f| serde_json::to_string(&f).map_err(|e| beam_impact::Error::Other(format!("JSON: {e}"))));
+    match fatigue {
+        Ok(text) => {
+            out.set_item("fatigue_json", Some(text))?;
+            out.set_item("fatigue_note", "")?;
+        }
+        Err(e) => {
+            out.set_item("fatigue_json", None::<String>)?;
+            out.set_item("fatigue_note", e.to_string())?;
+        }
+    }
+    Ok(())
 }
 
 /// The stress envelope (issue 30: the log's `envelope.json` when sound, else rebuilt from the
