@@ -125,7 +125,7 @@ pub fn amplification_json(answer: &Answer) -> serde_json::Value {
 /// run without every station's envelope).
 pub fn fatigue_json(answer: &Answer) -> Result<serde_json::Value> {
     let Some(histories) = &answer.station_histories else { return Ok(serde_json::Value::Null) };
-    let settings = crate::model::fatigue_settings::of(&answer.resolved);
+    let settings = crate::model::fatigue_fields::of(&answer.resolved);
     let fatigue = crate::run_fatigue::assess(histories, &settings)?;
     serde_json::to_value(&fatigue).map_err(|e| Error::Other(format!("JSON: {e}")))
 }

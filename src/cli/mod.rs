@@ -41,7 +41,13 @@ pub fn execute(command: Command) -> Result<Outcome> {
             _ => Ok(Outcome::Done),
         },
         Command::Scenario => {
-            done(common::emit(&beam_impact::model::parameters::annotate_toml(&Scenario::default().to_toml())))
+            // Every field annotated, then the `[fatigue]` section commented out with its defaults.
+            let toml = Scenario::default().to_toml();
+            let mut text = beam_impact::model::parameters::annotate_toml(&toml);
+            if !toml.lines().any(|l| l.trim() == "[fatigue]") {
+                text.push_str(&beam_impact::model::fatigue_fields::section_comment());
+            }
+            done(common::emit(&text))
         }
         Command::Damping { file, set, figures } => done(damping::damping(file.as_deref(), &set, figures.as_deref())),
         Command::Modes { file, set, out } => done(modes::modes(file.as_deref(), &set, &out)),
@@ -58,7 +64,9 @@ pub fn execute(command: Command) -> Result<Outcome> {
             }))
         }
         Command::Report { file, fatigue: true, curve, .. } => done(report::fatigue(&file, curve.as_deref())),
-        Command::Report { file, out, csv, html, .. } => done(report::report(&file, out, csv.as_deref(), html.as_deref())),
+        Command::Report { file, out, csv, html, .. } => {
+            done(report::report(&file, out, csv.as_deref(), html.as_deref()))
+        }
         Command::Bench { runs } => done(bench::bench(runs)),
         Command::Verify { file, set, json, tolerance } => {
             done(verify::verify(file.as_deref(), &set, json.as_deref(), tolerance))

@@ -353,7 +353,7 @@ impl Recorder for Progress<'_> {
 /// ([`beam_impact::run_fatigue::RunFatigue::lines`]); none without the stations' histories.
 fn fatigue_lines(answer: &beam_impact::answer::Answer) -> Result<String> {
     let Some(histories) = &answer.station_histories else { return Ok(String::new()) };
-    let settings = beam_impact::model::fatigue_settings::of(&answer.resolved);
+    let settings = beam_impact::model::fatigue_fields::of(&answer.resolved);
     let fatigue = beam_impact::run_fatigue::assess(histories, &settings)?;
     Ok(fatigue.lines().iter().map(|l| format!("{l}\n")).collect())
 }

@@ -8,8 +8,6 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::fatigue::{SnCurve, SnOptions};
-use crate::model::parameters::{Kind, Parameter};
-use crate::model::Scenario;
 
 /// The default S-N curve: DNV-RP-C203 (2016) Table 2-1's D curve in air. The RP's hot-spot
 /// stress method for welded plated details (2016 Sec. 4.3) reads the hot-spot stress range on the
@@ -102,83 +100,6 @@ pub fn curve_names() -> &'static [&'static str] {
     static NAMES: std::sync::OnceLock<Vec<&'static str>> = std::sync::OnceLock::new();
     NAMES.get_or_init(|| SnCurve::names().into_iter().map(|n| &*Box::leak(n.into_boxed_str())).collect())
 }
-
-/// The fatigue section of `scenario`, added with the defaults when missing.
-fn section(scenario: &mut Scenario) -> &mut FatigueSettings {
-    scenario.fatigue.get_or_insert_with(FatigueSettings::default)
-}
-
-/// The fatigue settings `scenario` is assessed with (the defaults without a section).
-pub fn of(scenario: &Scenario) -> FatigueSettings {
-    scenario.fatigue.clone().unwrap_or_default()
-}
-
-/// Every `[fatigue]` field a setting or a sweep can change. 0 is "absent" for the thickness and
-/// the events per year.
-pub static FATIGUE_FIELDS: [Parameter; 5] = [
-    Parameter {
-        name: "fatigue.curve",
-        unit: "",
-        description: "The S-N curve of DNV-RP-C203 (beam-impact fatigue --help lists them; default D in air)",
-        kind: Kind::Integer,
-        get: |s| {
-            let name = of(s).curve;
-            curve_names().iter().position(|n| n.eq_ignore_ascii_case(&name)).map_or(f64::NAN, |k| k as f64)
-        },
-        put: |s, v| {
-            let names = curve_names();
-            let name = (v.fract() == 0.0 && v >= 0.0 && (v as usize) < names.len())
-                .then(|| names[v as usize])
-                .ok_or_else(|| Error::invalid("fatigue.curve", format!("a curve's name ({})", names.join(", ")), v))?;
-            section(s).curve = name.into();
-            Ok(())
-        },
-    },
-    Parameter {
-        name: "fatigue.scf",
-        unit: "1",
-        description: "Stress concentration factor on the nominal stress range",
-        kind: Kind::Real,
-        get: |s| of(s).scf,
-        put: |s, v| {
-            section(s).scf = v;
-            Ok(())
-        },
-    },
-    Parameter {
-        name: "fatigue.thickness",
-        unit: "m",
-        description: "The detail's thickness for the thickness correction; 0: none",
-        kind: Kind::Real,
-        get: |s| of(s).thickness.unwrap_or(0.0),
-        put: |s, v| {
-            section(s).thickness = (v != 0.0).then_some(v);
-            Ok(())
-        },
-    },
-    Parameter {
-        name: "fatigue.design_fatigue_factor",
-        unit: "1",
-        description: "Design fatigue factor on the damage",
-        kind: Kind::Real,
-        get: |s| of(s).design_fatigue_factor,
-        put: |s, v| {
-            section(s).design_fatigue_factor = v;
-            Ok(())
-        },
-    },
-    Parameter {
-        name: "fatigue.events_per_year",
-        unit: "1/year",
-        description: "Impacts per year, for the fatigue life; 0: none given",
-        kind: Kind::Real,
-        get: |s| of(s).events_per_year.unwrap_or(0.0),
-        put: |s, v| {
-            section(s).events_per_year = (v != 0.0).then_some(v);
-            Ok(())
-        },
-    },
-];
 
 #[cfg(test)]
 mod tests {

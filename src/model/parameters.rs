@@ -523,35 +523,6 @@ pub fn annotate_toml(toml: &str) -> String {
             }
         }
     }
-    if !toml.lines().any(|l| l.trim() == "[fatigue]") {
-        out.push_str(&fatigue_section_comment());
-    }
-    out
-}
-
-/// The `[fatigue]` section (issue 44) commented out with its defaults, each field's unit,
-/// description and range: a scenario without it is assessed on these.
-fn fatigue_section_comment() -> String {
-    use super::fatigue_settings::{DEFAULT_CURVE, FATIGUE_FIELDS, MAX_EVENTS_PER_YEAR, MIN_EVENTS_PER_YEAR};
-    let examples: [(&str, String); 5] = [
-        ("curve", format!("\"{DEFAULT_CURVE}\"")),
-        ("scf", "1.0".into()),
-        ("thickness", "0.025".into()),
-        ("design_fatigue_factor", "1.0".into()),
-        ("events_per_year", "1000.0".into()),
-    ];
-    let ranges = [
-        "a name of `beam-impact fatigue --curve`".to_string(),
-        "1 to 20".into(),
-        "absent (no correction), or > 0 to 1".into(),
-        "1 to 10".into(),
-        format!("absent (no life), or {MIN_EVENTS_PER_YEAR:e} to {MAX_EVENTS_PER_YEAR:e}"),
-    ];
-    let mut out = String::from("\n# [fatigue]  # a run's fatigue (docs/fatigue-run.md); absent: the defaults below\n");
-    for ((p, (key, example)), range) in FATIGUE_FIELDS.iter().zip(examples).zip(ranges) {
-        let unit = if p.unit.is_empty() { "-" } else { p.unit };
-        out.push_str(&format!("# {key} = {example}  # [{unit}] {}; range {range}\n", p.description));
-    }
     out
 }
 

@@ -90,7 +90,7 @@ pub fn field(name: &str) -> Result<&'static Parameter> {
             .iter()
             .chain(&MOTION_FIELDS)
             .chain(&crate::model::sea::fields::SEA_FIELDS)
-            .chain(&crate::model::fatigue_settings::FATIGUE_FIELDS)
+            .chain(&crate::model::fatigue_fields::FATIGUE_FIELDS)
             .find(|p| p.name == name)
             .ok_or_else(|| {
                 Error::Other(format!(
