@@ -116,7 +116,7 @@ FMU_LACKS = (
     *(f"peak_time.{name.removeprefix('peak.')}" for name in PEAK_OUTPUTS),
     "energy_method.flexion_stiffness", "energy_method.bridge_deceleration", "energy_method.bridge_contact_moment",
     "energy_method.bridge_bending_stress", "energy_method.bridge_strain_energy", "energy_method.bridge_strain_ratio",
-    "max_energy_residual", "yield_utilisation",
+    "max_energy_residual", "yield_utilisation", "load_cases.utilisation",
     *(f"{former}_time" for former in PEAK_OUTPUTS.values()),
 )
 
@@ -182,8 +182,8 @@ def sweep(
     `fmu` (or `$BEAM_IMPACT_FMU`) with fmpy. The FMU engine's table has the CLI's columns that the
     FMU gives as outputs, in the same order, and lacks the others (`FMU_LACKS`): the peak times
     `peak_time.<quantity>` (and their former names `<quantity>_time`), six of the eleven
-    `energy_method.<field>` (`flexion_stiffness` and the bridge's five), `max_energy_residual` and
-    `yield_utilisation`. In the columns both have, the two engines give the same numbers (to
+    `energy_method.<field>` (`flexion_stiffness` and the bridge's five), `max_energy_residual`,
+    `yield_utilisation` and `load_cases.utilisation` (the FMU judges no load cases). In the columns both have, the two engines give the same numbers (to
     round-off: tests/python/test_package.py holds both to the CLI's sweep at 1e-9). `scenario`
     (native engine only): the base scenario, a file path or TOML text as `beam_impact.run` takes
     it (default: the defaults, the FMU's, as `beam-impact sweep` without a file).
