@@ -15,7 +15,7 @@ pub struct CaseQuantity {
     pub static_value: f64,
     /// The allowable the plain design check holds it to, Pa.
     pub allowable: f64,
-    /// The factored utilisation ([`LoadCase::utilisation`]).
+    /// The factored utilisation ([`crate::model::load_case::LoadCase::utilisation`]).
     pub utilisation: f64,
 }
 
@@ -26,11 +26,11 @@ pub struct CaseResult {
     pub name: String,
     /// Its factors, as stated.
     pub static_factor: f64,
-    /// See [`LoadCase::dynamic_factor`].
+    /// See [`crate::model::load_case::LoadCase::dynamic_factor`].
     pub dynamic_factor: f64,
-    /// See [`LoadCase::allowable_factor`].
+    /// See [`crate::model::load_case::LoadCase::allowable_factor`].
     pub allowable_factor: f64,
-    /// See [`LoadCase::material_factor`].
+    /// See [`crate::model::load_case::LoadCase::material_factor`].
     pub material_factor: f64,
     /// The fields it changes, as `--set` writes them.
     pub set: BTreeMap<String, String>,
