@@ -315,7 +315,7 @@ def test_python_md_runs_from_the_wheel_in_an_empty_folder(installed, tmp_path):
     assert outputs[-1].rstrip().endswith("True"), outputs[-1]
     header = (tmp_path / "sweep.csv").read_text().splitlines()[0].split(",")
     assert header[:2] == ["drop_height", "damping_ratio"] and "peak_time.contact.force" in header
-    assert len(header) == 62 + 1  # the CLI sweep's columns for two varied fields
+    assert len(header) == 63 + 1  # the CLI sweep's columns for two varied fields
     assert (tmp_path / "sweep.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
