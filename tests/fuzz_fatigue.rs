@@ -61,36 +61,6 @@ fn seeds() -> Vec<String> {
     ]
 }
 
-fn mutate_csv(text: &str, rng: &mut Rng) -> String {
-    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
-    for _ in 0..1 + rng.below(3) {
-        if lines.is_empty() {
-            lines.push("time".into());
-        }
-        let i = rng.below(lines.len());
-        match rng.below(6) {
-            0..=2 => {
-                let mut cells: Vec<String> = lines[i].split(',').map(str::to_string).collect();
-                let c = rng.below(cells.len());
-                cells[c] = rng.pick(LITERALS).to_string();
-                lines[i] = cells.join(",");
-            }
-            3 => {
-                lines.remove(i);
-            }
-            4 => {
-                let line = lines[i].clone();
-                lines.insert(rng.below(lines.len() + 1), line);
-            }
-            _ => {
-                let j = rng.below(lines.len());
-                lines.swap(i, j);
-            }
-        }
-    }
-    lines.join("\n")
-}
-
 /// Parses `text`, counts and sums what it accepts; returns whether it was accepted.
 fn check(name: &str, text: &str, curve: &SnCurve) -> bool {
     match StressHistory::parse(text) {
@@ -131,7 +101,7 @@ fn seeded_mutations_and_random_bytes_never_panic() {
                 let bytes: Vec<u8> = (0..rng.below(300)).map(|_| rng.next_u64() as u8).collect();
                 String::from_utf8_lossy(&bytes).into_owned()
             }
-            _ => mutate_csv(&seed, &mut rng),
+            _ => fuzz_support::mutate_csv(&seed, LITERALS, &mut rng),
         };
         if check(&format!("mutation {i}"), &text, rng.pick(&curves)) {
             accepted += 1;
@@ -170,7 +140,7 @@ fn the_command_on_hostile_files_exits_0_or_2_with_one_line() {
             (0..rng.below(2000)).map(|_| rng.next_u64() as u8).collect()
         } else {
             let seed = rng.pick(&seeds).clone();
-            mutate_csv(&seed, &mut rng).into_bytes()
+            fuzz_support::mutate_csv(&seed, LITERALS, &mut rng).into_bytes()
         };
         let path = dir.path().join(format!("h{i}.csv"));
         std::fs::write(&path, &bytes).unwrap();

@@ -57,37 +57,6 @@ fn seeds() -> Vec<String> {
     ]
 }
 
-/// One structure-aware mutation of CSV text.
-fn mutate_csv(text: &str, rng: &mut Rng) -> String {
-    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
-    for _ in 0..1 + rng.below(3) {
-        if lines.is_empty() {
-            lines.push("time".into());
-        }
-        let i = rng.below(lines.len());
-        match rng.below(6) {
-            0..=2 => {
-                let mut cells: Vec<String> = lines[i].split(',').map(str::to_string).collect();
-                let c = rng.below(cells.len());
-                cells[c] = rng.pick(LITERALS).to_string();
-                lines[i] = cells.join(",");
-            }
-            3 => {
-                lines.remove(i);
-            }
-            4 => {
-                let line = lines[i].clone();
-                lines.insert(rng.below(lines.len() + 1), line);
-            }
-            _ => {
-                let j = rng.below(lines.len());
-                lines.swap(i, j);
-            }
-        }
-    }
-    lines.join("\n")
-}
-
 /// Parses `text` and checks what it gives; returns whether it was accepted.
 fn check(name: &str, text: &str) -> bool {
     match MotionTable::parse(text) {
@@ -143,7 +112,7 @@ fn seeded_mutations_of_motion_files_never_panic_and_stay_within_bounds() {
         let text = if i % 4 == 3 {
             String::from_utf8_lossy(&mutate(seed.as_bytes(), &mut rng)).into_owned()
         } else {
-            mutate_csv(&seed, &mut rng)
+            fuzz_support::mutate_csv(&seed, LITERALS, &mut rng)
         };
         if check(&format!("mutation {i}"), &text) {
             accepted += 1;

@@ -707,3 +707,35 @@ pub fn mutate_toml(
     }
     lines.join("\n")
 }
+
+/// One structure-aware mutation of CSV text (1 to 3 of: a cell replaced by one of `literals`, a
+/// line deleted, duplicated or swapped), shared by the CSV readers' fuzz tests.
+pub fn mutate_csv(text: &str, literals: &[&str], rng: &mut Rng) -> String {
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    for _ in 0..1 + rng.below(3) {
+        if lines.is_empty() {
+            lines.push("time".into());
+        }
+        let i = rng.below(lines.len());
+        match rng.below(6) {
+            0..=2 => {
+                let mut cells: Vec<String> = lines[i].split(',').map(str::to_string).collect();
+                let c = rng.below(cells.len());
+                cells[c] = rng.pick(literals).to_string();
+                lines[i] = cells.join(",");
+            }
+            3 => {
+                lines.remove(i);
+            }
+            4 => {
+                let line = lines[i].clone();
+                lines.insert(rng.below(lines.len() + 1), line);
+            }
+            _ => {
+                let j = rng.below(lines.len());
+                lines.swap(i, j);
+            }
+        }
+    }
+    lines.join("\n")
+}
