@@ -300,6 +300,10 @@ pub struct SweepArgs {
     /// Also write the response over the grid as one self-contained HTML page (docs/html-report.md).
     #[arg(long, value_name = "FILE.html")]
     pub html: Option<PathBuf>,
+    /// Assess each row's fatigue on the scenario's [fatigue] curve (docs/fatigue-run.md): the
+    /// columns fatigue.damage, fatigue.life, fatigue.beam, fatigue.position (about 1.6 times a row's work).
+    #[arg(long)]
+    pub fatigue: bool,
 }
 
 #[derive(Args)]
@@ -352,6 +356,14 @@ pub struct CampaignArgs {
     /// Refuse runs that need more internal steps than this (a row with the error).
     #[arg(long, default_value_t = beam_impact::model::scenario::MAX_STEPS)]
     pub max_steps: u64,
+    /// Assess each event's fatigue on the scenario's [fatigue] curve: the damage per event, its
+    /// mean per cell (docs/operability.md).
+    #[arg(long)]
+    pub fatigue: bool,
+    /// The sea states' occurrence, CSV (significant_wave_height, peak_period, [heading,]
+    /// probability or hours): with --fatigue, the damage per year weighted over the cells and the life.
+    #[arg(long, value_name = "FILE.csv", requires = "fatigue")]
+    pub occurrence: Option<PathBuf>,
 }
 
 #[derive(Args)]

@@ -31,13 +31,30 @@ pub fn campaign(args: &CampaignArgs) -> Result<Outcome> {
         exposure: args.exposure,
         on_upper_bound: !args.on_estimate,
     };
-    let campaign =
+    let mut campaign =
         Campaign::new(base.clone(), parse_axes(&args.vary)?, options.clone(), args.max_events, args.max_steps)?;
+    campaign.set_fatigue(args.fatigue);
+    if args.fatigue {
+        // A bad curve or factor is refused before any event runs.
+        let mut errors = beam_impact::model::fatigue_fields::of(&base).validation_errors();
+        if !errors.is_empty() {
+            return Err(if errors.len() == 1 { errors.remove(0) } else { Error::Invalid(errors) });
+        }
+    }
+    // The occurrence table is read and matched to the grid before any event runs.
+    let occurrence = args.occurrence.as_deref().map(read_occurrence).transpose()?;
+    if let Some(table) = &occurrence {
+        let varies_heading = campaign.cell_axes.iter().any(|a| a.field.name == "sea.heading");
+        table.weights(&campaign.sea_states(), varies_heading).map_err(|e| {
+            Error::Other(format!("{}: {e}", shown(args.occurrence.as_deref().unwrap_or(Path::new("--occurrence")))))
+        })?;
+    }
     let jobs = args.jobs.map_or_else(default_jobs, |j| usize::try_from(j).unwrap_or(usize::MAX));
     let mut files: Vec<(&str, &Path)> = vec![("the scenario file", args.file.as_path())];
     if let Some(sea) = &base.sea {
         files.push(("the RAO file", Path::new(&sea.raos)));
     }
+    files.extend(args.occurrence.as_deref().map(|o| ("--occurrence", o)));
     files.push(("--out", &args.out));
     files.extend(args.json.as_deref().map(|j| ("--json", j)));
     let sidecars = units_sidecars(&[args.out.as_path()]);
@@ -63,10 +80,16 @@ pub fn campaign(args: &CampaignArgs) -> Result<Outcome> {
     let bar = super::common::progress_bar(campaign.len(), "events");
     let started = Instant::now();
     let mut outcomes: Vec<Vec<EventOutcome>> = vec![Vec::new(); campaign.cells.len()];
+    let mut damages: Vec<Vec<f64>> = vec![Vec::new(); campaign.cells.len()];
+    let mut failed: Vec<usize> = vec![0; campaign.cells.len()];
     let tally = campaign.run(jobs, &interrupted, &mut |n| bar.set_position(n as u64), &mut |row| {
         let event = campaign.events[row.event];
         let results = row.row.outcome.as_ref().ok().map(EventResults::from);
         outcomes[row.cell].push(EventOutcome { seed: event.seed, results });
+        match beam_impact::studies::campaign::event_damage(row) {
+            Some(d) => damages[row.cell].push(d),
+            None => failed[row.cell] += 1,
+        }
         csv.write_all(campaign.csv_line(row).as_bytes()).map_err(|e| io("cannot write", &args.out, e))
     })?;
     bar.finish_and_clear();
@@ -90,8 +113,20 @@ pub fn campaign(args: &CampaignArgs) -> Result<Outcome> {
     if campaign.cells.len() > 1 {
         text += &operability::table(&table_cells, &options);
     }
+    let fatigue = if args.fatigue {
+        let f = campaign.fatigue_of(&damages, &failed, occurrence.as_ref())?;
+        let names: Vec<String> = (0..campaign.cells.len()).map(|c| campaign.cell_name(c)).collect();
+        text += &f.text(&names);
+        Some(f)
+    } else {
+        None
+    };
     if let (Some(file), Some(path)) = (json.as_mut(), args.json.as_deref()) {
-        let document = beam_impact::studies::campaign::summary_document(&campaign, &summaries, &table_cells, &options);
+        let mut document =
+            beam_impact::studies::campaign::summary_document(&campaign, &summaries, &table_cells, &options);
+        if let Some(f) = &fatigue {
+            document["fatigue"] = serde_json::to_value(f).map_err(|e| Error::Other(format!("JSON: {e}")))?;
+        }
         let body = serde_json::to_string_pretty(&document).map_err(|e| Error::Other(format!("JSON: {e}")))? + "\n";
         file.write_all(body.as_bytes()).map_err(|e| io("cannot write", path, e))?;
     }
@@ -142,4 +177,16 @@ pub fn campaign(args: &CampaignArgs) -> Result<Outcome> {
         return Ok(Outcome::Interrupted);
     }
     Ok(Outcome::Done)
+}
+
+/// Reads `--occurrence FILE.csv` (a regular file of at most
+/// [`beam_impact::studies::campaign::fatigue::MAX_TABLE_BYTES`]), parsed and checked.
+fn read_occurrence(path: &Path) -> Result<beam_impact::studies::campaign::fatigue::Occurrence> {
+    use beam_impact::record::output::{check_size, open_regular_input, read_bounded};
+    use beam_impact::studies::campaign::fatigue::{Occurrence, MAX_TABLE_BYTES};
+    let file = open_regular_input(path, "cannot read the occurrence table")?;
+    let text = check_size(&file, MAX_TABLE_BYTES, "the occurrence table")
+        .and_then(|()| read_bounded(file, MAX_TABLE_BYTES, "the occurrence table"))
+        .map_err(|source| io("cannot read the occurrence table", path, source))?;
+    Occurrence::parse(&text).map_err(|e| Error::Other(format!("{}: {e}", shown(path))))
 }

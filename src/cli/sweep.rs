@@ -14,7 +14,7 @@ use super::common::{emit, io, read_scenario, units_sidecars, write_units_sidecar
 
 pub fn sweep(args: &SweepArgs) -> Result<()> {
     use beam_impact::studies::sweep::{
-        apply_settings, column_units, default_jobs, parse_axes, parse_settings, Sweep, SweepWriteError,
+        apply_settings, column_units_with, default_jobs, parse_axes, parse_settings, Sweep, SweepWriteError,
     };
     let mut base = match &args.file {
         Some(path) => read_scenario(path)?,
@@ -24,7 +24,10 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
         super::common::load_motion(&mut base, motion)?;
     }
     apply_settings(&mut base, &parse_settings(&args.set)?)?;
-    let sweep = Sweep::new(base, parse_axes(&args.vary)?, args.max_steps)?;
+    let mut sweep = Sweep::new(base, parse_axes(&args.vary)?, args.max_steps)?;
+    sweep.fatigue = args.fatigue;
+    let column_units = |axes: &[beam_impact::studies::sweep::Axis]| column_units_with(axes, args.fatigue);
+    let mut summary = beam_impact::studies::sweep_governing::SweepSummary::new(&sweep.base);
     let jobs = args.jobs.map_or_else(default_jobs, |j| usize::try_from(j).unwrap_or(usize::MAX));
     let mut files: Vec<(&str, &Path)> = args.file.as_deref().map(|f| ("the scenario file", f)).into_iter().collect();
     if !sweep.base.motion.file.is_empty() {
@@ -50,7 +53,13 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
     let bar = super::common::progress_bar(sweep.len(), "scenarios");
     let started = Instant::now();
     let tally = sweep
-        .write(jobs, &mut csv, keep.then_some(&mut rows as &mut dyn Write), &mut |n| bar.set_position(n as u64))
+        .write_observed(
+            jobs,
+            &mut csv,
+            keep.then_some(&mut rows as &mut dyn Write),
+            &mut |n| bar.set_position(n as u64),
+            &mut |row| summary.observe(row),
+        )
         .map_err(|e| match e {
             SweepWriteError::Csv(source) => io("cannot write", &args.out, source),
             SweepWriteError::Json(source) => {
@@ -99,6 +108,10 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
     }
     for path in sidecars {
         text += &format!(", units in {}", shown(&path));
+    }
+    let governing = summary.text(&sweep.axes);
+    if !governing.is_empty() {
+        text += &format!("\n{}", governing.trim_end());
     }
     if let (Some(target), Some(path), Some(kept)) = (html, args.html.as_deref(), kept) {
         let rows: serde_json::Value = serde_json::from_slice(&kept)

@@ -11,3 +11,4 @@ pub mod damping;
 pub mod statistics;
 pub mod sweep;
 pub mod verify;
+pub mod sweep_governing;

@@ -587,6 +587,12 @@ pub struct RowResults {
     pub envelope_peaks: [Option<crate::results::EnvelopePeak>; 4],
     /// The run's verdict: every check that ran passes (`quality.trusted` of `run --json`).
     pub trusted: bool,
+    /// The run's fatigue at its worst station, when the sweep asks for it ([`Sweep::fatigue`]).
+    pub fatigue: Option<RowFatigue>,
+    /// Each design quantity's governing load case, in [`GOVERNING_QUANTITIES`]' order: the case's
+    /// index in the scenario's `[[load_cases]]` and its factored utilisation (None: no cases, or
+    /// the quantity has no allowable).
+    pub governing: [Option<(usize, f64)>; GOVERNING_QUANTITIES.len()],
 }
 
 impl From<&crate::answer::Answer> for RowResults {
@@ -609,6 +615,8 @@ impl From<&crate::answer::Answer> for RowResults {
                 .map_or(f64::NAN, |c| c.cases.iter().map(|c| c.utilisation).fold(f64::NEG_INFINITY, f64::max)),
             envelope_peaks: a.envelope_peaks,
             trusted: a.quality.trusted,
+            fatigue: None,
+            governing: governing_cases(a),
         }
     }
 }
@@ -625,6 +633,88 @@ pub const CHECK_COLUMNS: [(&str, &str); 8] = [
     ("design.pass", "true/false"),
     ("load_cases.utilisation", "1"),
 ];
+
+/// The fatigue columns of a sweep with [`Sweep::fatigue`] (issue 44), after the checks', with
+/// their units: the worst station's Miner sum of one impact, its life at `fatigue.events_per_year`
+/// (empty without it), and where that station is (`lower`: the arrestor from its clamp, `upper`:
+/// the bridge from its hinge; m).
+pub const FATIGUE_COLUMNS: [(&str, &str); 4] =
+    [("fatigue.damage", "1"), ("fatigue.life", "years"), ("fatigue.beam", "text"), ("fatigue.position", "m")];
+
+/// A row's fatigue: the worst bending station of both beams ([`crate::run_fatigue::RunFatigue::worst`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RowFatigue {
+    /// Miner's sum of one event at the worst station (with the SCF, thickness and DFF).
+    pub damage: f64,
+    /// The life at the scenario's `fatigue.events_per_year`, years (None: no events a year, or
+    /// no damage).
+    pub life: Option<f64>,
+    /// The worst station's beam: `"lower"` or `"upper"`.
+    pub beam: &'static str,
+    /// Its position along the beam, m from its support.
+    pub position: f64,
+}
+
+impl RowFatigue {
+    /// The worst station of `fatigue` (None: no bending station).
+    pub fn of(fatigue: &crate::run_fatigue::RunFatigue) -> Option<RowFatigue> {
+        fatigue.worst().map(|w| RowFatigue {
+            damage: w.damage,
+            life: fatigue.life_years,
+            beam: if w.beam == "upper" { "upper" } else { "lower" },
+            position: w.position,
+        })
+    }
+}
+
+fn fatigue_cells(f: Option<&RowFatigue>) -> [Cell; 4] {
+    match f {
+        Some(f) => [
+            Cell::Number(f.damage),
+            f.life.map_or(Cell::Empty, Cell::Number),
+            Cell::Text(f.beam.into()),
+            Cell::Number(f.position),
+        ],
+        None => [Cell::Empty, Cell::Empty, Cell::Empty, Cell::Empty],
+    }
+}
+
+impl RowResults {
+    /// The row of `answer` with its fatigue assessed on the resolved scenario's `[fatigue]` curve
+    /// and factors ([`crate::run_fatigue::assess`]); an answer without the stations' histories
+    /// (a run without every station's envelope) has none.
+    pub fn with_fatigue(answer: &crate::answer::Answer) -> Result<RowResults> {
+        let mut row = RowResults::from(answer);
+        if let Some(histories) = &answer.station_histories {
+            let settings = crate::model::fatigue_fields::of(&answer.resolved);
+            row.fatigue = RowFatigue::of(&crate::run_fatigue::assess(histories, &settings)?);
+        }
+        Ok(row)
+    }
+}
+
+/// The design quantities a load case is judged on ([`crate::load_cases::design_quantities`]'s
+/// names): the three stress peaks of Table 1, then each beam's envelope.
+pub const GOVERNING_QUANTITIES: [&str; 7] = [
+    "lower.clamp_bending_stress",
+    "lower.clamp_shear_stress",
+    "upper.contact_bending_stress",
+    ENVELOPE_PEAK_NAMES[0],
+    ENVELOPE_PEAK_NAMES[1],
+    ENVELOPE_PEAK_NAMES[2],
+    ENVELOPE_PEAK_NAMES[3],
+];
+
+/// Each of [`GOVERNING_QUANTITIES`]' governing case in `answer` (its index among the cases and
+/// its factored utilisation), None without load cases.
+fn governing_cases(answer: &crate::answer::Answer) -> [Option<(usize, f64)>; GOVERNING_QUANTITIES.len()] {
+    let Some(cases) = &answer.load_cases else { return [None; GOVERNING_QUANTITIES.len()] };
+    GOVERNING_QUANTITIES.map(|q| {
+        let g = cases.governing.get(q)?;
+        let index = cases.cases.iter().position(|c| c.name == g.case)?;
+        Some((index, g.utilisation))
+    })
+}
 
 /// The SI units of [`ENERGY_METHOD_FIELDS`], in their order.
 const ENERGY_METHOD_UNITS: [&str; 11] = ["N/m", "m", "N", "Pa", "Pa", "J", "rad/s^2", "N m", "Pa", "J", "1"];
@@ -647,6 +737,12 @@ pub struct Row {
 /// design, `quality.trusted`, `wall_time`, `error`; then the former names, duplicates of named columns, until
 /// [`crate::vocabulary::FORMER_NAMES_REMOVED_IN`].
 pub fn column_units(axes: &[Axis]) -> Vec<(String, &'static str)> {
+    column_units_with(axes, false)
+}
+
+/// [`column_units`], with the [`FATIGUE_COLUMNS`] after the checks' when `fatigue` (a sweep
+/// with [`Sweep::fatigue`]).
+pub fn column_units_with(axes: &[Axis], fatigue: bool) -> Vec<(String, &'static str)> {
     let mut c: Vec<(String, &'static str)> = axes.iter().map(|a| (a.field.name.to_string(), a.field.unit)).collect();
     c.extend(PEAK_QUANTITIES.iter().zip(PEAK_UNITS).map(|(n, u)| (format!("peak.{n}"), u)));
     c.extend(PEAK_QUANTITIES.iter().map(|n| (format!("peak_time.{n}"), "s")));
@@ -656,6 +752,9 @@ pub fn column_units(axes: &[Axis]) -> Vec<(String, &'static str)> {
     c.extend(ENERGY_METHOD_FIELDS.iter().zip(ENERGY_METHOD_UNITS).map(|((n, _), u)| (format!("energy_method.{n}"), u)));
     c.push(("max_energy_residual".into(), "J"));
     c.extend(CHECK_COLUMNS.iter().map(|(n, u)| (n.to_string(), *u)));
+    if fatigue {
+        c.extend(FATIGUE_COLUMNS.iter().map(|(n, u)| (n.to_string(), *u)));
+    }
     c.extend([("quality.trusted".into(), "true/false"), ("wall_time".into(), "s"), ("error".into(), "text")]);
     let named = c.len();
     for (former, name) in sweep_former_names() {
@@ -667,7 +766,12 @@ pub fn column_units(axes: &[Axis]) -> Vec<(String, &'static str)> {
 
 /// The column names of [`column_units`].
 pub fn columns(axes: &[Axis]) -> Vec<String> {
-    column_units(axes).into_iter().map(|(name, _)| name).collect()
+    columns_with(axes, false)
+}
+
+/// The column names of [`column_units_with`].
+pub fn columns_with(axes: &[Axis], fatigue: bool) -> Vec<String> {
+    column_units_with(axes, fatigue).into_iter().map(|(name, _)| name).collect()
 }
 
 /// A cell before formatting.
@@ -680,7 +784,7 @@ enum Cell {
     Empty,
 }
 
-fn cells(axes: &[Axis], row: &Row) -> Vec<Cell> {
+fn cells(axes: &[Axis], row: &Row, fatigue: bool) -> Vec<Cell> {
     let mut c: Vec<Cell> = axes.iter().zip(&row.values).map(|(a, &v)| Cell::Value(a.field, v)).collect();
     match &row.outcome {
         Ok(r) => {
@@ -695,12 +799,11 @@ fn cells(axes: &[Axis], row: &Row) -> Vec<Cell> {
             let optional = |v: f64| if v.is_nan() { Cell::Empty } else { Cell::Number(v) };
             c.extend([optional(r.discretisation_error), optional(r.sensitivity_spread), optional(r.yield_utilisation)]);
             c.extend(r.utilisation.as_array().map(Cell::Number));
-            c.extend([
-                Cell::Bool(r.design_pass),
-                optional(r.load_case_utilisation),
-                Cell::Bool(r.trusted),
-                Cell::Number(row.wall_time),
-            ]);
+            c.extend([Cell::Bool(r.design_pass), optional(r.load_case_utilisation)]);
+            if fatigue {
+                c.extend(fatigue_cells(r.fatigue.as_ref()));
+            }
+            c.extend([Cell::Bool(r.trusted), Cell::Number(row.wall_time)]);
             c.push(Cell::Text(String::new()));
         }
         Err(message) => {
@@ -709,7 +812,8 @@ fn cells(axes: &[Axis], row: &Row) -> Vec<Cell> {
                     + 3 * ENVELOPE_PEAK_NAMES.len()
                     + ENERGY_METHOD_FIELDS.len()
                     + 2
-                    + CHECK_COLUMNS.len())
+                    + CHECK_COLUMNS.len()
+                    + if fatigue { FATIGUE_COLUMNS.len() } else { 0 })
                     .map(|_| Cell::Empty),
             );
             c.push(Cell::Number(row.wall_time));
@@ -717,7 +821,7 @@ fn cells(axes: &[Axis], row: &Row) -> Vec<Cell> {
         }
     }
     // The former names repeat their named columns' cells.
-    let names = columns(axes);
+    let names = columns_with(axes, fatigue);
     for (_, name) in sweep_former_names() {
         let i = names.iter().position(|n| *n == name).unwrap_or(0);
         c.push(c.get(i).cloned().unwrap_or(Cell::Empty));
@@ -740,13 +844,23 @@ fn csv_field(text: &str) -> String {
 
 /// The CSV header line (with its line break).
 pub fn csv_header(axes: &[Axis]) -> String {
-    columns(axes).iter().map(|c| csv_field(c)).collect::<Vec<_>>().join(",") + "\n"
+    csv_header_with(axes, false)
+}
+
+/// [`csv_header`] of [`columns_with`].
+pub fn csv_header_with(axes: &[Axis], fatigue: bool) -> String {
+    columns_with(axes, fatigue).iter().map(|c| csv_field(c)).collect::<Vec<_>>().join(",") + "\n"
 }
 
 /// One CSV line: numbers as the shortest decimal that gives the same f64, `true`/`false`, and
 /// empty cells for the results of a failed scenario.
 pub fn csv_line(axes: &[Axis], row: &Row) -> String {
-    let text: Vec<String> = cells(axes, row)
+    csv_line_with(axes, row, false)
+}
+
+/// [`csv_line`] of [`columns_with`].
+pub fn csv_line_with(axes: &[Axis], row: &Row, fatigue: bool) -> String {
+    let text: Vec<String> = cells(axes, row, fatigue)
         .into_iter()
         .map(|cell| match cell {
             Cell::Value(field, v) => csv_field(&format_value(field, v)),
@@ -771,8 +885,13 @@ fn json_number(x: f64) -> String {
 /// One row as a JSON object, the keys in column order; a failed scenario's results are null and
 /// `error` is its message (an empty string when fine).
 pub fn json_object(axes: &[Axis], row: &Row) -> String {
+    json_object_with(axes, row, false)
+}
+
+/// [`json_object`] of [`columns_with`].
+pub fn json_object_with(axes: &[Axis], row: &Row, fatigue: bool) -> String {
     let mut s = String::from("{");
-    for (k, (name, cell)) in columns(axes).iter().zip(cells(axes, row)).enumerate() {
+    for (k, (name, cell)) in columns_with(axes, fatigue).iter().zip(cells(axes, row, fatigue)).enumerate() {
         let value = match cell {
             Cell::Value(field, v) => json_value(field, v),
             Cell::Number(x) => json_number(x),
@@ -797,6 +916,10 @@ pub struct Sweep {
     /// The points to run, one value per axis each, when they are not the axes' product (a
     /// campaign's events, issue 43); empty: the product grid.
     pub points: Vec<Vec<f64>>,
+    /// Assess each row's fatigue (`sweep --fatigue`, issue 44): the printed run keeps every
+    /// station's turning points (about 1.6 times a row's work) and the row gets the
+    /// [`FATIGUE_COLUMNS`].
+    pub fatigue: bool,
 }
 
 /// How a sweep went.
@@ -814,7 +937,7 @@ impl Sweep {
     /// A sweep of `base` over `axes`; checks the grid's size.
     pub fn new(base: Scenario, axes: Vec<Axis>, max_steps: u64) -> Result<Sweep> {
         grid_len(&axes)?;
-        Ok(Sweep { base, axes, max_steps, points: Vec::new() })
+        Ok(Sweep { base, axes, max_steps, points: Vec::new(), fatigue: false })
     }
 
     /// A sweep of `base` over the given `points` (each one value per axis, in the axes' order),
@@ -826,7 +949,7 @@ impl Sweep {
         if let Some(p) = points.iter().find(|p| p.len() != axes.len()) {
             return Err(Error::Other(format!("a point of {} values for {} axes", p.len(), axes.len())));
         }
-        Ok(Sweep { base, axes, max_steps, points })
+        Ok(Sweep { base, axes, max_steps, points, fatigue: false })
     }
 
     /// Scenarios in the grid.
@@ -870,11 +993,15 @@ impl Sweep {
             let options = crate::answer::Options {
                 max_steps: self.max_steps,
                 observed_order: false,
-                station_envelope: false,
+                station_envelope: self.fatigue,
                 ..Default::default()
             };
             let answer = answer_with_cases(&scenario, &mut NullRecorder, options, cache, &Default::default())?;
-            Ok(RowResults::from(&answer))
+            if self.fatigue {
+                RowResults::with_fatigue(&answer)
+            } else {
+                Ok(RowResults::from(&answer))
+            }
         };
         let outcome = match std::panic::catch_unwind(std::panic::AssertUnwindSafe(run)) {
             Ok(result) => result.map_err(|e| e.to_string()),
@@ -1006,28 +1133,45 @@ impl Sweep {
         &self,
         jobs: usize,
         csv: &mut dyn Write,
-        mut json: Option<&mut dyn Write>,
+        json: Option<&mut dyn Write>,
         done: &mut dyn FnMut(usize),
     ) -> std::result::Result<Tally, SweepWriteError> {
-        csv.write_all(csv_header(&self.axes).as_bytes()).map_err(SweepWriteError::Csv)?;
+        self.write_observed(jobs, csv, json, done, &mut |_| {})
+    }
+
+    /// [`Sweep::write`], handing each row to `observe` too once written (the governing load
+    /// cases and the worst fatigue row the CLI prints: [`crate::studies::sweep_governing`]).
+    pub fn write_observed(
+        &self,
+        jobs: usize,
+        csv: &mut dyn Write,
+        mut json: Option<&mut dyn Write>,
+        done: &mut dyn FnMut(usize),
+        observe: &mut dyn FnMut(&Row),
+    ) -> std::result::Result<Tally, SweepWriteError> {
+        csv.write_all(csv_header_with(&self.axes, self.fatigue).as_bytes()).map_err(SweepWriteError::Csv)?;
         if let Some(j) = json.as_deref_mut() {
             j.write_all(b"[").map_err(SweepWriteError::Json)?;
         }
         let mut first = true;
         let mut failure = None;
         let result = self.run(jobs, done, &mut |row| {
-            let outcome =
-                csv.write_all(csv_line(&self.axes, row).as_bytes()).map_err(SweepWriteError::Csv).and_then(|()| {
-                    match json.as_deref_mut() {
-                        Some(j) => {
-                            let separator = if first { "\n" } else { ",\n" };
-                            j.write_all(format!("{separator}{}", json_object(&self.axes, row)).as_bytes())
-                                .map_err(SweepWriteError::Json)
-                        }
-                        None => Ok(()),
+            let fatigue = self.fatigue;
+            let outcome = csv
+                .write_all(csv_line_with(&self.axes, row, fatigue).as_bytes())
+                .map_err(SweepWriteError::Csv)
+                .and_then(|()| match json.as_deref_mut() {
+                    Some(j) => {
+                        let separator = if first { "\n" } else { ",\n" };
+                        j.write_all(format!("{separator}{}", json_object_with(&self.axes, row, fatigue)).as_bytes())
+                            .map_err(SweepWriteError::Json)
                     }
+                    None => Ok(()),
                 });
             first = false;
+            if outcome.is_ok() {
+                observe(row);
+            }
             outcome.map_err(|e| {
                 let message = e.to_string();
                 failure = Some(e);

@@ -13,6 +13,7 @@
 //! differences between neighbouring cells from being noise.
 
 pub mod events;
+pub mod fatigue;
 pub mod operability;
 pub mod summary;
 
@@ -259,7 +260,7 @@ impl Campaign {
             self.cell_axes.iter().map(|a| (a.field.name.to_string(), a.field.unit)).collect();
         c.extend([("event".into(), "1"), ("seed".into(), "1"), ("instant".into(), "s")]);
         c.extend(MOTION_NAMES.iter().zip(MOTION_UNITS).map(|(n, u)| (n.to_string(), u)));
-        c.extend(sweep::column_units(&[]));
+        c.extend(sweep::column_units_with(&[], self.sweep.fatigue));
         c
     }
 
@@ -283,7 +284,7 @@ impl Campaign {
             None => s.push_str(&",".repeat(MOTION_NAMES.len())),
         }
         let results = Row { values: Vec::new(), ..row.row.clone() };
-        s + &sweep::csv_line(&[], &results)
+        s + &sweep::csv_line_with(&[], &results, self.sweep.fatigue)
     }
 
     /// The cell's name for messages and tables: `Hs 2.5 m, Tp 8 s`, or `the scenario's sea`.
@@ -304,6 +305,59 @@ impl Campaign {
             names.join(", ")
         }
     }
+}
+
+impl Campaign {
+    /// Assess each event's fatigue (`campaign --fatigue`, issue 44): the rows get the sweep's
+    /// fatigue columns ([`sweep::FATIGUE_COLUMNS`]), each run keeping its stations' turning points.
+    pub fn set_fatigue(&mut self, on: bool) {
+        self.sweep.fatigue = on;
+    }
+
+    /// Whether the events' fatigue is assessed.
+    pub fn fatigue(&self) -> bool {
+        self.sweep.fatigue
+    }
+
+    /// Each cell's sea state `[Hs, Tp, heading]`: the grid's values, else the scenario's sea's.
+    pub fn sea_states(&self) -> Vec<[f64; 3]> {
+        let sea = self.sweep.base.sea.as_ref();
+        let base = [
+            sea.map_or(f64::NAN, |s| s.significant_wave_height),
+            sea.map_or(f64::NAN, |s| s.peak_period),
+            sea.map_or(f64::NAN, |s| s.heading),
+        ];
+        self.cells
+            .iter()
+            .map(|cell| {
+                let mut state = base;
+                for (axis, v) in self.cell_axes.iter().zip(&cell.values) {
+                    let k = CELL_FIELDS.iter().position(|f| *f == axis.field.name).unwrap_or(0);
+                    state[k] = *v;
+                }
+                state
+            })
+            .collect()
+    }
+
+    /// The campaign's fatigue ([`fatigue::assess`]) from each cell's events' damages (`damages[c]`:
+    /// [`event_damage`] of each event that has one) and failed events, on the scenario's
+    /// `[fatigue]` curve, weighted by `occurrence` if given.
+    pub fn fatigue_of(
+        &self,
+        damages: &[Vec<f64>],
+        failed: &[usize],
+        occurrence: Option<&fatigue::Occurrence>,
+    ) -> Result<fatigue::CampaignFatigue> {
+        let settings = crate::model::fatigue_fields::of(&self.sweep.base);
+        let varies_heading = self.cell_axes.iter().any(|a| a.field.name == "sea.heading");
+        fatigue::assess(&self.sea_states(), damages, failed, &settings, occurrence, varies_heading)
+    }
+}
+
+/// An event's damage (its worst station's Miner sum), if its run ran with fatigue.
+pub fn event_damage(row: &EventRow) -> Option<f64> {
+    row.row.outcome.as_ref().ok().and_then(|r| r.fatigue).map(|f| f.damage)
 }
 
 /// The campaign's statistics as one JSON document: the settings and methods stated, each cell with
