@@ -10,5 +10,5 @@ pub mod campaign;
 pub mod damping;
 pub mod statistics;
 pub mod sweep;
-pub mod verify;
 pub mod sweep_governing;
+pub mod verify;

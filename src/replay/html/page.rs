@@ -284,7 +284,11 @@ pub fn run_page(p: &RunPage) -> String {
     }
     body.push_str("</ul>\n<table class=\"banner\"><tr><th>numbers trusted (every check that ran passed)</th>");
     body.push_str(&doc_cell(doc, "/quality/trusted"));
-    body.push_str("<th>design check</th>");
+    body.push_str(if has_load_cases(doc) {
+        "<th>design check (every load case's verdict)</th>"
+    } else {
+        "<th>design check</th>"
+    });
     body.push_str(&doc_cell(doc, "/design/pass"));
     body.push_str("</tr></table>\n");
     if let Some(reasons) = doc.pointer("/quality/reasons").and_then(Value::as_array).filter(|r| !r.is_empty()) {
@@ -317,10 +321,8 @@ pub fn run_page(p: &RunPage) -> String {
 
     // Verdicts: the quality checks and the design check per quantity.
     let mut checks = String::new();
-    for (key, heading) in [
-        ("quality", "Quality: the checks behind the verdict"),
-        ("design", "Design check per quantity (utilisation = converged peak / allowable)"),
-    ] {
+    let design_heading = design_heading(doc);
+    for (key, heading) in [("quality", "Quality: the checks behind the verdict"), ("design", design_heading.as_str())] {
         if let Some(v) = doc.get(key) {
             let _ = write!(checks, "<h3>{}</h3>\n{}", escape(heading), render(&format!("/{key}"), v, 0));
         }
@@ -470,5 +472,64 @@ mod tests {
         ] {
             assert_eq!(base64(input.as_bytes()), output);
         }
+    }
+}
+
+/// Whether the document judged load cases (its `load_cases` block is there and not null).
+fn has_load_cases(doc: &Value) -> bool {
+    doc.get("load_cases").is_some_and(|v| !v.is_null())
+}
+
+/// The design check's heading, saying what its `pass` judges (issue 44): with load cases,
+/// `design.pass` is every case's verdict, which can fail beside utilisations all <= 1; the
+/// heading then gives the plain check's verdict (every utilisation of the block <= 1) and names
+/// the cases' as the one `pass` shows.
+fn design_heading(doc: &Value) -> String {
+    let plain = "Design check per quantity (utilisation = converged peak / allowable)";
+    if !has_load_cases(doc) {
+        return plain.to_string();
+    }
+    let mut utilisations = Vec::new();
+    if let Some(u) = doc.pointer("/design/utilisation") {
+        collect_numbers(u, &mut utilisations);
+    }
+    let verdict = |pass: bool| if pass { "PASS" } else { "FAIL" };
+    let own = verdict(utilisations.iter().all(|u| *u <= 1.0));
+    let cases = doc.pointer("/design/pass").and_then(Value::as_bool).map_or("-", verdict);
+    format!(
+        "{plain}: the plain check (every utilisation <= 1) {own}; its pass is every load case's verdict, {cases} \
+         (Design check per load case)"
+    )
+}
+
+/// Every finite number in `v`, depth first.
+fn collect_numbers(v: &Value, out: &mut Vec<f64>) {
+    match v {
+        Value::Number(n) => out.extend(n.as_f64().filter(|x| x.is_finite())),
+        Value::Array(items) => items.iter().for_each(|c| collect_numbers(c, out)),
+        Value::Object(map) => map.values().for_each(|c| collect_numbers(c, out)),
+        _ => {}
+    }
+}
+
+#[cfg(test)]
+mod design_heading_tests {
+    use super::*;
+
+    /// With load cases, a failing case beside green utilisations: the heading gives the plain
+    /// check's PASS and names `pass` as every case's FAIL; without cases, the plain heading.
+    #[test]
+    fn the_design_heading_says_which_verdict_pass_is() {
+        let utilisation = serde_json::json!({"lower_clamp_bending_stress": 0.88, "upper_contact_bending_stress": 0.59,
+                                             "upper_shear_stress": null});
+        let mut doc =
+            serde_json::json!({"design": {"pass": false, "utilisation": utilisation}, "load_cases": {"pass": false}});
+        let heading = design_heading(&doc);
+        assert!(heading.contains("the plain check (every utilisation <= 1) PASS"), "{heading}");
+        assert!(heading.contains("its pass is every load case's verdict, FAIL"), "{heading}");
+        doc["design"]["utilisation"]["upper_contact_bending_stress"] = serde_json::json!(1.2);
+        assert!(design_heading(&doc).contains("(every utilisation <= 1) FAIL"));
+        doc["load_cases"] = Value::Null;
+        assert_eq!(design_heading(&doc), "Design check per quantity (utilisation = converged peak / allowable)");
     }
 }

@@ -143,7 +143,11 @@ impl Occurrence {
             }
             let number = |k: usize| -> Result<f64> {
                 row[k].parse::<f64>().ok().filter(|v| v.is_finite()).ok_or_else(|| {
-                    table_error(format!("line {line}: {} must be a finite number, got `{}`", names[k], quote_cell(&row[k])))
+                    table_error(format!(
+                        "line {line}: {} must be a finite number, got `{}`",
+                        names[k],
+                        quote_cell(&row[k])
+                    ))
                 })
             };
             let (h, t) = (number(hs)?, number(tp)?);
@@ -175,7 +179,9 @@ impl Occurrence {
         if sum > 1.0 + TOLERANCE {
             return Err(table_error(match weight {
                 Weight::Probability => format!("the probabilities sum to {sum}, more than 1"),
-                Weight::Hours => format!("the hours sum to {}, more than a year's {HOURS_PER_YEAR}", sum * HOURS_PER_YEAR),
+                Weight::Hours => {
+                    format!("the hours sum to {}, more than a year's {HOURS_PER_YEAR}", sum * HOURS_PER_YEAR)
+                }
             }));
         }
         if sum <= 0.0 {
@@ -189,9 +195,7 @@ impl Occurrence {
     /// table then needs a heading column). Errors: a row that is no cell, two rows of one cell.
     pub fn weights(&self, cells: &[[f64; 3]], varies_heading: bool) -> Result<Vec<f64>> {
         if varies_heading && !self.has_heading {
-            return Err(table_error(
-                "the campaign's grid varies sea.heading: the table needs a heading column".into(),
-            ));
+            return Err(table_error("the campaign's grid varies sea.heading: the table needs a heading column".into()));
         }
         let same = |a: f64, b: f64| (a - b).abs() <= TOLERANCE * a.abs().max(b.abs()).max(1.0);
         let mut weights = vec![0.0; cells.len()];
@@ -345,7 +349,9 @@ impl CampaignFatigue {
         );
         for (cell, name) in self.cells.iter().zip(names) {
             let damage = match (cell.mean_damage, cell.largest_damage) {
-                (Some(m), Some(l)) => format!("mean damage {m:.4e} per event, largest {l:.4e} ({} events)", cell.events),
+                (Some(m), Some(l)) => {
+                    format!("mean damage {m:.4e} per event, largest {l:.4e} ({} events)", cell.events)
+                }
                 _ => "no event ran".to_string(),
             };
             let failed = if cell.failed > 0 { format!(", {} failed", cell.failed) } else { String::new() };
@@ -360,7 +366,8 @@ impl CampaignFatigue {
                 s
             );
             if let Some(m) = self.probability_without_damage.filter(|m| *m > 0.0) {
-                out += &format!("  warning: cells of probability {m:.6} have no damage (refused or not run): left out\n");
+                out +=
+                    &format!("  warning: cells of probability {m:.6} have no damage (refused or not run): left out\n");
             }
             out += &match (self.damage_per_year, self.life_years, self.events_per_year) {
                 (Some(y), Some(l), Some(n)) => {
@@ -440,7 +447,8 @@ mod tests {
         let e = off.weights(&cells[..1], false).unwrap_err().to_string();
         assert!(e.contains("line 2: Hs 1.5 m, Tp 6 s is not a cell"), "{e}");
         let twice =
-            Occurrence::parse("significant_wave_height,peak_period,probability\n1,6,0.2\n1.0000000000001,6,0.2\n").unwrap();
+            Occurrence::parse("significant_wave_height,peak_period,probability\n1,6,0.2\n1.0000000000001,6,0.2\n")
+                .unwrap();
         let e = twice.weights(&cells[..1], false).unwrap_err().to_string();
         assert!(e.contains("lines 2 and 3: the same cell twice"), "{e}");
     }
