@@ -163,6 +163,8 @@ def campaign(
     max_events: int | None = None,
     max_steps: int | None = None,
     progress: bool | None = True,
+    fatigue: bool = False,
+    occurrence: "str | os.PathLike | None" = None,
 ) -> CampaignResult:
     """`beam-impact campaign SCENARIO --events N --seeds S ...`: `events` losses of the support
     at instants drawn across `seeds` records of `record_length` s of the scenario's sea state (it
@@ -179,6 +181,13 @@ def campaign(
     a `dask.distributed.Client` or a scheduler address, one task per event. `max_events`: the
     most runs allowed (default `_native.CAMPAIGN_MAX_EVENTS`, the CLI's). `progress`: a tqdm bar
     on standard error (None: when it is a terminal).
+
+    `fatigue=True` (`--fatigue`): each event's fatigue (the rows' `fatigue.damage`, `fatigue.life`,
+    `fatigue.beam`, `fatigue.position`), each cell's mean damage per event in `summary["fatigue"]`
+    and the text; `occurrence` (`--occurrence`, with `fatigue=True`): the sea states' occurrence
+    table, a CSV file (significant_wave_height, peak_period, [heading,] probability or hours), for
+    the damage per event weighted over the cells, a year's at `fatigue.events_per_year` and the life
+    (docs/operability.md).
 
     ValueError with the crate's one-line message for what the CLI refuses (a target outside
     (0, 1), a scenario without `[sea]`, a varied field that is not the sea's, ...). Ctrl-C:
@@ -199,6 +208,11 @@ def campaign(
                                   or not 0 <= count < 2**64):
             raise ValueError(f"{what} must be a whole number from 1 to 2**64 - 1, got {count!r}"[:300])
     name, toml, raos_path, raos_text = _native.campaign_sources(path, text)
+    if occurrence is not None and not fatigue:
+        raise ValueError("occurrence= weights the events' fatigue: give fatigue=True too")
+    table = None
+    if occurrence is not None:
+        table = _native.occurrence_text(os.fspath(occurrence))
     arguments = dict(
         name=name, text=toml, raos_path=raos_path, raos_text=raos_text, set=_texts("set", set),
         vary=_texts("vary", vary), events=int(events), seeds=int(seeds), record_length=float(record_length),
@@ -206,6 +220,7 @@ def campaign(
         exposure=None if exposure is None else float(exposure), on_estimate=bool(on_estimate),
         max_events=_native.CAMPAIGN_MAX_EVENTS if max_events is None else int(max_events),
         max_steps=_native.MAX_STEPS if max_steps is None else int(max_steps),
+        fatigue=bool(fatigue), occurrence=table,
     )
     native = _native.Campaign(**arguments)
     for cell_name, (_, refused) in zip(native.cell_names(), native.cells()):

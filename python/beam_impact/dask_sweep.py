@@ -57,7 +57,7 @@ def _one_line(text: str) -> str:
 
 
 def run_row(point: dict[str, float], fmu: "str | FmuFile", stop_time: float = 3.0,
-            check_sensitivity: bool = False) -> dict[str, Any]:
+            check_sensitivity: bool = False, fatigue: bool = False) -> dict[str, Any]:
     """One scenario's row: the varied values as the CLI shows them, the peaks, the energy
     approach and the checks (FMU names, then the former ones), `wall_time` (s) and `error` (""
     when fine)."""
@@ -73,14 +73,15 @@ def run_row(point: dict[str, float], fmu: "str | FmuFile", stop_time: float = 3.
 
 
 def run_row_native(point: dict[str, float], scenario: Any = None, stop_time: float | None = 3.0,
-                   check_sensitivity: bool = False) -> dict[str, Any]:
+                   check_sensitivity: bool = False, fatigue: bool = False) -> dict[str, Any]:
     """`run_row` through the Rust solver itself: the row `beam-impact sweep` writes for the grid
     point, made by the CLI's own code (the native module's `sweep_row`: the run of a sweep's row,
     the coarsest rung left out, no FMU; the row's cells as the CLI's JSON rows hold them, its
     columns and their order), with the CLI's message in `error` for a refused scenario. Empty
     cells (a failed row's results, a check not run) are NaN. The base scenario is `scenario` (a
     path or TOML text; None: the defaults, the FMU's), the run `stop_time` s long unless the grid
-    varies `duration` (None: the scenario's)."""
+    varies `duration` (None: the scenario's). `fatigue`: the row of `beam-impact sweep --fatigue`
+    (its fatigue columns)."""
     from . import _native
     from .native_run import scenario_source
 
@@ -89,7 +90,7 @@ def run_row_native(point: dict[str, float], scenario: Any = None, stop_time: flo
         path, text = scenario_source(scenario)
         cells = json.loads(_native.sweep_row([(k, float(v)) for k, v in point.items()], scenario=path,
                                              scenario_text=text, duration=stop_time,
-                                             sensitivity=check_sensitivity))
+                                             sensitivity=check_sensitivity, fatigue=fatigue))
     except Exception as e:  # a scenario of the wrong type: still a row, not an aborted sweep
         return {**{k: display(k, v) for k, v in point.items()}, "error": _one_line(e) or type(e).__name__,
                 "wall_time": time.perf_counter() - started}
@@ -158,6 +159,7 @@ def sweep(
     check_sensitivity: bool = False,
     engine: str | None = None,
     scenario: Any = None,
+    fatigue: bool = False,
 ):
     """Runs every scenario of `grid` ({field: values}, the product in dict order with the last
     field fastest, as `beam-impact sweep --vary`) and returns a pandas.DataFrame, one row per
@@ -186,7 +188,11 @@ def sweep(
     `yield_utilisation` and `load_cases.utilisation` (the FMU judges no load cases). In the columns both have, the two engines give the same numbers (to
     round-off: tests/python/test_package.py holds both to the CLI's sweep at 1e-9). `scenario`
     (native engine only): the base scenario, a file path or TOML text as `beam_impact.run` takes
-    it (default: the defaults, the FMU's, as `beam-impact sweep` without a file).
+    it (default: the defaults, the FMU's, as `beam-impact sweep` without a file). `fatigue=True`
+    (native engine only, `sweep --fatigue`): each row's fatigue on the scenario's `[fatigue]` curve,
+    the columns `fatigue.damage` (Miner's sum of one impact at the worst station), `fatigue.life`
+    (years at `fatigue.events_per_year`, NaN without it), `fatigue.beam` and `fatigue.position`
+    after `load_cases.utilisation` (about 1.6 times a row's work; docs/fatigue-run.md).
     `client`: None for the local threaded scheduler (`num_workers` threads, default one per core),
     a `dask.distributed.Client`, or a scheduler address ("tcp://host:8786").
     `stop_time`: simulated s per run (a varied `duration` overrides it; default: the scenario's
@@ -206,6 +212,8 @@ def sweep(
         raise ValueError("fmu= is for engine=\"fmu\"; the native engine runs the solver itself")
     if engine == "fmu" and scenario is not None:
         raise ValueError("scenario= is for the native engine; the FMU starts from its own parameters")
+    if engine == "fmu" and fatigue:
+        raise ValueError("fatigue=True is for the native engine; the FMU keeps no stress history")
     points = expand(grid)
     if engine == "fmu":
         stop_time = 3.0 if stop_time is None else stop_time
@@ -216,10 +224,10 @@ def sweep(
         from . import _native
 
         # The CLI's columns for this grid (an unknown field refused with the CLI's message).
-        columns = list(_native.sweep_columns([str(f) for f in grid]))
+        columns = list(_native.sweep_columns([str(f) for f in grid], fatigue=bool(fatigue)))
         task, target = run_row_native, scenario
     if client is None:
-        rows = _run_local(task, points, target, stop_time, progress, num_workers, check_sensitivity)
+        rows = _run_local(task, points, target, stop_time, progress, num_workers, check_sensitivity, bool(fatigue))
     else:
         own = isinstance(client, str)
         if own:
@@ -229,7 +237,8 @@ def sweep(
         try:
             if engine == "fmu":
                 target = client.scatter(FmuFile.read(target), broadcast=True)
-            rows = _run_distributed(client, task, points, target, stop_time, progress, check_sensitivity)
+            rows = _run_distributed(client, task, points, target, stop_time, progress, check_sensitivity,
+                                    bool(fatigue))
         finally:
             if own:
                 client.close()
@@ -247,7 +256,8 @@ def _bar(total: int):
     return tqdm(total=total, unit="scenario", desc="sweep", file=sys.stderr, delay=BAR_DELAY, dynamic_ncols=True)
 
 
-def _run_local(task, points, target, stop_time, progress, num_workers, check_sensitivity) -> list[dict]:
+def _run_local(task, points, target, stop_time, progress, num_workers, check_sensitivity,
+               fatigue=False) -> list[dict]:
     import dask
     from dask.callbacks import Callback
 
@@ -265,7 +275,8 @@ def _run_local(task, points, target, stop_time, progress, num_workers, check_sen
             if str(key).startswith(TASK_PREFIX):
                 self.bar.update(1)
 
-    tasks = [dask.delayed(task, pure=False)(p, target, stop_time, check_sensitivity, dask_key_name=f"{TASK_PREFIX}-{i}")
+    tasks = [dask.delayed(task, pure=False)(p, target, stop_time, check_sensitivity, fatigue,
+                                            dask_key_name=f"{TASK_PREFIX}-{i}")
              for i, p in enumerate(points)]
     try:
         if not progress:
@@ -281,7 +292,8 @@ def _run_local(task, points, target, stop_time, progress, num_workers, check_sen
         raise
 
 
-def _run_distributed(client, task, points, target, stop_time, progress, check_sensitivity) -> list[dict]:
+def _run_distributed(client, task, points, target, stop_time, progress, check_sensitivity,
+                     fatigue=False) -> list[dict]:
     if progress is None:
         progress = sys.stderr.isatty()
     token = uuid.uuid4().hex[:12]  # fresh keys: never another sweep's cached results
@@ -289,8 +301,8 @@ def _run_distributed(client, task, points, target, stop_time, progress, check_se
     # The FMU (a scattered future) or the base scenario, the same for every task: a keyword, not
     # an iterable mapped over.
     shared = {"fmu": target} if task is run_row else {"scenario": target}
-    futures = client.map(task, points, **shared, stop_time=stop_time, check_sensitivity=check_sensitivity, key=keys,
-                         pure=False)
+    futures = client.map(task, points, **shared, stop_time=stop_time, check_sensitivity=check_sensitivity,
+                         fatigue=fatigue, key=keys, pure=False)
     if progress:
         from distributed import as_completed
 

@@ -26,8 +26,9 @@ use crate::value_error;
 const WATCH_INTERVAL: Duration = Duration::from_millis(50);
 
 /// What the statistics take of one event: each quantity's peak and utilisation (None: none), the
-/// design check's verdict and the run's ([`EventResults`]' fields).
-type Results = (Vec<Option<f64>>, Vec<Option<f64>>, bool, bool);
+/// design check's verdict and the run's ([`EventResults`]' fields), and its fatigue damage (None:
+/// no fatigue asked).
+type Results = (Vec<Option<f64>>, Vec<Option<f64>>, bool, bool, Option<f64>);
 
 /// One event as Python gets it: its index in the plan, its row as JSON (an array of the cells
 /// before the results, then the results' object, the CLI's columns in order) and its results for
@@ -84,13 +85,15 @@ pub fn campaign_sources(
 #[pyclass(frozen, module = "beam_impact._native")]
 pub struct Campaign {
     inner: campaign::Campaign,
+    /// The sea states' occurrence (`--occurrence`), if given.
+    occurrence: Option<campaign::fatigue::Occurrence>,
 }
 
 #[pymethods]
 impl Campaign {
     #[new]
     #[pyo3(signature = (name, text, raos_path, raos_text, set, vary, events, seeds, record_length, target, confidence,
-        exposure, on_estimate, max_events, max_steps))]
+        exposure, on_estimate, max_events, max_steps, fatigue=false, occurrence=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -109,6 +112,8 @@ impl Campaign {
         on_estimate: bool,
         max_events: u64,
         max_steps: u64,
+        fatigue: bool,
+        occurrence: Option<String>,
     ) -> PyResult<Self> {
         let options =
             Options { events, seeds, record_length, target, confidence, exposure, on_upper_bound: !on_estimate };
@@ -124,8 +129,23 @@ impl Campaign {
                 attach_raos(&mut base, Path::new(path), raos)?;
             }
             sweep::apply_settings(&mut base, &sweep::parse_settings(&set)?)?;
-            let inner = campaign::Campaign::new(base, sweep::parse_axes(&vary)?, options, max_events, max_steps)?;
-            Ok(Campaign { inner })
+            let mut inner =
+                campaign::Campaign::new(base.clone(), sweep::parse_axes(&vary)?, options, max_events, max_steps)?;
+            inner.set_fatigue(fatigue);
+            if fatigue {
+                // A bad curve or factor is refused before any event runs, as the CLI does.
+                let mut errors = beam_impact::model::fatigue_fields::of(&base).validation_errors();
+                if !errors.is_empty() {
+                    return Err(if errors.len() == 1 { errors.remove(0) } else { Error::Invalid(errors) });
+                }
+            }
+            // The occurrence table parsed and matched to the grid before any event runs.
+            let occurrence = occurrence.map(|text| campaign::fatigue::Occurrence::parse(&text)).transpose()?;
+            if let Some(table) = &occurrence {
+                let varies_heading = inner.cell_axes.iter().any(|a| a.field.name == "sea.heading");
+                table.weights(&inner.sea_states(), varies_heading)?;
+            }
+            Ok(Campaign { inner, occurrence })
         })
         .map_err(value_error)
     }
@@ -235,12 +255,20 @@ impl Campaign {
     /// gives them, in any order): the `--json` document (as JSON text), the summary the CLI prints
     /// (each cell's, then the operability table over a grid) and the operability table.
     fn summarise(&self, py: Python<'_>, outcomes: Vec<(usize, Option<Results>)>) -> PyResult<(String, String, String)> {
-        let per_cell = self.per_cell(outcomes)?;
+        let (per_cell, damages, failed) = self.per_cell(outcomes)?;
         py.detach(|| -> beam_impact::Result<(String, String, String)> {
             let options = &self.inner.options;
             let summaries = self.inner.summaries(&per_cell);
             let cells = self.inner.table_cells(&summaries);
-            let document = campaign::summary_document(&self.inner, &summaries, &cells, options);
+            let mut document = campaign::summary_document(&self.inner, &summaries, &cells, options);
+            let fatigue = if self.inner.fatigue() {
+                Some(self.inner.fatigue_of(&damages, &failed, self.occurrence.as_ref())?)
+            } else {
+                None
+            };
+            if let Some(f) = &fatigue {
+                document["fatigue"] = serde_json::to_value(f).map_err(|e| Error::Other(format!("JSON: {e}")))?;
+            }
             let json = serde_json::to_string(&document).map_err(|e| Error::Other(format!("JSON: {e}")))?;
             let mut text = String::new();
             for (c, s) in summaries.iter().enumerate() {
@@ -251,6 +279,9 @@ impl Campaign {
             let table = operability::table(&cells, options);
             if self.inner.cells.len() > 1 {
                 text += &table;
+            }
+            if let Some(f) = &fatigue {
+                text += &f.text(&(0..self.inner.cells.len()).map(|c| self.inner.cell_name(c)).collect::<Vec<_>>());
             }
             Ok((json, text, table))
         })
@@ -268,7 +299,7 @@ impl Campaign {
         note: &str,
     ) -> PyResult<Vec<String>> {
         crate::refuse_nul("the figures' folder", &folder)?;
-        let per_cell = self.per_cell(outcomes)?;
+        let (per_cell, _, _) = self.per_cell(outcomes)?;
         py.detach(|| {
             let options = &self.inner.options;
             let summaries = self.inner.summaries(&per_cell);
@@ -300,22 +331,33 @@ impl Campaign {
             .as_ref()
             .ok()
             .map(EventResults::from)
-            .map(|r| (r.peaks.to_vec(), r.utilisation.to_vec(), r.design_pass, r.trusted));
-        (index, head, sweep::json_object(&[], &results), outcome)
+            .map(|r| (r.peaks.to_vec(), r.utilisation.to_vec(), r.design_pass, r.trusted, campaign::event_damage(row)));
+        (index, head, sweep::json_object_with(&[], &results, self.inner.fatigue()), outcome)
     }
 
-    /// The outcomes by cell, in the plan's order, as the statistics take them.
-    fn per_cell(&self, mut outcomes: Vec<(usize, Option<Results>)>) -> PyResult<Vec<Vec<EventOutcome>>> {
+    /// The outcomes by cell, in the plan's order, as the statistics take them; each cell's events'
+    /// fatigue damages and the number of its events without one.
+    #[allow(clippy::type_complexity)]
+    fn per_cell(
+        &self,
+        mut outcomes: Vec<(usize, Option<Results>)>,
+    ) -> PyResult<(Vec<Vec<EventOutcome>>, Vec<Vec<f64>>, Vec<usize>)> {
         outcomes.sort_by_key(|(index, _)| *index);
         let runs = self.inner.runs();
         let mut per_cell = vec![Vec::new(); self.inner.cells.len()];
+        let mut damages = vec![Vec::new(); self.inner.cells.len()];
+        let mut failed = vec![0; self.inner.cells.len()];
         for (index, results) in outcomes {
             let &(cell, event) = runs
                 .get(index)
                 .ok_or_else(|| value_error(format!("event {index} of a campaign of {} runs", runs.len())))?;
+            match results.as_ref().and_then(|r| r.4) {
+                Some(d) => damages[cell].push(d),
+                None => failed[cell] += 1,
+            }
             let results = match results {
                 None => None,
-                Some((peaks, utilisation, design_pass, trusted)) => {
+                Some((peaks, utilisation, design_pass, trusted, _)) => {
                     let nine = |v: Vec<Option<f64>>, what: &str| -> PyResult<[Option<f64>; 9]> {
                         v.try_into().map_err(|v: Vec<_>| value_error(format!("{what}: 9 values, got {}", v.len())))
                     };
@@ -329,6 +371,22 @@ impl Campaign {
             };
             per_cell[cell].push(EventOutcome { seed: self.inner.events[event].seed, results });
         }
-        Ok(per_cell)
+        Ok((per_cell, damages, failed))
     }
+}
+
+/// The text of an occurrence table file (`beam_impact.campaign(occurrence=PATH)`), read through
+/// the CLI's bounded reader (a regular file of at most
+/// [`beam_impact::studies::campaign::fatigue::MAX_TABLE_BYTES`]).
+#[pyfunction]
+pub fn occurrence_text(py: Python<'_>, path: PathBuf) -> PyResult<String> {
+    use beam_impact::studies::campaign::fatigue::MAX_TABLE_BYTES;
+    crate::refuse_nul("the occurrence table", &path)?;
+    py.detach(|| -> beam_impact::Result<String> {
+        let file = open_regular_input(&path, "cannot read the occurrence table")?;
+        check_size(&file, MAX_TABLE_BYTES, "the occurrence table")
+            .and_then(|()| read_bounded(file, MAX_TABLE_BYTES, "the occurrence table"))
+            .map_err(|source| Error::Io { action: "cannot read the occurrence table", path: shown(&path), source })
+    })
+    .map_err(value_error)
 }

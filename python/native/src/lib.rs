@@ -459,6 +459,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run::sweep_columns, m)?)?;
     m.add_function(wrap_pyfunction!(run::sweep_row, m)?)?;
     m.add_function(wrap_pyfunction!(campaign::campaign_sources, m)?)?;
+    m.add_function(wrap_pyfunction!(campaign::occurrence_text, m)?)?;
     m.add_class::<campaign::Campaign>()?;
     m.add("CAMPAIGN_MAX_EVENTS", beam_impact::studies::campaign::DEFAULT_MAX_EVENTS)?;
     m.add("MAX_FMU_BYTES", MAX_FMU_BYTES)?;

@@ -190,7 +190,8 @@ pub fn run<'py>(
         None => LogChannels::ALL,
         Some(text) => LogChannels::parse(text).map_err(pyo3::exceptions::PyValueError::new_err)?,
     };
-    let options = RunOptions { series_every, max_steps, sensitivity, observed_order, log_sample_interval, channels };
+    let options =
+        RunOptions { series_every, max_steps, sensitivity, observed_order, log_sample_interval, channels, fatigue: false };
     let ran = answer_of(py, scenario, scenario_text, fields, log.clone(), options)?;
     let doc = beam_impact::run_document::document(&ran.as_given, &ran.answer, ran.started.elapsed().as_secs_f64())
         .and_then(|d| serde_json::to_string(&d).map_err(|e| Error::Other(format!("JSON: {e}"))))
@@ -213,6 +214,9 @@ struct RunOptions {
     log_sample_interval: Option<f64>,
     /// The log's topics.
     channels: LogChannels,
+    /// Keep the printed run's stations' turning points for its fatigue (a sweep's row with
+    /// `fatigue=True`; a run with a log or the observed order keeps them anyway).
+    fatigue: bool,
 }
 
 /// The run of [`run`] up to its answer (the scenario read, checked, run with the GIL released
@@ -225,7 +229,8 @@ fn answer_of(
     log: Option<PathBuf>,
     options: RunOptions,
 ) -> PyResult<Ran> {
-    let RunOptions { series_every, max_steps, sensitivity, observed_order, log_sample_interval, channels } = options;
+    let RunOptions { series_every, max_steps, sensitivity, observed_order, log_sample_interval, channels, fatigue } =
+        options;
     let epoch = EPOCH.load(Ordering::SeqCst);
     let started = Instant::now();
     let mut warnings = Vec::new();
@@ -269,7 +274,7 @@ fn answer_of(
     let mut outputs = Outputs { log: log_recorder, series };
     // A sweep's row (no observed order, no log) keeps each envelope's peak only, as the CLI's
     // sweep does: the same row values for a fraction of the envelope's work.
-    let station_envelope = observed_order || log.is_some();
+    let station_envelope = observed_order || log.is_some() || fatigue;
     let options = Options { sensitivity, max_steps, observed_order, station_envelope };
     let cancel = AtomicBool::new(false);
     let mut interrupt: Option<PyErr> = None;
@@ -326,11 +331,13 @@ fn axes_of(point: &[(String, f64)]) -> PyResult<Vec<Axis>> {
 }
 
 /// The columns of `beam-impact sweep --out` for a grid varying `fields` (in that order): the
-/// CLI's header, names and order, which the native engine's rows follow.
+/// CLI's header, names and order, which the native engine's rows follow; with `fatigue`, those of
+/// `sweep --fatigue`.
 #[pyfunction]
-pub fn sweep_columns(fields: Vec<String>) -> PyResult<Vec<String>> {
+#[pyo3(signature = (fields, fatigue=false))]
+pub fn sweep_columns(fields: Vec<String>, fatigue: bool) -> PyResult<Vec<String>> {
     let point: Vec<(String, f64)> = fields.into_iter().map(|f| (f, 0.0)).collect();
-    Ok(sweep::columns(&axes_of(&point)?))
+    Ok(sweep::columns_with(&axes_of(&point)?, fatigue))
 }
 
 /// One row of `beam-impact sweep` for the grid point `point` ((dotted name, value in the
@@ -340,9 +347,10 @@ pub fn sweep_columns(fields: Vec<String>) -> PyResult<Vec<String>> {
 /// None (a varied `duration` wins) and `point` applied; the run is a sweep's (no coarsest rung,
 /// no log, the twin with `sensitivity`). A refused scenario, or a failed run, is the row of its
 /// error (the CLI's message), as the CLI writes it; KeyboardInterrupt when Ctrl-C (or
-/// [`cancel_running`]) stops it.
+/// [`cancel_running`]) stops it. With `fatigue`, the row of `sweep --fatigue` (the printed run
+/// keeps its stations' turning points; the fatigue columns).
 #[pyfunction]
-#[pyo3(signature = (point, scenario=None, scenario_text=None, duration=None, sensitivity=false))]
+#[pyo3(signature = (point, scenario=None, scenario_text=None, duration=None, sensitivity=false, fatigue=false))]
 pub fn sweep_row(
     py: Python<'_>,
     point: Vec<(String, f64)>,
@@ -350,6 +358,7 @@ pub fn sweep_row(
     scenario_text: Option<String>,
     duration: Option<f64>,
     sensitivity: bool,
+    fatigue: bool,
 ) -> PyResult<String> {
     let started = Instant::now();
     let axes = axes_of(&point)?;
@@ -368,8 +377,11 @@ pub fn sweep_row(
         observed_order: false,
         log_sample_interval: None,
         channels: LogChannels::ALL,
+        fatigue,
     };
     let outcome = match answer_of(py, scenario, text, fields, None, options) {
+        // With `fatigue`, the row's fatigue as `beam-impact sweep --fatigue` assesses it.
+        Ok(ran) if fatigue => RowResults::with_fatigue(&ran.answer).map_err(|e| e.to_string()),
         Ok(ran) => Ok(RowResults::from(&ran.answer)),
         Err(e) if e.is_instance_of::<PyKeyboardInterrupt>(py) => return Err(e),
         Err(e) if e.is_instance_of::<PyValueError>(py) || e.is_instance_of::<PyRuntimeError>(py) => {
@@ -379,7 +391,7 @@ pub fn sweep_row(
     };
     let values = point.iter().map(|(_, v)| *v).collect();
     let row = Row { values, outcome, wall_time: started.elapsed().as_secs_f64() };
-    Ok(sweep::json_object(&axes, &row))
+    Ok(sweep::json_object_with(&axes, &row, fatigue))
 }
 
 /// Stops every run of this process at its next step (each raises KeyboardInterrupt): what a
