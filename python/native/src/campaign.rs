@@ -325,13 +325,10 @@ impl Campaign {
         }
         let head = serde_json::Value::Array(head).to_string();
         let results = Row { values: Vec::new(), ..row.row.clone() };
-        let outcome = row
-            .row
-            .outcome
-            .as_ref()
-            .ok()
-            .map(EventResults::from)
-            .map(|r| (r.peaks.to_vec(), r.utilisation.to_vec(), r.design_pass, r.trusted, campaign::event_damage(row)));
+        let outcome =
+            row.row.outcome.as_ref().ok().map(EventResults::from).map(|r| {
+                (r.peaks.to_vec(), r.utilisation.to_vec(), r.design_pass, r.trusted, campaign::event_damage(row))
+            });
         (index, head, sweep::json_object_with(&[], &results, self.inner.fatigue()), outcome)
     }
 

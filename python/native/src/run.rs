@@ -190,8 +190,15 @@ pub fn run<'py>(
         None => LogChannels::ALL,
         Some(text) => LogChannels::parse(text).map_err(pyo3::exceptions::PyValueError::new_err)?,
     };
-    let options =
-        RunOptions { series_every, max_steps, sensitivity, observed_order, log_sample_interval, channels, fatigue: false };
+    let options = RunOptions {
+        series_every,
+        max_steps,
+        sensitivity,
+        observed_order,
+        log_sample_interval,
+        channels,
+        fatigue: false,
+    };
     let ran = answer_of(py, scenario, scenario_text, fields, log.clone(), options)?;
     let doc = beam_impact::run_document::document(&ran.as_given, &ran.answer, ran.started.elapsed().as_secs_f64())
         .and_then(|d| serde_json::to_string(&d).map_err(|e| Error::Other(format!("JSON: {e}"))))
