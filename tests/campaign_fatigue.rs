@@ -203,3 +203,28 @@ fn mutated_occurrence_tables_never_panic() {
     }
     assert!(accepted > 0 && refused > 0, "accepted {accepted}, refused {refused}");
 }
+
+/// Through the command: random bytes and mutated tables given as `--occurrence` exit 0 or 2,
+/// with at most one line on standard error (a table that parses and fits the grid runs its one
+/// event per cell).
+#[test]
+fn the_command_on_hostile_tables_exits_0_or_2_with_one_line() {
+    let dir = folder(&scenario());
+    let d = dir.path();
+    const LITERALS: &[&str] = &["", "NaN", "inf", "-1", "1e308", "0.5", "6", "hours", "heading", "\u{0}"];
+    let mut rng = Rng(0x7AB1_E5);
+    for i in 0..iterations(12) {
+        let bytes: Vec<u8> = if i % 3 == 0 {
+            (0..rng.below(300)).map(|_| rng.next_u64() as u8).collect()
+        } else {
+            fuzz_support::mutate_csv(TABLE, LITERALS, &mut rng).into_bytes()
+        };
+        std::fs::write(d.join("o.csv"), &bytes).unwrap();
+        let mut args = vec!["--events", "1", "--seeds", "1", "--fatigue", "--occurrence", "o.csv", "--out", "h.csv"];
+        args.extend(GRID);
+        let o = campaign(d, &args);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(matches!(o.status.code(), Some(0 | 2)), "{i}: {:?} {stderr}", o.status);
+        assert!(stderr.lines().count() <= 1, "{i}: {stderr}");
+    }
+}

@@ -30,6 +30,9 @@ def main(argv: list[str] | None = None) -> int:
     s.add_argument("--workers", type=int, default=None, help="local threads (default: one per core)")
     s.add_argument("--out", required=True, metavar="FILE.csv", help="the rows as CSV")
     s.add_argument("--json", metavar="FILE", help="also write the rows as JSON records")
+    s.add_argument("--fatigue", action="store_true",
+                   help="each row's fatigue on the scenario's [fatigue] curve (the solver only), as `beam-impact sweep "
+                        "--fatigue`")
     lg = commands.add_parser("log", help="print what an MCAP log holds")
     lg.add_argument("file")
     args = parser.parse_args(argv)
@@ -71,7 +74,7 @@ def main(argv: list[str] | None = None) -> int:
 
         scenario = None if args.scenario is None else Path(args.scenario)
         frame = sweep(grid, client=args.scheduler, fmu=args.fmu, stop_time=args.stop_time,
-                      num_workers=args.workers, scenario=scenario)
+                      num_workers=args.workers, scenario=scenario, fatigue=args.fatigue)
         wall = time.perf_counter() - started
         render = {"--out": lambda: frame.to_csv(index=False), "--json": lambda: frame.to_json(orient="records", indent=1)}
         for role, target in outputs:
