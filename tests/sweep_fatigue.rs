@@ -125,8 +125,13 @@ fn the_sweep_prints_each_quantitys_governing_case_and_row() {
             .args(["sweep", &example("load-cases.toml"), "--vary"])
             .arg(format!("drop_height={}", heights.join(",")))
             .arg("--out")
-            .arg(d.join("rows.csv")),
+            .arg(d.join("rows.csv"))
+            .arg("--html")
+            .arg(d.join("rows.html")),
     );
+    // The page shows the same lines, as text.
+    let page = std::fs::read_to_string(d.join("rows.html")).unwrap();
+    assert!(page.contains("governing load case per quantity (the largest factored utilisation over 2 rows)"));
     let docs: Vec<serde_json::Value> = heights.iter().map(|h| run_document(d, h)).collect();
     let governing = text.split("governing load case per quantity").nth(1).expect(&text);
     let quantities: Vec<&String> = docs[0]["load_cases"]["governing"].as_object().unwrap().keys().collect();

@@ -120,7 +120,14 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
         let page =
             beam_impact::replay::html::sweep_page::sweep_page(&beam_impact::replay::html::sweep_page::SweepPage {
                 title: format!("sweep of {}", args.file.as_deref().map_or("the default scenario".into(), shown)),
-                source: vec![format!("{} scenarios; the rows also in {}", tally.scenarios, shown(&args.out))],
+                // The governing cases and the worst fatigue row, as printed (text on the page).
+                source: std::iter::once(format!(
+                    "{} scenarios; the rows also in {}",
+                    tally.scenarios,
+                    shown(&args.out)
+                ))
+                .chain(governing.lines().map(|l| l.trim().to_string()))
+                .collect(),
                 axes: sweep.axes.iter().map(|a| a.field.name.to_string()).collect(),
                 columns: column_units(&sweep.axes).into_iter().take(named).collect(),
                 rows: &rows,
