@@ -212,7 +212,7 @@ fn the_command_on_hostile_tables_exits_0_or_2_with_one_line() {
     let dir = folder(&scenario());
     let d = dir.path();
     const LITERALS: &[&str] = &["", "NaN", "inf", "-1", "1e308", "0.5", "6", "hours", "heading", "\u{0}"];
-    let mut rng = Rng(0x7AB1_E5);
+    let mut rng = Rng(0x007A_B1E5);
     for i in 0..iterations(12) {
         let bytes: Vec<u8> = if i % 3 == 0 {
             (0..rng.below(300)).map(|_| rng.next_u64() as u8).collect()
