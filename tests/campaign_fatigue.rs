@@ -228,3 +228,18 @@ fn the_command_on_hostile_tables_exits_0_or_2_with_one_line() {
         assert!(stderr.lines().count() <= 1, "{i}: {stderr}");
     }
 }
+
+/// A table beyond its size limit is refused from its size, in one line, before it is read.
+#[test]
+fn a_table_over_its_size_limit_is_refused_in_one_line() {
+    use beam_impact::studies::campaign::fatigue::MAX_TABLE_BYTES;
+    let dir = folder(&scenario());
+    let d = dir.path();
+    let file = std::fs::File::create(d.join("big.csv")).unwrap();
+    file.set_len(MAX_TABLE_BYTES + 1).unwrap();
+    let o = campaign(d, &["--events", "1", "--seeds", "1", "--fatigue", "--occurrence", "big.csv", "--out", "x.csv"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("occurrence table") && stderr.contains("big.csv"), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+}

@@ -197,15 +197,33 @@ impl Occurrence {
         if varies_heading && !self.has_heading {
             return Err(table_error("the campaign's grid varies sea.heading: the table needs a heading column".into()));
         }
+        if self.rows.len() > cells.len() {
+            return Err(table_error(format!(
+                "{} rows for the campaign's {} cells: each row is one cell of the grid",
+                self.rows.len(),
+                cells.len()
+            )));
+        }
         let same = |a: f64, b: f64| (a - b).abs() <= TOLERANCE * a.abs().max(b.abs()).max(1.0);
+        let matches = |c: &[f64; 3], row: &OccurrenceRow| {
+            same(c[0], row.significant_wave_height)
+                && same(c[1], row.peak_period)
+                && row.heading.is_none_or(|h| same(c[2], h))
+        };
+        // The cells by their exact (Hs, Tp): a row written as the grid's values finds its cell
+        // at once; one within the tolerance but not equal is looked for among all the cells.
+        let bits = |x: f64| (x + 0.0).to_bits();
+        let mut exact: std::collections::HashMap<(u64, u64), Vec<usize>> = std::collections::HashMap::new();
+        for (k, c) in cells.iter().enumerate() {
+            exact.entry((bits(c[0]), bits(c[1]))).or_default().push(k);
+        }
         let mut weights = vec![0.0; cells.len()];
         let mut row_of: Vec<Option<usize>> = vec![None; cells.len()];
         for row in &self.rows {
-            let found = cells.iter().position(|c| {
-                same(c[0], row.significant_wave_height)
-                    && same(c[1], row.peak_period)
-                    && row.heading.is_none_or(|h| same(c[2], h))
-            });
+            let found = exact
+                .get(&(bits(row.significant_wave_height), bits(row.peak_period)))
+                .and_then(|ks| ks.iter().copied().find(|&k| matches(&cells[k], row)))
+                .or_else(|| cells.iter().position(|c| matches(c, row)));
             let Some(c) = found else {
                 let heading = row.heading.map_or_else(String::new, |h| format!(", heading {h} deg"));
                 return Err(table_error(format!(
@@ -449,7 +467,9 @@ mod tests {
         let twice =
             Occurrence::parse("significant_wave_height,peak_period,probability\n1,6,0.2\n1.0000000000001,6,0.2\n")
                 .unwrap();
-        let e = twice.weights(&cells[..1], false).unwrap_err().to_string();
+        let e = twice.weights(&cells, false).unwrap_err().to_string();
         assert!(e.contains("lines 2 and 3: the same cell twice"), "{e}");
+        let e = twice.weights(&cells[..1], false).unwrap_err().to_string();
+        assert!(e.contains("2 rows for the campaign's 1 cells"), "{e}");
     }
 }
