@@ -92,24 +92,44 @@ fn without_fatigue_the_columns_stay_as_they_were() {
     assert!(!header.iter().any(|c| c.starts_with("fatigue.")));
 }
 
-/// A row that fails has empty fatigue cells and its error; the sweep goes on.
+/// A row that fails has empty fatigue cells (JSON nulls) and its error, every CSV row has the
+/// header's cells (the error quoted where it holds a comma, RFC 4180), and the sweep goes on.
 #[test]
 fn a_failed_rows_fatigue_cells_are_empty() {
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("rows.csv");
+    let (out, json_out) = (dir.path().join("rows.csv"), dir.path().join("rows.json"));
     run_ok(
         beam_impact()
             .args(["sweep", "--fatigue", "--vary", "drop_height=-1,0.3", "--set", "duration=0.05", "--out"])
-            .arg(&out),
+            .arg(&out)
+            .arg("--json")
+            .arg(&json_out),
     );
+    // Cells split at commas outside quotes.
+    let split = |line: &str| -> Vec<String> {
+        let (mut cells, mut cell, mut quoted) = (Vec::new(), String::new(), false);
+        for ch in line.chars() {
+            match ch {
+                '"' => quoted = !quoted,
+                ',' if !quoted => cells.push(std::mem::take(&mut cell)),
+                c => cell.push(c),
+            }
+        }
+        cells.push(cell);
+        cells
+    };
     let csv = std::fs::read_to_string(&out).unwrap();
     let mut lines = csv.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let damage = header.iter().position(|c| *c == "fatigue.damage").unwrap();
-    let cells: Vec<Vec<String>> =
-        lines.map(|l| l.split(',').map(str::to_string).collect::<Vec<_>>()).collect::<Vec<_>>();
+    let header = split(lines.next().unwrap());
+    let cells: Vec<Vec<String>> = lines.map(split).collect();
+    assert!(cells.iter().all(|c| c.len() == header.len()), "every row has the header's cells");
+    let damage = header.iter().position(|c| c == "fatigue.damage").unwrap();
     assert_eq!(cells[0][damage], "", "the refused row");
     assert!(cells[1][damage].parse::<f64>().unwrap() > 0.0, "{:?}", cells[1]);
+    let rows = json(&json_out);
+    assert!(rows[0]["fatigue.damage"].is_null() && rows[0]["fatigue.beam"].is_null());
+    assert!(rows[0]["error"].as_str().unwrap().contains("drop_height"), "{}", rows[0]["error"]);
+    assert!(rows[1]["fatigue.damage"].as_f64().unwrap() > 0.0);
 }
 
 /// The printed governing case per quantity is, for each quantity, the case and row of the
