@@ -374,8 +374,7 @@ pub fn campaign_benchmark(runs: usize) -> Result<String> {
 /// ratio; medians of `runs`.
 pub fn stiff_contact_benchmark(runs: usize) -> Result<String> {
     use crate::model::scenario::MAX_CONTACT_STIFFNESS;
-    let mut default = Scenario::default();
-    default.drop_height = 0.5;
+    let default = Scenario { drop_height: 0.5, ..Scenario::default() };
     let mut stiff = default.clone();
     stiff.contact.given_stiffness = Some(MAX_CONTACT_STIFFNESS);
     let time = |s: &Scenario| -> Result<(Duration, usize)> {
