@@ -221,21 +221,27 @@ fn nonlinear_laws_on_the_truncated_basis_keep_the_full_bases_peaks() {
 /// is erratic: the default scenario's 3 s make 111 contact windows at 3e11 N/m, 17 135 at 4e11,
 /// 9 703 at 1e12 in 45 times the default's time), so it is said before the run starts: by the
 /// library for every door, and by `beam-impact run` on standard error before the results. The
-/// linear bar and a power law of exponent 1 alike; the default, the paper's bar and the
-/// hertz-buffer example are not warned.
+/// linear law stops at `MAX_CONTACT_STIFFNESS` (4e10 N/m) for that reason; a power law of
+/// exponent 1 (the same bar in its own unit, up to 1e13) is warned, as the linear bar would be;
+/// the default, the paper's bar and the hertz-buffer example are not warned.
 #[test]
 fn a_contact_that_can_chatter_is_said_before_the_run_starts() {
     use beam_impact::model::contact_law::LawKind;
+    use beam_impact::model::scenario::MAX_CONTACT_STIFFNESS;
     use beam_impact::one_run::{stiff_contact_note, CHATTER_STIFFNESS};
+    const { assert!(MAX_CONTACT_STIFFNESS < CHATTER_STIFFNESS, "the linear law's range stops below the chatter's onset") };
     let mut stiff = Scenario::default();
+    stiff.contact.law = LawKind::Power;
+    stiff.contact.exponent = 1.0;
     stiff.contact.given_stiffness = Some(1e12);
+    stiff.validate().unwrap();
     let note = stiff_contact_note(&stiff).expect("1e12 N/m is warned");
     assert!(note.starts_with("the contact's rate 1.000e12 N/m (contact.stiffness;"), "{note}");
     assert!(note.contains("9 703 windows and 45 times the time"), "{note}");
-    let mut power = stiff.clone();
-    power.contact.law = LawKind::Power;
-    power.contact.exponent = 1.0;
-    assert!(stiff_contact_note(&power).is_some(), "a power law of exponent 1 is the linear bar");
+    let mut linear = stiff.clone();
+    linear.contact.law = LawKind::Linear;
+    assert!(linear.validate().is_err(), "the linear law's range stops at 4e10 N/m");
+    assert!(stiff_contact_note(&linear).is_some(), "the note does not hang on the law");
     let mut edge = Scenario::default();
     edge.contact.given_stiffness = Some(CHATTER_STIFFNESS);
     assert_eq!(stiff_contact_note(&edge), None, "the bound itself is not warned");
@@ -246,7 +252,18 @@ fn a_contact_that_can_chatter_is_said_before_the_run_starts() {
         assert_eq!(stiff_contact_note(&s), None);
     }
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_beam-impact"))
-        .args(["run", "--set", "contact.stiffness=1e12", "--set", "duration=0.01", "--no-mcap"])
+        .args([
+            "run",
+            "--set",
+            "contact.law=power",
+            "--set",
+            "contact.exponent=1",
+            "--set",
+            "contact.stiffness=1e12",
+            "--set",
+            "duration=0.01",
+            "--no-mcap",
+        ])
         .output()
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));

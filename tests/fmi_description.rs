@@ -244,12 +244,12 @@ fn accepted(p: &Parameter, value: f64) -> std::result::Result<(), String> {
         s.contact.given_stiffness = Some(1e9);
     }
     // The declared range of contact.stiffness is the power law's (N/m^n); the linear law's stops
-    // at 1e12 N/m (issue 40).
+    // at 4e10 N/m (issue 40).
     if p.name == "contact.stiffness" && value > beam_impact::model::scenario::MAX_CONTACT_STIFFNESS {
         s.contact.law = beam_impact::model::contact_law::LawKind::Power;
         s.contact.given_stiffness = Some(1e9);
     }
-    // The bar's E A / l is held to 1e12 N/m as a whole: each of its fields at its declared end
+    // The bar's E A / l is held to 4e10 N/m as a whole: each of its fields at its declared end
     // with the others' at a bar that stays within it.
     if ["contact.area", "contact.elastic_modulus", "contact.length"].contains(&p.name) {
         s.contact.length = 1e3;
@@ -315,7 +315,7 @@ fn declared_parameter_ranges_are_what_validation_accepts() {
 /// description where `min` / `max` cannot say it all) comes from the table validation takes its
 /// numbers from, and holds: a gap's smallest nonzero value (a yield stress from 1 kPa, a step
 /// from 1 ns, ...) is accepted and the next value below it refused; the linear law's contact
-/// stiffness stops at 1e12 N/m as its rule says, the power law's at the declared 1e13 N/m^n.
+/// stiffness stops at 4e10 N/m as its rule says, the power law's at the declared 1e13 N/m^n.
 #[test]
 fn every_documented_range_and_gap_is_what_validation_accepts() {
     let listing = parameters::annotate_toml(&Scenario::default().to_toml());
@@ -345,12 +345,12 @@ fn every_documented_range_and_gap_is_what_validation_accepts() {
     // contact.stiffness: the linear law's rule, as its range states it.
     let mut s = Scenario::default();
     let stiffness = parameters::find("contact.stiffness").unwrap();
-    parameters::set(&mut s, stiffness, 1e12).unwrap();
+    parameters::set(&mut s, stiffness, 4e10).unwrap();
     assert!(s.validate().is_ok());
-    parameters::set(&mut s, stiffness, 1e12f64.next_up()).unwrap();
+    parameters::set(&mut s, stiffness, 4e10f64.next_up()).unwrap();
     let e = s.validate().unwrap_err().to_string();
-    assert!(e.contains("contact.stiffness") && e.contains("1e12"), "{e}");
-    assert!(parameters::range_text("contact.stiffness").unwrap().contains("at most 1e12 N/m with contact.law"));
+    assert!(e.contains("contact.stiffness") && e.contains("4e10"), "{e}");
+    assert!(parameters::range_text("contact.stiffness").unwrap().contains("at most 4e10 N/m with contact.law"));
 }
 
 /// Issue 27: each support-motion input declares `min` / `max` in both descriptions, its range

@@ -389,10 +389,10 @@ pub const CONDITIONS: &[(&str, &str)] = &[
     ("contact_position", "at most upper.length (its free end)"),
     ("gravity", "0 only with impact_angular_velocity given"),
     ("contact.exponent", "only 0 or 1 with contact.law = \"linear\""),
-    ("contact.stiffness", "at most 1e12 N/m with contact.law = \"linear\" (1e13 N/m^n: the power law's)"),
-    ("contact.area", "with contact.law = \"linear\" and no contact.stiffness, E A_c / l_c at most 1e12 N/m"),
-    ("contact.length", "with contact.law = \"linear\" and no contact.stiffness, E A_c / l_c at most 1e12 N/m"),
-    ("contact.elastic_modulus", "with contact.law = \"linear\" and no contact.stiffness, E A_c / l_c at most 1e12 N/m"),
+    ("contact.stiffness", "at most 4e10 N/m with contact.law = \"linear\" (1e13 N/m^n: the power law's)"),
+    ("contact.area", "with contact.law = \"linear\" and no contact.stiffness, E A_c / l_c at most 4e10 N/m"),
+    ("contact.length", "with contact.law = \"linear\" and no contact.stiffness, E A_c / l_c at most 4e10 N/m"),
+    ("contact.elastic_modulus", "with contact.law = \"linear\" and no contact.stiffness, E A_c / l_c at most 4e10 N/m"),
 ];
 
 /// A bound as the ranges print it: "1e-12", "1e6", "0.01", "1000" ("0" for the smallest

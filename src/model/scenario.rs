@@ -509,12 +509,20 @@ fn stress(name: &'static str, value: f64) -> Result<()> {
 }
 
 /// An optional stress limit: 0 (none) or a stress.
-/// The stiffest contact, N/m (N/m^n for the power law): 36 times the paper's steel bar (E A / l =
-/// 2.8e10 N/m). Stiffer, the bar's compression at a separation rings at a frequency the steps must
-/// follow: measured on the default scenario (3 s), 2.8e10 N/m takes 4 500 steps (0.35 s), 3e11
-/// 9 600 (0.66 s), 1e12 30 000 (5 s), and 1e13 did not pass t = 0.75 s in 400 s (steps of 50 ns
-/// at the first separation).
-pub const MAX_CONTACT_STIFFNESS: f64 = 1e12;
+/// The stiffest linear contact, N/m: 1.43 times the paper's steel bar (E A / l = 2.8e10 N/m), so
+/// a bar of the paper's section and steel from 0.21 m long. Stiffer, a run's cost is erratic: the
+/// bar rings at each separation, and the contact can chatter (each change of contact located by
+/// retaking its step with new exact coefficients for every kept mode), in the printed rung or in
+/// one of its checks. Measured (issue 40 item 3; the whole answer, CPU time, against the default's
+/// at the same point) on a grid of the default scenario, 3 s: drop heights 0.1, 0.5, 1 and 2 m,
+/// contact positions 4, 8, 13, 20 and 29 m, damping ratios 0, 0.02 and 0.05: at 4e10 N/m all 60
+/// runs within 1.4x the default's; at 5e10 one 3.7x (drop 0.1 m at 8 m, damping 0.05); at that
+/// point 8e10 took 30x (3 414 contact windows), 1e11 18x, 2e11 140x (42 261 windows, 12.4 s);
+/// 1e12 on the default at drop 0.5 m 3.3 s against 0.09 s. (Until issue 40 item 3 the bound
+/// was 1e12, and 1e13 did not pass t = 0.75 s in 400 s.) A power law of exponent 1 is the same
+/// bar in its own unit, up to [`MAX_POWER_LAW_STIFFNESS`], with the note of
+/// `one_run::stiff_contact_note` above 2e11 N/m.
+pub const MAX_CONTACT_STIFFNESS: f64 = 4e10;
 
 /// The stiffest power-law contact, N/m^n (its own unit: a Hertz law carrying the paper's 475 kN at
 /// the bar's 17 um compression is 6.8e12 N/m^1.5).

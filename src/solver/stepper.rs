@@ -80,9 +80,7 @@ pub struct ModalStepper {
 #[derive(Clone, Debug)]
 struct ExactStage {
     dt: f64,
-    /// Each mode's coefficients (what the contact stage's [`CubicStep`]s start from).
-    modes: Vec<ModeStep>,
-    /// The same coefficients as twelve columns (q(h), v(h), int q; per q0, v0, f0, r), so that
+    /// Each mode's coefficients as twelve columns (q(h), v(h), int q; per q0, v0, f0, r), so that
     /// the step's loop over the modes runs in the CPU's vectors.
     columns: [Vec<f64>; 12],
     /// The contact stage's [`CubicStep`]s as eighteen columns (q(h), v(h), int q per s^2 and
@@ -99,7 +97,6 @@ impl Default for ExactStage {
     fn default() -> Self {
         ExactStage {
             dt: f64::NAN,
-            modes: Vec::new(),
             columns: Default::default(),
             cubic_columns: Default::default(),
             bar: BarSolve::default(),
@@ -140,25 +137,44 @@ struct BarSolve {
     determinant: f64,
 }
 
+/// The sums over the modes behind a [`BarSolve`], added mode by mode in the modes' order.
+#[derive(Clone, Copy, Debug, Default)]
+struct BarSums {
+    /// sum b^2 of the ramp's q(h) and v(h), of the s^2 and s^3 forcings' q(h) and v(h).
+    fr: f64,
+    vr: f64,
+    f2: f64,
+    f3: f64,
+    v2: f64,
+    v3: f64,
+    /// sum b^2 (c v + omega^2 q) of the ramp's, the s^2 and the s^3 responses, and b^T b.
+    ar: f64,
+    a2: f64,
+    a3: f64,
+    bb: f64,
+}
+
+impl BarSums {
+    /// Adds one mode (contact coefficient `b`, omega^2 `w2`, damping `damping`) with its step's
+    /// coefficients.
+    fn add(&mut self, b: f64, (w2, damping): (f64, f64), m: &ModeStep, c: &CubicStep) {
+        let b2 = b * b;
+        self.fr += b2 * m.q[3];
+        self.vr += b2 * m.v[3];
+        self.f2 += b2 * c.q[0];
+        self.f3 += b2 * c.q[1];
+        self.v2 += b2 * c.v[0];
+        self.v3 += b2 * c.v[1];
+        self.ar += b2 * (damping * m.v[3] + w2 * m.q[3]);
+        self.a2 += b2 * (damping * c.v[0] + w2 * c.q[0]);
+        self.a3 += b2 * (damping * c.v[1] + w2 * c.q[1]);
+        self.bb += b2;
+    }
+}
+
 impl BarSolve {
-    fn new(s: &ModalSystem, dt: f64, modes: &[ModeStep], cubic: &[CubicStep]) -> BarSolve {
-        let (mut fr, mut vr, mut f2, mut f3, mut v2, mut v3) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-        // sum b^2 (c v + omega^2 q) of the ramp's, the s^2 and the s^3 responses, and b^T b.
-        let (mut ar, mut a2, mut a3, mut bb) = (0.0, 0.0, 0.0, 0.0);
-        for (i, ((m, c), b)) in modes.iter().zip(cubic).zip(s.contact.iter()).enumerate() {
-            let b2 = b * b;
-            let (w2, damping) = (s.omega2[i], s.damping[i]);
-            fr += b2 * m.q[3];
-            vr += b2 * m.v[3];
-            f2 += b2 * c.q[0];
-            f3 += b2 * c.q[1];
-            v2 += b2 * c.v[0];
-            v3 += b2 * c.v[1];
-            ar += b2 * (damping * m.v[3] + w2 * m.q[3]);
-            a2 += b2 * (damping * c.v[0] + w2 * c.q[0]);
-            a3 += b2 * (damping * c.v[1] + w2 * c.q[1]);
-            bb += b2;
-        }
+    fn new(s: &ModalSystem, dt: f64, sums: &BarSums) -> BarSolve {
+        let BarSums { fr, vr, f2, f3, v2, v3, ar, a2, a3, bb } = *sums;
         let (ramp, vramp) = (fr / dt, vr / dt);
         // The end gap (rate) per alpha and per beta: -alpha s through the ramp, and the s^2, s^3
         // forcings.
@@ -178,54 +194,106 @@ impl BarSolve {
 }
 
 impl ExactStage {
-    /// The coefficients of step `dt` in place.
-    fn reset(&mut self, s: &ModalSystem, dt: f64) {
-        self.modes.clear();
-        self.modes.extend(s.omega2.iter().zip(s.damping.iter()).map(|(&w2, &c)| ModeStep::new(w2, c, dt)));
-        let n = self.modes.len();
+    /// The coefficients of step `dt` in place, with the contact stage's when `contact`: one pass
+    /// over the modes, each mode's responses computed once for both ([`ModeStep::with_responses`]:
+    /// a step cut at a contact change, at a motion row or at a peak's instant is a new size, and
+    /// its coefficients cost more than the step).
+    fn reset(&mut self, s: &ModalSystem, dt: f64, contact: bool) {
+        let n = s.omega2.len().min(s.damping.len()).min(s.contact.len());
         for column in &mut self.columns {
             column.resize(n, 0.0);
         }
-        for (k, column) in self.columns.iter_mut().enumerate() {
-            let (row, lane) = (k / 4, k % 4);
-            for (c, m) in column.iter_mut().zip(&self.modes) {
-                *c = [&m.q, &m.v, &m.integral][row][lane];
-            }
-        }
         for column in &mut self.cubic_columns {
             column.clear();
+            if contact {
+                column.resize(n, 0.0);
+            }
+        }
+        let mut sums = BarSums::default();
+        for i in 0..n {
+            let (w2, c) = (s.omega2[i], s.damping[i]);
+            let (mode, responses) = ModeStep::with_responses(w2, c, dt);
+            self.set_mode(i, &mode);
+            if contact {
+                let cubic = match responses {
+                    Some(psi) => CubicStep::from_responses(c, dt, &psi),
+                    None => CubicStep::new(w2, c, dt, &mode),
+                };
+                self.set_cubic(i, &cubic);
+                sums.add(s.contact[i], (w2, c), &mode, &cubic);
+            }
+        }
+        if contact {
+            self.bar = BarSolve::new(s, dt, &sums);
         }
         self.dt = dt;
         self.hits = 0;
     }
 
-    /// The contact stage's coefficients of this step size, computed at its first contact step.
+    /// Mode `i`'s coefficients into the twelve columns.
+    #[inline(always)]
+    fn set_mode(&mut self, i: usize, m: &ModeStep) {
+        let values = [m.q, m.v, m.integral];
+        for (k, column) in self.columns.iter_mut().enumerate() {
+            column[i] = values[k / 4][k % 4];
+        }
+    }
+
+    /// Mode `i`'s coefficients back from the twelve columns (the same numbers).
+    fn mode(&self, i: usize) -> ModeStep {
+        let c = |k: usize| self.columns[k][i];
+        ModeStep { q: [c(0), c(1), c(2), c(3)], v: [c(4), c(5), c(6), c(7)], integral: [c(8), c(9), c(10), c(11)] }
+    }
+
+    /// Mode `i`'s contact coefficients into the eighteen columns.
+    #[inline(always)]
+    fn set_cubic(&mut self, i: usize, c: &CubicStep) {
+        let [m0, m1] = c.moments;
+        let values = [
+            c.q[0],
+            c.q[1],
+            c.v[0],
+            c.v[1],
+            c.integral[0],
+            c.integral[1],
+            m0[0],
+            m0[1],
+            m0[2],
+            m0[3],
+            m0[4],
+            m0[5],
+            m1[0],
+            m1[1],
+            m1[2],
+            m1[3],
+            m1[4],
+            m1[5],
+        ];
+        for (column, value) in self.cubic_columns.iter_mut().zip(values) {
+            column[i] = value;
+        }
+    }
+
+    /// The contact stage's coefficients of this step size where a free step's reset left them
+    /// out (a step size both stages take).
     fn prepare_contact(&mut self, s: &ModalSystem) {
-        if !self.cubic_columns[0].is_empty() || self.modes.is_empty() {
+        let n = self.columns[0].len();
+        if self.cubic_columns[0].len() == n || n == 0 {
             return;
         }
         let dt = self.dt;
-        let cubic: Vec<CubicStep> = s
-            .omega2
-            .iter()
-            .zip(s.damping.iter())
-            .zip(&self.modes)
-            .map(|((&w2, &c), m)| CubicStep::new(w2, c, dt, m))
-            .collect();
-        self.bar = BarSolve::new(s, dt, &self.modes, &cubic);
         for column in &mut self.cubic_columns {
-            column.resize(cubic.len(), 0.0);
+            column.resize(n, 0.0);
         }
-        for (k, column) in self.cubic_columns.iter_mut().enumerate() {
-            for (value, c) in column.iter_mut().zip(&cubic) {
-                *value = match k {
-                    0..=1 => c.q[k],
-                    2..=3 => c.v[k - 2],
-                    4..=5 => c.integral[k - 4],
-                    _ => c.moments[(k - 6) / 6][(k - 6) % 6],
-                };
-            }
+        let mut sums = BarSums::default();
+        for i in 0..n {
+            let (w2, c) = (s.omega2[i], s.damping[i]);
+            let mode = self.mode(i);
+            let cubic = CubicStep::new(w2, c, dt, &mode);
+            self.set_cubic(i, &cubic);
+            sums.add(s.contact[i], (w2, c), &mode, &cubic);
         }
+        self.bar = BarSolve::new(s, dt, &sums);
     }
 }
 
@@ -641,7 +709,7 @@ impl ModalStepper {
             Some(j) => j,
             None => {
                 let j = (0..self.exact_cache.len()).min_by_key(|&j| self.exact_cache[j].hits).unwrap_or(0);
-                self.exact_cache[j].reset(s, dt);
+                self.exact_cache[j].reset(s, dt, stage.is_contact());
                 j
             }
         };

@@ -101,6 +101,7 @@ pub fn stepper_benchmark(runs: usize) -> Result<String> {
     out += &motion_benchmark(runs)?;
     out += &sea_benchmark(runs)?;
     out += &campaign_benchmark(runs)?;
+    out += &stiff_contact_benchmark(runs)?;
     out += &contact_law_benchmark(runs)?;
     Ok(out)
 }
@@ -361,6 +362,50 @@ pub fn campaign_benchmark(runs: usize) -> Result<String> {
         wall * 1e3,
         per * 1e3,
         per * 10_000.0
+    );
+    Ok(out)
+}
+
+/// A stiff contact's cost beside the default's (issue 40 item 3), side by side in one process:
+/// the whole converged answer (`answer::run`: the printed rung, its checks and the twin, on the
+/// available cores, as `beam-impact run`) of the default scenario dropped from 0.5 m with the
+/// paper's bar (2.8e10 N/m) and with the linear law's stiffest contact
+/// ([`crate::model::scenario::MAX_CONTACT_STIFFNESS`]); their wall times, contact windows and
+/// ratio; medians of `runs`.
+pub fn stiff_contact_benchmark(runs: usize) -> Result<String> {
+    use crate::model::scenario::MAX_CONTACT_STIFFNESS;
+    let default = Scenario { drop_height: 0.5, ..Scenario::default() };
+    let mut stiff = default.clone();
+    stiff.contact.given_stiffness = Some(MAX_CONTACT_STIFFNESS);
+    let time = |s: &Scenario| -> Result<(Duration, usize)> {
+        let mut samples = Vec::with_capacity(runs.max(1));
+        let mut windows = 0;
+        for _ in 0..runs.max(1) {
+            let start = Instant::now();
+            let answer = crate::answer::run(s, &mut NullRecorder, Default::default())?;
+            samples.push(start.elapsed());
+            windows = answer.summary.contact_windows.len();
+        }
+        Ok((median(samples), windows))
+    };
+    let (base, base_windows) = time(&default)?;
+    let (slow, stiff_windows) = time(&stiff)?;
+    let ms = |d: Duration| d.as_secs_f64() * 1e3;
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "stiff contact (default scenario, drop 0.5 m, the whole converged answer, median of {runs} runs):"
+    );
+    let _ = writeln!(
+        out,
+        "  the paper's bar, 2.8e10 N/m      : {:8.1} ms  {base_windows} contact windows  x1.00",
+        ms(base)
+    );
+    let _ = writeln!(
+        out,
+        "  the linear law's top, {MAX_CONTACT_STIFFNESS:.0e} N/m : {:8.1} ms  {stiff_windows} contact windows  x{:.2}",
+        ms(slow),
+        slow.as_secs_f64() / base.as_secs_f64().max(f64::MIN_POSITIVE)
     );
     Ok(out)
 }

@@ -407,9 +407,16 @@ def test_the_peaks_shortcut_gives_one_name_per_quantity():
 
 def test_a_contact_stiff_enough_to_chatter_is_noted_as_the_cli_notes_it():
     """Issue 40 item 3: above 2e11 N/m the CLI notes before the run that the contact may chatter
-    and the run be long; `run` gives the same note among its warnings (and warns with it)."""
+    and the run be long; `run` gives the same note among its warnings (and warns with it). The
+    linear law stops at 4e10 N/m: the stiff bar as a power law of exponent 1."""
     with pytest.warns(RuntimeWarning, match="can chatter"):
-        result = beam_impact.run(duration=0.002, contact__stiffness=1e12, check_sensitivity=False)
+        result = beam_impact.run(
+            duration=0.002,
+            contact__law="power",
+            contact__exponent=1.0,
+            contact__stiffness=1e12,
+            check_sensitivity=False,
+        )
     assert any("contact.stiffness" in w and "can chatter" in w for w in result.warnings), result.warnings
     quiet = beam_impact.run(duration=0.002, check_sensitivity=False)
     assert not any("can chatter" in w for w in quiet.warnings), quiet.warnings
