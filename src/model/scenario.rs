@@ -508,7 +508,6 @@ fn stress(name: &'static str, value: f64) -> Result<()> {
     size(name, "Pa", value, SMALLEST_STRESS, 1e12)
 }
 
-/// An optional stress limit: 0 (none) or a stress.
 /// The stiffest linear contact, N/m: 1.43 times the paper's steel bar (E A / l = 2.8e10 N/m), so
 /// a bar of the paper's section and steel from 0.21 m long. Stiffer, a run's cost is erratic: the
 /// bar rings at each separation, and the contact can chatter (each change of contact located by
