@@ -86,6 +86,7 @@ mod ssp_pack;
 mod stepped_beams;
 mod stepping;
 mod support_motion;
+mod supports;
 mod sweep;
 mod truncation;
 mod verify;
