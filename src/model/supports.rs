@@ -4,6 +4,8 @@
 //! is at x = 0). The natural frequencies of each condition, lambda_i L of Blevins, *Formulas for
 //! Natural Frequency and Mode Shape* (1979), Table 8-1, are [`Supports::blevins_lambda`].
 
+use std::f64::consts::PI;
+
 use serde::{Deserialize, Serialize};
 
 use super::mesh::{FarEnd, Support};
@@ -97,7 +99,7 @@ impl Supports {
     pub fn blevins_lambda(self) -> [f64; 4] {
         match self {
             Supports::ClampedFree => [1.87510407, 4.69409113, 7.85475744, 10.99554073],
-            Supports::PinnedPinned => [3.14159265, 6.28318531, 9.42477796, 12.56637061],
+            Supports::PinnedPinned => [PI, 2.0 * PI, 3.0 * PI, 4.0 * PI],
             Supports::ClampedClamped => [4.73004074, 7.85320462, 10.99560784, 14.13716549],
             Supports::ClampedPinned => [3.92660231, 7.06858275, 10.21017612, 13.35176878],
         }

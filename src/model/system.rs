@@ -207,12 +207,19 @@ impl Model {
         let g = self.scenario.gravity;
         // A pinned first support (issue 45) leaves the rotation free: no moment reaction.
         let pinned = self.lower.mesh.nodes.first().is_some_and(|n| n.theta.is_some());
-        let lower = |row: usize| if row == 1 && pinned { self.no_reaction() } else { Reaction {
-            stiffness: self
-                .stack(&self.lower.element_force_functional(0, row, 1.0), &DVector::zeros(self.upper.dofs())),
-            mass: self.stack(&self.lower.element_inertia_functional(0, row), &DVector::zeros(self.upper.dofs())),
-            load: self.lower.element_gravity_load(0, row, g),
-        } };
+        let lower = |row: usize| {
+            if row == 1 && pinned {
+                self.no_reaction()
+            } else {
+                Reaction {
+                    stiffness: self
+                        .stack(&self.lower.element_force_functional(0, row, 1.0), &DVector::zeros(self.upper.dofs())),
+                    mass: self
+                        .stack(&self.lower.element_inertia_functional(0, row), &DVector::zeros(self.upper.dofs())),
+                    load: self.lower.element_gravity_load(0, row, g),
+                }
+            }
+        };
         let upper = Reaction {
             stiffness: self.stack(&DVector::zeros(self.lower.dofs()), &self.upper.element_force_functional(0, 0, 1.0)),
             mass: self.stack(&DVector::zeros(self.lower.dofs()), &self.upper.element_inertia_functional(0, 0)),
