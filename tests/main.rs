@@ -44,6 +44,7 @@ mod fmi_pack;
 mod fmi_quality;
 mod fmi_sections;
 mod fmi_state_restore;
+mod fmi_supports;
 mod fuzz_campaign;
 mod fuzz_fatigue;
 mod fuzz_log_channels;
