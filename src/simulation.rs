@@ -294,6 +294,8 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     peak_instants: Vec<u64>,
     /// The same for the outputs at a point inside the next internal step ([`Self::interpolate`]).
     output_peak_instants: Vec<u64>,
+    /// The struck beam's far support's reaction rows (issue 45; none for a free far end).
+    far_support: Option<std::sync::Arc<crate::solver::far_support::FarSupport>>,
 }
 
 impl Simulation<ModalStepper> {
@@ -500,7 +502,10 @@ impl<S: Stepper> Simulation<S> {
             max_steps: crate::model::scenario::MAX_STEPS,
             peak_instants: Vec::new(),
             output_peak_instants: Vec::new(),
+            far_support: None,
         };
+        simulation.far_support =
+            crate::solver::far_support::FarSupport::new(&simulation.model, &simulation.modal).map(std::sync::Arc::new);
         simulation.evaluate_initial();
         Ok(simulation)
     }
@@ -781,6 +786,18 @@ impl<S: Stepper> Simulation<S> {
         result.upper_hinge_reaction_force = d.hinge_force;
         result.lower_tip_velocity = d.lower_tip_velocity;
         result.upper_tip_velocity = d.upper_tip_velocity;
+        if let Some(far) = &self.far_support {
+            let modal = self.stepper.modal_coordinates();
+            let loads = if modal { self.correction_loads(own(kinematics), stage, excitation) } else { None };
+            let (q, v, a) = (
+                kinematics.displacement.as_slice(),
+                kinematics.velocity.as_slice(),
+                kinematics.acceleration.as_slice(),
+            );
+            let [force, moment] = far.evaluate(modal, q, v, a, loads.as_ref());
+            result.lower_far_reaction_force = force;
+            result.lower_far_reaction_moment = moment;
+        }
     }
 
     /// The outputs of the current displacement probes at `at_ns`, without time or energy.

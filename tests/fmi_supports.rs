@@ -56,13 +56,22 @@ fn settled(status: i32, end: f64, log: &str) {
     }
 }
 
-/// The two parameters follow every older variable: the last two value references.
+/// The two parameters and the far support's two reactions follow every older variable: the last
+/// four value references.
 #[test]
-fn the_supports_parameters_are_appended_after_every_older_variable() {
+fn the_supports_parameters_and_outputs_are_appended_after_every_older_variable() {
     let t = table();
-    let names: Vec<&str> = t.iter().rev().take(2).map(|v| v.name.as_str()).collect();
-    assert_eq!(names, ["lower.contact_position", "lower.supports"]);
-    assert_eq!(t[t.len() - 3].name, "solver.max_steps");
+    let names: Vec<&str> = t.iter().skip(t.len() - 5).map(|v| v.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "solver.max_steps",
+            "lower.supports",
+            "lower.contact_position",
+            "lower.far_reaction_force",
+            "lower.far_reaction_moment"
+        ]
+    );
 }
 
 /// FMI 2 and FMI 3 runs of the deck beam give the CLI's peaks to the bit, the pin's bending 0.
@@ -89,6 +98,9 @@ fn a_deck_beam_through_the_fmu_gives_the_clis_peaks_to_the_bit() {
     }
     assert_eq!(PEAKS.map(|p| fmu.get(p).to_bits()), expected, "FMI 2");
     assert_eq!(fmu.get_integer("lower.supports"), 1);
+    // The far pin carries a force and no moment.
+    assert!(fmu.get("lower.far_reaction_force").abs() > 0.0, "{}", fmu.get("lower.far_reaction_force"));
+    assert_eq!(fmu.get("lower.far_reaction_moment"), 0.0);
 
     let fmu = Fmu3::try_new(&load(), None, false).0.unwrap();
     assert_eq!(fmu.set_string("log.path", ""), OK);

@@ -269,3 +269,36 @@ fn a_deck_beam_log_replays_through_report() {
     assert!(row.contains(value), "{row} vs {envelope}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The far support's reactions during a run (issue 45): the bridge settling on a clamped-clamped
+/// deck beam at midspan (drop height 0, damping ratio 0.9, 6 s, as `tests/reactions.rs` lets the
+/// paper's pair settle): the two supports' forces each carry half of the contact force and the
+/// beam's weight, and the clamps' moments are P L / 8 + q L^2 / 12, within 1 % of them (what is
+/// left of the motion is far below it), and the run's values at t = 0 (the beam resting under its
+/// own weight before the bridge's force) are its weight's halves and q L^2 / 12 to round-off.
+#[test]
+fn the_far_supports_reactions_carry_their_share_during_a_run() {
+    let mut s = struck(Supports::ClampedClamped, 20);
+    s.method = beam_impact::model::Method::Converged;
+    s.drop_height = 0.0;
+    s.damping_ratio = 0.9;
+    s.duration = 6.0;
+    let mut simulation = Simulation::new(&s).unwrap();
+    let start = *simulation.result();
+    let l = &s.lower;
+    let (weight, q) = (l.mass * s.gravity, l.mass / l.length * s.gravity);
+    assert!((start.lower_far_reaction_force / (weight / 2.0) - 1.0).abs() < 1e-9, "{start:?}");
+    assert!((start.lower_clamp_reaction_force / (weight / 2.0) - 1.0).abs() < 1e-9, "{start:?}");
+    let m0 = q * l.length * l.length / 12.0;
+    assert!((start.lower_far_reaction_moment.abs() / m0 - 1.0).abs() < 1e-9, "{start:?}");
+    assert!((start.lower_clamp_reaction_moment.abs() / m0 - 1.0).abs() < 1e-9, "{start:?}");
+    simulation.run(&mut NullRecorder).unwrap();
+    let r = simulation.output();
+    let p = -r.contact_force;
+    let share = (p + weight) / 2.0;
+    assert!((r.lower_far_reaction_force / share - 1.0).abs() < 0.01, "{r:?}");
+    assert!((r.lower_clamp_reaction_force / share - 1.0).abs() < 0.01, "{r:?}");
+    let m = p * l.length / 8.0 + m0;
+    assert!((r.lower_far_reaction_moment.abs() / m - 1.0).abs() < 0.01, "{r:?}");
+    assert!((r.lower_clamp_reaction_moment.abs() / m - 1.0).abs() < 0.01, "{r:?}");
+}

@@ -743,12 +743,34 @@ pub fn table_for(defaults: &Scenario) -> Vec<Variable> {
         Some(format!("{}", crate::model::scenario::MAX_STEPS)),
         Source::MaxSteps,
     ));
-    // Issue 45: the struck beam's supports and contact position (appended).
+    // Issue 45: the struck beam's supports and contact position, and its far support's
+    // reactions (appended).
     for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && is_issue_45_parameter(p)) {
         push(parameter(p));
     }
+    for row in FAR_SUPPORT_OUTPUTS {
+        push(output(row));
+    }
     v
 }
+
+/// Issue 45: the struck beam's far support's reactions (0 for the paper's free far end).
+const FAR_SUPPORT_OUTPUTS: &[OutputRow] = &[
+    (
+        "lower.far_reaction_force",
+        "N",
+        "Vertical force of the struck beam's far support (x = lower.length) on it, up positive, on a beam on two \
+         supports (lower.supports); 0 at a free end (dynamic: stiffness, damping, consistent mass, loads)",
+        |r| r.lower_far_reaction_force,
+    ),
+    (
+        "lower.far_reaction_moment",
+        "N.m",
+        "Moment of the struck beam's far support on it, counter-clockwise positive, at a clamped far end; 0 at a pin \
+         or a free end",
+        |r| r.lower_far_reaction_moment,
+    ),
+];
 
 /// Which output of an envelope peak a description is for.
 #[derive(Clone, Copy)]
