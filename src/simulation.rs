@@ -374,7 +374,8 @@ fn initial_physical_state(model: &Model, full: &ModalSystem, motion: &SupportMot
 /// plus the supports' offset plus the contact's clearance (issue 28): a clearance c makes the
 /// contact act only once the beams have closed c beyond touching.
 fn excitation(model: &Model, forces: TipForces, motion: &SupportMotion) -> Excitation {
-    let length = model.scenario.lower.length;
+    // The arm of the clamp's rotation at the contact point (issue 45: its free end by default).
+    let length = model.scenario.lower_contact_position();
     let clearance = model.scenario.contact.clearance;
     let offset = motion.gap_offset(length);
     Excitation {
@@ -479,7 +480,7 @@ impl<S: Stepper> Simulation<S> {
             // 0 - x, not -x: a zero closing speed is +0 (the JSON and the FMU output read "-0").
             closing_speed: 0.0
                 - ((model.probes.row(Probe::Gap as usize) * &physical.velocity)[0]
-                    + motion.gap_offset_rate(model.scenario.lower.length)),
+                    + motion.gap_offset_rate(model.scenario.lower_contact_position())),
         };
         let mut simulation = Simulation {
             model,
@@ -1814,7 +1815,7 @@ impl<S: Stepper> Simulation<S> {
         let (last, forces) = (before.last_forces, before.forces);
         let work = 0.5 * (last.upper + forces.upper) * (reached.upper_tip_deflection - start.upper_tip_deflection)
             + 0.5 * (last.lower + forces.lower) * (reached.lower_tip_deflection - start.lower_tip_deflection);
-        let length = self.model.scenario.lower.length;
+        let length = self.model.scenario.lower_contact_position();
         let offset_change =
             self.motion_at(reached.time_ns).gap_offset(length) - self.motion_at(start.time_ns).gap_offset(length);
         let supports = -(energies.inertial_potential - before.inertial_potential)
@@ -2013,7 +2014,8 @@ impl<S: Stepper> Simulation<S> {
         if tip > range.lower_deflection.value || tip.is_nan() {
             range.lower_deflection = crate::solver::model_range::RangePeak {
                 value: tip,
-                position: Some(s.lower.length),
+                // The peak deflection is the contact point's (issue 45: the free end by default).
+                position: Some(s.lower_contact_position()),
                 time: times.lower_tip_deflection,
             };
         }
