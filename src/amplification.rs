@@ -175,7 +175,12 @@ fn crane_psi(answer: &Answer, resting: Option<&StaticResponse>) -> CranePsi {
     };
     let m = j_hinge / (d * d);
     let k_arrestor = (s.lower.kind == SupportKind::Beam).then(|| {
-        if s.lower.sections.is_empty() {
+        let x = s.lower_contact_position();
+        if s.lower.supports.has_far_support() || x != s.lower.length {
+            // Issue 45: the struck beam's point stiffness (uniform closed forms, Roark Table 8.1).
+            let l = &s.lower;
+            1.0 / l.supports.point_load(l.elastic_modulus * l.second_moment, l.length, x).flexibility
+        } else if s.lower.sections.is_empty() {
             3.0 * s.lower.elastic_modulus * s.lower.second_moment / s.lower.length.powi(3)
         } else {
             1.0 / section::tip_flexibility(&s.lower_segments())

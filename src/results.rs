@@ -120,6 +120,14 @@ pub struct StepResult {
     /// fixed supports): the rigid rise of the arrestor's end ([`StepResult::lower_tip_position`]).
     #[serde(default)]
     pub lower_support_displacement: f64,
+    /// Vertical force of the struck beam's far support on it, N, up positive (issue 45: a beam
+    /// on two supports; 0 for the paper's free end).
+    #[serde(default)]
+    pub lower_far_reaction_force: f64,
+    /// Moment of the far support on the struck beam, N m, counter-clockwise positive (a clamped
+    /// far end; 0 at a pin or a free end).
+    #[serde(default)]
+    pub lower_far_reaction_moment: f64,
     /// Energy account.
     pub energy: EnergyAccount,
     /// Running peaks.

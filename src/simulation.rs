@@ -294,6 +294,8 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     peak_instants: Vec<u64>,
     /// The same for the outputs at a point inside the next internal step ([`Self::interpolate`]).
     output_peak_instants: Vec<u64>,
+    /// The struck beam's far support's reaction rows (issue 45; none for a free far end).
+    far_support: Option<std::sync::Arc<crate::solver::far_support::FarSupport>>,
 }
 
 impl Simulation<ModalStepper> {
@@ -372,7 +374,8 @@ fn initial_physical_state(model: &Model, full: &ModalSystem, motion: &SupportMot
 /// plus the supports' offset plus the contact's clearance (issue 28): a clearance c makes the
 /// contact act only once the beams have closed c beyond touching.
 fn excitation(model: &Model, forces: TipForces, motion: &SupportMotion) -> Excitation {
-    let length = model.scenario.lower.length;
+    // The arm of the clamp's rotation at the contact point (issue 45: its free end by default).
+    let length = model.scenario.lower_contact_position();
     let clearance = model.scenario.contact.clearance;
     let offset = motion.gap_offset(length);
     Excitation {
@@ -477,7 +480,7 @@ impl<S: Stepper> Simulation<S> {
             // 0 - x, not -x: a zero closing speed is +0 (the JSON and the FMU output read "-0").
             closing_speed: 0.0
                 - ((model.probes.row(Probe::Gap as usize) * &physical.velocity)[0]
-                    + motion.gap_offset_rate(model.scenario.lower.length)),
+                    + motion.gap_offset_rate(model.scenario.lower_contact_position())),
         };
         let mut simulation = Simulation {
             model,
@@ -500,7 +503,10 @@ impl<S: Stepper> Simulation<S> {
             max_steps: crate::model::scenario::MAX_STEPS,
             peak_instants: Vec::new(),
             output_peak_instants: Vec::new(),
+            far_support: None,
         };
+        simulation.far_support =
+            crate::solver::far_support::FarSupport::new(&simulation.model, &simulation.modal).map(std::sync::Arc::new);
         simulation.evaluate_initial();
         Ok(simulation)
     }
@@ -781,6 +787,18 @@ impl<S: Stepper> Simulation<S> {
         result.upper_hinge_reaction_force = d.hinge_force;
         result.lower_tip_velocity = d.lower_tip_velocity;
         result.upper_tip_velocity = d.upper_tip_velocity;
+        if let Some(far) = &self.far_support {
+            let modal = self.stepper.modal_coordinates();
+            let loads = if modal { self.correction_loads(own(kinematics), stage, excitation) } else { None };
+            let (q, v, a) = (
+                kinematics.displacement.as_slice(),
+                kinematics.velocity.as_slice(),
+                kinematics.acceleration.as_slice(),
+            );
+            let [force, moment] = far.evaluate(modal, q, v, a, loads.as_ref());
+            result.lower_far_reaction_force = force;
+            result.lower_far_reaction_moment = moment;
+        }
     }
 
     /// The outputs of the current displacement probes at `at_ns`, without time or energy.
@@ -1797,7 +1815,7 @@ impl<S: Stepper> Simulation<S> {
         let (last, forces) = (before.last_forces, before.forces);
         let work = 0.5 * (last.upper + forces.upper) * (reached.upper_tip_deflection - start.upper_tip_deflection)
             + 0.5 * (last.lower + forces.lower) * (reached.lower_tip_deflection - start.lower_tip_deflection);
-        let length = self.model.scenario.lower.length;
+        let length = self.model.scenario.lower_contact_position();
         let offset_change =
             self.motion_at(reached.time_ns).gap_offset(length) - self.motion_at(start.time_ns).gap_offset(length);
         let supports = -(energies.inertial_potential - before.inertial_potential)
@@ -1996,7 +2014,8 @@ impl<S: Stepper> Simulation<S> {
         if tip > range.lower_deflection.value || tip.is_nan() {
             range.lower_deflection = crate::solver::model_range::RangePeak {
                 value: tip,
-                position: Some(s.lower.length),
+                // The peak deflection is the contact point's (issue 45: the free end by default).
+                position: Some(s.lower_contact_position()),
                 time: times.lower_tip_deflection,
             };
         }

@@ -238,6 +238,10 @@ fn accepted(p: &Parameter, value: f64) -> std::result::Result<(), String> {
     if p.name == "gravity" {
         s.impact_angular_velocity = Some(1.0);
     }
+    // Issue 45: the struck beam's contact reaches its longest beam's end (lower.length's max).
+    if p.name == "lower.contact_position" {
+        s.lower.length = 1e3;
+    }
     // A power law needs its rate in N/m^n; the exponent is the power law's (issue 40: given with
     // the linear law it is refused).
     if p.name == "contact.law" {

@@ -39,6 +39,8 @@ const LITERALS: &[&str] = &[
     "\"auto\"",
     "\"mean\"",
     "\"left\"",
+    "\"pinned-pinned\"",
+    "\"clamped-clamped\"",
     "\"\"",
     "true",
     "[1, 2]",
@@ -57,6 +59,9 @@ fn seeds() -> Vec<String> {
         include_str!("../examples/three-section-gangway.toml").to_string(),
         // Issue 44: `[[load_cases]]` with their factors and `set` tables mutated too.
         include_str!("../examples/load-cases.toml").to_string(),
+        // Issue 45: the struck beam on two supports, struck at a given position.
+        include_str!("../examples/deck-beam-supports.toml").to_string(),
+        "[lower]\nsupports = \"clamped-pinned\"\ncontact_position = 3.5\nelements = 8\ntip_mass = 0\n".to_string(),
         "drop_height = 0.8\nstep_free = 5e-5\n[upper]\nelements_to_contact = 14\n[lower]\nelements = 3\n".to_string(),
     ]
 }
@@ -166,6 +171,12 @@ fn write_corpus() {
         ("nested-5000", format!("drop_height = {}1{}\n", "[".repeat(5000), "]".repeat(5000))),
         ("nan-everywhere", Scenario::default().to_toml().replace("= 0.", "= nan #").replace("= 1", "= nan #")),
         ("empty", String::new()),
+        // Issue 45: the contact on a far support, and a hair from a pin (a refused grading).
+        ("supports-contact-on-far-pin", "[lower]\nsupports = \"pinned-pinned\"\ncontact_position = 12\n".to_string()),
+        (
+            "supports-contact-near-pin",
+            "[lower]\nsupports = \"pinned-pinned\"\ncontact_position = 1e-9\nelements = 8\n".to_string(),
+        ),
     ];
     for (name, text) in hostile {
         std::fs::write(dir.join(format!("{name}.toml")), text).unwrap();

@@ -38,6 +38,9 @@ fn each_invalid_parameter_is_rejected_by_name() {
         // None given: no shear stress for the bridge, its shear not checked (issue 30).
         "upper.shear_area",
         "upper.allowable_shear_stress",
+        // Clamped-free (the paper's), the contact not given (its free end) (issue 45).
+        "lower.supports",
+        "lower.contact_position",
     ];
     for p in PARAMETERS {
         let mut bad = vec![-3.0];

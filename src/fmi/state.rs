@@ -40,7 +40,7 @@ pub const MAGIC: &[u8; 8] = b"BEAMFMU\0";
 
 /// Version of the byte format; bump it when the layout, [`Snapshot`], [`RunState`] or the set of
 /// FMU parameters changes.
-pub const FORMAT_VERSION: u32 = 8;
+pub const FORMAT_VERSION: u32 = 9;
 
 /// Bytes before the payload.
 pub const HEADER: usize = 24;
@@ -240,10 +240,10 @@ mod tests {
             other => panic!("{other:?}"),
         }
         let mut other = bytes.clone();
-        other[8] = 9;
+        other[8] = 99;
         match Snapshot::from_bytes(&other) {
-            Err(e @ Error::StateVersion { found: 9, expected: FORMAT_VERSION }) => {
-                let text = format!("format version 9, this binary reads version {FORMAT_VERSION}");
+            Err(e @ Error::StateVersion { found: 99, expected: FORMAT_VERSION }) => {
+                let text = format!("format version 99, this binary reads version {FORMAT_VERSION}");
                 assert!(e.to_string().contains(&text), "{e}")
             }
             other => panic!("{other:?}"),
@@ -336,7 +336,7 @@ mod tests {
         out.insert(format!("{prefix}: {leaf}"));
     }
 
-    /// The payload's layout at FORMAT_VERSION 8 (8: every node's largest deflection and rotation, the model's range, issue 40; 7: the stress envelope's stations, the bridge's
+    /// The payload's layout at FORMAT_VERSION 9 (9: the struck beam's supports and contact position, issue 45; 8: every node's largest deflection and rotation, the model's range, issue 40; 7: the stress envelope's stations, the bridge's
     /// shear area and allowable shear stress, the beams' sections, issue 30; 6: the exact modal advance's step level; 5: issue 28's FMU parameters, the impact's
     /// angular velocity, `lower.kind`, `contact.stiffness` and `contact.clearance`; 4: the supports' motion, its start and input, the
     /// inertial potential and the supports' displacements in the results; 3: the method, modal cut-off, discretisation
@@ -351,8 +351,8 @@ mod tests {
     /// list together. (A DVector is nalgebra's `[data, nrows, ncols]`: `[][]` the data, `[]` the
     /// sizes; `null` an absent Option or the static column count.)
     #[test]
-    fn snapshot_fields_are_pinned_at_format_version_8() {
-        const VERSION_8: &[&str] = &[
+    fn snapshot_fields_are_pinned_at_format_version_9() {
+        const VERSION_9: &[&str] = &[
             "checks[].contact_windows[].end: f64",
             "checks[].contact_windows[].start: f64",
             "checks[].dissipation_rate: f64",
@@ -442,6 +442,8 @@ mod tests {
             "checks[].result.lower_clamp_reaction_force: f64",
             "checks[].result.lower_clamp_reaction_moment: f64",
             "checks[].result.lower_clamp_shear_stress: f64",
+            "checks[].result.lower_far_reaction_force: f64",
+            "checks[].result.lower_far_reaction_moment: f64",
             "checks[].result.lower_support_displacement: f64",
             "checks[].result.lower_tip_deflection: f64",
             "checks[].result.lower_tip_velocity: f64",
@@ -480,6 +482,7 @@ mod tests {
             "parameters.impact_angular_velocity: f64",
             "parameters.lower.allowable_bending_stress: f64",
             "parameters.lower.allowable_shear_stress: f64",
+            "parameters.lower.contact_position: f64",
             "parameters.lower.elastic_modulus: f64",
             "parameters.lower.elements: f64",
             "parameters.lower.kind: f64",
@@ -488,6 +491,7 @@ mod tests {
             "parameters.lower.second_moment: f64",
             "parameters.lower.section_modulus: f64",
             "parameters.lower.shear_area: f64",
+            "parameters.lower.supports: f64",
             "parameters.lower.tip_mass: f64",
             "parameters.lower.yield_stress: f64",
             "parameters.method: f64",
@@ -597,6 +601,8 @@ mod tests {
             "run.result.lower_clamp_reaction_force: f64",
             "run.result.lower_clamp_reaction_moment: f64",
             "run.result.lower_clamp_shear_stress: f64",
+            "run.result.lower_far_reaction_force: f64",
+            "run.result.lower_far_reaction_moment: f64",
             "run.result.lower_support_displacement: f64",
             "run.result.lower_tip_deflection: f64",
             "run.result.lower_tip_velocity: f64",
@@ -654,7 +660,7 @@ mod tests {
         let found: Vec<&str> = found.iter().map(String::as_str).collect();
         assert_eq!(
             (FORMAT_VERSION, found.as_slice()),
-            (8, VERSION_8),
+            (9, VERSION_9),
             "Snapshot's fields changed: bump FORMAT_VERSION and update the pinned list"
         );
     }

@@ -360,6 +360,7 @@ pub fn is_appended_parameter(p: &Parameter) -> bool {
     matches!((index(p.name), index("energy_tolerance")), (Some(i), Some(first)) if i >= first)
         && !is_issue_28_parameter(p)
         && !is_issue_30_parameter(p)
+        && !is_issue_45_parameter(p)
 }
 
 /// Whether a parameter came with issue 28 (every parameter from `impact_angular_velocity` on in
@@ -368,6 +369,7 @@ pub fn is_issue_28_parameter(p: &Parameter) -> bool {
     let index = |name: &str| PARAMETERS.iter().position(|q| q.name == name);
     matches!((index(p.name), index("impact_angular_velocity")), (Some(i), Some(first)) if i >= first)
         && !is_issue_30_parameter(p)
+        && !is_issue_45_parameter(p)
 }
 
 /// Whether a parameter came with issue 30 (every parameter from `upper.shear_area` on in
@@ -375,6 +377,14 @@ pub fn is_issue_28_parameter(p: &Parameter) -> bool {
 pub fn is_issue_30_parameter(p: &Parameter) -> bool {
     let index = |name: &str| PARAMETERS.iter().position(|q| q.name == name);
     matches!((index(p.name), index("upper.shear_area")), (Some(i), Some(first)) if i >= first)
+        && !is_issue_45_parameter(p)
+}
+
+/// Whether a parameter came with issue 45 (every parameter from `lower.supports` on in
+/// [`PARAMETERS`]): its value reference follows `solver.max_steps`, the end of the table before it.
+pub fn is_issue_45_parameter(p: &Parameter) -> bool {
+    let index = |name: &str| PARAMETERS.iter().position(|q| q.name == name);
+    matches!((index(p.name), index("lower.supports")), (Some(i), Some(first)) if i >= first)
 }
 
 /// A variable as [`table`] lists it, before its value reference and declared range: name,
@@ -457,7 +467,9 @@ pub fn table_for(defaults: &Scenario) -> Vec<Variable> {
     let output = |&(name, unit, description, get): &OutputRow| -> Row {
         real_output(name, unit, description, Source::Output(get))
     };
-    let later = |p: &Parameter| is_appended_parameter(p) || is_issue_28_parameter(p) || is_issue_30_parameter(p);
+    let later = |p: &Parameter| {
+        is_appended_parameter(p) || is_issue_28_parameter(p) || is_issue_30_parameter(p) || is_issue_45_parameter(p)
+    };
     for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && !later(p)) {
         push(parameter(p));
     }
@@ -731,8 +743,34 @@ pub fn table_for(defaults: &Scenario) -> Vec<Variable> {
         Some(format!("{}", crate::model::scenario::MAX_STEPS)),
         Source::MaxSteps,
     ));
+    // Issue 45: the struck beam's supports and contact position, and its far support's
+    // reactions (appended).
+    for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && is_issue_45_parameter(p)) {
+        push(parameter(p));
+    }
+    for row in FAR_SUPPORT_OUTPUTS {
+        push(output(row));
+    }
     v
 }
+
+/// Issue 45: the struck beam's far support's reactions (0 for the paper's free far end).
+const FAR_SUPPORT_OUTPUTS: &[OutputRow] = &[
+    (
+        "lower.far_reaction_force",
+        "N",
+        "Vertical force of the struck beam's far support (x = lower.length) on it, up positive, on a beam on two \
+         supports (lower.supports); 0 at a free end (dynamic: stiffness, damping, consistent mass, loads)",
+        |r| r.lower_far_reaction_force,
+    ),
+    (
+        "lower.far_reaction_moment",
+        "N.m",
+        "Moment of the struck beam's far support on it, counter-clockwise positive, at a clamped far end; 0 at a pin \
+         or a free end",
+        |r| r.lower_far_reaction_moment,
+    ),
+];
 
 /// Which output of an envelope peak a description is for.
 #[derive(Clone, Copy)]

@@ -71,7 +71,7 @@ impl Beam {
                 }
             }
         }
-        if let Some(tip) = mesh.tip().w {
+        if let Some(tip) = mesh.lumped_node().w {
             m[(tip, tip)] += tip_mass;
             f[tip] -= tip_mass * gravity;
         }
@@ -98,8 +98,8 @@ impl Beam {
                 }
             }
         }
-        if let Some(tip) = self.mesh.tip().w {
-            let r_tip = if rotation { self.mesh.tip().x } else { 1.0 };
+        if let Some(tip) = self.mesh.lumped_node().w {
+            let r_tip = if rotation { self.mesh.lumped_node().x } else { 1.0 };
             f[tip] += self.tip_mass * r_tip;
         }
         f

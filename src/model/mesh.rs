@@ -18,8 +18,25 @@ pub struct Mesh {
     pub nodes: Vec<Node>,
     /// Number of free DOFs.
     pub dofs: usize,
-    /// How the first node is supported (the other end is free).
+    /// How the first node is supported.
     pub support: Support,
+    /// How the last node is held (issue 45: free for the paper's beams, else a second support).
+    pub far: FarEnd,
+    /// The node carrying a beam's lumped mass (`lower.tip_mass`): the free end, or on a beam
+    /// with two supports its contact node.
+    pub lumped: usize,
+}
+
+/// How the last node of a beam is held (issue 45: the struck beam on two supports).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FarEnd {
+    /// Free (the paper's cantilever and bridge).
+    #[default]
+    Free,
+    /// Deflection fixed, rotation free (simply supported).
+    Pinned,
+    /// Deflection and rotation fixed.
+    Clamped,
 }
 
 /// How the first node is supported.
@@ -66,6 +83,13 @@ fn spread(start: f64, end: f64, elements: usize, breaks: &[f64]) -> Vec<f64> {
 impl Mesh {
     /// A beam from node positions `x` (ascending, first = support), numbering free DOFs node by node.
     pub fn new(x: &[f64], support: Support) -> Mesh {
+        Mesh::with_far_end(x, support, FarEnd::Free)
+    }
+
+    /// [`Self::new`] with the last node held by `far` too (issue 45): its deflection (pinned)
+    /// or deflection and rotation (clamped) constrained.
+    pub fn with_far_end(x: &[f64], support: Support, far: FarEnd) -> Mesh {
+        let last = x.len().saturating_sub(1);
         let mut dofs = 0;
         let mut next = || {
             dofs += 1;
@@ -78,12 +102,47 @@ impl Mesh {
                 let (w, theta) = match (i, support) {
                     (_, Support::Rigid) | (0, Support::Clamped) => (None, None),
                     (0, Support::Hinged) => (None, next()),
+                    _ if i == last && far == FarEnd::Clamped => (None, None),
+                    _ if i == last && far == FarEnd::Pinned => (None, next()),
                     _ => (next(), next()),
                 };
                 Node { x, w, theta }
             })
             .collect();
-        Mesh { nodes, dofs, support }
+        Mesh { nodes, dofs, support, far, lumped: last }
+    }
+
+    /// The struck beam (issue 45): `length` m held at x = 0 by `support` and at its far end by
+    /// `far`, about `elements` elements with a node at every section change `breaks` and at
+    /// `contact` (m from the first support; at the far end, the last node). Returns the mesh and
+    /// the contact node. A clamped-free beam struck at its free end without section changes is
+    /// [`Self::cantilever`] bit for bit. A lumped mass sits at the free end, or with a far
+    /// support at the contact node.
+    pub fn struck_beam(
+        length: f64,
+        elements: usize,
+        breaks: &[f64],
+        support: Support,
+        far: FarEnd,
+        contact: f64,
+    ) -> (Mesh, usize) {
+        let inside = contact > 0.0 && contact < length;
+        let mut all: Vec<f64> = breaks.to_vec();
+        if inside && !breaks.contains(&contact) {
+            all.push(contact);
+            all.sort_by(f64::total_cmp);
+        }
+        let x = if all.is_empty() {
+            (0..=elements).map(|i| length * i as f64 / elements as f64).collect()
+        } else {
+            spread(0.0, length, elements, &all)
+        };
+        let node = if inside { x.iter().position(|&p| p == contact).unwrap_or(x.len() - 1) } else { x.len() - 1 };
+        let mut mesh = Mesh::with_far_end(&x, support, far);
+        if far != FarEnd::Free {
+            mesh.lumped = node;
+        }
+        (mesh, node)
     }
 
     /// A clamped-free beam of `elements` equal elements.
@@ -153,9 +212,19 @@ impl Mesh {
         [a.w, a.theta, b.w, b.theta]
     }
 
-    /// Rigid-body modes of the beam, from its support: see [`Support::rigid_modes`].
+    /// Rigid-body modes of the beam, from its support: see [`Support::rigid_modes`]; none with
+    /// a second support at the far end (issue 45: every such beam is held against rigid motion).
     pub fn rigid_modes(&self) -> usize {
-        self.support.rigid_modes()
+        if self.far == FarEnd::Free {
+            self.support.rigid_modes()
+        } else {
+            0
+        }
+    }
+
+    /// The node carrying the beam's lumped mass ([`Mesh::lumped`]).
+    pub fn lumped_node(&self) -> &Node {
+        &self.nodes[self.lumped]
     }
 
     /// The free end's node.

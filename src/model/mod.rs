@@ -17,6 +17,7 @@ pub mod section;
 pub mod stations;
 pub mod stress_recovery;
 pub mod support_motion;
+pub mod supports;
 pub mod system;
 pub mod time_step;
 

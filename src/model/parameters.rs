@@ -7,6 +7,7 @@ use super::scenario::{
     Scenario, SupportKind, MAX_ELEMENTS, SMALLEST_CONTACT_STIFFNESS, SMALLEST_STRESS, SMALLEST_YIELD_STRESS,
 };
 use super::stress_recovery::StressRecovery;
+use super::supports::Supports;
 use super::time_step::TimeStep;
 use crate::error::{Error, Result};
 
@@ -275,6 +276,32 @@ pub const PARAMETERS: &[Parameter] = &[
         "Bridge allowable shear stress; 0: none given (the bridge's shear is not checked)",
         upper.allowable_shear_stress
     ),
+    // issue 45: supports
+    Parameter {
+        name: "lower.supports",
+        unit: "",
+        description: "How the struck beam is held at its two ends (first at x = 0): 0 clamped-free (the paper's \
+                      cantilever), 1 pinned-pinned, 2 clamped-clamped, 3 clamped-pinned",
+        kind: Kind::Integer,
+        get: |s| f64::from(s.lower.supports.index()),
+        put: |s, v| {
+            s.lower.supports = Supports::from_index(v).ok_or_else(|| {
+                Error::invalid(
+                    "lower.supports",
+                    "0 (clamped-free), 1 (pinned-pinned), 2 (clamped-clamped) or 3 (clamped-pinned)",
+                    v,
+                )
+            })?;
+            Ok(())
+        },
+    },
+    real!(
+        "lower.contact_position",
+        "m",
+        "Where the bridge strikes the arrestor, from its first support; 0: not given (the free end of a clamped-free \
+         beam, the midspan of a beam on two supports)",
+        lower.contact_position
+    ),
 ];
 
 /// Looks a parameter up by name.
@@ -348,6 +375,8 @@ pub const RANGES: &[(&str, Option<f64>, Option<f64>)] = &[
     ("contact.damping", Some(0.0), Some(1e3)),
     ("upper.shear_area", Some(0.0), Some(1e3)),
     ("upper.allowable_shear_stress", Some(0.0), Some(1e12)),
+    ("lower.supports", Some(0.0), Some(3.0)),
+    ("lower.contact_position", Some(0.0), Some(1e3)),
 ];
 
 /// The smallest positive f64: a lower bound "> 0" in the FMU's `min` (FMI has no exclusive bound).
@@ -393,6 +422,7 @@ pub const CONDITIONS: &[(&str, &str)] = &[
     ("contact.area", "with contact.law = \"linear\" and no contact.stiffness, E A_c / l_c at most 4e10 N/m"),
     ("contact.length", "with contact.law = \"linear\" and no contact.stiffness, E A_c / l_c at most 4e10 N/m"),
     ("contact.elastic_modulus", "with contact.law = \"linear\" and no contact.stiffness, E A_c / l_c at most 4e10 N/m"),
+    ("lower.contact_position", "at most lower.length; below it on two supports"),
 ];
 
 /// A bound as the ranges print it: "1e-12", "1e6", "0.01", "1000" ("0" for the smallest
@@ -420,7 +450,7 @@ pub fn range_text(name: &str) -> Option<String> {
         _ => "0 (none)",
     };
     let base = match name {
-        "method" | "stress_recovery" | "lower.kind" | "contact.law" => return None,
+        "method" | "stress_recovery" | "lower.kind" | "contact.law" | "lower.supports" => return None,
         "modal_cutoff" => "\"auto\", or > 0 up to 1e12".to_string(),
         // A CLI field (the FMU's stop time is the importer's): Scenario::validate's bound.
         "duration" => "> 0, at most 1e6".to_string(),
@@ -459,7 +489,7 @@ fn annotation(p: &Parameter) -> String {
 }
 
 /// Fields of a section that a scenario leaves out unless given, with an example value.
-const OPTIONAL_FIELDS: [(&str, &str); 8] = [
+const OPTIONAL_FIELDS: [(&str, &str); 10] = [
     ("upper.shear_area", "0.012"),
     ("upper.allowable_shear_stress", "355e6"),
     ("lower.kind", "\"rigid\""),
@@ -468,6 +498,8 @@ const OPTIONAL_FIELDS: [(&str, &str); 8] = [
     ("contact.law", "\"power\""),
     ("contact.exponent", "1.5"),
     ("contact.damping", "0.2"),
+    ("lower.supports", "\"pinned-pinned\""),
+    ("lower.contact_position", "6.0"),
 ];
 
 /// Whether section `[name]` of `toml` sets `key`.
@@ -542,7 +574,8 @@ mod tests {
                 .find(|l| l.starts_with(&format!("{key} = ")) || l.starts_with(&format!("# {key} = ")))
                 .unwrap_or_else(|| panic!("{name}"));
             assert!(line.contains("  # ["), "{name}: no unit: {line}");
-            let named_choice = matches!(*name, "method" | "stress_recovery" | "lower.kind" | "contact.law");
+            let named_choice =
+                matches!(*name, "method" | "stress_recovery" | "lower.kind" | "contact.law" | "lower.supports");
             assert_eq!(line.contains("; range "), !named_choice, "{name}: {line}");
         }
         assert!(

@@ -13,6 +13,7 @@ use super::sea::SeaSettings;
 use super::section::{self, SectionSpec};
 use super::stress_recovery::StressRecovery;
 use super::support_motion::SupportMotion;
+use super::supports::Supports;
 use super::time_step::TimeStep;
 use crate::error::{Error, Result};
 
@@ -154,6 +155,15 @@ pub struct LowerBeam {
     /// `second_moment`, `section_modulus` and `shear_area` are the first section's (at the clamp).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub sections: Vec<SectionSpec>,
+    /// How the beam is held at its two ends (issue 45): `"clamped-free"` (the default, the
+    /// paper's cantilever), `"pinned-pinned"`, `"clamped-clamped"` or `"clamped-pinned"` (the
+    /// first named end at x = 0).
+    #[serde(skip_serializing_if = "Supports::is_clamped_free")]
+    pub supports: Supports,
+    /// Where the bridge strikes it, m from its first support (issue 45); 0 (the default): not
+    /// given, the free end of a clamped-free beam, the midspan of a beam on two supports.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub contact_position: f64,
 }
 
 impl Default for LowerBeam {
@@ -173,6 +183,8 @@ impl Default for LowerBeam {
             yield_stress: 0.0,
             tip_force: 0.0,
             sections: Vec::new(),
+            supports: Supports::ClampedFree,
+            contact_position: 0.0,
         }
     }
 }
@@ -843,6 +855,12 @@ impl Scenario {
             within("discretisation_tolerance", "(a fraction)", self.discretisation_tolerance, 0.0, 1.0)
         }));
         check(tip_force("lower.tip_force", l.tip_force));
+        errors.extend(self.supports_errors());
+        let mut check = |result: Result<()>| {
+            if let Err(e) = result {
+                errors.push(e);
+            }
+        };
 
         if let Some(k) = c.given_stiffness {
             let max = if c.law == LawKind::Linear { MAX_CONTACT_STIFFNESS } else { MAX_POWER_LAW_STIFFNESS };
@@ -1027,6 +1045,56 @@ impl Scenario {
             clamp.map_or(self.lower.allowable_shear_stress, |g| g.allowable_shear_stress),
             contact,
         ]
+    }
+
+    /// Where the bridge strikes the arrestor, m from its first support (issue 45): the given
+    /// `lower.contact_position`, else the free end of a clamped-free beam and the midspan of a
+    /// beam on two supports.
+    pub fn lower_contact_position(&self) -> f64 {
+        let l = &self.lower;
+        match (l.contact_position, l.supports.has_far_support()) {
+            (x, _) if x > 0.0 => x,
+            (_, true) => 0.5 * l.length,
+            (_, false) => l.length,
+        }
+    }
+
+    /// The rules of `lower.supports` and `lower.contact_position` (issue 45): the contact on the
+    /// beam (0 < x <= length; strictly inside between two supports, where the far end cannot
+    /// deflect), and a beam on two supports with fixed supports (the supports' prescribed motion
+    /// is the clamp's heave and rotation of a cantilever).
+    fn supports_errors(&self) -> Vec<Error> {
+        let l = &self.lower;
+        let mut errors = Vec::new();
+        let two = l.supports.has_far_support();
+        let x = l.contact_position;
+        if x != 0.0 {
+            let length_ok = l.length.is_finite() && l.length > 0.0;
+            let bad = !x.is_finite() || x < 0.0 || (length_ok && (x > l.length || (two && x >= l.length)));
+            if bad {
+                let rule = if two {
+                    format!(
+                        "0 (not given: midspan) or 0 < x < lower.length = {} m with lower.supports = \"{}\" (the far \
+                         end is a support)",
+                        bound(l.length),
+                        l.supports.name()
+                    )
+                } else {
+                    format!("0 (not given: the free end) or 0 < x <= lower.length = {} m", bound(l.length))
+                };
+                errors.push(Error::invalid("lower.contact_position", rule, bound(x)));
+            }
+        }
+        if two && (!self.motion.is_unset() || self.sea.is_some()) {
+            errors.push(Error::Other(format!(
+                "lower.supports = \"{}\" with {}: the supports' motion is the cantilever's clamp heave and rotation; \
+                 a beam on two supports takes fixed supports (leave the motion out, or use lower.supports = \
+                 \"clamped-free\")",
+                l.supports.name(),
+                if self.sea.is_some() { "[sea]" } else { "[motion]" }
+            )));
+        }
+        errors
     }
 
     /// Duration in integer nanoseconds.

@@ -14,6 +14,7 @@
 use nalgebra::DVector;
 
 use super::assembly::Beam;
+use super::mesh::FarEnd;
 use super::section::Segment;
 use super::stress_recovery::StressRecovery;
 
@@ -71,6 +72,7 @@ impl BeamStations {
             segments.iter().find(|s| middle < s.end).unwrap_or(&segments[segments.len() - 1])
         };
         let with_shear = segments.iter().all(|s| s.shear_area > 0.0);
+        let two_supports = mesh.far != FarEnd::Free;
         let mut stations = BeamStations::default();
         for node in 0..=elements {
             let x = mesh.nodes[node].x;
@@ -111,9 +113,18 @@ impl BeamStations {
                     };
                     stations.bending.push(station(m, sl.unwrap(), Stress::Bending));
                 }
+                // A pin of a beam on two supports (issue 45): its moment vanishes as a free end's.
+                (None, Some(r)) if two_supports && mesh.nodes[node].theta.is_some() => {
+                    stations.bending.push(station(r * 0.0, sr.unwrap(), Stress::Bending))
+                }
                 (None, Some(r)) => stations.bending.push(station(r, sr.unwrap(), Stress::Bending)),
+                // A clamped far end (issue 45) carries its moment: the last element's.
+                (Some(l), None) if mesh.far == FarEnd::Clamped => {
+                    stations.bending.push(station(l, sl.unwrap(), Stress::Bending))
+                }
                 // The free end: its moment vanishes (M(l) = 0; the element's end moment there is
-                // only its inertia's share), as the paper's contact probe takes it at a free end.
+                // only its inertia's share), as the paper's contact probe takes it at a free end;
+                // so does a pinned far end's.
                 (Some(l), None) => stations.bending.push(station(l * 0.0, sl.unwrap(), Stress::Bending)),
                 (None, None) => {}
             }

@@ -4,7 +4,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::assembly::Beam;
-use super::mesh::Mesh;
+use super::mesh::{FarEnd, Mesh};
 use super::scenario::{Scenario, SupportKind};
 use super::section::{self, Segment};
 use super::stations::{BeamStations, Stations};
@@ -14,7 +14,8 @@ use crate::error::Result;
 /// Index of each probe (a linear functional of the displacements) in [`Model::probes`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Probe {
-    /// Deflection of the arrestor's free end y_k,l (node 8 in the paper), m.
+    /// Deflection of the arrestor's contact point y_k,l (node 8 in the paper: its free end; issue
+    /// 45: the node at `lower.contact_position`), m.
     LowerTipDeflection = 0,
     /// Deflection of the bridge's contact node y_k,u (node 16), m.
     UpperContactDeflection = 1,
@@ -61,6 +62,10 @@ pub struct Model {
     pub upper: Beam,
     /// Index of the bridge's contact node in `upper.mesh.nodes`.
     pub contact_node: usize,
+    /// Index of the arrestor's contact node in `lower.mesh.nodes` (issue 45: its free end by
+    /// default; `lower.contact_position` from its first support). [`Probe::LowerTipDeflection`]
+    /// and the gap take its deflection.
+    pub lower_contact_node: usize,
     /// Contact bar stiffness E A_c / l_c, N/m (Eq. 3).
     pub bar_stiffness: f64,
     /// Probe functionals as rows over the global DOFs, indexed by [`Probe`].
@@ -94,23 +99,30 @@ impl Model {
         let lower_segments = s.lower_segments();
         let upper_segments = s.upper_segments();
         let breaks = |segments: &[Segment]| -> Vec<f64> { segments.iter().skip(1).map(|g| g.start).collect() };
+        // Issue 45: the arrestor held by `lower.supports` at both ends, with a node where it is
+        // struck (the free end by default: the paper's cantilever, bit for bit).
+        let supports = s.lower.supports;
+        let (lower_mesh, lower_contact) = Mesh::struck_beam(
+            s.lower.length,
+            s.lower.elements as usize,
+            &breaks(&lower_segments),
+            supports.first(),
+            supports.far(),
+            s.lower_contact_position(),
+        );
         let lower = match s.lower.kind {
             SupportKind::Beam if s.lower.sections.is_empty() => Beam::assemble(
-                Mesh::cantilever(s.lower.length, s.lower.elements as usize),
+                lower_mesh,
                 s.lower.elastic_modulus * s.lower.second_moment,
                 s.lower.mass,
                 s.lower.tip_mass,
                 s.gravity,
             ),
-            SupportKind::Beam => Beam::assemble_segments(
-                Mesh::cantilever_sections(s.lower.length, s.lower.elements as usize, &breaks(&lower_segments)),
-                &lower_segments,
-                s.lower.tip_mass,
-                s.gravity,
-            ),
+            SupportKind::Beam => Beam::assemble_segments(lower_mesh, &lower_segments, s.lower.tip_mass, s.gravity),
             // A rigid point: no free DOF, no mass; every functional of it is empty.
             SupportKind::Rigid => Beam::assemble(Mesh::rigid(s.lower.length), 1.0, 0.0, 0.0, s.gravity),
         };
+        let lower_contact = if s.lower.kind == SupportKind::Rigid { lower.mesh.nodes.len() - 1 } else { lower_contact };
         let (upper_mesh, inner) = Mesh::hinged_free_sections(
             s.upper.length,
             s.contact_position,
@@ -134,13 +146,16 @@ impl Model {
                 probes.view_mut((probe as usize, nl), (1, nu)).copy_from(&r.transpose());
             }
         };
-        let lower_tip = lower.mesh.nodes.len() - 1;
+        let lower_tip = lower_contact;
         let upper_tip = upper.mesh.nodes.len() - 1;
         put(Probe::LowerTipDeflection, Some(lower.deflection_functional(lower_tip)), None);
         put(Probe::UpperContactDeflection, None, Some(upper.deflection_functional(inner)));
         put(Probe::UpperTipDeflection, None, Some(upper.deflection_functional(upper_tip)));
         put(Probe::Gap, Some(-lower.deflection_functional(lower_tip)), Some(upper.deflection_functional(inner)));
-        put(Probe::ClampMoment, Some(lower.start_moment_functional(0)), None);
+        // A pinned first support (issue 45) has no moment: zero, as a free end's.
+        let pinned_first = s.lower.supports.has_far_support() && !s.lower.supports.first_is_clamped();
+        let clamp_moment = lower.start_moment_functional(0) * if pinned_first { 0.0 } else { 1.0 };
+        put(Probe::ClampMoment, Some(clamp_moment), None);
         put(Probe::ClampShear, Some(lower.start_shear_functional(0)), None);
         let left = upper.end_moment_functional(inner - 1);
         // At the bridge's free end the moment is zero (the boundary condition M(l_u) = 0; the
@@ -165,7 +180,10 @@ impl Model {
             lower: if s.lower.kind == SupportKind::Rigid {
                 BeamStations::default()
             } else {
-                BeamStations::new(&lower, &lower_segments, &[], None)
+                // A contact inside the beam is a point load: its shear jumps there.
+                let inside = lower_contact + 1 < lower.mesh.nodes.len();
+                let point_loads: Vec<usize> = if inside { vec![lower_contact] } else { Vec::new() };
+                BeamStations::new(&lower, &lower_segments, &point_loads, None)
             },
             upper: BeamStations::new(&upper, &upper_segments, &[inner], Some((inner, s.stress_recovery))),
         };
@@ -175,6 +193,7 @@ impl Model {
             scenario: scenario.clone(),
             bar_stiffness: contact_rate(s),
             contact_node: inner,
+            lower_contact_node: lower_contact,
             lower,
             upper,
             probes,
@@ -186,11 +205,20 @@ impl Model {
     /// first element contributes to their rows.
     pub fn reactions(&self) -> [Reaction; REACTIONS] {
         let g = self.scenario.gravity;
-        let lower = |row: usize| Reaction {
-            stiffness: self
-                .stack(&self.lower.element_force_functional(0, row, 1.0), &DVector::zeros(self.upper.dofs())),
-            mass: self.stack(&self.lower.element_inertia_functional(0, row), &DVector::zeros(self.upper.dofs())),
-            load: self.lower.element_gravity_load(0, row, g),
+        // A pinned first support (issue 45) leaves the rotation free: no moment reaction.
+        let pinned = self.lower.mesh.nodes.first().is_some_and(|n| n.theta.is_some());
+        let lower = |row: usize| {
+            if row == 1 && pinned {
+                self.no_reaction()
+            } else {
+                Reaction {
+                    stiffness: self
+                        .stack(&self.lower.element_force_functional(0, row, 1.0), &DVector::zeros(self.upper.dofs())),
+                    mass: self
+                        .stack(&self.lower.element_inertia_functional(0, row), &DVector::zeros(self.upper.dofs())),
+                    load: self.lower.element_gravity_load(0, row, g),
+                }
+            }
         };
         let upper = Reaction {
             stiffness: self.stack(&DVector::zeros(self.lower.dofs()), &self.upper.element_force_functional(0, 0, 1.0)),
@@ -198,6 +226,38 @@ impl Model {
             load: self.upper.element_gravity_load(0, 0, g),
         };
         [lower(0), lower(1), upper]
+    }
+
+    /// A reaction that is identically zero (a free DOF's).
+    fn no_reaction(&self) -> Reaction {
+        Reaction { stiffness: DVector::zeros(self.dofs()), mass: DVector::zeros(self.dofs()), load: 0.0 }
+    }
+
+    /// The arrestor's far support's reactions (issue 45): its vertical force and its moment
+    /// (up and counter-clockwise positive, on the beam), as [`Self::reactions`] gives the first
+    /// support's, from the last element's rows 2 and 3. Zero for a free far end (the paper's
+    /// cantilever) and the moment for a pinned one.
+    pub fn far_reactions(&self) -> [Reaction; 2] {
+        let g = self.scenario.gravity;
+        let mesh = &self.lower.mesh;
+        let last = mesh.nodes.len() - 1;
+        let held = |row: usize| match row {
+            2 => mesh.far != FarEnd::Free,
+            _ => mesh.far == FarEnd::Clamped,
+        };
+        let e = mesh.elements().saturating_sub(1);
+        let reaction = |row: usize| {
+            if !held(row) || last == 0 || self.lower.dofs() == 0 {
+                return self.no_reaction();
+            }
+            Reaction {
+                stiffness: self
+                    .stack(&self.lower.element_force_functional(e, row, 1.0), &DVector::zeros(self.upper.dofs())),
+                mass: self.stack(&self.lower.element_inertia_functional(e, row), &DVector::zeros(self.upper.dofs())),
+                load: self.lower.element_gravity_load(e, row, g),
+            }
+        };
+        [reaction(2), reaction(3)]
     }
 
     /// The supports' unit inertia loads x_j = -M r_j over the global DOFs, in the order of
@@ -273,11 +333,13 @@ impl Model {
     }
 
     /// Global load vector of unit vertical forces at the bridge's free end and the arrestor's end:
-    /// F_ext = upper_tip * `.0` + lower_tip * `.1`.
+    /// F_ext = upper_tip * `.0` + lower_tip * `.1`. The arrestor's force (`lower.tip_force`) acts
+    /// where its lumped mass sits: its free end, or on two supports its contact node (issue 45).
     pub fn tip_force_vectors(&self) -> (DVector<f64>, DVector<f64>) {
+        let lower = self.lower.deflection_functional(self.lower.mesh.lumped);
         (
             self.probes.row(Probe::UpperTipDeflection as usize).transpose(),
-            self.probes.row(Probe::LowerTipDeflection as usize).transpose(),
+            self.stack(&lower, &DVector::zeros(self.upper.dofs())),
         )
     }
 

@@ -183,6 +183,9 @@ impl StepMessage {
             upper_tip_velocity: self.upper_tip_velocity,
             upper_support_displacement: self.upper_support_displacement,
             lower_support_displacement: self.lower_support_displacement,
+            // Issue 45: the far support's reactions are not in the log's Step message yet.
+            lower_far_reaction_force: 0.0,
+            lower_far_reaction_moment: 0.0,
             energy: EnergyAccount {
                 kinetic: e.kinetic,
                 strain: e.strain,

@@ -191,6 +191,9 @@ mod tests {
             upper_tip_velocity: v,
             upper_support_displacement: v,
             lower_support_displacement: -v,
+            // Not in the Step message (issue 45): the encoding leaves them out.
+            lower_far_reaction_force: 0.0,
+            lower_far_reaction_moment: 0.0,
             energy: EnergyAccount {
                 kinetic: v,
                 strain: v,

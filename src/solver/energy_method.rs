@@ -85,8 +85,15 @@ impl EnergyMethod {
         // contact element alone.
         let rigid = s.lower.kind == crate::model::scenario::SupportKind::Rigid;
         // A stepped arrestor's flexion: the unit-load integral over its sections.
+        // Issue 45: struck elsewhere than a cantilever's free end, the uniform beam's closed forms
+        // (Roark, Table 8.1; a beam of sections by its first section's E I).
+        let x = s.lower_contact_position();
+        let elsewhere = l.supports.has_far_support() || x != l.length;
+        let point = l.supports.point_load(l.elastic_modulus * l.second_moment, l.length, x);
         let k_f = if rigid {
             s.contact.stiffness()
+        } else if elsewhere {
+            1.0 / point.flexibility
         } else if l.sections.is_empty() {
             3.0 * l.elastic_modulus * l.second_moment / l.length.powi(3)
         } else {
@@ -122,8 +129,8 @@ impl EnergyMethod {
             flexion_stiffness: k_f,
             tip_deflection: w,
             force,
-            clamp_bending_stress: if rigid { 0.0 } else { force * l.length / l.section_modulus },
-            clamp_shear_stress: if rigid { 0.0 } else { force / l.shear_area },
+            clamp_bending_stress: if rigid { 0.0 } else { force * point.first_moment / l.section_modulus },
+            clamp_shear_stress: if rigid { 0.0 } else { force * point.first_shear / l.shear_area },
             strain_energy,
             bridge_deceleration: bridge.deceleration,
             bridge_contact_moment,

@@ -164,7 +164,8 @@ pub fn initial_state(model: &Model, modal: &ModalSystem, excitation: &Excitation
     let contact_w = model.upper.mesh.nodes[model.contact_node].w.ok_or_else(|| no_dof("the bridge's contact node"))?;
     // The beams touch: the bridge's relative deflection there is the arrestor's (0 for a rigid
     // support) less the supports' offset.
-    let lower_tip = match model.lower.mesh.tip().w {
+    // (Issue 45: the arrestor's contact node, its free end by default.)
+    let lower_tip = match model.lower.mesh.nodes[model.lower_contact_node].w {
         Some(w) => lower_displacement[w],
         None if nl == 0 => 0.0,
         None => return Err(no_dof("the arrestor's end")),

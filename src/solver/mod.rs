@@ -8,6 +8,7 @@ pub mod eigen;
 pub mod energy_method;
 pub mod envelope;
 pub mod exact;
+pub mod far_support;
 pub mod graded;
 pub mod initial;
 pub mod kinematics;

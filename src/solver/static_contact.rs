@@ -62,6 +62,9 @@ pub struct StaticResponse {
     /// The support reactions (clamp force N, clamp moment N m, hinge force N; up and
     /// counter-clockwise positive), in the order of [`Model::reactions`].
     pub reactions: [f64; 3],
+    /// The arrestor's far support's force (N) and moment (N m) (issue 45, [`Model::far_reactions`]);
+    /// 0 for the paper's free end.
+    pub far_reactions: [f64; 2],
     /// The mesh it was solved on: arrestor elements, bridge elements to and beyond the contact.
     pub elements: [u32; 3],
     /// The displacement vector over the model's global DOFs, m (rad on rotations).
@@ -266,7 +269,9 @@ fn recover(model: &Model, u: DVector<f64>, compression: f64, force: f64) -> Stat
         sampled_every: 1,
     };
     let reactions = model.reactions().map(|r| r.stiffness.dot(&u) - r.load);
+    let far_reactions = model.far_reactions().map(|r| r.stiffness.dot(&u) - r.load);
     StaticResponse {
+        far_reactions,
         envelope_peaks: envelope.peaks(),
         envelope,
         peaks,

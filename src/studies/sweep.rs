@@ -126,6 +126,7 @@ fn symbolic_names(field: &Parameter) -> Option<&'static [&'static str]> {
         "contact.law" => Some(&LAW_NAMES),
         "sea.spectrum" => Some(&SPECTRUM_NAMES),
         "fatigue.curve" => Some(crate::model::fatigue_settings::curve_names()),
+        "lower.supports" => Some(&crate::model::supports::SUPPORTS_NAMES),
         _ => None,
     }
 }
