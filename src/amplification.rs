@@ -181,10 +181,10 @@ fn crane_psi(answer: &Answer, resting: Option<&StaticResponse>) -> CranePsi {
             1.0 / section::tip_flexibility(&s.lower_segments())
         }
     });
-    let k_contact = match (s.contact.nonlinear_law(), resting) {
+    let k_contact = match (s.contact_law(), resting) {
         (Some(law), Some(r)) if law.exponent != 1.0 => law.exponent * law.elastic(r.compression) / r.compression,
         (Some(law), None) if law.exponent != 1.0 => crate::model::system::contact_rate(s),
-        _ => s.contact.stiffness(),
+        _ => s.contact_stiffness(),
     };
     let k = match k_arrestor {
         Some(ka) => 1.0 / (1.0 / ka + 1.0 / k_contact),

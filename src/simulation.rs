@@ -285,6 +285,8 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     feed: FeedEnd,
     /// Every station's turning points, when kept (issue 44: [`Self::keep_turning_points`]).
     turning_points: Option<TurningPoints>,
+    /// Each contact window's start, end, peak force and speeds (issue 45), as the run steps.
+    sub_impacts: Vec<crate::results::SubImpact>,
     /// Every node's deflection and rotation rows, for the model's range (issue 40).
     range_rows: std::sync::Arc<RangeRows>,
     /// The most internal steps the run may take, checked at every step (issue 40).
@@ -472,8 +474,12 @@ impl<S: Stepper> Simulation<S> {
         let backup = state.kinematics.clone();
         let output = StepResult::default();
         let impact = Impact {
-            angular_velocity: Pitching::of(&model.scenario, model.scenario.gravity + motion.accelerations()[0])
-                .angular_velocity,
+            // A rigid impactor does not turn (issue 45): its speed is the closing speed's.
+            angular_velocity: if model.scenario.upper.kind == crate::model::scenario::ImpactorKind::Mass {
+                0.0
+            } else {
+                Pitching::of(&model.scenario, model.scenario.gravity + motion.accelerations()[0]).angular_velocity
+            },
             // 0 - x, not -x: a zero closing speed is +0 (the JSON and the FMU output read "-0").
             closing_speed: 0.0
                 - ((model.probes.row(Probe::Gap as usize) * &physical.velocity)[0]
@@ -496,6 +502,7 @@ impl<S: Stepper> Simulation<S> {
             envelope_work: Default::default(),
             feed: FeedEnd::default(),
             turning_points: None,
+            sub_impacts: Vec::new(),
             range_rows: std::sync::Arc::new(range_rows),
             max_steps: crate::model::scenario::MAX_STEPS,
             peak_instants: Vec::new(),
@@ -1249,7 +1256,13 @@ impl<S: Stepper> Simulation<S> {
         } else {
             None
         };
+        let force_peak = within_step.map_or((result.contact_force.abs(), result.time), |e| e[4]);
         self.update_peaks(energies.upper_strain, within_step);
+        if stage.is_contact() {
+            if let Some(last) = self.sub_impacts.last_mut() {
+                last.observe(result.time, force_peak);
+            }
+        }
 
         let windows = &mut self.state.contact_windows;
         if stage.is_contact() {
@@ -1266,13 +1279,14 @@ impl<S: Stepper> Simulation<S> {
         if next.is_contact() {
             windows.push(ContactWindow { start: result.time, end: result.time });
         }
-        Ok(Some(ContactEvent {
-            start: next.is_contact(),
-            time_ns: result.time_ns,
-            step: result.step + 1,
-            relative_velocity: self.stepper.probes(&self.state.kinematics.velocity)[Probe::Gap as usize]
-                + excitation.gap_offset_rate,
-        }))
+        let relative_velocity =
+            self.stepper.probes(&self.state.kinematics.velocity)[Probe::Gap as usize] + excitation.gap_offset_rate;
+        if next.is_contact() {
+            self.sub_impacts.push(crate::results::SubImpact::starting(result.time, relative_velocity));
+        } else if let Some(last) = self.sub_impacts.last_mut() {
+            last.separate(result.time, relative_velocity);
+        }
+        Ok(Some(ContactEvent { start: next.is_contact(), time_ns: result.time_ns, step: result.step + 1, relative_velocity }))
     }
 
     /// The step from `backup` ended in the other stage (gap `gap_end` after `step_ns`): retakes it
@@ -2141,6 +2155,7 @@ impl<S: Stepper> Simulation<S> {
             impact: self.impact,
             envelope,
             model_range,
+            sub_impacts: self.sub_impacts.clone(),
         }
     }
 

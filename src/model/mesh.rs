@@ -31,6 +31,9 @@ pub enum Support {
     Hinged,
     /// Every node fixed: a rigid support (issue 28), a beam without free DOFs.
     Rigid,
+    /// A rigid impactor (issue 45): the first node fixed, the last node's deflection free and
+    /// its rotation held, so that the one DOF is the body's vertical translation.
+    Mass,
 }
 
 impl Support {
@@ -41,7 +44,7 @@ impl Support {
     pub fn rigid_modes(self) -> usize {
         match self {
             Support::Clamped | Support::Rigid => 0,
-            Support::Hinged => 1,
+            Support::Hinged | Support::Mass => 1,
         }
     }
 }
@@ -78,6 +81,8 @@ impl Mesh {
                 let (w, theta) = match (i, support) {
                     (_, Support::Rigid) | (0, Support::Clamped) => (None, None),
                     (0, Support::Hinged) => (None, next()),
+                    (0, Support::Mass) => (None, None),
+                    (_, Support::Mass) => (next(), None),
                     _ => (next(), next()),
                 };
                 Node { x, w, theta }
@@ -104,6 +109,13 @@ impl Mesh {
     /// A rigid support of `length` m: one element, no free DOF.
     pub fn rigid(length: f64) -> Mesh {
         Mesh::new(&[0.0, length], Support::Rigid)
+    }
+
+    /// A rigid impactor (issue 45): one element of `length` m whose far node's deflection is the
+    /// body's one DOF (the element carries neither stiffness nor mass: see
+    /// [`crate::model::Beam::assemble`] with both 0 and the body as the tip mass).
+    pub fn mass(length: f64) -> Mesh {
+        Mesh::new(&[0.0, length], Support::Mass)
     }
 
     /// A hinged-free beam with a node at `contact_position`: `inner` equal elements up to it and

@@ -10,6 +10,7 @@ pub mod fatigue_settings;
 pub mod load_case;
 pub mod mesh;
 pub mod motion_table;
+pub mod rigid_impactor;
 pub mod parameters;
 pub mod scenario;
 pub mod sea;

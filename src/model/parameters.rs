@@ -4,7 +4,7 @@
 use super::contact_law::LawKind;
 use super::discretisation::Method;
 use super::scenario::{
-    Scenario, SupportKind, MAX_ELEMENTS, SMALLEST_CONTACT_STIFFNESS, SMALLEST_STRESS, SMALLEST_YIELD_STRESS,
+    ImpactorKind, Scenario, SupportKind, MAX_ELEMENTS, SMALLEST_CONTACT_STIFFNESS, SMALLEST_STRESS, SMALLEST_YIELD_STRESS,
 };
 use super::stress_recovery::StressRecovery;
 use super::time_step::TimeStep;
@@ -242,12 +242,14 @@ pub const PARAMETERS: &[Parameter] = &[
         name: "contact.law",
         unit: "",
         description: "The contact law: 0 linear (F = k delta, the paper's bar), 1 power (F = k delta^n, n = \
-                      contact.exponent; contact.stiffness then in N/m^n)",
+                      contact.exponent; contact.stiffness then in N/m^n), 2 hertz (a sphere of upper.radius on a \
+                      flat face: k = 4/3 E* sqrt(R), n = 3/2)",
         kind: Kind::Integer,
         get: |s| f64::from(s.contact.law.index()),
         put: |s, v| {
             s.contact.law =
-                LawKind::from_index(v).ok_or_else(|| Error::invalid("contact.law", "0 (linear) or 1 (power)", v))?;
+                LawKind::from_index(v)
+                .ok_or_else(|| Error::invalid("contact.law", "0 (linear), 1 (power) or 2 (hertz)", v))?;
             Ok(())
         },
     },
@@ -274,6 +276,45 @@ pub const PARAMETERS: &[Parameter] = &[
         "Pa",
         "Bridge allowable shear stress; 0: none given (the bridge's shear is not checked)",
         upper.allowable_shear_stress
+    ),
+    // issue 45: rigid impactor
+    Parameter {
+        name: "upper.kind",
+        unit: "",
+        description: "What strikes: 0 the bridge (a hinged beam), 1 a rigid mass of upper.mass moving vertically (the \
+                      bridge's beam fields do not apply)",
+        kind: Kind::Integer,
+        get: |s| f64::from(s.upper.kind.index()),
+        put: |s, v| {
+            s.upper.kind =
+                ImpactorKind::from_index(v).ok_or_else(|| Error::invalid("upper.kind", "0 (beam) or 1 (mass)", v))?;
+            Ok(())
+        },
+    },
+    real!(
+        "impact_speed",
+        "m/s",
+        "A rigid mass's downward speed at first contact; 0: not given (from drop_height, v = sqrt(2 g h); with a \
+         speed, set drop_height = 0)",
+        impact_speed
+    ),
+    real!(
+        "upper.radius",
+        "m",
+        "The striking body's radius at the contact, for contact.law = hertz (a sphere on a flat face); 0: not given",
+        upper.radius
+    ),
+    real!(
+        "upper.poisson_ratio",
+        "1",
+        "Poisson's ratio of the striking body, for contact.law = hertz (default 0.3)",
+        upper.poisson_ratio
+    ),
+    real!(
+        "lower.poisson_ratio",
+        "1",
+        "Poisson's ratio of the struck beam, for contact.law = hertz (default 0.3)",
+        lower.poisson_ratio
     ),
 ];
 
@@ -343,11 +384,17 @@ pub const RANGES: &[(&str, Option<f64>, Option<f64>)] = &[
     ("lower.kind", Some(0.0), Some(1.0)),
     ("contact.stiffness", Some(0.0), Some(crate::model::scenario::MAX_POWER_LAW_STIFFNESS)),
     ("contact.clearance", Some(0.0), Some(10.0)),
-    ("contact.law", Some(0.0), Some(1.0)),
+    ("contact.law", Some(0.0), Some(2.0)),
     ("contact.exponent", Some(0.0), Some(3.0)),
     ("contact.damping", Some(0.0), Some(1e3)),
     ("upper.shear_area", Some(0.0), Some(1e3)),
     ("upper.allowable_shear_stress", Some(0.0), Some(1e12)),
+    // issue 45: rigid impactor
+    ("upper.kind", Some(0.0), Some(1.0)),
+    ("impact_speed", Some(0.0), Some(crate::model::rigid_impactor::MAX_IMPACT_SPEED)),
+    ("upper.radius", Some(0.0), Some(crate::model::rigid_impactor::RADIUS_RANGE.1)),
+    ("upper.poisson_ratio", Some(0.0), Some(crate::model::rigid_impactor::MAX_POISSON_RATIO)),
+    ("lower.poisson_ratio", Some(0.0), Some(crate::model::rigid_impactor::MAX_POISSON_RATIO)),
 ];
 
 /// The smallest positive f64: a lower bound "> 0" in the FMU's `min` (FMI has no exclusive bound).
@@ -374,6 +421,7 @@ pub const NONZERO_MINIMA: &[(&str, f64)] = &[
     ("upper.yield_stress", SMALLEST_YIELD_STRESS),
     ("contact.stiffness", SMALLEST_CONTACT_STIFFNESS),
     ("contact.exponent", crate::model::contact_law::EXPONENT_RANGE.0),
+    ("upper.radius", crate::model::rigid_impactor::RADIUS_RANGE.0),
 ];
 
 /// The smallest nonzero value a field accepts where 0 is a setting of its own

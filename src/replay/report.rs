@@ -705,6 +705,8 @@ pub fn summary_from_log(data: &LogData, simulation: &Simulation) -> Result<Summa
         peak_times,
         upper_strain_at_peak_deflection: upper_strain,
         contact_windows: windows,
+        // The log's `answer.json` carries them (issue 45).
+        sub_impacts: Vec::new(),
         final_energy_residual: last.energy.residual,
         max_energy_residual: max_residual,
         energy_method: *simulation.energy_method(),

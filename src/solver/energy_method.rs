@@ -86,7 +86,7 @@ impl EnergyMethod {
         let rigid = s.lower.kind == crate::model::scenario::SupportKind::Rigid;
         // A stepped arrestor's flexion: the unit-load integral over its sections.
         let k_f = if rigid {
-            s.contact.stiffness()
+            s.contact_stiffness()
         } else if l.sections.is_empty() {
             3.0 * l.elastic_modulus * l.second_moment / l.length.powi(3)
         } else {
