@@ -30,6 +30,7 @@ pub mod solver;
 pub mod ssp;
 pub mod studies;
 pub mod vocabulary;
+pub mod sub_impacts;
 
 pub use error::{Error, Result};
 pub use model::Scenario;

@@ -1049,7 +1049,9 @@ pub fn stored_verdict(answer_json: Option<&str>) -> String {
     let cases = serde_json::from_value::<crate::load_cases::results::LoadCaseResults>(doc["load_cases"].clone())
         .map(|cases| format!("\n{}", crate::load_cases::results::text(&cases).trim_end()))
         .unwrap_or_default();
-    format!("verdict stored with the run: {trust}; design: {design}{cases}{}", stored_amplification(&doc))
+    let impacts = crate::sub_impacts::lines(&crate::sub_impacts::from_json(&doc));
+    let impacts = if impacts.is_empty() { impacts } else { format!("\n{}", impacts.trim_end()) };
+    format!("verdict stored with the run: {trust}; design: {design}{cases}{}{impacts}", stored_amplification(&doc))
 }
 
 /// The dynamic amplification the log's `answer.json` stores (issue 44), one line: each quantity's
