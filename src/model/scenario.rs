@@ -808,7 +808,7 @@ impl Scenario {
     /// the unit) and the value. The bounds keep every accepted scenario finite and answerable:
     /// beyond them the model's numbers overflow, underflow or stop meaning anything physical.
     pub fn validation_errors(&self) -> Vec<Error> {
-        let mut errors = Vec::new();
+        let mut errors = super::rigid_impactor::validation_errors(self);
         let u = &self.upper;
         let mut check = |result: Result<()>| {
             if let Err(e) = result {
@@ -820,9 +820,7 @@ impl Scenario {
         // A zero drop height is legal: the bridge touches the arrestor at rest. The centre of
         // gravity cannot drop more than half the bridge's length (45 degrees with Eq. 20's tan).
         let bridge_ok = size("upper.length", "m", u.length, 0.01, 1e3).is_ok();
-        if u.kind == ImpactorKind::Mass {
-            errors.extend(super::rigid_impactor::validation_errors(self));
-        } else {
+        if u.kind == ImpactorKind::Beam {
             check(within("drop_height", "m", self.drop_height, 0.0, if bridge_ok { 0.5 * u.length } else { 500.0 }));
         }
         let mut check = |result: Result<()>| {
