@@ -29,8 +29,8 @@ pub mod simulation;
 pub mod solver;
 pub mod ssp;
 pub mod studies;
-pub mod vocabulary;
 pub mod sub_impacts;
+pub mod vocabulary;
 
 pub use error::{Error, Result};
 pub use model::Scenario;

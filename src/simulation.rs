@@ -1286,7 +1286,12 @@ impl<S: Stepper> Simulation<S> {
         } else if let Some(last) = self.sub_impacts.last_mut() {
             last.separate(result.time, relative_velocity);
         }
-        Ok(Some(ContactEvent { start: next.is_contact(), time_ns: result.time_ns, step: result.step + 1, relative_velocity }))
+        Ok(Some(ContactEvent {
+            start: next.is_contact(),
+            time_ns: result.time_ns,
+            step: result.step + 1,
+            relative_velocity,
+        }))
     }
 
     /// The step from `backup` ended in the other stage (gap `gap_end` after `step_ns`): retakes it

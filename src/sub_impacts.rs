@@ -21,7 +21,8 @@ pub fn lines(impacts: &[SubImpact]) -> String {
         impacts.len(),
         if impacts.len() == 1 { "" } else { "s" }
     );
-    text += "   #   start [s]  duration [s]  peak force [kN]  at [s]     approach [m/s]  separation [m/s]  restitution\n";
+    text +=
+        "   #   start [s]  duration [s]  peak force [kN]  at [s]     approach [m/s]  separation [m/s]  restitution\n";
     for (i, w) in impacts.iter().take(SHOWN).enumerate() {
         let optional = |v: Option<f64>, width: usize| match v {
             Some(v) => format!("{v:>width$.6}"),

@@ -237,7 +237,13 @@ fn set_vary_and_report_carry_the_mass_and_its_sub_impacts() {
     let mut sweep = beam_impact();
     let rows = dir.path().join("speeds.csv");
     // The base scenario is checked before the speeds are set: its drop height is stated as 0.
-    sweep.arg("sweep").arg("--out").arg(&rows).arg("--vary").arg("impact_speed=0.5:1:2").args(["--set", "drop_height=0"]);
+    sweep
+        .arg("sweep")
+        .arg("--out")
+        .arg(&rows)
+        .arg("--vary")
+        .arg("impact_speed=0.5:1:2")
+        .args(["--set", "drop_height=0"]);
     for s in set.iter().filter(|s| !s.starts_with("impact_speed")) {
         sweep.arg("--set").arg(s);
     }

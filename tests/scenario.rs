@@ -38,6 +38,12 @@ fn each_invalid_parameter_is_rejected_by_name() {
         // None given: no shear stress for the bridge, its shear not checked (issue 30).
         "upper.shear_area",
         "upper.allowable_shear_stress",
+        // Issue 45: the bridge (0), no mass's speed, no Hertz radius, Poisson's ratios from 0.
+        "upper.kind",
+        "impact_speed",
+        "upper.radius",
+        "upper.poisson_ratio",
+        "lower.poisson_ratio",
     ];
     for p in PARAMETERS {
         let mut bad = vec![-3.0];

@@ -144,18 +144,18 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     if scenario.upper.kind == beam_impact::model::scenario::ImpactorKind::Mass {
         text += &mass_impact_line(&scenario, impact.closing_speed);
     } else {
-    text += &format!(
-        "impact: the bridge turns at {} rad/s about its hinge ({}), its contact point closing at {} m/s\n\n",
-        speed(impact.angular_velocity),
-        match scenario.impact_angular_velocity {
-            Some(_) => "as stated: impact_angular_velocity".to_string(),
-            None => format!(
-                "from drop_height = {} m: omega_0 = sqrt(3 g alpha_0 / l_u), alpha_0 = atan(2 h / l_u), Eqs. 20-22",
-                scenario.drop_height
-            ),
-        },
-        speed(impact.closing_speed)
-    );
+        text += &format!(
+            "impact: the bridge turns at {} rad/s about its hinge ({}), its contact point closing at {} m/s\n\n",
+            speed(impact.angular_velocity),
+            match scenario.impact_angular_velocity {
+                Some(_) => "as stated: impact_angular_velocity".to_string(),
+                None => format!(
+                    "from drop_height = {} m: omega_0 = sqrt(3 g alpha_0 / l_u), alpha_0 = atan(2 h / l_u), Eqs. 20-22",
+                    scenario.drop_height
+                ),
+            },
+            speed(impact.closing_speed)
+        );
     }
     if let Some(table) = &scenario.motion.table {
         text += &format!(

@@ -360,6 +360,7 @@ pub fn is_appended_parameter(p: &Parameter) -> bool {
     matches!((index(p.name), index("energy_tolerance")), (Some(i), Some(first)) if i >= first)
         && !is_issue_28_parameter(p)
         && !is_issue_30_parameter(p)
+        && !is_issue_45_parameter(p)
 }
 
 /// Whether a parameter came with issue 28 (every parameter from `impact_angular_velocity` on in
@@ -368,6 +369,7 @@ pub fn is_issue_28_parameter(p: &Parameter) -> bool {
     let index = |name: &str| PARAMETERS.iter().position(|q| q.name == name);
     matches!((index(p.name), index("impact_angular_velocity")), (Some(i), Some(first)) if i >= first)
         && !is_issue_30_parameter(p)
+        && !is_issue_45_parameter(p)
 }
 
 /// Whether a parameter came with issue 30 (every parameter from `upper.shear_area` on in
@@ -375,6 +377,15 @@ pub fn is_issue_28_parameter(p: &Parameter) -> bool {
 pub fn is_issue_30_parameter(p: &Parameter) -> bool {
     let index = |name: &str| PARAMETERS.iter().position(|q| q.name == name);
     matches!((index(p.name), index("upper.shear_area")), (Some(i), Some(first)) if i >= first)
+        && !is_issue_45_parameter(p)
+}
+
+/// Whether a parameter came with issue 45 (every parameter from `upper.kind` on in
+/// [`PARAMETERS`]: the rigid impactor and the Hertz law's inputs): its value reference follows
+/// `solver.max_steps`, the end of the table before it.
+pub fn is_issue_45_parameter(p: &Parameter) -> bool {
+    let index = |name: &str| PARAMETERS.iter().position(|q| q.name == name);
+    matches!((index(p.name), index("upper.kind")), (Some(i), Some(first)) if i >= first)
 }
 
 /// A variable as [`table`] lists it, before its value reference and declared range: name,
@@ -457,7 +468,9 @@ pub fn table_for(defaults: &Scenario) -> Vec<Variable> {
     let output = |&(name, unit, description, get): &OutputRow| -> Row {
         real_output(name, unit, description, Source::Output(get))
     };
-    let later = |p: &Parameter| is_appended_parameter(p) || is_issue_28_parameter(p) || is_issue_30_parameter(p);
+    let later = |p: &Parameter| {
+        is_appended_parameter(p) || is_issue_28_parameter(p) || is_issue_30_parameter(p) || is_issue_45_parameter(p)
+    };
     for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && !later(p)) {
         push(parameter(p));
     }
@@ -731,6 +744,10 @@ pub fn table_for(defaults: &Scenario) -> Vec<Variable> {
         Some(format!("{}", crate::model::scenario::MAX_STEPS)),
         Source::MaxSteps,
     ));
+    // Issue 45: the rigid impactor and the Hertz law's inputs (appended).
+    for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && is_issue_45_parameter(p)) {
+        push(parameter(p));
+    }
     v
 }
 

@@ -4,7 +4,8 @@
 use super::contact_law::LawKind;
 use super::discretisation::Method;
 use super::scenario::{
-    ImpactorKind, Scenario, SupportKind, MAX_ELEMENTS, SMALLEST_CONTACT_STIFFNESS, SMALLEST_STRESS, SMALLEST_YIELD_STRESS,
+    ImpactorKind, Scenario, SupportKind, MAX_ELEMENTS, SMALLEST_CONTACT_STIFFNESS, SMALLEST_STRESS,
+    SMALLEST_YIELD_STRESS,
 };
 use super::stress_recovery::StressRecovery;
 use super::time_step::TimeStep;
@@ -247,8 +248,7 @@ pub const PARAMETERS: &[Parameter] = &[
         kind: Kind::Integer,
         get: |s| f64::from(s.contact.law.index()),
         put: |s, v| {
-            s.contact.law =
-                LawKind::from_index(v)
+            s.contact.law = LawKind::from_index(v)
                 .ok_or_else(|| Error::invalid("contact.law", "0 (linear), 1 (power) or 2 (hertz)", v))?;
             Ok(())
         },
@@ -433,9 +433,9 @@ pub fn nonzero_minimum(name: &str) -> Option<f64> {
 /// The rules a field's range involves another field in, which FMI's `min` / `max` cannot say:
 /// each as [`range_text`] adds it, and in the FMU parameter's description.
 pub const CONDITIONS: &[(&str, &str)] = &[
-    ("drop_height", "at most upper.length / 2"),
+    ("drop_height", "at most upper.length / 2 (a mass: 500)"),
     ("contact_position", "at most upper.length (its free end)"),
-    ("gravity", "0 only with impact_angular_velocity given"),
+    ("gravity", "0 only with impact_angular_velocity (a mass: impact_speed) given"),
     ("contact.exponent", "only 0 or 1 with contact.law = \"linear\""),
     ("contact.stiffness", "at most 1e12 N/m with contact.law = \"linear\" (1e13 N/m^n: the power law's)"),
     ("contact.area", "with contact.law = \"linear\" and no contact.stiffness, E A_c / l_c at most 1e12 N/m"),
@@ -468,7 +468,7 @@ pub fn range_text(name: &str) -> Option<String> {
         _ => "0 (none)",
     };
     let base = match name {
-        "method" | "stress_recovery" | "lower.kind" | "contact.law" => return None,
+        "method" | "stress_recovery" | "lower.kind" | "contact.law" | "upper.kind" => return None,
         "modal_cutoff" => "\"auto\", or > 0 up to 1e12".to_string(),
         // A CLI field (the FMU's stop time is the importer's): Scenario::validate's bound.
         "duration" => "> 0, at most 1e6".to_string(),
@@ -507,9 +507,13 @@ fn annotation(p: &Parameter) -> String {
 }
 
 /// Fields of a section that a scenario leaves out unless given, with an example value.
-const OPTIONAL_FIELDS: [(&str, &str); 8] = [
+const OPTIONAL_FIELDS: [(&str, &str); 12] = [
+    ("upper.kind", "\"mass\""),
+    ("upper.radius", "0.035"),
+    ("upper.poisson_ratio", "0.3"),
     ("upper.shear_area", "0.012"),
     ("upper.allowable_shear_stress", "355e6"),
+    ("lower.poisson_ratio", "0.3"),
     ("lower.kind", "\"rigid\""),
     ("contact.stiffness", "2.8e10"),
     ("contact.clearance", "0.001"),
@@ -559,6 +563,11 @@ pub fn annotate_toml(toml: &str) -> String {
                     let speed = find("impact_angular_velocity").expect("a parameter");
                     out.push_str(&format!("# impact_angular_velocity = 0.2  # {}\n", annotation(speed)));
                 }
+                // A rigid impactor's speed (issue 45), too.
+                if p.name == "drop_height" && !toml.lines().any(|l| l.starts_with("impact_speed = ")) {
+                    let speed = find("impact_speed").expect("a parameter");
+                    out.push_str(&format!("# impact_speed = 1.0  # {}\n", annotation(speed)));
+                }
             }
             None if key.as_deref().is_some_and(|k| k.ends_with(".tip_force")) => {
                 out.push_str(&format!(
@@ -590,7 +599,8 @@ mod tests {
                 .find(|l| l.starts_with(&format!("{key} = ")) || l.starts_with(&format!("# {key} = ")))
                 .unwrap_or_else(|| panic!("{name}"));
             assert!(line.contains("  # ["), "{name}: no unit: {line}");
-            let named_choice = matches!(*name, "method" | "stress_recovery" | "lower.kind" | "contact.law");
+            let named_choice =
+                matches!(*name, "method" | "stress_recovery" | "lower.kind" | "contact.law" | "upper.kind");
             assert_eq!(line.contains("; range "), !named_choice, "{name}: {line}");
         }
         assert!(

@@ -148,11 +148,7 @@ pub fn solve(model: &Model) -> Result<StaticOutcome> {
     let b_vec = cholesky.solve(&b);
     let (a, beta) = (b.dot(&a_vec), b.dot(&b_vec));
     let c = s.contact.clearance;
-    let law = s.contact_law().unwrap_or(ContactLaw {
-        stiffness: s.contact_stiffness(),
-        exponent: 1.0,
-        damping: 0.0,
-    });
+    let law = s.contact_law().unwrap_or(ContactLaw { stiffness: s.contact_stiffness(), exponent: 1.0, damping: 0.0 });
     let slack = 1.0 - k_r * beta;
     let g = |delta: f64| beta * law.elastic(delta) + a + (delta + c) * slack;
     let g0 = g(0.0);

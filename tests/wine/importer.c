@@ -144,7 +144,7 @@ static void *need(lib_t lib, const char *name) {
 }
 
 /* From modelDescription.xml (FMI 2 guid = FMI 3 instantiationToken; the value references are the same). */
-#define TOKEN "{3e81ad9f-aae8-290d-6fac-3c95a4a0dd02}"
+#define TOKEN "{6eab5386-b6b6-3a86-ecdf-47d4f42640ef}"
 #define VR_LOG_PATH 27
 #define N_OUTPUTS 8
 #define N_PEAKS 5 /* the first N_PEAKS outputs */
