@@ -155,7 +155,11 @@ fn energy_method_daf(answer: &Answer) -> EnergyMethodDaf {
         let (m, first, _) = section::mass_moments(&s.upper_segments());
         first / m
     };
-    let static_force = s.upper.mass * s.gravity * lever / s.contact_position;
+    let mut static_force = s.upper.mass * s.gravity * lever / s.contact_position;
+    // A rigid impactor (issue 45) rests with its whole weight on the contact.
+    if s.upper.kind == crate::model::scenario::ImpactorKind::Mass {
+        static_force = s.upper.mass * s.gravity;
+    }
     EnergyMethodDaf {
         force: e.force,
         static_force,
@@ -173,7 +177,8 @@ fn crane_psi(answer: &Answer, resting: Option<&StaticResponse>) -> CranePsi {
     } else {
         section::mass_moments(&s.upper_segments()).2
     };
-    let m = j_hinge / (d * d);
+    // A rigid impactor (issue 45) strikes with its whole mass.
+    let m = if s.upper.kind == crate::model::scenario::ImpactorKind::Mass { s.upper.mass } else { j_hinge / (d * d) };
     let k_arrestor = (s.lower.kind == SupportKind::Beam).then(|| {
         if s.lower.sections.is_empty() {
             3.0 * s.lower.elastic_modulus * s.lower.second_moment / s.lower.length.powi(3)

@@ -46,6 +46,19 @@ pub fn lines(impacts: &[SubImpact]) -> String {
     text
 }
 
+/// The sub-impacts table of a log whose stored scenario is a rigid impactor's (`upper.kind =
+/// "mass"`), from its `answer.json` (nothing for a bridge, whose contact windows `report` lists
+/// already, or without either file).
+pub fn stored_lines(scenario_toml: Option<&str>, answer_json: Option<&str>) -> String {
+    let mass = scenario_toml
+        .and_then(|t| t.parse::<toml::Table>().ok())
+        .is_some_and(|t| t.get("upper").and_then(|u| u.get("kind")).and_then(|k| k.as_str()) == Some("mass"));
+    match answer_json.and_then(|a| serde_json::from_str::<serde_json::Value>(a).ok()) {
+        Some(doc) if mass => lines(&from_json(&doc)),
+        _ => String::new(),
+    }
+}
+
 /// The sub-impacts a log's `answer.json` stores (at most [`READ_BACK`]; entries that are not
 /// well-formed, with finite numbers, are skipped: nothing in a log is trusted).
 pub fn from_json(doc: &serde_json::Value) -> Vec<SubImpact> {

@@ -200,7 +200,10 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     }
     text += "\n";
     text += &beam_impact::answer::table(&answer);
-    text += &beam_impact::sub_impacts::lines(&summary.sub_impacts);
+    // A rigid impactor's rebounds (issue 45); a bridge's windows are listed above.
+    if scenario.upper.kind == beam_impact::model::scenario::ImpactorKind::Mass {
+        text += &beam_impact::sub_impacts::lines(&summary.sub_impacts);
+    }
     if let Ok(amplification) = beam_impact::amplification::amplification(&answer) {
         text += &amplification.lines();
     }

@@ -1049,9 +1049,7 @@ pub fn stored_verdict(answer_json: Option<&str>) -> String {
     let cases = serde_json::from_value::<crate::load_cases::results::LoadCaseResults>(doc["load_cases"].clone())
         .map(|cases| format!("\n{}", crate::load_cases::results::text(&cases).trim_end()))
         .unwrap_or_default();
-    let impacts = crate::sub_impacts::lines(&crate::sub_impacts::from_json(&doc));
-    let impacts = if impacts.is_empty() { impacts } else { format!("\n{}", impacts.trim_end()) };
-    format!("verdict stored with the run: {trust}; design: {design}{cases}{}{impacts}", stored_amplification(&doc))
+    format!("verdict stored with the run: {trust}; design: {design}{cases}{}", stored_amplification(&doc))
 }
 
 /// The dynamic amplification the log's `answer.json` stores (issue 44), one line: each quantity's
@@ -1103,6 +1101,7 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
             );
         }
         let _ = writeln!(text, "{}", stored_verdict(data.answer_json.as_deref()));
+        text += &crate::sub_impacts::stored_lines(data.scenario_toml.as_deref(), data.answer_json.as_deref());
         for note in data.notes() {
             let _ = writeln!(text, "{note}");
         }
