@@ -57,6 +57,9 @@ fn seeds() -> Vec<String> {
         include_str!("../examples/three-section-gangway.toml").to_string(),
         // Issue 44: `[[load_cases]]` with their factors and `set` tables mutated too.
         include_str!("../examples/load-cases.toml").to_string(),
+        // Issue 45: a rigid impactor, with Hertz's law and with a linear contact.
+        include_str!("../examples/lab-sphere.toml").to_string(),
+        include_str!("../examples/dropped-container.toml").to_string(),
         "drop_height = 0.8\nstep_free = 5e-5\n[upper]\nelements_to_contact = 14\n[lower]\nelements = 3\n".to_string(),
     ]
 }

@@ -58,7 +58,7 @@ pub fn refuse_beam_fields(text: &str) -> Result<()> {
         .and_then(|u| u.as_table())
         .map(|u| {
             u.keys()
-                .filter(|k| !MASS_FIELDS.iter().any(|f| *f == k.as_ref() as &str))
+                .filter(|k| !MASS_FIELDS.iter().any(|f| f == k))
                 .map(|k| format!("upper.{k}"))
                 .collect()
         })
@@ -84,7 +84,7 @@ pub fn refuse_beam_fields(text: &str) -> Result<()> {
 /// text reads back: see [`refuse_beam_fields`]).
 pub fn retain_mass_fields(table: &mut toml::Table) {
     if let Some(toml::Value::Table(upper)) = table.get_mut("upper") {
-        upper.retain(|k, _| MASS_FIELDS.iter().any(|f| *f == k.as_ref() as &str));
+        upper.retain(|k, _| MASS_FIELDS.contains(&k));
     }
     for key in ["contact_position", "impact_angular_velocity", "stress_recovery"] {
         table.remove(key);
