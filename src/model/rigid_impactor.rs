@@ -56,12 +56,7 @@ pub fn refuse_beam_fields(text: &str) -> Result<()> {
     let mut given: Vec<String> = table
         .get("upper")
         .and_then(|u| u.as_table())
-        .map(|u| {
-            u.keys()
-                .filter(|k| !MASS_FIELDS.iter().any(|f| f == k))
-                .map(|k| format!("upper.{k}"))
-                .collect()
-        })
+        .map(|u| u.keys().filter(|k| !MASS_FIELDS.iter().any(|f| f == k)).map(|k| format!("upper.{k}")).collect())
         .unwrap_or_default();
     for key in ["contact_position", "impact_angular_velocity", "stress_recovery"] {
         if table.contains_key(key) {
