@@ -1545,6 +1545,8 @@ impl<S: Stepper> Simulation<S> {
             let start_ns = self.state.result.time_ns;
             let full_step_fits = start_ns + self.next_step_ns(stage) <= target_ns;
             let saved = (!full_step_fits || self.samples_for(recorder)).then(|| self.state.clone());
+            // The sub-impacts live beside the state: a step left untaken leaves them too.
+            let saved_impacts = (self.sub_impacts.len(), self.sub_impacts.last().copied());
             let event = self.step(u64::MAX, false)?;
             let last = event.is_some() || self.state.result.time_ns >= target_ns;
             if let Some(saved) = saved {
@@ -1552,6 +1554,10 @@ impl<S: Stepper> Simulation<S> {
                     // The point falls inside this step: interpolate, and leave the step untaken.
                     (self.output, self.output_peak_times) = self.interpolate(&saved, target_ns, stage);
                     self.state = saved;
+                    self.sub_impacts.truncate(saved_impacts.0);
+                    if let (Some(last), Some(kept)) = (self.sub_impacts.last_mut(), saved_impacts.1) {
+                        *last = kept;
+                    }
                     self.state.output_ns = target_ns;
                     return Ok(Advance::Reached);
                 }
@@ -2079,6 +2085,9 @@ impl<S: Stepper> Simulation<S> {
         }
         let previous = std::mem::replace(&mut self.state, state);
         let previous_output = (self.output, self.output_peak_times);
+        // The sub-impacts up to the restored state's windows (issue 45; the FMU reports none).
+        let previous_impacts = self.sub_impacts.clone();
+        self.sub_impacts.truncate(self.state.contact_windows.len());
         self.step_end = None;
         // The outputs at a communication point inside a step are recomputed from that step.
         let (at, forces, motion) = (self.state.output_ns, self.state.input_forces, self.state.input_motion);
@@ -2090,6 +2099,7 @@ impl<S: Stepper> Simulation<S> {
         if let Err(e) = self.advance_outputs_to(at, &mut NullRecorder, false) {
             // Leave the simulation as it was: a refused state changes nothing.
             self.state = previous;
+            self.sub_impacts = previous_impacts;
             (self.output, self.output_peak_times) = previous_output;
             self.publish_envelope();
             return Err(e);

@@ -219,7 +219,10 @@ fn set_vary_and_report_carry_the_mass_and_its_sub_impacts() {
         "duration=0.02",
     ];
     let mut cmd = beam_impact();
-    cmd.arg("run").arg("--mcap").arg(&log);
+    // A dense log samples inside steps (each sample leaves a step untaken and takes it again):
+    // the sub-impacts stay one per contact window.
+    let json = dir.path().join("mass.json");
+    cmd.arg("run").arg("--mcap").arg(&log).args(["--log-sample-interval", "1e-5", "--json"]).arg(&json);
     for s in set {
         cmd.arg("--set").arg(s);
     }
@@ -228,6 +231,11 @@ fn set_vary_and_report_carry_the_mass_and_its_sub_impacts() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(text.contains("impact: a rigid mass of 100 kg strikes at 1.000000 m/s"), "{text}");
     assert!(text.contains("sub-impacts: 1 contact window"), "{text}");
+    let doc: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(
+        doc["sub_impacts"].as_array().unwrap().len(),
+        doc["summary"]["contact_windows"].as_array().unwrap().len()
+    );
     let report = beam_impact().arg("report").arg(&log).arg("--out").arg(dir.path().join("fig")).output().unwrap();
     let text = String::from_utf8_lossy(&report.stdout);
     assert!(report.status.success(), "{}", String::from_utf8_lossy(&report.stderr));
