@@ -155,7 +155,11 @@ fn energy_method_daf(answer: &Answer) -> EnergyMethodDaf {
         let (m, first, _) = section::mass_moments(&s.upper_segments());
         first / m
     };
-    let static_force = s.upper.mass * s.gravity * lever / s.contact_position;
+    let mut static_force = s.upper.mass * s.gravity * lever / s.contact_position;
+    // A rigid impactor (issue 45) rests with its whole weight on the contact.
+    if s.upper.kind == crate::model::scenario::ImpactorKind::Mass {
+        static_force = s.upper.mass * s.gravity;
+    }
     EnergyMethodDaf {
         force: e.force,
         static_force,
@@ -173,7 +177,8 @@ fn crane_psi(answer: &Answer, resting: Option<&StaticResponse>) -> CranePsi {
     } else {
         section::mass_moments(&s.upper_segments()).2
     };
-    let m = j_hinge / (d * d);
+    // A rigid impactor (issue 45) strikes with its whole mass.
+    let m = if s.upper.kind == crate::model::scenario::ImpactorKind::Mass { s.upper.mass } else { j_hinge / (d * d) };
     let k_arrestor = (s.lower.kind == SupportKind::Beam).then(|| {
         let x = s.lower_contact_position();
         if s.lower.supports.has_far_support() || x != s.lower.length {
@@ -186,10 +191,10 @@ fn crane_psi(answer: &Answer, resting: Option<&StaticResponse>) -> CranePsi {
             1.0 / section::tip_flexibility(&s.lower_segments())
         }
     });
-    let k_contact = match (s.contact.nonlinear_law(), resting) {
+    let k_contact = match (s.contact_law(), resting) {
         (Some(law), Some(r)) if law.exponent != 1.0 => law.exponent * law.elastic(r.compression) / r.compression,
         (Some(law), None) if law.exponent != 1.0 => crate::model::system::contact_rate(s),
-        _ => s.contact.stiffness(),
+        _ => s.contact_stiffness(),
     };
     let k = match k_arrestor {
         Some(ka) => 1.0 / (1.0 / ka + 1.0 / k_contact),

@@ -387,6 +387,11 @@ pub fn twin_scenario(scenario: &Scenario) -> Scenario {
     let mut down = scenario.clone();
     let nudge = |x: f64, sign: f64| if x > 0.0 { x * (1.0 + sign * TWIN_PERTURBATION) } else { TWIN_PERTURBATION };
     match scenario.impact_angular_velocity {
+        // A rigid impactor's stated speed (issue 45).
+        None if scenario.impact_speed != 0.0 => {
+            up.impact_speed = nudge(scenario.impact_speed, 1.0);
+            down.impact_speed = nudge(scenario.impact_speed, -1.0);
+        }
         Some(omega) => {
             up.impact_angular_velocity = Some(nudge(omega, 1.0));
             down.impact_angular_velocity = Some(nudge(omega, -1.0));

@@ -29,6 +29,7 @@ pub mod simulation;
 pub mod solver;
 pub mod ssp;
 pub mod studies;
+pub mod sub_impacts;
 pub mod vocabulary;
 
 pub use error::{Error, Result};

@@ -385,6 +385,65 @@ pub struct Summary {
     /// from a log leaves it at its default (the stored answer's verdict carries its check).
     #[serde(default)]
     pub model_range: crate::solver::model_range::RangeCheck,
+    /// Each contact window as an impact (issue 45): start, duration, peak force and the apparent
+    /// restitution; a summary rebuilt from a log leaves it empty (the log's `answer.json` has it).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sub_impacts: Vec<SubImpact>,
+}
+
+/// One contact window seen as an impact (issue 45): the first strike, the rebound's later
+/// sub-impacts, or one bounce of a chattering contact (no merging: see `merged_contact_windows`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SubImpact {
+    /// When the contact starts, s.
+    pub start: f64,
+    /// How long it lasts, s (to the run's end if still in contact).
+    pub duration: f64,
+    /// The largest contact force in it, N.
+    pub peak_force: f64,
+    /// When that force is reached, s.
+    pub peak_time: f64,
+    /// The speed at which the striking point closes on the struck point at the start, m/s (>= 0:
+    /// minus the gap's rate, Eq. 6's y_k,u - y_k,l).
+    pub approach_speed: f64,
+    /// The speed at which they part at the end, m/s (the gap's rate; null while still in contact).
+    pub separation_speed: Option<f64>,
+    /// The apparent coefficient of restitution, separation speed / approach speed (null while
+    /// still in contact, or with no approach speed): 1 for an elastic contact on a rigid
+    /// support, below 1 where the struck beam keeps vibrating (its energy not given back at
+    /// separation) or the contact damps.
+    pub restitution: Option<f64>,
+}
+
+impl SubImpact {
+    /// A window opening at `time` (s) with the gap's rate `gap_rate` (m/s, negative approaching).
+    pub fn starting(time: f64, gap_rate: f64) -> SubImpact {
+        SubImpact {
+            start: time,
+            duration: 0.0,
+            peak_force: 0.0,
+            peak_time: time,
+            approach_speed: (-gap_rate).max(0.0),
+            separation_speed: None,
+            restitution: None,
+        }
+    }
+
+    /// A contact step ending at `time` (s) whose largest force was `force` (N at s).
+    pub fn observe(&mut self, time: f64, (force, at): (f64, f64)) {
+        self.duration = time - self.start;
+        if force > self.peak_force {
+            self.peak_force = force;
+            self.peak_time = at;
+        }
+    }
+
+    /// The window closes at `time` (s) with the gap opening at `gap_rate` (m/s).
+    pub fn separate(&mut self, time: f64, gap_rate: f64) {
+        self.duration = time - self.start;
+        self.separation_speed = Some(gap_rate);
+        self.restitution = (self.approach_speed > 0.0).then(|| gap_rate / self.approach_speed);
+    }
 }
 
 /// One stress's envelope along a beam: at each station (a node; two at a section change or a

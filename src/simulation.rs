@@ -285,6 +285,8 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     feed: FeedEnd,
     /// Every station's turning points, when kept (issue 44: [`Self::keep_turning_points`]).
     turning_points: Option<TurningPoints>,
+    /// Each contact window's start, end, peak force and speeds (issue 45), as the run steps.
+    sub_impacts: Vec<crate::results::SubImpact>,
     /// Every node's deflection and rotation rows, for the model's range (issue 40).
     range_rows: std::sync::Arc<RangeRows>,
     /// The most internal steps the run may take, checked at every step (issue 40).
@@ -475,8 +477,12 @@ impl<S: Stepper> Simulation<S> {
         let backup = state.kinematics.clone();
         let output = StepResult::default();
         let impact = Impact {
-            angular_velocity: Pitching::of(&model.scenario, model.scenario.gravity + motion.accelerations()[0])
-                .angular_velocity,
+            // A rigid impactor does not turn (issue 45): its speed is the closing speed's.
+            angular_velocity: if model.scenario.upper.kind == crate::model::scenario::ImpactorKind::Mass {
+                0.0
+            } else {
+                Pitching::of(&model.scenario, model.scenario.gravity + motion.accelerations()[0]).angular_velocity
+            },
             // 0 - x, not -x: a zero closing speed is +0 (the JSON and the FMU output read "-0").
             closing_speed: 0.0
                 - ((model.probes.row(Probe::Gap as usize) * &physical.velocity)[0]
@@ -499,6 +505,7 @@ impl<S: Stepper> Simulation<S> {
             envelope_work: Default::default(),
             feed: FeedEnd::default(),
             turning_points: None,
+            sub_impacts: Vec::new(),
             range_rows: std::sync::Arc::new(range_rows),
             max_steps: crate::model::scenario::MAX_STEPS,
             peak_instants: Vec::new(),
@@ -1267,7 +1274,13 @@ impl<S: Stepper> Simulation<S> {
         } else {
             None
         };
+        let force_peak = within_step.map_or((result.contact_force.abs(), result.time), |e| e[4]);
         self.update_peaks(energies.upper_strain, within_step);
+        if stage.is_contact() {
+            if let Some(last) = self.sub_impacts.last_mut() {
+                last.observe(result.time, force_peak);
+            }
+        }
 
         let windows = &mut self.state.contact_windows;
         if stage.is_contact() {
@@ -1284,12 +1297,18 @@ impl<S: Stepper> Simulation<S> {
         if next.is_contact() {
             windows.push(ContactWindow { start: result.time, end: result.time });
         }
+        let relative_velocity =
+            self.stepper.probes(&self.state.kinematics.velocity)[Probe::Gap as usize] + excitation.gap_offset_rate;
+        if next.is_contact() {
+            self.sub_impacts.push(crate::results::SubImpact::starting(result.time, relative_velocity));
+        } else if let Some(last) = self.sub_impacts.last_mut() {
+            last.separate(result.time, relative_velocity);
+        }
         Ok(Some(ContactEvent {
             start: next.is_contact(),
             time_ns: result.time_ns,
             step: result.step + 1,
-            relative_velocity: self.stepper.probes(&self.state.kinematics.velocity)[Probe::Gap as usize]
-                + excitation.gap_offset_rate,
+            relative_velocity,
         }))
     }
 
@@ -1544,6 +1563,8 @@ impl<S: Stepper> Simulation<S> {
             let start_ns = self.state.result.time_ns;
             let full_step_fits = start_ns + self.next_step_ns(stage) <= target_ns;
             let saved = (!full_step_fits || self.samples_for(recorder)).then(|| self.state.clone());
+            // The sub-impacts live beside the state: a step left untaken leaves them too.
+            let saved_impacts = (self.sub_impacts.len(), self.sub_impacts.last().copied());
             let event = self.step(u64::MAX, false)?;
             let last = event.is_some() || self.state.result.time_ns >= target_ns;
             if let Some(saved) = saved {
@@ -1551,6 +1572,10 @@ impl<S: Stepper> Simulation<S> {
                     // The point falls inside this step: interpolate, and leave the step untaken.
                     (self.output, self.output_peak_times) = self.interpolate(&saved, target_ns, stage);
                     self.state = saved;
+                    self.sub_impacts.truncate(saved_impacts.0);
+                    if let (Some(last), Some(kept)) = (self.sub_impacts.last_mut(), saved_impacts.1) {
+                        *last = kept;
+                    }
                     self.state.output_ns = target_ns;
                     return Ok(Advance::Reached);
                 }
@@ -2079,6 +2104,9 @@ impl<S: Stepper> Simulation<S> {
         }
         let previous = std::mem::replace(&mut self.state, state);
         let previous_output = (self.output, self.output_peak_times);
+        // The sub-impacts up to the restored state's windows (issue 45; the FMU reports none).
+        let previous_impacts = self.sub_impacts.clone();
+        self.sub_impacts.truncate(self.state.contact_windows.len());
         self.step_end = None;
         // The outputs at a communication point inside a step are recomputed from that step.
         let (at, forces, motion) = (self.state.output_ns, self.state.input_forces, self.state.input_motion);
@@ -2090,6 +2118,7 @@ impl<S: Stepper> Simulation<S> {
         if let Err(e) = self.advance_outputs_to(at, &mut NullRecorder, false) {
             // Leave the simulation as it was: a refused state changes nothing.
             self.state = previous;
+            self.sub_impacts = previous_impacts;
             (self.output, self.output_peak_times) = previous_output;
             self.publish_envelope();
             return Err(e);
@@ -2160,6 +2189,7 @@ impl<S: Stepper> Simulation<S> {
             impact: self.impact,
             envelope,
             model_range,
+            sub_impacts: self.sub_impacts.clone(),
         }
     }
 

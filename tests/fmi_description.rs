@@ -247,6 +247,15 @@ fn accepted(p: &Parameter, value: f64) -> std::result::Result<(), String> {
     if p.name == "contact.law" {
         s.contact.given_stiffness = Some(1e9);
     }
+    // Hertz's law takes its constant from a radius and both moduli, not a stiffness (issue 45).
+    if p.name == "contact.law" && value == 2.0 {
+        s.contact.given_stiffness = None;
+        s.upper.radius = 0.035;
+    }
+    // A speed is a rigid impactor's (issue 45).
+    if p.name == "impact_speed" {
+        s.upper.kind = beam_impact::model::scenario::ImpactorKind::Mass;
+    }
     // The declared range of contact.stiffness is the power law's (N/m^n); the linear law's stops
     // at 4e10 N/m (issue 40).
     if p.name == "contact.stiffness" && value > beam_impact::model::scenario::MAX_CONTACT_STIFFNESS {

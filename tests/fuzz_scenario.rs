@@ -62,6 +62,9 @@ fn seeds() -> Vec<String> {
         // Issue 45: the struck beam on two supports, struck at a given position.
         include_str!("../examples/deck-beam-supports.toml").to_string(),
         "[lower]\nsupports = \"clamped-pinned\"\ncontact_position = 3.5\nelements = 8\ntip_mass = 0\n".to_string(),
+        // Issue 45: a rigid impactor, with Hertz's law and with a linear contact.
+        include_str!("../examples/lab-sphere.toml").to_string(),
+        include_str!("../examples/dropped-container.toml").to_string(),
         "drop_height = 0.8\nstep_free = 5e-5\n[upper]\nelements_to_contact = 14\n[lower]\nelements = 3\n".to_string(),
     ]
 }

@@ -76,6 +76,7 @@ mod paper;
 mod rayleigh_damping;
 mod reactions;
 mod report_csv;
+mod rigid_impactor;
 mod robust_meshes;
 mod run_cost;
 mod scenario;

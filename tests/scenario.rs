@@ -41,6 +41,12 @@ fn each_invalid_parameter_is_rejected_by_name() {
         // Clamped-free (the paper's), the contact not given (its free end) (issue 45).
         "lower.supports",
         "lower.contact_position",
+        // Issue 45: the bridge (0), no mass's speed, no Hertz radius, Poisson's ratios from 0.
+        "upper.kind",
+        "impact_speed",
+        "upper.radius",
+        "upper.poisson_ratio",
+        "lower.poisson_ratio",
     ];
     for p in PARAMETERS {
         let mut bad = vec![-3.0];

@@ -376,6 +376,10 @@ fn cached_answers_equal_uncached_ones_to_the_bit() {
     }
     // Every per-run field is varied above.
     for name in beam_impact::solver::modal_cache::PER_RUN_FIELDS {
+        // A rigid impactor's speed (issue 45) is varied on a mass, a geometry of its own, below.
+        if name == "impact_speed" {
+            continue;
+        }
         assert!(per_run.iter().any(|(what, _)| what.contains(&format!("\"{name}\""))), "{name} is not varied");
     }
     let cache = ModalCache::default();
@@ -391,6 +395,8 @@ fn cached_answers_equal_uncached_ones_to_the_bit() {
             ("duration", 0.02),
             ("drop_height", 1.3),
         ]),
+        with(&[("upper.kind", 1.0), ("upper.mass", 500.0), ("impact_speed", 1.0), ("duration", 0.05)]),
+        with(&[("upper.kind", 1.0), ("upper.mass", 500.0), ("impact_speed", 1.5), ("duration", 0.05)]),
     ];
     assert_cached_answers_are_the_uncached_ones(&others, &cache);
     assert!(cache.len() > 6 + 3, "the other geometries have their own entries: {}", cache.len());

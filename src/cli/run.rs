@@ -141,18 +141,22 @@ pub fn run(args: &RunArgs) -> Result<bool> {
         scenario.duration
     );
     let impact = summary.impact;
-    text += &format!(
-        "impact: the bridge turns at {} rad/s about its hinge ({}), its contact point closing at {} m/s\n\n",
-        speed(impact.angular_velocity),
-        match scenario.impact_angular_velocity {
-            Some(_) => "as stated: impact_angular_velocity".to_string(),
-            None => format!(
-                "from drop_height = {} m: omega_0 = sqrt(3 g alpha_0 / l_u), alpha_0 = atan(2 h / l_u), Eqs. 20-22",
-                scenario.drop_height
-            ),
-        },
-        speed(impact.closing_speed)
-    );
+    if scenario.upper.kind == beam_impact::model::scenario::ImpactorKind::Mass {
+        text += &mass_impact_line(&scenario, impact.closing_speed);
+    } else {
+        text += &format!(
+            "impact: the bridge turns at {} rad/s about its hinge ({}), its contact point closing at {} m/s\n\n",
+            speed(impact.angular_velocity),
+            match scenario.impact_angular_velocity {
+                Some(_) => "as stated: impact_angular_velocity".to_string(),
+                None => format!(
+                    "from drop_height = {} m: omega_0 = sqrt(3 g alpha_0 / l_u), alpha_0 = atan(2 h / l_u), Eqs. 20-22",
+                    scenario.drop_height
+                ),
+            },
+            speed(impact.closing_speed)
+        );
+    }
     if let Some(table) = &scenario.motion.table {
         text += &format!(
             "supports moving: {} ({} rows of {}, each with its velocity and acceleration), from its time {} s; \
@@ -196,6 +200,10 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     }
     text += "\n";
     text += &beam_impact::answer::table(&answer);
+    // A rigid impactor's rebounds (issue 45); a bridge's windows are listed above.
+    if scenario.upper.kind == beam_impact::model::scenario::ImpactorKind::Mass {
+        text += &beam_impact::sub_impacts::lines(&summary.sub_impacts);
+    }
     if let Ok(amplification) = beam_impact::amplification::amplification(&answer) {
         text += &amplification.lines();
     }
@@ -356,4 +364,19 @@ fn fatigue_lines(answer: &beam_impact::answer::Answer) -> Result<String> {
     let settings = beam_impact::model::fatigue_fields::of(&answer.resolved);
     let fatigue = beam_impact::run_fatigue::assess(histories, &settings)?;
     Ok(fatigue.lines().iter().map(|l| format!("{l}\n")).collect())
+}
+
+/// The impact line of a rigid impactor (issue 45): its mass, speed and where the speed comes from.
+fn mass_impact_line(scenario: &beam_impact::Scenario, closing_speed: f64) -> String {
+    format!(
+        "impact: a rigid mass of {} kg strikes at {} m/s ({}), its contact point closing at {} m/s\n\n",
+        scenario.upper.mass,
+        speed(beam_impact::model::rigid_impactor::impact_speed(scenario)),
+        if scenario.impact_speed != 0.0 {
+            "as stated: impact_speed".to_string()
+        } else {
+            format!("from drop_height = {} m: v = sqrt(2 g h)", scenario.drop_height)
+        },
+        speed(closing_speed)
+    )
 }

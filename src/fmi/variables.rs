@@ -381,7 +381,7 @@ pub fn is_issue_30_parameter(p: &Parameter) -> bool {
 }
 
 /// Whether a parameter came with issue 45 (every parameter from `lower.supports` on in
-/// [`PARAMETERS`]): its value reference follows `solver.max_steps`, the end of the table before it.
+/// [`PARAMETERS`]: the struck beam's supports, then the rigid impactor and the Hertz law's inputs): its value reference follows `solver.max_steps`, the end of the table before it.
 pub fn is_issue_45_parameter(p: &Parameter) -> bool {
     let index = |name: &str| PARAMETERS.iter().position(|q| q.name == name);
     matches!((index(p.name), index("lower.supports")), (Some(i), Some(first)) if i >= first)
@@ -743,8 +743,8 @@ pub fn table_for(defaults: &Scenario) -> Vec<Variable> {
         Some(format!("{}", crate::model::scenario::MAX_STEPS)),
         Source::MaxSteps,
     ));
-    // Issue 45: the struck beam's supports and contact position, and its far support's
-    // reactions (appended).
+    // Issue 45: the struck beam's supports and contact position, the rigid impactor and the
+    // Hertz law's inputs, and the far support's reactions (appended).
     for p in PARAMETERS.iter().filter(|p| is_fmu_parameter(p) && is_issue_45_parameter(p)) {
         push(parameter(p));
     }

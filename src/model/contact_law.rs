@@ -14,22 +14,27 @@ pub enum LawKind {
     Linear,
     /// F = k delta^n, n = `exponent`.
     Power,
+    /// Hertz's sphere on a flat face (issue 45): F = k delta^(3/2) with k = 4/3 E* sqrt(R) from
+    /// `upper.radius`, both bodies' moduli and Poisson's ratios (see [`hertz_stiffness`]).
+    Hertz,
 }
 
 impl LawKind {
-    /// The FMU's Integer parameter: 0 linear, 1 power.
+    /// The FMU's Integer parameter: 0 linear, 1 power, 2 hertz.
     pub fn index(self) -> u32 {
         match self {
             LawKind::Linear => 0,
             LawKind::Power => 1,
+            LawKind::Hertz => 2,
         }
     }
 
-    /// From the FMU's Integer parameter; `None` outside 0..=1.
+    /// From the FMU's Integer parameter; `None` outside 0..=2.
     pub fn from_index(value: f64) -> Option<LawKind> {
         match value {
             0.0 => Some(LawKind::Linear),
             1.0 => Some(LawKind::Power),
+            2.0 => Some(LawKind::Hertz),
             _ => None,
         }
     }
@@ -38,6 +43,21 @@ impl LawKind {
     pub fn is_linear(&self) -> bool {
         *self == LawKind::Linear
     }
+}
+
+/// Hertz's constant of a sphere of radius `radius` (m) on a flat face, k = 4/3 E* sqrt(R),
+/// N/m^1.5, with the contact modulus 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 (Johnson, Contact
+/// Mechanics, 1985, Eqs. 4.22-4.23: P = 4/3 E* R^(1/2) delta^(3/2)). `struck` is the struck
+/// body's (E2, nu2), or `None` for a rigid one (its term vanishes).
+pub fn hertz_stiffness(radius: f64, striker: (f64, f64), struck: Option<(f64, f64)>) -> f64 {
+    4.0 / 3.0 * contact_modulus(striker, struck) * radius.sqrt()
+}
+
+/// The contact modulus E*, Pa: 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 (Johnson 1985, Eq. 4.22),
+/// the second term left out for a rigid struck body (`None`).
+pub fn contact_modulus(striker: (f64, f64), struck: Option<(f64, f64)>) -> f64 {
+    let compliance = |(e, nu): (f64, f64)| (1.0 - nu * nu) / e;
+    1.0 / (compliance(striker) + struck.map_or(0.0, compliance))
 }
 
 /// Smallest and largest exponent n supported: 1 (linear) to 3 (beyond, the law's tangent

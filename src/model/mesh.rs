@@ -48,6 +48,9 @@ pub enum Support {
     Hinged,
     /// Every node fixed: a rigid support (issue 28), a beam without free DOFs.
     Rigid,
+    /// A rigid impactor (issue 45): the first node fixed, the last node's deflection free and
+    /// its rotation held, so that the one DOF is the body's vertical translation.
+    Mass,
 }
 
 impl Support {
@@ -58,7 +61,7 @@ impl Support {
     pub fn rigid_modes(self) -> usize {
         match self {
             Support::Clamped | Support::Rigid => 0,
-            Support::Hinged => 1,
+            Support::Hinged | Support::Mass => 1,
         }
     }
 }
@@ -102,6 +105,8 @@ impl Mesh {
                 let (w, theta) = match (i, support) {
                     (_, Support::Rigid) | (0, Support::Clamped) => (None, None),
                     (0, Support::Hinged) => (None, next()),
+                    (0, Support::Mass) => (None, None),
+                    (_, Support::Mass) => (next(), None),
                     _ if i == last && far == FarEnd::Clamped => (None, None),
                     _ if i == last && far == FarEnd::Pinned => (None, next()),
                     _ => (next(), next()),
@@ -163,6 +168,13 @@ impl Mesh {
     /// A rigid support of `length` m: one element, no free DOF.
     pub fn rigid(length: f64) -> Mesh {
         Mesh::new(&[0.0, length], Support::Rigid)
+    }
+
+    /// A rigid impactor (issue 45): one element of `length` m whose far node's deflection is the
+    /// body's one DOF (the element carries neither stiffness nor mass: see
+    /// [`crate::model::Beam::assemble`] with both 0 and the body as the tip mass).
+    pub fn mass(length: f64) -> Mesh {
+        Mesh::new(&[0.0, length], Support::Mass)
     }
 
     /// A hinged-free beam with a node at `contact_position`: `inner` equal elements up to it and

@@ -11,6 +11,7 @@ pub mod load_case;
 pub mod mesh;
 pub mod motion_table;
 pub mod parameters;
+pub mod rigid_impactor;
 pub mod scenario;
 pub mod sea;
 pub mod section;

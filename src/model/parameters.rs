@@ -4,7 +4,8 @@
 use super::contact_law::LawKind;
 use super::discretisation::Method;
 use super::scenario::{
-    Scenario, SupportKind, MAX_ELEMENTS, SMALLEST_CONTACT_STIFFNESS, SMALLEST_STRESS, SMALLEST_YIELD_STRESS,
+    ImpactorKind, Scenario, SupportKind, MAX_ELEMENTS, SMALLEST_CONTACT_STIFFNESS, SMALLEST_STRESS,
+    SMALLEST_YIELD_STRESS,
 };
 use super::stress_recovery::StressRecovery;
 use super::supports::Supports;
@@ -243,12 +244,13 @@ pub const PARAMETERS: &[Parameter] = &[
         name: "contact.law",
         unit: "",
         description: "The contact law: 0 linear (F = k delta, the paper's bar), 1 power (F = k delta^n, n = \
-                      contact.exponent; contact.stiffness then in N/m^n)",
+                      contact.exponent; contact.stiffness then in N/m^n), 2 hertz (a sphere of upper.radius on a \
+                      flat face: k = 4/3 E* sqrt(R), n = 3/2)",
         kind: Kind::Integer,
         get: |s| f64::from(s.contact.law.index()),
         put: |s, v| {
-            s.contact.law =
-                LawKind::from_index(v).ok_or_else(|| Error::invalid("contact.law", "0 (linear) or 1 (power)", v))?;
+            s.contact.law = LawKind::from_index(v)
+                .ok_or_else(|| Error::invalid("contact.law", "0 (linear), 1 (power) or 2 (hertz)", v))?;
             Ok(())
         },
     },
@@ -301,6 +303,45 @@ pub const PARAMETERS: &[Parameter] = &[
         "Where the bridge strikes the arrestor, from its first support; 0: not given (the free end of a clamped-free \
          beam, the midspan of a beam on two supports)",
         lower.contact_position
+    ),
+    // issue 45: rigid impactor
+    Parameter {
+        name: "upper.kind",
+        unit: "",
+        description: "What strikes: 0 the bridge (a hinged beam), 1 a rigid mass of upper.mass moving vertically (the \
+                      bridge's beam fields do not apply)",
+        kind: Kind::Integer,
+        get: |s| f64::from(s.upper.kind.index()),
+        put: |s, v| {
+            s.upper.kind =
+                ImpactorKind::from_index(v).ok_or_else(|| Error::invalid("upper.kind", "0 (beam) or 1 (mass)", v))?;
+            Ok(())
+        },
+    },
+    real!(
+        "impact_speed",
+        "m/s",
+        "A rigid mass's downward speed at first contact; 0: not given (from drop_height, v = sqrt(2 g h); with a \
+         speed, set drop_height = 0)",
+        impact_speed
+    ),
+    real!(
+        "upper.radius",
+        "m",
+        "The striking body's radius at the contact, for contact.law = hertz (a sphere on a flat face); 0: not given",
+        upper.radius
+    ),
+    real!(
+        "upper.poisson_ratio",
+        "1",
+        "Poisson's ratio of the striking body, for contact.law = hertz (default 0.3)",
+        upper.poisson_ratio
+    ),
+    real!(
+        "lower.poisson_ratio",
+        "1",
+        "Poisson's ratio of the struck beam, for contact.law = hertz (default 0.3)",
+        lower.poisson_ratio
     ),
 ];
 
@@ -370,13 +411,19 @@ pub const RANGES: &[(&str, Option<f64>, Option<f64>)] = &[
     ("lower.kind", Some(0.0), Some(1.0)),
     ("contact.stiffness", Some(0.0), Some(crate::model::scenario::MAX_POWER_LAW_STIFFNESS)),
     ("contact.clearance", Some(0.0), Some(10.0)),
-    ("contact.law", Some(0.0), Some(1.0)),
+    ("contact.law", Some(0.0), Some(2.0)),
     ("contact.exponent", Some(0.0), Some(3.0)),
     ("contact.damping", Some(0.0), Some(1e3)),
     ("upper.shear_area", Some(0.0), Some(1e3)),
     ("upper.allowable_shear_stress", Some(0.0), Some(1e12)),
     ("lower.supports", Some(0.0), Some(3.0)),
     ("lower.contact_position", Some(0.0), Some(1e3)),
+    // issue 45: rigid impactor
+    ("upper.kind", Some(0.0), Some(1.0)),
+    ("impact_speed", Some(0.0), Some(crate::model::rigid_impactor::MAX_IMPACT_SPEED)),
+    ("upper.radius", Some(0.0), Some(crate::model::rigid_impactor::RADIUS_RANGE.1)),
+    ("upper.poisson_ratio", Some(0.0), Some(crate::model::rigid_impactor::MAX_POISSON_RATIO)),
+    ("lower.poisson_ratio", Some(0.0), Some(crate::model::rigid_impactor::MAX_POISSON_RATIO)),
 ];
 
 /// The smallest positive f64: a lower bound "> 0" in the FMU's `min` (FMI has no exclusive bound).
@@ -403,6 +450,7 @@ pub const NONZERO_MINIMA: &[(&str, f64)] = &[
     ("upper.yield_stress", SMALLEST_YIELD_STRESS),
     ("contact.stiffness", SMALLEST_CONTACT_STIFFNESS),
     ("contact.exponent", crate::model::contact_law::EXPONENT_RANGE.0),
+    ("upper.radius", crate::model::rigid_impactor::RADIUS_RANGE.0),
 ];
 
 /// The smallest nonzero value a field accepts where 0 is a setting of its own
@@ -414,9 +462,9 @@ pub fn nonzero_minimum(name: &str) -> Option<f64> {
 /// The rules a field's range involves another field in, which FMI's `min` / `max` cannot say:
 /// each as [`range_text`] adds it, and in the FMU parameter's description.
 pub const CONDITIONS: &[(&str, &str)] = &[
-    ("drop_height", "at most upper.length / 2"),
+    ("drop_height", "at most upper.length / 2 (a mass: 500)"),
     ("contact_position", "at most upper.length (its free end)"),
-    ("gravity", "0 only with impact_angular_velocity given"),
+    ("gravity", "0 only with impact_angular_velocity (a mass: impact_speed) given"),
     ("contact.exponent", "only 0 or 1 with contact.law = \"linear\""),
     ("contact.stiffness", "at most 4e10 N/m with contact.law = \"linear\" (1e13 N/m^n: the power law's)"),
     ("contact.area", "with contact.law = \"linear\" and no contact.stiffness, E A_c / l_c at most 4e10 N/m"),
@@ -450,7 +498,7 @@ pub fn range_text(name: &str) -> Option<String> {
         _ => "0 (none)",
     };
     let base = match name {
-        "method" | "stress_recovery" | "lower.kind" | "contact.law" | "lower.supports" => return None,
+        "method" | "stress_recovery" | "lower.kind" | "contact.law" | "lower.supports" | "upper.kind" => return None,
         "modal_cutoff" => "\"auto\", or > 0 up to 1e12".to_string(),
         // A CLI field (the FMU's stop time is the importer's): Scenario::validate's bound.
         "duration" => "> 0, at most 1e6".to_string(),
@@ -489,9 +537,13 @@ fn annotation(p: &Parameter) -> String {
 }
 
 /// Fields of a section that a scenario leaves out unless given, with an example value.
-const OPTIONAL_FIELDS: [(&str, &str); 10] = [
+const OPTIONAL_FIELDS: [(&str, &str); 14] = [
+    ("upper.kind", "\"mass\""),
+    ("upper.radius", "0.035"),
+    ("upper.poisson_ratio", "0.3"),
     ("upper.shear_area", "0.012"),
     ("upper.allowable_shear_stress", "355e6"),
+    ("lower.poisson_ratio", "0.3"),
     ("lower.kind", "\"rigid\""),
     ("contact.stiffness", "2.8e10"),
     ("contact.clearance", "0.001"),
@@ -543,6 +595,11 @@ pub fn annotate_toml(toml: &str) -> String {
                     let speed = find("impact_angular_velocity").expect("a parameter");
                     out.push_str(&format!("# impact_angular_velocity = 0.2  # {}\n", annotation(speed)));
                 }
+                // A rigid impactor's speed (issue 45), too.
+                if p.name == "drop_height" && !toml.lines().any(|l| l.starts_with("impact_speed = ")) {
+                    let speed = find("impact_speed").expect("a parameter");
+                    out.push_str(&format!("# impact_speed = 1.0  # {}\n", annotation(speed)));
+                }
             }
             None if key.as_deref().is_some_and(|k| k.ends_with(".tip_force")) => {
                 out.push_str(&format!(
@@ -575,7 +632,7 @@ mod tests {
                 .unwrap_or_else(|| panic!("{name}"));
             assert!(line.contains("  # ["), "{name}: no unit: {line}");
             let named_choice =
-                matches!(*name, "method" | "stress_recovery" | "lower.kind" | "contact.law" | "lower.supports");
+                matches!(*name, "method" | "stress_recovery" | "lower.kind" | "contact.law" | "lower.supports" | "upper.kind");
             assert_eq!(line.contains("; range "), !named_choice, "{name}: {line}");
         }
         assert!(

@@ -57,6 +57,59 @@ pub struct UpperBeam {
     /// `second_moment`, `section_modulus` and `shear_area` are the first section's.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub sections: Vec<SectionSpec>,
+    /// `"beam"` (the default: the bridge) or `"mass"` (issue 45: a rigid body of `mass` kg moving
+    /// vertically, one translational DOF, dropped from `drop_height` or striking at
+    /// `impact_speed`; the bridge's beam fields do not apply).
+    #[serde(skip_serializing_if = "ImpactorKind::is_beam")]
+    pub kind: ImpactorKind,
+    /// The striking body's radius of curvature at the contact, m, for `contact.law = "hertz"`
+    /// (a sphere on a flat face); 0 (the default): not given.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub radius: f64,
+    /// Poisson's ratio of the striking body, for `contact.law = "hertz"`. Default 0.3 (steel).
+    #[serde(skip_serializing_if = "is_default_poisson")]
+    pub poisson_ratio: f64,
+}
+
+/// The Poisson's ratio of steel, the default of both bodies' `poisson_ratio` (Hertz's law).
+pub const STEEL_POISSON_RATIO: f64 = 0.3;
+
+fn is_default_poisson(x: &f64) -> bool {
+    *x == STEEL_POISSON_RATIO
+}
+
+/// What strikes (issue 45): the paper's hinged bridge, or a rigid body (a dropped object, a sphere).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ImpactorKind {
+    /// The paper's bridge: a hinged-free beam (the default).
+    #[default]
+    Beam,
+    /// A rigid body of `upper.mass` moving vertically (one translational DOF, no rotation).
+    Mass,
+}
+
+impl ImpactorKind {
+    /// The FMU's Integer parameter: 0 beam, 1 mass.
+    pub fn index(self) -> u32 {
+        match self {
+            ImpactorKind::Beam => 0,
+            ImpactorKind::Mass => 1,
+        }
+    }
+
+    /// From the FMU's Integer parameter; `None` outside 0..=1.
+    pub fn from_index(value: f64) -> Option<ImpactorKind> {
+        match value {
+            0.0 => Some(ImpactorKind::Beam),
+            1.0 => Some(ImpactorKind::Mass),
+            _ => None,
+        }
+    }
+
+    fn is_beam(&self) -> bool {
+        *self == ImpactorKind::Beam
+    }
 }
 
 impl Default for UpperBeam {
@@ -75,6 +128,9 @@ impl Default for UpperBeam {
             shear_area: 0.0,
             allowable_shear_stress: 0.0,
             sections: Vec::new(),
+            kind: ImpactorKind::Beam,
+            radius: 0.0,
+            poisson_ratio: STEEL_POISSON_RATIO,
         }
     }
 }
@@ -164,6 +220,9 @@ pub struct LowerBeam {
     /// given, the free end of a clamped-free beam, the midspan of a beam on two supports.
     #[serde(skip_serializing_if = "is_zero")]
     pub contact_position: f64,
+    /// Poisson's ratio of the struck beam, for `contact.law = "hertz"` (issue 45). Default 0.3 (steel).
+    #[serde(skip_serializing_if = "is_default_poisson")]
+    pub poisson_ratio: f64,
 }
 
 impl Default for LowerBeam {
@@ -185,6 +244,7 @@ impl Default for LowerBeam {
             sections: Vec::new(),
             supports: Supports::ClampedFree,
             contact_position: 0.0,
+            poisson_ratio: STEEL_POISSON_RATIO,
         }
     }
 }
@@ -253,15 +313,41 @@ impl ContactBar {
     /// without damping (solved in closed form, Sherman-Morrison).
     pub fn nonlinear_law(&self) -> Option<ContactLaw> {
         let exponent = match self.law {
-            LawKind::Power if self.exponent == 0.0 => HERTZ_EXPONENT,
+            LawKind::Power | LawKind::Hertz if self.exponent == 0.0 => HERTZ_EXPONENT,
+            LawKind::Hertz => HERTZ_EXPONENT,
             LawKind::Power => self.exponent,
             LawKind::Linear => 1.0,
         };
-        (self.law == LawKind::Power || self.damping > 0.0).then(|| ContactLaw {
-            stiffness: self.stiffness(),
+        // Hertz's constant needs both bodies: `Scenario::contact_law` puts it in (here 0).
+        let hertz = self.law == LawKind::Hertz;
+        (self.law == LawKind::Power || hertz || self.damping > 0.0).then(|| ContactLaw {
+            stiffness: if hertz { 0.0 } else { self.stiffness() },
             exponent,
             damping: self.damping,
         })
+    }
+}
+
+impl Scenario {
+    /// The contact law the stepper solves each step (see [`ContactBar::nonlinear_law`]), with
+    /// Hertz's constant from both bodies for `contact.law = "hertz"` (issue 45), or `None` for
+    /// the paper's linear bar without damping.
+    pub fn contact_law(&self) -> Option<ContactLaw> {
+        let mut law = self.contact.nonlinear_law()?;
+        if self.contact.law == LawKind::Hertz {
+            law.stiffness = super::rigid_impactor::hertz_constant(self);
+        }
+        Some(law)
+    }
+
+    /// The contact's rate or constant, N/m (N/m^n): Hertz's for `contact.law = "hertz"`, else
+    /// [`ContactBar::stiffness`].
+    pub fn contact_stiffness(&self) -> f64 {
+        if self.contact.law == LawKind::Hertz {
+            super::rigid_impactor::hertz_constant(self)
+        } else {
+            self.contact.stiffness()
+        }
     }
 }
 
@@ -370,6 +456,11 @@ pub struct Scenario {
     /// defaults ([`super::fatigue_settings::FatigueSettings`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fatigue: Option<super::fatigue_settings::FatigueSettings>,
+    /// The rigid impactor's downward speed at first contact, m/s (issue 45, `upper.kind =
+    /// "mass"`), instead of a drop height (give one: with it `drop_height` is 0); 0 (the
+    /// default): not given, v = sqrt(2 g h) from `drop_height`.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub impact_speed: f64,
 }
 
 impl Default for Scenario {
@@ -397,6 +488,7 @@ impl Default for Scenario {
             sea: None,
             load_cases: Vec::new(),
             fatigue: None,
+            impact_speed: 0.0,
         }
     }
 }
@@ -435,7 +527,7 @@ pub const SMALLEST_YIELD_STRESS: f64 = 1e3;
 /// The softest contact given, N/m (N/m^n).
 pub const SMALLEST_CONTACT_STIFFNESS: f64 = 1e-3;
 
-fn positive(name: &'static str, unit: &str, value: f64) -> Result<()> {
+pub(super) fn positive(name: &'static str, unit: &str, value: f64) -> Result<()> {
     if value.is_finite() && value > 0.0 {
         Ok(())
     } else {
@@ -444,7 +536,7 @@ fn positive(name: &'static str, unit: &str, value: f64) -> Result<()> {
 }
 
 /// A number as people write it: 0.999, 1000, 1e-12, 1e9 (and -3, NaN, inf as they are).
-fn bound(x: f64) -> String {
+pub(super) fn bound(x: f64) -> String {
     if x.is_finite() && x != 0.0 && !(1e-3..1e4).contains(&x.abs()) {
         format!("{x:e}")
     } else {
@@ -458,7 +550,7 @@ fn within_exponent(exponent: f64) -> bool {
 }
 
 /// `min <= value <= max`, finite.
-fn within(name: &'static str, unit: &str, value: f64, min: f64, max: f64) -> Result<()> {
+pub(super) fn within(name: &'static str, unit: &str, value: f64, min: f64, max: f64) -> Result<()> {
     if value.is_finite() && (min..=max).contains(&value) {
         Ok(())
     } else if value.is_finite() && value < min && min == 0.0 {
@@ -473,7 +565,7 @@ fn within(name: &'static str, unit: &str, value: f64, min: f64, max: f64) -> Res
 }
 
 /// A physical size: > 0 (the message every user knows), then within its sane range.
-fn size(name: &'static str, unit: &str, value: f64, min: f64, max: f64) -> Result<()> {
+pub(super) fn size(name: &'static str, unit: &str, value: f64, min: f64, max: f64) -> Result<()> {
     positive(name, unit, value)?;
     within(name, unit, value, min, max)
 }
@@ -556,8 +648,13 @@ impl Scenario {
         let mut scenario: Scenario = toml::from_str(text)
             .map_err(|e| Error::Scenario { path: path.to_string(), message: one_line(&e.to_string()) })?;
         // A speed stated without a drop height: the drop height is not the default's but 0.
-        if scenario.impact_angular_velocity.is_some() && !has_key(text, &["drop_height"]) {
+        if (scenario.impact_angular_velocity.is_some() || scenario.impact_speed != 0.0)
+            && !has_key(text, &["drop_height"])
+        {
             scenario.drop_height = 0.0;
+        }
+        if scenario.upper.kind == ImpactorKind::Mass {
+            super::rigid_impactor::refuse_beam_fields(text)?;
         }
         // A beam of sections: what its uniform fields say follows from them unless given (then
         // they must agree, which validation checks).
@@ -637,7 +734,8 @@ impl Scenario {
     pub fn to_toml(&self) -> String {
         let text = toml::to_string(self).unwrap_or_else(|e| format!("# cannot serialize scenario: {e}\n"));
         let rigid = self.lower.kind == SupportKind::Rigid;
-        if !rigid && self.contact.given_stiffness.is_none() {
+        let mass = self.upper.kind == ImpactorKind::Mass;
+        if !rigid && !mass && self.contact.given_stiffness.is_none() {
             return text;
         }
         // Fields that do not apply are left out, so that the text reads back (a rigid support
@@ -645,6 +743,9 @@ impl Scenario {
         let Ok(mut table) = text.parse::<toml::Table>() else { return text };
         if let (true, Some(toml::Value::Table(lower))) = (rigid, table.get_mut("lower")) {
             lower.retain(|k, _| k == "kind");
+        }
+        if mass {
+            super::rigid_impactor::retain_mass_fields(&mut table);
         }
         if let (true, Some(toml::Value::Table(contact))) =
             (self.contact.given_stiffness.is_some(), table.get_mut("contact"))
@@ -726,19 +827,26 @@ impl Scenario {
     /// the unit) and the value. The bounds keep every accepted scenario finite and answerable:
     /// beyond them the model's numbers overflow, underflow or stop meaning anything physical.
     pub fn validation_errors(&self) -> Vec<Error> {
-        let mut errors = Vec::new();
+        let mut errors = super::rigid_impactor::validation_errors(self);
+        let u = &self.upper;
         let mut check = |result: Result<()>| {
             if let Err(e) = result {
                 errors.push(e);
             }
         };
-        let u = &self.upper;
         let l = &self.lower;
         let c = &self.contact;
         // A zero drop height is legal: the bridge touches the arrestor at rest. The centre of
         // gravity cannot drop more than half the bridge's length (45 degrees with Eq. 20's tan).
         let bridge_ok = size("upper.length", "m", u.length, 0.01, 1e3).is_ok();
-        check(within("drop_height", "m", self.drop_height, 0.0, if bridge_ok { 0.5 * u.length } else { 500.0 }));
+        if u.kind == ImpactorKind::Beam {
+            check(within("drop_height", "m", self.drop_height, 0.0, if bridge_ok { 0.5 * u.length } else { 500.0 }));
+        }
+        let mut check = |result: Result<()>| {
+            if let Err(e) = result {
+                errors.push(e);
+            }
+        };
         if let Some(omega) = self.impact_angular_velocity {
             check(within("impact_angular_velocity", "rad/s", omega, 0.0, MAX_IMPACT_ANGULAR_VELOCITY));
             if self.drop_height != 0.0 {
@@ -749,7 +857,7 @@ impl Scenario {
                     bound(omega)
                 ))));
             }
-        } else if self.gravity == 0.0 {
+        } else if self.gravity == 0.0 && u.kind == ImpactorKind::Beam {
             check(Err(Error::Other(
                 "gravity = 0 needs impact_angular_velocity: nothing makes the bridge fall, so state the impact by its \
                  speed (and drop_height = 0)"
@@ -764,7 +872,7 @@ impl Scenario {
                 self.contact_position,
             )));
         }
-        if self.contact_at_free_end() && u.elements_beyond_contact != 0 {
+        if self.contact_at_free_end() && u.elements_beyond_contact != 0 && u.kind == ImpactorKind::Beam {
             check(Err(Error::invalid(
                 "upper.elements_beyond_contact",
                 format!(
@@ -903,6 +1011,14 @@ impl Scenario {
             )));
         }
         check(within("contact.damping", "s/m", c.damping, 0.0, 1e3));
+        if c.law == LawKind::Hertz {
+            errors.extend(super::rigid_impactor::hertz_errors(self));
+        }
+        let mut check = |result: Result<()>| {
+            if let Err(e) = result {
+                errors.push(e);
+            }
+        };
         if c.law == LawKind::Power && c.given_stiffness.is_none() {
             check(Err(Error::invalid(
                 "contact.stiffness",
@@ -983,6 +1099,10 @@ impl Scenario {
     /// The energy the impact brings, J: m_u g h for a drop (the paper's energy balance), or the
     /// bridge's kinetic energy about its hinge, m_u l_u^2 omega_0^2 / 6, for a stated speed.
     pub fn impact_energy(&self) -> f64 {
+        if self.upper.kind == ImpactorKind::Mass {
+            let v = super::rigid_impactor::impact_speed(self);
+            return 0.5 * self.upper.mass * v * v;
+        }
         if !self.upper.sections.is_empty() {
             // J omega^2 / 2 about the hinge, J = int mu x^2 dx.
             let (_, _, second) = section::mass_moments(&self.upper_segments());

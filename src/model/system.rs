@@ -5,7 +5,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::assembly::Beam;
 use super::mesh::{FarEnd, Mesh};
-use super::scenario::{Scenario, SupportKind};
+use super::scenario::{ImpactorKind, Scenario, SupportKind};
 use super::section::{self, Segment};
 use super::stations::{BeamStations, Stations};
 use super::stress_recovery::StressRecovery;
@@ -130,7 +130,12 @@ impl Model {
             s.upper.elements_beyond_contact as usize,
             &breaks(&upper_segments),
         );
-        let upper = if s.upper.sections.is_empty() {
+        let mass = s.upper.kind == ImpactorKind::Mass;
+        let (upper_mesh, inner) = if mass { (Mesh::mass(1.0), 1) } else { (upper_mesh, inner) };
+        let upper = if mass {
+            // A rigid body (issue 45): no stiffness, its mass lumped on its one DOF.
+            Beam::assemble(upper_mesh, 0.0, 0.0, s.upper.mass, s.gravity)
+        } else if s.upper.sections.is_empty() {
             Beam::assemble(upper_mesh, s.upper.elastic_modulus * s.upper.second_moment, s.upper.mass, 0.0, s.gravity)
         } else {
             Beam::assemble_segments(upper_mesh, &upper_segments, 0.0, s.gravity)
@@ -171,7 +176,7 @@ impl Model {
             }
         };
         put(Probe::UpperContactMoment, None, Some(contact_moment));
-        let contact_section_modulus = if s.upper.sections.is_empty() {
+        let contact_section_modulus = if s.upper.sections.is_empty() || mass {
             s.upper.section_modulus
         } else {
             section::bending_check_at(&upper_segments, s.contact_position).0
@@ -185,7 +190,11 @@ impl Model {
                 let point_loads: Vec<usize> = if inside { vec![lower_contact] } else { Vec::new() };
                 BeamStations::new(&lower, &lower_segments, &point_loads, None)
             },
-            upper: BeamStations::new(&upper, &upper_segments, &[inner], Some((inner, s.stress_recovery))),
+            upper: if mass {
+                BeamStations::default()
+            } else {
+                BeamStations::new(&upper, &upper_segments, &[inner], Some((inner, s.stress_recovery)))
+            },
         };
         Ok(Model {
             stations,
@@ -370,10 +379,14 @@ impl Model {
 /// compression under the bridge's weight share (m_u g l_u / 2d), whichever is more: what the
 /// automatic contact step and Table 2's coupled column use. The law itself is solved each step.
 pub fn contact_rate(s: &Scenario) -> f64 {
-    match s.contact.nonlinear_law() {
-        None => s.contact.stiffness(),
+    match s.contact_law() {
+        None => s.contact_stiffness(),
         Some(law) => {
-            let weight_share = s.upper.mass * s.gravity * s.upper.length / (2.0 * s.contact_position);
+            let weight_share = if s.upper.kind == ImpactorKind::Mass {
+                s.upper.mass * s.gravity
+            } else {
+                s.upper.mass * s.gravity * s.upper.length / (2.0 * s.contact_position)
+            };
             let static_energy = law.energy(2.0 * libm::pow(weight_share / law.stiffness, 1.0 / law.exponent));
             law.tangent_stiffness((4.0 * s.impact_energy()).max(static_energy))
         }

@@ -705,6 +705,8 @@ pub fn summary_from_log(data: &LogData, simulation: &Simulation) -> Result<Summa
         peak_times,
         upper_strain_at_peak_deflection: upper_strain,
         contact_windows: windows,
+        // The log's `answer.json` carries them (issue 45).
+        sub_impacts: Vec::new(),
         final_energy_residual: last.energy.residual,
         max_energy_residual: max_residual,
         energy_method: *simulation.energy_method(),
@@ -1099,6 +1101,7 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
             );
         }
         let _ = writeln!(text, "{}", stored_verdict(data.answer_json.as_deref()));
+        text += &crate::sub_impacts::stored_lines(data.scenario_toml.as_deref(), data.answer_json.as_deref());
         for note in data.notes() {
             let _ = writeln!(text, "{note}");
         }

@@ -70,7 +70,7 @@ impl DenseStepper {
             support_reactions: model.support_reaction_inertia(),
             contact: model.contact_vector(),
             bar_stiffness: model.bar_stiffness,
-            law: s.contact.nonlinear_law(),
+            law: s.contact_law(),
             probes: model.probes.clone(),
             // Physical rows from the modal ones: d = Phi^-T Phi^T k = M Phi (Phi^T k) (mass-normalised
             // modes), and the same for the damping and mass rows.

@@ -91,7 +91,7 @@ impl EnergyMethod {
         let elsewhere = l.supports.has_far_support() || x != l.length;
         let point = l.supports.point_load(l.elastic_modulus * l.second_moment, l.length, x);
         let k_f = if rigid {
-            s.contact.stiffness()
+            s.contact_stiffness()
         } else if elsewhere {
             1.0 / point.flexibility
         } else if l.sections.is_empty() {
@@ -112,7 +112,11 @@ impl EnergyMethod {
         // The arrestor's strain energy 1/2 k_f w^2 takes the impact's energy E_0 and the bridge's
         // weight's further work W l_u w / (2 d): for a drop E_0 = W h (the paper's form below);
         // for a stated speed E_0 is the bridge's kinetic energy (and W may be 0).
+        // A rigid impactor (issue 45): its weight works through the whole deflection,
+        // 1/2 k_f w^2 = E_0 + W w, so w = (W + sqrt(W^2 + 2 k_f E_0)) / k_f, E_0 = 1/2 m v^2.
+        let mass = s.upper.kind == crate::model::scenario::ImpactorKind::Mass;
         let w = match s.impact_angular_velocity {
+            _ if mass => (weight + (weight * weight + 2.0 * k_f * s.impact_energy()).sqrt()) / k_f,
             None => (weight * lu + (weight * (8.0 * d * d * h * k_f + weight * lu * lu)).sqrt()) / (2.0 * d * k_f),
             Some(_) => {
                 let lever = weight * lu / d;
@@ -125,6 +129,22 @@ impl EnergyMethod {
         let u = &s.upper;
         let bridge_contact_moment = bridge.moment(d);
         let bridge_strain_energy = 0.5 * bridge.moment_squared_integral() / (u.elastic_modulus * u.second_moment);
+        if mass {
+            // A rigid body stores no strain energy and has no bending stress.
+            return EnergyMethod {
+                flexion_stiffness: k_f,
+                tip_deflection: w,
+                force,
+                clamp_bending_stress: if rigid { 0.0 } else { force * l.length / l.section_modulus },
+                clamp_shear_stress: if rigid { 0.0 } else { force / l.shear_area },
+                strain_energy,
+                bridge_deceleration: 0.0,
+                bridge_contact_moment: 0.0,
+                bridge_bending_stress: 0.0,
+                bridge_strain_energy: 0.0,
+                bridge_strain_ratio: 0.0,
+            };
+        }
         EnergyMethod {
             flexion_stiffness: k_f,
             tip_deflection: w,

@@ -324,7 +324,7 @@ fn graded_modes(beam: &Beam, limit: f64) -> Result<Modes> {
             g += &r * r.transpose() * c;
             Some(r)
         }
-        Support::Clamped | Support::Rigid => None,
+        Support::Clamped | Support::Rigid | Support::Mass => None,
     };
     if rigid != usize::from(r.is_some()) {
         return Err(Error::RigidModeCount { what: "natural modes of a graded beam", expected: rigid, dofs: n });

@@ -7,6 +7,7 @@ use nalgebra::DVector;
 use super::kinematics::{Excitation, Kinematics};
 use super::modal::ModalSystem;
 use crate::error::{Error, Result};
+use crate::model::scenario::ImpactorKind;
 use crate::model::{damping, Model, Probe};
 
 /// The rigid pitching of the bridge before impact (Eqs. 15-22).
@@ -98,7 +99,8 @@ pub fn initial_state(model: &Model, modal: &ModalSystem, excitation: &Excitation
     }
     let hinge_gravity = s.gravity + excitation.support_acceleration[0];
     // A drop needs a fall; a stated speed does not (gravity may be 0).
-    let falls = s.impact_angular_velocity.is_none();
+    let mass = s.upper.kind == ImpactorKind::Mass;
+    let falls = if mass { s.impact_speed == 0.0 && s.drop_height > 0.0 } else { s.impact_angular_velocity.is_none() };
     if hinge_gravity.is_nan() || (falls && hinge_gravity <= 0.0) {
         return Err(Error::invalid(
             "upper.hinge_heave_acceleration",
@@ -126,18 +128,26 @@ pub fn initial_state(model: &Model, modal: &ModalSystem, excitation: &Excitation
     };
 
     // Bridge, Eq. (23): rigid rotation about the hinge, pitching down (w = -x alpha, theta = -alpha).
-    let pitching = Pitching::of(s, hinge_gravity);
+    // A rigid impactor (issue 45): its one DOF translating down at its impact speed, its
+    // acceleration (gravity and any tip force) from its rigid mode's out-of-balance load below.
+    let (speed, angular_acceleration) = if mass {
+        let fall = if s.impact_speed != 0.0 { s.impact_speed } else { (2.0 * hinge_gravity * s.drop_height).sqrt() };
+        (fall, 0.0)
+    } else {
+        let pitching = Pitching::of(s, hinge_gravity);
+        (pitching.angular_velocity, pitching.angular_acceleration)
+    };
     let mut rotation = DVector::zeros(nu);
     for node in &model.upper.mesh.nodes {
         if let Some(i) = node.w {
-            rotation[i] = -node.x;
+            rotation[i] = if mass { -1.0 } else { -node.x };
         }
         if let Some(i) = node.theta {
             rotation[i] = -1.0;
         }
     }
-    let upper_velocity = &rotation * pitching.angular_velocity;
-    let mut upper_acceleration = &rotation * pitching.angular_acceleration;
+    let upper_velocity = &rotation * speed;
+    let mut upper_acceleration = &rotation * angular_acceleration;
 
     // Eq. (24) in the bridge's modes: each elastic mode is in quasi-static balance with
     // F - C v - M a. The rigid mode (omega = 0) takes the out-of-balance moment of any tip force

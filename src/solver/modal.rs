@@ -130,7 +130,7 @@ impl ModalSystem {
             correction: StaticCorrection::default(),
             cutoff: None,
             full_dofs: model.dofs(),
-            law: s.contact.nonlinear_law(),
+            law: s.contact_law(),
         };
         Ok(system)
     }

@@ -32,8 +32,9 @@ use crate::model::{Model, Scenario};
 /// `studies::sweep`). `motion.file` and the motion table go with `motion.time_shift`; the key leaves
 /// out the whole `[sea]` (a sea moves the supports, never the modes: every `sea.*` field is per
 /// run, `tests/sweep.rs` holds its cached answers to the bit).
-pub const PER_RUN_FIELDS: [&str; 18] = [
+pub const PER_RUN_FIELDS: [&str; 19] = [
     "drop_height",
+    "impact_speed",
     "impact_angular_velocity",
     "damping_ratio",
     "rayleigh_alpha",
@@ -226,6 +227,7 @@ fn key(model: &Model) -> Option<Key> {
     let d = Scenario::default();
     s.drop_height = d.drop_height;
     s.impact_angular_velocity = d.impact_angular_velocity;
+    s.impact_speed = d.impact_speed;
     s.damping_ratio = d.damping_ratio;
     s.rayleigh_alpha = d.rayleigh_alpha;
     s.rayleigh_beta = d.rayleigh_beta;

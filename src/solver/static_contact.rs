@@ -151,11 +151,7 @@ pub fn solve(model: &Model) -> Result<StaticOutcome> {
     let b_vec = cholesky.solve(&b);
     let (a, beta) = (b.dot(&a_vec), b.dot(&b_vec));
     let c = s.contact.clearance;
-    let law = s.contact.nonlinear_law().unwrap_or(ContactLaw {
-        stiffness: s.contact.stiffness(),
-        exponent: 1.0,
-        damping: 0.0,
-    });
+    let law = s.contact_law().unwrap_or(ContactLaw { stiffness: s.contact_stiffness(), exponent: 1.0, damping: 0.0 });
     let slack = 1.0 - k_r * beta;
     let g = |delta: f64| beta * law.elastic(delta) + a + (delta + c) * slack;
     let g0 = g(0.0);
@@ -318,7 +314,7 @@ mod tests {
     }
 
     fn law_force(s: &Scenario, delta: f64) -> f64 {
-        s.contact.nonlinear_law().unwrap().elastic(delta)
+        s.contact_law().unwrap().elastic(delta)
     }
 
     /// The arrestor as a cantilever loaded at its end by P (its own weight made negligible,

@@ -123,6 +123,7 @@ fn symbolic_names(field: &Parameter) -> Option<&'static [&'static str]> {
         "stress_recovery" => Some(&RECOVERY_NAMES),
         "method" => Some(&METHOD_NAMES),
         "lower.kind" => Some(&SUPPORT_NAMES),
+        "upper.kind" => Some(&IMPACTOR_NAMES),
         "contact.law" => Some(&LAW_NAMES),
         "sea.spectrum" => Some(&SPECTRUM_NAMES),
         "fatigue.curve" => Some(crate::model::fatigue_settings::curve_names()),
@@ -139,7 +140,9 @@ const RECOVERY_NAMES: [&str; 3] = ["mean", "left", "right"];
 /// `lower.kind`'s names, by FMU index.
 const SUPPORT_NAMES: [&str; 2] = ["beam", "rigid"];
 /// `contact.law`'s names, by FMU index.
-const LAW_NAMES: [&str; 2] = ["linear", "power"];
+const LAW_NAMES: [&str; 3] = ["linear", "power", "hertz"];
+/// `upper.kind`'s names, by FMU index (issue 45).
+const IMPACTOR_NAMES: [&str; 2] = ["beam", "mass"];
 
 const METHOD_NAMES: [&str; 2] = ["converged", "paper"];
 /// `sea.spectrum`'s names, by index.
@@ -292,6 +295,12 @@ pub fn apply_settings(scenario: &mut Scenario, settings: &[Setting]) -> Result<(
     match (given("impact_angular_velocity"), given("drop_height")) {
         (true, false) if scenario.impact_angular_velocity.is_some() => scenario.drop_height = 0.0,
         (false, true) => scenario.impact_angular_velocity = None,
+        _ => {}
+    }
+    // The same for a rigid impactor's speed (issue 45).
+    match (given("impact_speed"), given("drop_height")) {
+        (true, false) if scenario.impact_speed != 0.0 => scenario.drop_height = 0.0,
+        (false, true) => scenario.impact_speed = 0.0,
         _ => {}
     }
     // The contact moved to the bridge's free end here, where the scenario (the paper's, a file's)

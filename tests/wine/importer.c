@@ -144,7 +144,7 @@ static void *need(lib_t lib, const char *name) {
 }
 
 /* From modelDescription.xml (FMI 2 guid = FMI 3 instantiationToken; the value references are the same). */
-#define TOKEN "{7bec128e-fe8c-260a-b9dd-90640db96fde}"
+#define TOKEN "{26abd558-9fe5-a1f6-3774-e9c76ed4d7ed}"
 #define VR_LOG_PATH 27
 #define N_OUTPUTS 8
 #define N_PEAKS 5 /* the first N_PEAKS outputs */
