@@ -694,10 +694,11 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
         }
         Check::new(worst, tolerance)
     });
-    let yield_check = yield_check(resolved, &converged_peaks);
+    let envelope_stresses = envelope_peaks.map(|p| p.map(|p| p.value));
+    let yield_check = yield_check(resolved, &converged_peaks, &envelope_stresses);
     if let Some(c) = &yield_check {
         if !c.pass {
-            reasons.push(yield_reason(resolved, &converged_peaks, c.value));
+            reasons.push(yield_reason(resolved, &converged_peaks, &envelope_stresses, c.value));
         }
     }
     let checks = Checks {
@@ -1093,7 +1094,7 @@ pub fn mpa(pa: f64, decimals: usize) -> String {
 }
 
 /// The yield reason: the stress that reaches the largest fraction of its yield stress.
-fn yield_reason(s: &Scenario, peaks: &Peaks, utilisation: f64) -> String {
+fn yield_reason(s: &Scenario, peaks: &Peaks, envelope: &[Option<f64>; 4], utilisation: f64) -> String {
     let mut worst: Option<(f64, String)> = None;
     let mut consider = |ratio: f64, text: String| {
         if worst.as_ref().is_none_or(|(r, _)| ratio > *r) {
@@ -1130,6 +1131,24 @@ fn yield_reason(s: &Scenario, peaks: &Peaks, utilisation: f64) -> String {
             ),
         );
     }
+    // The envelopes: each beam's worst stress wherever along it (a beam on two supports is
+    // stressed most away from its first support, where the peaks above are taken).
+    for (k, value) in envelope.iter().enumerate() {
+        let (Some(value), yield_stress) = (*value, envelope_yield_stress(s, k)) else { continue };
+        if yield_stress > 0.0 {
+            let (equivalent, what) = if k % 2 == 1 { (3f64.sqrt() * value, "sqrt(3) x ") } else { (value, "") };
+            consider(
+                equivalent / yield_stress,
+                format!(
+                    "{what}the worst {} along the beam {} MPa against {}.yield_stress = {} MPa",
+                    crate::results::ENVELOPE_PEAK_NAMES[k],
+                    mpa(value, 2),
+                    if k < 2 { "upper" } else { "lower" },
+                    mpa(yield_stress, 2)
+                ),
+            );
+        }
+    }
     format!(
         "yield: the stresses reach {} of the yield stress ({}): the elastic model is out of its range, and no mesh or \
          step makes it right; the answer needs a smaller impact or a stronger section",
@@ -1138,9 +1157,22 @@ fn yield_reason(s: &Scenario, peaks: &Peaks, utilisation: f64) -> String {
     )
 }
 
+/// The yield stress of the beam an envelope peak of [`crate::results::ENVELOPE_PEAK_NAMES`]
+/// belongs to, Pa (0: none given).
+fn envelope_yield_stress(s: &Scenario, k: usize) -> f64 {
+    if k < 2 {
+        s.upper.yield_stress
+    } else {
+        s.lower.yield_stress
+    }
+}
+
 /// The yield check, as the largest stress's fraction of its beam's yield stress (limit 1), when a
-/// yield stress is given.
-pub fn yield_check(s: &Scenario, peaks: &Peaks) -> Option<Check> {
+/// yield stress is given: the peaks at the clamp and the bridge's contact, and each beam's
+/// envelope (its worst bending stress, and sqrt(3) times its worst shear stress, von Mises' pure
+/// shear, wherever along it), in the order of [`crate::results::ENVELOPE_PEAK_NAMES`] (None: no
+/// envelope).
+pub fn yield_check(s: &Scenario, peaks: &Peaks, envelope: &[Option<f64>; 4]) -> Option<Check> {
     let mut ratios = Vec::new();
     if s.lower.yield_stress > 0.0 {
         let equivalent = peaks.lower_clamp_bending_stress.max(3f64.sqrt() * peaks.lower_clamp_shear_stress);
@@ -1148,6 +1180,13 @@ pub fn yield_check(s: &Scenario, peaks: &Peaks) -> Option<Check> {
     }
     if s.upper.yield_stress > 0.0 {
         ratios.push(peaks.upper_contact_bending_stress / s.upper.yield_stress);
+    }
+    for (k, value) in envelope.iter().enumerate() {
+        let yield_stress = envelope_yield_stress(s, k);
+        if let (Some(value), true) = (*value, yield_stress > 0.0) {
+            let equivalent = if k % 2 == 1 { 3f64.sqrt() * value } else { value };
+            ratios.push(equivalent / yield_stress);
+        }
     }
     let worst = ratios.into_iter().reduce(f64::max)?;
     Some(Check::new(worst, 1.0))

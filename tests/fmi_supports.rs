@@ -56,18 +56,24 @@ fn settled(status: i32, end: f64, log: &str) {
     }
 }
 
-/// The two parameters and the far support's two reactions follow every older variable: the last
-/// four value references.
+/// Issue 45's variables follow every older variable (`solver.max_steps` the last of those): the
+/// supports' two parameters, the rigid impactor's five, then the far support's two reactions, the
+/// last value references.
 #[test]
 fn the_supports_parameters_and_outputs_are_appended_after_every_older_variable() {
     let t = table();
-    let names: Vec<&str> = t.iter().skip(t.len() - 5).map(|v| v.name.as_str()).collect();
+    let names: Vec<&str> = t.iter().skip(t.len() - 10).map(|v| v.name.as_str()).collect();
     assert_eq!(
         names,
         [
             "solver.max_steps",
             "lower.supports",
             "lower.contact_position",
+            "upper.kind",
+            "impact_speed",
+            "upper.radius",
+            "upper.poisson_ratio",
+            "lower.poisson_ratio",
             "lower.far_reaction_force",
             "lower.far_reaction_moment"
         ]

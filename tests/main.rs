@@ -61,6 +61,7 @@ mod hostile_logs;
 mod hostile_motion;
 mod hostile_outputs;
 mod html_report;
+mod impactor_references;
 mod load_cases;
 mod log_peaks;
 mod mcap_channels;

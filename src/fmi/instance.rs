@@ -1446,8 +1446,9 @@ impl Instance {
 
     /// The yield check of the running peaks (`None` without a yield stress).
     fn yield_check(&self) -> Option<crate::answer::Check> {
-        let peaks = self.simulation.as_ref()?.output().peaks;
-        crate::answer::yield_check(&self.scenario, &peaks)
+        let simulation = self.simulation.as_ref()?;
+        let envelope = simulation.envelope().peaks().map(|p| p.map(|p| p.value));
+        crate::answer::yield_check(&self.scenario, &simulation.output().peaks, &envelope)
     }
 
     /// Logs `warning` (if any) and returns its status.

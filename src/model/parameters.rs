@@ -631,8 +631,10 @@ mod tests {
                 .find(|l| l.starts_with(&format!("{key} = ")) || l.starts_with(&format!("# {key} = ")))
                 .unwrap_or_else(|| panic!("{name}"));
             assert!(line.contains("  # ["), "{name}: no unit: {line}");
-            let named_choice =
-                matches!(*name, "method" | "stress_recovery" | "lower.kind" | "contact.law" | "lower.supports" | "upper.kind");
+            let named_choice = matches!(
+                *name,
+                "method" | "stress_recovery" | "lower.kind" | "contact.law" | "lower.supports" | "upper.kind"
+            );
             assert_eq!(line.contains("; range "), !named_choice, "{name}: {line}");
         }
         assert!(

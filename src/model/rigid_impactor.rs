@@ -5,10 +5,9 @@
 //! scenario's rules for both: which fields apply, their ranges, and the refusals of fields that
 //! would be ignored.
 
-use super::contact_law::{self, LawKind, EXPONENT_RANGE};
+use super::contact_law::{LawKind, EXPONENT_RANGE};
 use super::scenario::{
-    bound, within, ImpactorKind, Scenario, SupportKind, HERTZ_EXPONENT, MAX_POWER_LAW_STIFFNESS,
-    SMALLEST_CONTACT_STIFFNESS,
+    bound, within, ImpactorKind, Scenario, HERTZ_EXPONENT, MAX_POWER_LAW_STIFFNESS, SMALLEST_CONTACT_STIFFNESS,
 };
 use crate::error::{Error, Result};
 
@@ -40,13 +39,9 @@ pub fn impact_speed(s: &Scenario) -> f64 {
     }
 }
 
-/// Hertz's constant k = 4/3 E* sqrt(R), N/m^1.5, of the scenario's sphere (`upper.radius`,
-/// `upper.elastic_modulus`, `upper.poisson_ratio`) on the struck beam's face
-/// (`lower.elastic_modulus`, `lower.poisson_ratio`; a rigid support's term left out).
+/// Hertz's constant of the scenario's sphere on the struck beam: [`Scenario::hertz_constant`].
 pub fn hertz_constant(s: &Scenario) -> f64 {
-    let striker = (s.upper.elastic_modulus, s.upper.poisson_ratio);
-    let struck = (s.lower.kind != SupportKind::Rigid).then_some((s.lower.elastic_modulus, s.lower.poisson_ratio));
-    contact_law::hertz_stiffness(s.upper.radius, striker, struck)
+    s.hertz_constant()
 }
 
 /// A scenario file with `upper.kind = "mass"` that states a bridge's field (or where the bridge
@@ -198,4 +193,33 @@ pub fn hertz_errors(s: &Scenario) -> Vec<Error> {
         errors.clear();
     }
     errors
+}
+
+/// The rigid impactor's rules as the scenario applies them (methods here, so that the scenario's
+/// file does not use this one: the rules extend the scenario, not the other way round).
+impl Scenario {
+    /// [`refuse_beam_fields`].
+    pub(super) fn refuse_mass_beam_fields(text: &str) -> Result<()> {
+        refuse_beam_fields(text)
+    }
+
+    /// [`retain_mass_fields`].
+    pub(super) fn retain_mass_fields(table: &mut toml::Table) {
+        retain_mass_fields(table)
+    }
+
+    /// [`validation_errors`].
+    pub(super) fn rigid_impactor_errors(&self) -> Vec<Error> {
+        validation_errors(self)
+    }
+
+    /// [`hertz_errors`].
+    pub(super) fn hertz_errors(&self) -> Vec<Error> {
+        hertz_errors(self)
+    }
+
+    /// [`impact_speed`].
+    pub(super) fn mass_impact_speed(&self) -> f64 {
+        impact_speed(self)
+    }
 }

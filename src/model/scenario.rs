@@ -335,7 +335,7 @@ impl Scenario {
     pub fn contact_law(&self) -> Option<ContactLaw> {
         let mut law = self.contact.nonlinear_law()?;
         if self.contact.law == LawKind::Hertz {
-            law.stiffness = super::rigid_impactor::hertz_constant(self);
+            law.stiffness = self.hertz_constant();
         }
         Some(law)
     }
@@ -344,10 +344,20 @@ impl Scenario {
     /// [`ContactBar::stiffness`].
     pub fn contact_stiffness(&self) -> f64 {
         if self.contact.law == LawKind::Hertz {
-            super::rigid_impactor::hertz_constant(self)
+            self.hertz_constant()
         } else {
             self.contact.stiffness()
         }
+    }
+
+    /// Hertz's constant k = 4/3 E* sqrt(R), N/m^1.5, of the sphere (`upper.radius`,
+    /// `upper.elastic_modulus`, `upper.poisson_ratio`) on the struck beam's face
+    /// (`lower.elastic_modulus`, `lower.poisson_ratio`; a rigid support's term left out).
+    pub fn hertz_constant(&self) -> f64 {
+        let striker = (self.upper.elastic_modulus, self.upper.poisson_ratio);
+        let struck =
+            (self.lower.kind != SupportKind::Rigid).then_some((self.lower.elastic_modulus, self.lower.poisson_ratio));
+        super::contact_law::hertz_stiffness(self.upper.radius, striker, struck)
     }
 }
 
@@ -654,7 +664,7 @@ impl Scenario {
             scenario.drop_height = 0.0;
         }
         if scenario.upper.kind == ImpactorKind::Mass {
-            super::rigid_impactor::refuse_beam_fields(text)?;
+            Scenario::refuse_mass_beam_fields(text)?;
         }
         // A beam of sections: what its uniform fields say follows from them unless given (then
         // they must agree, which validation checks).
@@ -745,7 +755,7 @@ impl Scenario {
             lower.retain(|k, _| k == "kind");
         }
         if mass {
-            super::rigid_impactor::retain_mass_fields(&mut table);
+            Scenario::retain_mass_fields(&mut table);
         }
         if let (true, Some(toml::Value::Table(contact))) =
             (self.contact.given_stiffness.is_some(), table.get_mut("contact"))
@@ -827,7 +837,7 @@ impl Scenario {
     /// the unit) and the value. The bounds keep every accepted scenario finite and answerable:
     /// beyond them the model's numbers overflow, underflow or stop meaning anything physical.
     pub fn validation_errors(&self) -> Vec<Error> {
-        let mut errors = super::rigid_impactor::validation_errors(self);
+        let mut errors = self.rigid_impactor_errors();
         let u = &self.upper;
         let mut check = |result: Result<()>| {
             if let Err(e) = result {
@@ -1012,7 +1022,7 @@ impl Scenario {
         }
         check(within("contact.damping", "s/m", c.damping, 0.0, 1e3));
         if c.law == LawKind::Hertz {
-            errors.extend(super::rigid_impactor::hertz_errors(self));
+            errors.extend(self.hertz_errors());
         }
         let mut check = |result: Result<()>| {
             if let Err(e) = result {
@@ -1100,7 +1110,7 @@ impl Scenario {
     /// bridge's kinetic energy about its hinge, m_u l_u^2 omega_0^2 / 6, for a stated speed.
     pub fn impact_energy(&self) -> f64 {
         if self.upper.kind == ImpactorKind::Mass {
-            let v = super::rigid_impactor::impact_speed(self);
+            let v = self.mass_impact_speed();
             return 0.5 * self.upper.mass * v * v;
         }
         if !self.upper.sections.is_empty() {
