@@ -1250,8 +1250,14 @@ pub fn table(answer: &Answer) -> String {
     let u = answer.design.utilisation.as_array();
     let a = r.paper_allowables();
     let allowables = [None, Some((a[0], u[0])), Some((a[1], u[1])), Some((a[2], u[2])), None];
+    // On two supports (issue 45) w_din,a is the deflection at the contact point, not at an end.
+    let deflection = if r.lower.supports.is_clamped_free() {
+        "w_din,a arrestor end deflection [m]"
+    } else {
+        "w_din,a arrestor at contact [m]"
+    };
     let labels = [
-        ("w_din,a arrestor end deflection [m]", 1.0),
+        (deflection, 1.0),
         ("sigma_din,a clamp bending [MPa]", 1e-6),
         ("tau_din,a clamp shear [MPa]", 1e-6),
         ("sigma_din,b bridge at contact [MPa]", 1e-6),

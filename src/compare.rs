@@ -54,7 +54,7 @@ pub fn table1(summary: &Summary, paper: bool) -> String {
     let p = &summary.peaks;
     let e = &summary.energy_method;
     let rows = [
-        ("w_din,a   arrestor end deflection  [m]  ", p.lower_tip_deflection, e.tip_deflection, 1.0),
+        (END_DEFLECTION_ROW, p.lower_tip_deflection, e.tip_deflection, 1.0),
         ("sigma_din,a clamp bending stress [MPa]  ", p.lower_clamp_bending_stress, e.clamp_bending_stress, 1e-6),
         ("tau_din,a clamp shear stress     [MPa]  ", p.lower_clamp_shear_stress, e.clamp_shear_stress, 1e-6),
         ("sigma_din,b bridge bending, contact [MPa]", p.upper_contact_bending_stress, e.bridge_bending_stress, 1e-6),
@@ -252,6 +252,24 @@ pub fn contact_windows(summary: &Summary, paper: bool) -> String {
         let _ = writeln!(s, "separations longer than 50 ms: {long}");
     }
     s
+}
+
+/// Table 1's first row label on the paper's clamped-free arrestor: w_din,a at its free end.
+const END_DEFLECTION_ROW: &str = "w_din,a   arrestor end deflection  [m]  ";
+
+/// The same row on two supports (issue 45, `lower.supports`): w_din,a is the deflection at the
+/// contact point (the same width, so the columns stay aligned).
+const CONTACT_DEFLECTION_ROW: &str = "w_din,a   arrestor at contact      [m]  ";
+
+/// [`comparison`] for `scenario`: on two supports Table 1's deflection row says where w_din,a is
+/// (the contact point, not an end); the default clamped-free text is unchanged.
+pub fn comparison_for(summary: &Summary, scenario: &crate::Scenario) -> String {
+    let text = comparison(summary, scenario.is_paper());
+    if scenario.lower.supports.is_clamped_free() {
+        text
+    } else {
+        text.replacen(END_DEFLECTION_ROW, CONTACT_DEFLECTION_ROW, 1)
+    }
 }
 
 /// Everything: Table 1, Tables 2-3, contact windows, steps and the energy balance.

@@ -39,7 +39,7 @@ pub const PEAK_UNITS: [&str; 5] = ["m", "Pa", "Pa", "Pa", "N"];
 /// The step channel's former column names (the `beam_impact.Step` field paths) and their names,
 /// for `report --csv` and the Python `Log.dataframe()`; fields whose path is already the name
 /// (`step`, `time`, `energy.kinetic`, ...) are not listed.
-pub const STEP_RENAMES: [(&str, &str); 19] = [
+pub const STEP_RENAMES: [(&str, &str); 21] = [
     ("contact", "contact.active"),
     ("lower_tip_deflection", "lower.tip_deflection"),
     ("upper_contact_deflection", "upper.contact_deflection"),
@@ -54,6 +54,8 @@ pub const STEP_RENAMES: [(&str, &str); 19] = [
     ("upper_hinge_reaction_force", "upper.hinge_reaction_force"),
     ("lower_tip_velocity", "lower.tip_velocity"),
     ("upper_tip_velocity", "upper.tip_velocity"),
+    ("lower_far_reaction_force", "lower.far_reaction_force"),
+    ("lower_far_reaction_moment", "lower.far_reaction_moment"),
     ("peaks.lower_tip_deflection", "peak.lower.tip_deflection"),
     ("peaks.lower_clamp_bending_stress", "peak.lower.clamp_bending_stress"),
     ("peaks.lower_clamp_shear_stress", "peak.lower.clamp_shear_stress"),

@@ -24,7 +24,7 @@ fn ok(out: &Output) {
 /// The columns every CSV has, in order (the Python reader's `dataframe()` order): the quantities
 /// by their FMU names, then the renamed ones by their former names, the `beam_impact.Step` field
 /// paths (duplicates until 0.2.0).
-const HEADER: [&str; 48] = [
+const HEADER: [&str; 52] = [
     "step",
     "time_ns",
     "time",
@@ -43,6 +43,8 @@ const HEADER: [&str; 48] = [
     "upper.hinge_reaction_force",
     "lower.tip_velocity",
     "upper.tip_velocity",
+    "lower.far_reaction_force",
+    "lower.far_reaction_moment",
     "energy.kinetic",
     "energy.strain",
     "energy.gravity_potential",
@@ -68,6 +70,8 @@ const HEADER: [&str; 48] = [
     "upper_hinge_reaction_force",
     "lower_tip_velocity",
     "upper_tip_velocity",
+    "lower_far_reaction_force",
+    "lower_far_reaction_moment",
     "peaks.lower_tip_deflection",
     "peaks.lower_clamp_bending_stress",
     "peaks.lower_clamp_shear_stress",
@@ -121,6 +125,8 @@ fn expected(r: &StepResult, name: &str) -> String {
         "upper_hinge_reaction_force" => f(r.upper_hinge_reaction_force),
         "lower_tip_velocity" => f(r.lower_tip_velocity),
         "upper_tip_velocity" => f(r.upper_tip_velocity),
+        "lower_far_reaction_force" => f(r.lower_far_reaction_force),
+        "lower_far_reaction_moment" => f(r.lower_far_reaction_moment),
         "energy.kinetic" => f(r.energy.kinetic),
         "energy.strain" => f(r.energy.strain),
         "energy.gravity_potential" => f(r.energy.gravity_potential),
@@ -221,7 +227,7 @@ fn report_csv_is_the_step_channel() {
         units["columns"].as_array().unwrap().iter().map(|c| c["name"].as_str().unwrap()).collect();
     assert_eq!(unit_names, HEADER, "the units sidecar lists every column in order");
     assert_eq!(units["columns"][8]["unit"], "Pa");
-    assert_eq!(units["columns"][33]["same_as"], "lower.clamp_bending_stress");
+    assert_eq!(units["columns"][35]["same_as"], "lower.clamp_bending_stress");
 
     let log = read_log(&d.join("short.mcap")).unwrap();
     assert!(log.complete && log.rollbacks == 0);

@@ -261,6 +261,9 @@ fn a_deck_beam_log_replays_through_report() {
     let text = String::from_utf8_lossy(&report.stdout);
     assert!(text.contains("supports = \"pinned-pinned\"") && text.contains("contact_position = 6.0"), "{text}");
     assert!(text.contains("clamp bending stress     s_din,a     0.0000 MPa"), "{text}");
+    // On two supports w_din,a is the contact point's deflection: the labels say so.
+    assert!(text.contains("contact-point deflection w_din,a") && !text.contains("arrestor end deflection"), "{text}");
+    assert!(printed.contains("w_din,a arrestor at contact [m]") && !printed.contains("end deflection"), "{printed}");
     let envelope = text.lines().find(|l| l.trim_start().starts_with("arrestor bending")).unwrap();
     assert!(envelope.contains("at x =   6.000 m"), "{envelope}");
     // The envelope's value is the run's own (its table prints it to 4 decimals).
@@ -301,4 +304,46 @@ fn the_far_supports_reactions_carry_their_share_during_a_run() {
     let m = p * l.length / 8.0 + m0;
     assert!((r.lower_far_reaction_moment.abs() / m - 1.0).abs() < 0.01, "{r:?}");
     assert!((r.lower_clamp_reaction_moment.abs() / m - 1.0).abs() < 0.01, "{r:?}");
+}
+
+/// The far support's reactions replay from the log (issue 45): the deck beam's run (0.35 s, past
+/// the bridge's first touch at about 0.25 s) logged, then `report --csv`: the far support's
+/// columns are in the CSV by their FMU names, the first row (the beam resting under its own
+/// weight) carries half the weight at the far pin to 1e-9 (the static share, as in
+/// [`the_far_supports_reactions_carry_their_share_during_a_run`]), every moment is 0 (a pin), and
+/// the last row is the run's own final value to the bit (the CSV round-trips f64).
+#[test]
+fn a_deck_beam_logs_far_reactions_replay_through_report_csv() {
+    let dir = std::env::temp_dir().join(format!("beam-impact-supports-far-log-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (log, csv) = (dir.join("deck.mcap"), dir.join("deck.csv"));
+    let example = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/deck-beam-supports.toml");
+    let run = beam_impact_cli().args(["run", example, "--set", "duration=0.35", "--mcap"]).arg(&log).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let report =
+        beam_impact_cli().arg("report").arg(&log).arg("--csv").arg(&csv).arg("--out").arg(dir.join("f")).output();
+    let report = report.unwrap();
+    assert!(report.status.success(), "{}", String::from_utf8_lossy(&report.stderr));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let rows: Vec<Vec<f64>> =
+        lines.map(|l| l.split(',').map(|c| c.parse::<f64>().unwrap_or(f64::NAN)).collect()).collect();
+    let column = |name: &str| {
+        let k = header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("no column {name}: {header:?}"));
+        rows.iter().map(|r| r[k]).collect::<Vec<f64>>()
+    };
+    let (force, moment) = (column("lower.far_reaction_force"), column("lower.far_reaction_moment"));
+
+    let mut s = Scenario::from_toml(&std::fs::read_to_string(example).unwrap(), "deck-beam-supports").unwrap();
+    s.duration = 0.35;
+    let mut simulation = Simulation::new(&s).unwrap();
+    let weight = s.lower.mass * s.gravity;
+    assert!((force[0] / (weight / 2.0) - 1.0).abs() < 1e-9, "{} vs {}", force[0], weight / 2.0);
+    assert!(moment.iter().all(|&m| m == 0.0), "a pin carries no moment");
+    simulation.run(&mut NullRecorder).unwrap();
+    let r = simulation.output();
+    assert!(r.contact_force != 0.0 || force.iter().any(|&f| f != force[0]), "the bridge has touched");
+    assert_eq!(force.last().unwrap().to_bits(), r.lower_far_reaction_force.to_bits(), "{r:?}");
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -90,6 +90,8 @@ SCALARS = [
     "upper_hinge_reaction_force",
     "lower_tip_velocity",
     "upper_tip_velocity",
+    "lower_far_reaction_force",
+    "lower_far_reaction_moment",
 ]
 ENERGY = ["kinetic", "strain", "gravity_potential", "external_work", "damping_dissipation", "residual"]
 PEAKS = [

@@ -194,7 +194,7 @@ pub fn run(args: &RunArgs) -> Result<bool> {
                 .map_or(String::new(), |p| format!("; clamp at {p:?} m, arrestor at {} deg", sea.arrestor_direction)),
         );
     }
-    text += &compare::comparison(summary, paper);
+    text += &compare::comparison_for(summary, &scenario);
     if paper {
         text += "(Table 1's FEM column is bound to the paper's 7 + 7/7 mesh; the converged answer follows.)\n";
     }

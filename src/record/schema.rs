@@ -138,6 +138,8 @@ impl StepMessage {
         self.upper_tip_velocity = r.upper_tip_velocity;
         self.upper_support_displacement = r.upper_support_displacement;
         self.lower_support_displacement = r.lower_support_displacement;
+        self.lower_far_reaction_force = r.lower_far_reaction_force;
+        self.lower_far_reaction_moment = r.lower_far_reaction_moment;
         let e = &r.energy;
         self.energy = Some(EnergyMessage {
             kinetic: e.kinetic,
@@ -183,9 +185,9 @@ impl StepMessage {
             upper_tip_velocity: self.upper_tip_velocity,
             upper_support_displacement: self.upper_support_displacement,
             lower_support_displacement: self.lower_support_displacement,
-            // Issue 45: the far support's reactions are not in the log's Step message yet.
-            lower_far_reaction_force: 0.0,
-            lower_far_reaction_moment: 0.0,
+            // Issue 45 (fields 25, 26): 0 in older logs, which had no far support.
+            lower_far_reaction_force: self.lower_far_reaction_force,
+            lower_far_reaction_moment: self.lower_far_reaction_moment,
             energy: EnergyAccount {
                 kinetic: e.kinetic,
                 strain: e.strain,
@@ -383,8 +385,10 @@ mod tests {
             "upper_support_displacement",
             "lower_support_displacement",
             "sample",
+            "lower_far_reaction_force",
+            "lower_far_reaction_moment",
         ];
-        assert_eq!(step.len(), 24);
+        assert_eq!(step.len(), 26);
         for (k, (field, name)) in step.iter().zip(names).enumerate() {
             let number = k as i32 + 1;
             let (ty, label) = match number {
@@ -474,6 +478,8 @@ mod tests {
             upper_support_displacement: 22.5,
             lower_support_displacement: 23.5,
             sample: true,
+            lower_far_reaction_force: 25.5,
+            lower_far_reaction_moment: 26.5,
         };
         let types = messages(&beam_impact_descriptor());
         let decoded = decode_by_schema(&types, ".beam_impact.Step", &step.encode_to_vec());
@@ -490,7 +496,7 @@ mod tests {
         assert_eq!(decoded["contact"], 1);
         assert_eq!(decoded["sample"], 1);
         assert_eq!(f32::from_bits(decoded["modal_coordinates"] as u32), 16.5);
-        assert_eq!(decoded.len(), 24 - 2 + 6 + 5, "{decoded:?}");
+        assert_eq!(decoded.len(), 26 - 2 + 6 + 5, "{decoded:?}");
 
         let stations = StationStressesMessage {
             step: 9,

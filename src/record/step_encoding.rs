@@ -18,9 +18,9 @@ const FIXED64: u8 = 1;
 const LENGTH_DELIMITED: u8 = 2;
 
 /// The largest message: two 10-byte varints and their keys (22), `step_size` (9), `contact` (2),
-/// 8 doubles (72), the energy account (2 + 54) and the peaks (2 + 45), 7 doubles with two-byte
-/// keys (70), `sample` (3): 281 bytes.
-const MAX_BYTES: usize = 281;
+/// 8 doubles (72), the energy account (2 + 54) and the peaks (2 + 45), 9 doubles with two-byte
+/// keys (90: fields 17 to 23, 25 and 26), `sample` (3): 301 bytes.
+const MAX_BYTES: usize = 301;
 
 /// The message built in a fixed array (one pass, no capacity checks), then appended at once.
 struct Bytes {
@@ -123,6 +123,8 @@ pub fn encode_step(buffer: &mut Vec<u8>, r: &StepResult, with_peaks: bool, sampl
         b.key(24, VARINT);
         b.push(1);
     }
+    b.double(25, r.lower_far_reaction_force);
+    b.double(26, r.lower_far_reaction_moment);
     buffer.clear();
     buffer.extend_from_slice(&b.bytes[..b.len]);
 }
@@ -191,9 +193,8 @@ mod tests {
             upper_tip_velocity: v,
             upper_support_displacement: v,
             lower_support_displacement: -v,
-            // Not in the Step message (issue 45): the encoding leaves them out.
-            lower_far_reaction_force: 0.0,
-            lower_far_reaction_moment: 0.0,
+            lower_far_reaction_force: v,
+            lower_far_reaction_moment: -v,
             energy: EnergyAccount {
                 kinetic: v,
                 strain: v,

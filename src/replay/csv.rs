@@ -26,7 +26,7 @@ pub type Column = (&'static str, &'static str, Getter);
 pub type Getter = fn(&StepResult) -> Value;
 
 /// The columns, in order.
-pub const COLUMNS: [Column; 29] = [
+pub const COLUMNS: [Column; 31] = [
     ("step", "1 (count)", |r| Value::Int(r.step)),
     ("time_ns", "ns", |r| Value::Int(r.time_ns)),
     ("time", "s", |r| Value::Float(r.time)),
@@ -45,6 +45,8 @@ pub const COLUMNS: [Column; 29] = [
     ("upper_hinge_reaction_force", "N", |r| Value::Float(r.upper_hinge_reaction_force)),
     ("lower_tip_velocity", "m/s", |r| Value::Float(r.lower_tip_velocity)),
     ("upper_tip_velocity", "m/s", |r| Value::Float(r.upper_tip_velocity)),
+    ("lower_far_reaction_force", "N", |r| Value::Float(r.lower_far_reaction_force)),
+    ("lower_far_reaction_moment", "N m", |r| Value::Float(r.lower_far_reaction_moment)),
     ("energy.kinetic", "J", |r| Value::Float(r.energy.kinetic)),
     ("energy.strain", "J", |r| Value::Float(r.energy.strain)),
     ("energy.gravity_potential", "J", |r| Value::Float(r.energy.gravity_potential)),

@@ -960,8 +960,14 @@ fn summary_text(data: &LogData, scenario: &Scenario, summary: &Summary, out: &mu
         scenario.duration,
         data.steps.len()
     );
+    // On two supports (issue 45) w_din,a is the deflection at the contact point, not at an end.
+    let deflection = if scenario.lower.supports.is_clamped_free() {
+        "arrestor end deflection  w_din,a"
+    } else {
+        "contact-point deflection w_din,a"
+    };
     let names = [
-        ("arrestor end deflection  w_din,a", 1.0, "m  "),
+        (deflection, 1.0, "m  "),
         ("clamp bending stress     s_din,a", 1e-6, "MPa"),
         ("clamp shear stress       t_din,a", 1e-6, "MPa"),
         ("bridge contact bending   s_din,b", 1e-6, "MPa"),
@@ -1133,7 +1139,7 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
     let (_, source) = replay_envelope(&data, &summary.peaks, &summary.peak_times, scenario.contact_position);
     text.push_str(&envelope_text(&summary, &source));
     text.push('\n');
-    text.push_str(&crate::compare::comparison(&summary, scenario.is_paper()));
+    text.push_str(&crate::compare::comparison_for(&summary, &scenario));
     out.write_all(text.as_bytes()).map_err(io)?;
     super::figures::create_dir(out_dir)?;
     // A value the figures cannot scale (a damaged or forged log: a run's results are finite) would

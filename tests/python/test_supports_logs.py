@@ -41,3 +41,12 @@ def test_a_deck_beam_run_replays_through_load_log(tmp_path):
     assert abs(force / peaks["contact_force"] - 1) < 1e-9, (force, peaks)
     # A pin carries no moment: the first support's bending stress stays 0 at every step.
     assert np.all(steps["lower_clamp_bending_stress"] == 0.0)
+    # The far support's reactions are in the log (issue 45): at t = 0 the beam rests on its two
+    # pins, each carrying half its weight (to round-off: 1e-9), the far pin carries no moment,
+    # and the last step's force is the run's final one (the JSON's, to its printed digits).
+    far_force, far_moment = steps["lower.far_reaction_force"], steps["lower.far_reaction_moment"]
+    assert np.array_equal(far_force, steps["lower_far_reaction_force"])
+    weight = 10124.0 * 9.81  # the example's lower.mass (kg) times the default gravity (m/s^2)
+    assert abs(far_force[0] / (weight / 2) - 1) < 1e-9, far_force[0]
+    assert np.all(far_moment == 0.0)
+    assert np.any(far_force != far_force[0]), "the bridge's impact moves the far reaction"

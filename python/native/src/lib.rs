@@ -54,6 +54,8 @@ const FLOAT_COLUMNS: &[Column] = &[
     ("upper_hinge_reaction_force", |r| r.upper_hinge_reaction_force),
     ("lower_tip_velocity", |r| r.lower_tip_velocity),
     ("upper_tip_velocity", |r| r.upper_tip_velocity),
+    ("lower_far_reaction_force", |r| r.lower_far_reaction_force),
+    ("lower_far_reaction_moment", |r| r.lower_far_reaction_moment),
     ("energy.kinetic", |r| r.energy.kinetic),
     ("energy.strain", |r| r.energy.strain),
     ("energy.gravity_potential", |r| r.energy.gravity_potential),
