@@ -304,8 +304,8 @@ impl RunFatigue {
 }
 
 /// A life in years as the lines print it: three decimals from 0.001 to a million, else
-/// scientific.
-fn years(life: f64) -> String {
+/// scientific (also the sweep's and the campaign's lines).
+pub fn years(life: f64) -> String {
     if (1e-3..1e6).contains(&life) {
         format!("{life:.3}")
     } else {

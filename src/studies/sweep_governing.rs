@@ -8,6 +8,7 @@
 //! grid order, so a row's number is its line in the CSV after the header (1 = the first row).
 
 use crate::model::Scenario;
+use crate::run_fatigue::years;
 use crate::studies::sweep::{format_value, Axis, Row, RowFatigue, GOVERNING_QUANTITIES};
 
 /// The row where a quantity's largest factored utilisation over the grid sits.
@@ -150,15 +151,6 @@ impl SweepSummary {
             );
         }
         out
-    }
-}
-
-/// A life in years as `run` prints it: three decimals from 0.001 to a million, else scientific.
-fn years(life: f64) -> String {
-    if (1e-3..1e6).contains(&life) {
-        format!("{life:.3}")
-    } else {
-        format!("{life:.3e}")
     }
 }
 

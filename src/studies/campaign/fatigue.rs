@@ -20,6 +20,7 @@
 //! from text, bounded ([`MAX_TABLE_BYTES`], [`MAX_TABLE_ROWS`]); every error one line naming the
 //! line and column.
 
+use crate::run_fatigue::years;
 use serde::Serialize;
 
 use crate::error::{Error, Result};
@@ -398,15 +399,6 @@ impl CampaignFatigue {
             out += "  damage a year: give the sea states' occurrence (--occurrence FILE.csv)\n";
         }
         out
-    }
-}
-
-/// A life in years as `run` prints it: three decimals from 0.001 to a million, else scientific.
-fn years(life: f64) -> String {
-    if (1e-3..1e6).contains(&life) {
-        format!("{life:.3}")
-    } else {
-        format!("{life:.3e}")
     }
 }
 
