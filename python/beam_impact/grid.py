@@ -96,6 +96,12 @@ def linspace(start: float, stop: float, count: int) -> list[float]:
             f"linspace: the count must be a whole number from 1 to {MAX_SCENARIOS} (the limit of a sweep and of "
             f"--vary start:stop:count), got {shown}")
     count = n
+    ends = [_finite(v) for v in (start, stop)]
+    if None in ends:
+        bad = (start, stop)[ends.index(None)]
+        raise ValueError(f"linspace: start and stop must be finite numbers, got {repr(bad)[:100]}")
+    start, stop = ends
+    span = stop - start
     out = []
     for i in range(count):
         if i == 0:
@@ -103,8 +109,22 @@ def linspace(start: float, stop: float, count: int) -> list[float]:
         elif i == count - 1:
             out.append(stop)
         else:
-            out.append(float(f"{start + (stop - start) * i / (count - 1):.14e}"))
+            # As the CLI: where stop - start overflows, the same point as start (1 - t) + stop t.
+            t = i / (count - 1)
+            x = start + span * i / (count - 1) if math.isfinite(span) else start * (1.0 - t) + stop * t
+            out.append(float(f"{x:.14e}"))
     return out
+
+
+def _finite(value: Any) -> float | None:
+    """`value` as a finite float, or None (a bool, text, NaN, an infinity, an overflowing int)."""
+    if isinstance(value, (bool, str, bytes)):
+        return None
+    try:
+        x = float(value)
+    except (TypeError, ValueError, OverflowError):
+        return None
+    return x if math.isfinite(x) else None
 
 
 #: Largest grid a sweep runs, checked before any value is built (the CLI's limit).

@@ -128,9 +128,9 @@ pub enum Command {
     /// Time the production stepper against the dense oracle, the per-step cost at finer
     /// meshes, and the recorded run.
     Bench {
-        /// Runs per measurement (the median is reported).
-        #[arg(long, default_value_t = 5)]
-        runs: usize,
+        /// Runs per measurement (the median is reported), 1 to 1000.
+        #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u16).range(1..=1000))]
+        runs: u16,
     },
     /// Convergence of the four Table 1 peaks and the contact force: the scenario at half its steps
     /// and at 2x and 4x its elements with 2x and 4x its modal cut-off; each peak's changes, a
@@ -221,7 +221,7 @@ pub struct RunArgs {
     #[arg(long, default_value_t = beam_impact::record::mcap::MAX_LOG_BYTES)]
     pub max_log_bytes: u64,
     /// Refuse runs that need more internal steps than this (duration over the smaller step).
-    #[arg(long, default_value_t = beam_impact::model::scenario::MAX_STEPS)]
+    #[arg(long, default_value_t = beam_impact::model::scenario::MAX_STEPS, value_parser = clap::value_parser!(u64).range(1..))]
     pub max_steps: u64,
     /// Record every Nth internal step to the MCAP log (for long runs), instead of the dense
     /// output (--log-sample-interval 0). Step 0, the last step, the steps on both sides of a
@@ -295,7 +295,7 @@ pub struct SweepArgs {
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
     pub jobs: Option<u64>,
     /// Refuse runs that need more internal steps than this (a row with the error).
-    #[arg(long, default_value_t = beam_impact::model::scenario::MAX_STEPS)]
+    #[arg(long, default_value_t = beam_impact::model::scenario::MAX_STEPS, value_parser = clap::value_parser!(u64).range(1..))]
     pub max_steps: u64,
     /// Also write the response over the grid as one self-contained HTML page (docs/html-report.md).
     #[arg(long, value_name = "FILE.html")]
@@ -354,7 +354,7 @@ pub struct CampaignArgs {
     #[arg(long, default_value_t = beam_impact::studies::campaign::DEFAULT_MAX_EVENTS)]
     pub max_events: u64,
     /// Refuse runs that need more internal steps than this (a row with the error).
-    #[arg(long, default_value_t = beam_impact::model::scenario::MAX_STEPS)]
+    #[arg(long, default_value_t = beam_impact::model::scenario::MAX_STEPS, value_parser = clap::value_parser!(u64).range(1..))]
     pub max_steps: u64,
     /// Assess each event's fatigue on the scenario's [fatigue] curve: the damage per event, its
     /// mean per cell (docs/operability.md).

@@ -4,8 +4,9 @@ use beam_impact::Result;
 
 use super::common::emit;
 
-pub fn bench(runs: usize) -> Result<()> {
-    let runs = runs.max(1);
+/// `runs`: 1 to 1000, clap's range (so never the silent single run that `--runs 0` was).
+pub fn bench(runs: u16) -> Result<()> {
+    let runs = usize::from(runs);
     super::common::note(&format!(
         "beam-impact bench: 1/2 production stepper vs dense oracle, per-step cost ({runs} runs each)..."
     ));

@@ -436,15 +436,22 @@ pub struct Axis {
 
 /// `count` values from `start` to `stop` inclusive: `start + (stop - start) * i / (count - 1)`
 /// rounded to 15 significant digits (so that 0.2:1:3 gives 0.6, not 0.6000000000000001), the
-/// last exactly `stop`; one value is `start`. Python's `float(f"{x:.14e}")` rounds the same way
-/// (both correctly rounded), so the package's grids are these bits.
+/// last exactly `stop`; one value is `start`. Where `stop - start` overflows (endpoints near
+/// +-1.8e308 of opposite signs) the same point as `start (1 - t) + stop t`, t = i / (count - 1),
+/// which cannot. Python's `float(f"{x:.14e}")` rounds the same way (both correctly rounded), so
+/// the package's grids are these bits. Endpoints are finite ([`parse_axis`] refuses others).
 pub fn linspace(start: f64, stop: f64, count: usize) -> Vec<f64> {
     let snap = |x: f64| format!("{x:.14e}").parse::<f64>().unwrap_or(x);
+    let span = stop - start;
     (0..count)
         .map(|i| match i {
             0 => start,
             i if i + 1 == count => stop,
-            i => snap(start + (stop - start) * i as f64 / (count - 1) as f64),
+            i if span.is_finite() => snap(start + span * i as f64 / (count - 1) as f64),
+            i => {
+                let t = i as f64 / (count - 1) as f64;
+                snap(start * (1.0 - t) + stop * t)
+            }
         })
         .collect()
 }
@@ -473,7 +480,13 @@ pub fn parse_axis(text: &str) -> Result<Axis> {
                 "the count {count} is more than a sweep runs ({MAX_SCENARIOS} scenarios): split the sweep"
             ))));
         }
-        linspace(parse_value(field, start).map_err(context)?, parse_value(field, stop).map_err(context)?, count)
+        let (start, stop) = (parse_value(field, start).map_err(context)?, parse_value(field, stop).map_err(context)?);
+        if let Some(bad) = [start, stop].into_iter().find(|v| !v.is_finite()) {
+            return Err(context(Error::Other(format!(
+                "start and stop of start:stop:count must be finite numbers, got {bad}"
+            ))));
+        }
+        linspace(start, stop, count)
     } else {
         spec.split(',').map(|v| parse_value(field, v).map_err(context)).collect::<Result<Vec<f64>>>()?
     };
@@ -1256,6 +1269,21 @@ mod tests {
         let v = axis("damping_ratio=0.005:0.05:10").values;
         assert_eq!(v.len(), 10);
         assert_eq!((v[0], v[9]), (0.005, 0.05));
+    }
+
+    /// A range's endpoints are finite (issue 40's re-test: `nan:1:3` ran rows that all failed,
+    /// `1e308:-1e308:3` put -inf in the middle row), and a span that overflows still gives the
+    /// points between: 1e308 (1 - 1/2) - 1e308 / 2 = 0 exactly.
+    #[test]
+    fn ranges_refuse_non_finite_endpoints_and_never_overflow() {
+        for spec in ["nan:1:3", "0:inf:3", "-inf:0:2", "1:NaN:1"] {
+            let e = parse_axis(&format!("drop_height={spec}")).unwrap_err().to_string();
+            assert!(e.contains("must be finite numbers") && e.contains("drop_height"), "{spec}: {e}");
+        }
+        assert_eq!(axis("upper.tip_force=1e308:-1e308:3").values, vec![1e308, 0.0, -1e308]);
+        let wide = linspace(-1.7e308, 1.7e308, 5);
+        assert!(wide.iter().all(|v| v.is_finite()), "{wide:?}");
+        assert!(wide.windows(2).all(|w| w[0] < w[1]), "{wide:?}");
     }
 
     /// Integer fields: rounded half away from zero, duplicates dropped with the first kept.

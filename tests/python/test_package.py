@@ -273,6 +273,22 @@ def test_linspace_counts_are_bounded_as_the_cli_s():
     assert beam_impact.linspace(0.1, 0.5, np.int64(1)) == [0.1]
 
 
+def test_linspace_endpoints_are_finite_and_never_overflow():
+    """Issue 40's re-test: `linspace(1e308, -1e308, 3)` gave [1e308, -inf, -1e308] and NaN or inf
+    endpoints were taken. Now they are refused in one line, as the CLI's `--vary` refuses them, and
+    a span that overflows still gives the CLI's points (1e308 / 2 - 1e308 / 2 = 0 exactly)."""
+    for start, stop, shown in [(float("nan"), 1.0, "nan"), (0.0, float("inf"), "inf"), (-math.inf, 0.0, "-inf"),
+                               (True, 1.0, "True"), ("0", 1.0, "'0'"), (10**400, 1.0, "1" + "0" * 99)]:
+        with pytest.raises(ValueError) as refused:
+            beam_impact.linspace(start, stop, 3)
+        text = str(refused.value)
+        assert "must be finite numbers" in text and shown in text and "\n" not in text, text
+    assert beam_impact.linspace(1e308, -1e308, 3) == [1e308, 0.0, -1e308]
+    assert beam_impact.linspace(1e308, -1e308, 3) == beam_impact.parse_spec("upper.tip_force", "1e308:-1e308:3")
+    with pytest.raises(ValueError, match="must be finite numbers"):
+        parse_vary(["drop_height=nan:1:3"])
+
+
 def test_simulate_refuses_runs_it_cannot_finish():
     """Issue 16 item 8: `simulate(fmu, {"duration": 1e6})` ran for hours and `histories=True` on a
     long run ended in a SimulationError with an empty message. Now the stop time is bounded by the
