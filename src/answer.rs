@@ -624,7 +624,21 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
     let envelope_discretisation_error: [Option<f64>; 4] = match check {
         Some((c, _)) if !paper => {
             let coarse = c.envelope.peak_values();
-            std::array::from_fn(|k| both(envelope_values[k], coarse[k], floored_figure))
+            // As the peaks' (`peak_figures`): a beam's worst reached after the first sustained
+            // contact of a run damped below LATE_PEAK_CALIBRATED_FROM is judged by its whole change.
+            let late = |k: usize| {
+                resolved.damping_ratio < LATE_PEAK_CALIBRATED_FROM
+                    && summary.envelope.peaks()[k].zip(summary.first_contact_end).is_some_and(|(p, end)| p.time > end)
+            };
+            std::array::from_fn(|k| {
+                let figure = both(envelope_values[k], coarse[k], floored_figure);
+                let change = both(envelope_values[k], coarse[k], |fine, medium| relative(medium, fine));
+                if late(k) {
+                    figure.zip(change).map(|(f, c)| f.max(c))
+                } else {
+                    figure
+                }
+            })
         }
         Some((c, _)) => {
             let converged = c.envelope.peak_values();

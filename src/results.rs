@@ -256,7 +256,12 @@ pub const SUSTAINED_CONTACT: f64 = 0.1;
 /// The peaks of the first sustained contact: from t = 0 until the end of the first contact window
 /// (bounces closer than [`BOUNCE_GAP`] merged) that lasts at least [`SUSTAINED_CONTACT`]: 0.75 s
 /// on the paper scenario, where the impact's first bounces (separations of 14-15 ms) precede it.
-/// The steps of a separation count once contact resumes, so they are held apart until then.
+/// A separation as long as a sustained contact ([`SUSTAINED_CONTACT`]) before it ends it too, at
+/// its last step in contact: the bodies flew apart and the next touch is another impact (issue 40's
+/// re-test: an undamped bridge without gravity bounced off the arrestor's free end four times in
+/// 0.5 s, none of its windows sustained, and its fourth impact's peak passed as a first-contact
+/// one, beyond the lightly damped run's late-peak rule). The steps of a separation count once
+/// contact resumes, so they are held apart until then.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct FirstContact {
     /// Peaks max |.| from t = 0 to the end of the first sustained contact (so far, while it lasts).
@@ -303,13 +308,15 @@ impl FirstContact {
             return;
         }
         self.pending.raise(&values);
-        if let (Some(start), Some(end)) = (self.window_start, self.last_contact) {
-            if result.time - end >= BOUNCE_GAP {
-                if end - start >= SUSTAINED_CONTACT {
-                    self.ended = true;
-                } else {
-                    self.window_start = None;
-                }
+        if let Some(end) = self.last_contact {
+            let apart = result.time - end;
+            match self.window_start {
+                Some(start) if apart >= BOUNCE_GAP && end - start >= SUSTAINED_CONTACT => self.ended = true,
+                Some(_) if apart >= BOUNCE_GAP => self.window_start = None,
+                _ => {}
+            }
+            if apart >= SUSTAINED_CONTACT {
+                self.ended = true;
             }
         }
     }
@@ -542,5 +549,49 @@ impl StressEnvelope {
     /// The peaks' values only, in the same order.
     pub fn peak_values(&self) -> [Option<f64>; 4] {
         self.peaks().map(|p| p.map(|p| p.value))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Steps every millisecond from 0 to `end` s: in contact within `windows`, the contact force
+    /// `force(t)` (the other peaks 0).
+    fn observed(windows: &[(f64, f64)], end: f64, force: impl Fn(f64) -> f64) -> FirstContact {
+        let mut first = FirstContact::default();
+        for i in 0..=(end * 1e3).round() as usize {
+            let time = i as f64 * 1e-3;
+            let contact = windows.iter().any(|&(a, b)| (a..=b).contains(&time));
+            first.observe(&StepResult { time, contact, contact_force: force(time), ..Default::default() });
+        }
+        first
+    }
+
+    /// The paper's pattern: bounces 15 ms apart, then a window of 0.3 s: the first contact holds
+    /// the bounces and the sustained window, and ends with it.
+    #[test]
+    fn the_first_contact_spans_short_bounces_and_ends_with_the_sustained_window() {
+        let windows = [(0.0, 0.02), (0.035, 0.05), (0.065, 0.365), (0.6, 0.7)];
+        let first = observed(&windows, 1.0, |t| if t > 0.6 { 9.0 } else { 1.0 + t });
+        assert!(first.ended);
+        assert_eq!(first.end(), Some(0.365));
+        assert_eq!(first.peaks.contact_force, 1.365, "the sustained window's largest, not the later impact's 9");
+    }
+
+    /// Issue 40's re-test: windows of 25 ms with a 121 ms flight between (no window sustained): the
+    /// flight ends the first contact at its last step in contact, so a later impact's peak is not a
+    /// first-contact one; separations shorter than 0.1 s do not.
+    #[test]
+    fn a_flight_as_long_as_a_sustained_contact_ends_the_first_contact() {
+        let windows = [(0.0, 0.025), (0.044, 0.061), (0.182, 0.21), (0.237, 0.248)];
+        let first = observed(&windows, 0.5, |t| if t > 0.1 { 5.0 } else { t });
+        assert_eq!(first.end(), Some(0.061));
+        assert_eq!(first.peaks.contact_force, 0.061);
+        // Flights of 99 ms between short windows: one first contact, over the whole run.
+        let windows = [(0.0, 0.02), (0.119, 0.14), (0.239, 0.26)];
+        let first = observed(&windows, 0.3, |t| t);
+        assert_eq!(first.end(), None);
+        assert_eq!(first.peaks.contact_force, 0.26);
     }
 }
