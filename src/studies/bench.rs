@@ -370,13 +370,21 @@ pub fn campaign_benchmark(runs: usize) -> Result<String> {
 /// the whole converged answer (`answer::run`: the printed rung, its checks and the twin, on the
 /// available cores, as `beam-impact run`) of the default scenario dropped from 0.5 m with the
 /// paper's bar (2.8e10 N/m) and with the linear law's stiffest contact
-/// ([`crate::model::scenario::MAX_CONTACT_STIFFNESS`]); their wall times, contact windows and
-/// ratio; medians of `runs`.
+/// ([`crate::model::scenario::MAX_CONTACT_STIFFNESS`]), and a power law of exponent 1 at the top
+/// of the rate every law is held to ([`crate::model::contact_range::MAX_CONTACT_RATE`]: the same
+/// bar in its own unit, solved as a scalar equation each step); their wall times, contact windows
+/// and ratios; medians of `runs`.
 pub fn stiff_contact_benchmark(runs: usize) -> Result<String> {
+    use crate::model::contact_law::LawKind;
+    use crate::model::contact_range::MAX_CONTACT_RATE;
     use crate::model::scenario::MAX_CONTACT_STIFFNESS;
     let default = Scenario { drop_height: 0.5, ..Scenario::default() };
     let mut stiff = default.clone();
     stiff.contact.given_stiffness = Some(MAX_CONTACT_STIFFNESS);
+    let mut power = default.clone();
+    power.contact.law = LawKind::Power;
+    power.contact.exponent = 1.0;
+    power.contact.given_stiffness = Some(MAX_CONTACT_RATE);
     let time = |s: &Scenario| -> Result<(Duration, usize)> {
         let mut samples = Vec::with_capacity(runs.max(1));
         let mut windows = 0;
@@ -390,6 +398,7 @@ pub fn stiff_contact_benchmark(runs: usize) -> Result<String> {
     };
     let (base, base_windows) = time(&default)?;
     let (slow, stiff_windows) = time(&stiff)?;
+    let (power_time, power_windows) = time(&power)?;
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
     let mut out = String::new();
     let _ = writeln!(
@@ -406,6 +415,14 @@ pub fn stiff_contact_benchmark(runs: usize) -> Result<String> {
         "  the linear law's top, {MAX_CONTACT_STIFFNESS:.0e} N/m : {:8.1} ms  {stiff_windows} contact windows  x{:.2}",
         ms(slow),
         slow.as_secs_f64() / base.as_secs_f64().max(f64::MIN_POSITIVE)
+    );
+    let _ = writeln!(
+        out,
+        "  power law n = 1 at its top rate, {MAX_CONTACT_RATE:.0e} N/m^1: {:8.1} ms  {power_windows} contact windows  \
+         x{:.2} (x{:.2} the linear law's top)",
+        ms(power_time),
+        power_time.as_secs_f64() / base.as_secs_f64().max(f64::MIN_POSITIVE),
+        power_time.as_secs_f64() / slow.as_secs_f64().max(f64::MIN_POSITIVE)
     );
     Ok(out)
 }
