@@ -81,7 +81,8 @@ fn largest_accepted(s: &Scenario, low: f64, high: f64, put: impl Fn(&mut Scenari
         put(&mut trial, x);
         contact_rate(&trial)
     };
-    if !(rate_at(low) <= MAX_CONTACT_RATE) {
+    let within = |rate: f64| rate <= MAX_CONTACT_RATE; // false for NaN
+    if !within(rate_at(low)) {
         return None;
     }
     let (mut lo, mut hi) = (low.ln(), high.ln());
@@ -90,7 +91,7 @@ fn largest_accepted(s: &Scenario, low: f64, high: f64, put: impl Fn(&mut Scenari
             break;
         }
         let mid = 0.5 * (lo + hi);
-        if rate_at(mid.exp()) <= MAX_CONTACT_RATE {
+        if within(rate_at(mid.exp())) {
             lo = mid;
         } else {
             hi = mid;

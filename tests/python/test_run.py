@@ -406,3 +406,14 @@ def test_the_peaks_shortcut_gives_one_name_per_quantity():
         assert set(document) - set(shortcut) == {name for name in document if "." not in name}
     assert "contact.force" in result.peaks and "contact_force" not in result.peaks
     assert "contact_force" in result["summary"]["peaks"]
+
+
+def test_a_run_of_many_steps_is_noted_as_the_cli_notes_it():
+    """Issue 40: a plan of more than a million internal steps (0.11 s at 1e-7 s: 1 100 000) is said
+    among the warnings, in the CLI's words; the default run's plan is not."""
+    with pytest.warns(RuntimeWarning, match="internal steps"):
+        result = beam_impact.run(duration=0.11, step_free=1e-7, check_sensitivity=False)
+    note = "note: this run may take up to 1100000 internal steps (0.11 s at its smaller time step)"
+    assert any(w.startswith(note) for w in result.warnings), result.warnings
+    quiet = beam_impact.run(duration=0.002, check_sensitivity=False)
+    assert not any("internal steps" in w for w in quiet.warnings), quiet.warnings
