@@ -71,6 +71,16 @@ pub fn rate_error(s: &Scenario) -> Option<Error> {
     ))
 }
 
+/// The largest k (N/m^n) of `s`'s power law whose rate at `s`'s impact is within
+/// [`MAX_CONTACT_RATE`] (`None` for the linear law and Hertz's, whose constant is not given, or
+/// when none is): what the refusal names, and the top of the range `beam-impact bench` runs.
+pub fn largest_power_stiffness(s: &Scenario) -> Option<f64> {
+    if s.contact.law != LawKind::Power {
+        return None;
+    }
+    largest_accepted(s, SMALLEST_CONTACT_STIFFNESS, MAX_POWER_LAW_STIFFNESS, |t, k| t.contact.given_stiffness = Some(k))
+}
+
 /// The largest value of one field (set on a copy of `s` by `put`) in `low..=high` whose
 /// contact rate is within [`MAX_CONTACT_RATE`] (the rate rises with it: a stiffer law or a
 /// larger sphere), by bisection in its logarithm to 1e-12 relative; `None` when even `low`'s
