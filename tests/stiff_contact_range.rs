@@ -90,6 +90,9 @@ fn a_power_laws_largest_stiffness_follows_its_tangent_at_the_impacts_energy() {
             let mut s = power(n, 1.0);
             s.drop_height = h;
             let k = largest_k(n, 4.0 * s.impact_energy(), weight_share(&s), MAX_CONTACT_RATE);
+            // The library's bisection (bench's top rate) to its 1e-12 in log k.
+            let found = beam_impact::model::contact_range::largest_power_stiffness(&s).unwrap();
+            assert!((found / k - 1.0).abs() < 1e-9, "n = {n}, h = {h}: {found:e} against {k:e}");
             s.contact.given_stiffness = Some(k * (1.0 - 1e-9));
             s.validate().unwrap_or_else(|e| panic!("n = {n}, h = {h}: {k:e} - 1e-9: {e}"));
             assert!(contact_rate(&s) <= MAX_CONTACT_RATE);
