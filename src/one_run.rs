@@ -27,26 +27,13 @@ pub fn check(scenario: &Scenario, max_steps: u64) -> Result<u64> {
 /// million steps are seconds of work, and the answer runs three more.
 pub const LARGE_RUN_STEPS: u64 = 1_000_000;
 
-/// A contact whose rate (N/m, the one its steps are sized for: [`crate::model::system::contact_rate`],
-/// the linear bar's k or a power law's tangent stiffness) exceeds this can chatter: each
-/// separation rings the bar into the next touch, and every change of contact is located by
-/// retaking its step with new exact coefficients for every kept mode. Measured on the default
-/// scenario, 3 s, the printed run: 2.8e10 N/m 68 contact windows in 68 ms, 1e11 95 windows, 2e11
-/// 104, 3e11 111 (as a power law of exponent 1: 10 472 windows, 3.5 s), 4e11 17 135 windows in
-/// 5.7 s, 1e12 9 703 windows in 3.7 s (the answer 8.2 s against the default's 0.18 s, 45x): the
-/// onset is erratic above 2e11 N/m, so no estimate of the cost can be given, only the warning.
-pub const CHATTER_STIFFNESS: f64 = 2e11;
-
-/// The note said before a run whose contact is stiffer than [`CHATTER_STIFFNESS`] (`None` for any
-/// other): what may make it long, with the measured example.
-pub fn stiff_contact_note(scenario: &Scenario) -> Option<String> {
-    let rate = crate::model::system::contact_rate(scenario);
-    (rate > CHATTER_STIFFNESS).then(|| {
+/// The note said before a run whose plan may take more than [`LARGE_RUN_STEPS`] internal steps
+/// (`None` for any other): the count, over `duration` s, and that its checks take as many again.
+pub fn large_run_note(planned_steps: u64, duration: f64) -> Option<String> {
+    (planned_steps > LARGE_RUN_STEPS).then(|| {
         format!(
-            "the contact's rate {rate:.3e} N/m (contact.stiffness; the rate its steps are sized for) is above \
-             {CHATTER_STIFFNESS:e} N/m: a contact this stiff can chatter, each separation ringing the bar into the next \
-             touch, and every change of contact is located by retaking its step (3 s of the default scenario: \
-             2.8e10 N/m 68 contact windows, 1e12 N/m 9 703 windows and 45 times the time)"
+            "this run may take up to {planned_steps} internal steps ({duration} s at its smaller time step), and its \
+             checks as many again"
         )
     })
 }

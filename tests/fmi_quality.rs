@@ -100,25 +100,45 @@ fn stress_recovery_is_an_integer_parameter() {
     assert!((got / expected.upper_contact_bending_stress - 1.0).abs() < 1e-9, "{got} vs {expected:?}");
 }
 
-/// Issue 40: a contact stiffer than `one_run::CHATTER_STIFFNESS` is said before the first doStep,
-/// as the CLI says it (the run may chatter and take many times the default's time), through the
-/// logger's warning category; initialization still returns OK. The default contact says nothing.
+/// Issue 40: what the CLI says before a run reaches the importer's logger at initialization. A
+/// contact whose rate is above `MAX_CONTACT_RATE` (a power law of exponent 1 at 1e12 N/m^1, the
+/// linear bar in its own unit) is refused by ExitInitializationMode with the CLI's one-line
+/// message (fmi2Error / fmi3Error); a plan of more than `one_run::LARGE_RUN_STEPS` internal steps
+/// (3 s at 1e-7 s: 30 000 000; 0.2 s: 2 000 000) is a warning naming the count, initialization still OK; the
+/// default says neither. FMI 2 and FMI 3 alike.
 #[test]
-fn a_stiff_contact_is_noted_to_the_logger_before_the_first_step() {
-    // The linear law stops at 4e10 N/m (issue 40 item 3): the stiff contact as a power law of
-    // exponent 1, the same bar.
-    for (stiffness, noted) in [(0.0, false), (1e12, true)] {
+fn the_pre_run_notes_and_the_contact_rate_reach_the_logger_at_initialization() {
+    use fmi_common::importer::ERROR;
+    let refusal = "contact.stiffness must be at most 4.0000e10 N/m^1 at this impact";
+    // FMI 2's `initialize` sets stopTime 3 s (30 000 000 steps of 1e-7 s), FMI 3's here 0.2 s.
+    let large = |version: usize| match version {
+        2 => "this run may take up to 30000000 internal steps (3 s at its smaller time step)",
+        _ => "this run may take up to 2000000 internal steps (0.2 s at its smaller time step)",
+    };
+    // (contact stiffness as a power law of exponent 1 or 0 for the default, step_free, status)
+    for (stiffness, step, status) in [(0.0, 0.0, OK), (1e12, 0.0, ERROR), (0.0, 1e-7, OK)] {
         let lib = fmi_common::importer::load();
-        let fmu = Fmu2::new(&lib);
-        assert_eq!(fmu.setup(0.0, Some(0.01)), OK);
-        assert_eq!(fmu.set_string("log.path", ""), OK);
-        if noted {
-            assert_eq!(fmu.set_integer("contact.law", 1), OK);
-            assert_eq!(fmu.set("contact.exponent", 1.0), OK);
+        let fmu2 = Fmu2::new(&lib);
+        assert_eq!(fmu2.set_string("log.path", ""), OK);
+        let fmu3 = Fmu3::try_new(&lib, None, false).0.unwrap();
+        assert_eq!(fmu3.set_string("log.path", ""), OK);
+        if stiffness > 0.0 {
+            assert_eq!(fmu2.set_integer("contact.law", 1), OK);
+            assert_eq!(fmu2.set("contact.exponent", 1.0), OK);
+            assert_eq!(fmu3.set_integer("contact.law", 1), OK);
+            assert_eq!(fmu3.set("contact.exponent", 1.0), OK);
         }
-        assert_eq!(fmu.set("contact.stiffness", stiffness), OK);
-        assert_eq!(fmu.initialize(), OK, "{}", fmu.log.text());
-        let log = fmu.log.text();
-        assert_eq!(log.contains("can chatter"), noted, "{stiffness}: {log}");
+        assert_eq!(fmu2.set("contact.stiffness", stiffness), OK);
+        assert_eq!(fmu3.set("contact.stiffness", stiffness), OK);
+        assert_eq!(fmu2.set("step_free", step), OK);
+        assert_eq!(fmu3.set("step_free", step), OK);
+        let got = [fmu2.initialize(), fmu3.initialize_until(Some(0.2))];
+        for (version, (got, log)) in got.into_iter().zip([fmu2.log.text(), fmu3.log.text()]).enumerate() {
+            let version = version + 2;
+            assert_eq!(got, status, "FMI {version}, k {stiffness}, step {step}: {log}");
+            assert_eq!(log.contains(refusal), status == ERROR, "FMI {version}: {log}");
+            assert_eq!(log.contains(large(version)), step > 0.0, "FMI {version}: {log}");
+            assert!(!log.contains("can chatter"), "{log}");
+        }
     }
 }

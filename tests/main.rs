@@ -89,6 +89,7 @@ mod sea_spectrum;
 mod ssp_pack;
 mod stepped_beams;
 mod stepping;
+mod stiff_contact_range;
 mod support_motion;
 mod supports;
 mod sweep;

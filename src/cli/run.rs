@@ -38,15 +38,8 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     let paper = scenario.is_paper();
     let started = Instant::now();
     let planned_steps = beam_impact::one_run::check(&scenario, args.max_steps)?;
-    if let Some(line) = beam_impact::one_run::stiff_contact_note(&scenario) {
-        super::common::note(&format!("beam-impact: note: {line}"));
-    }
-    if planned_steps > beam_impact::one_run::LARGE_RUN_STEPS {
-        super::common::note(&format!(
-            "beam-impact: note: this run may take up to {planned_steps} internal steps ({} s at its smaller time \
-             step), and its checks as many again: progress follows",
-            scenario.duration
-        ));
+    if let Some(line) = beam_impact::one_run::large_run_note(planned_steps, scenario.duration) {
+        super::common::note(&format!("beam-impact: note: {line}: progress follows"));
     }
     // No two of the files name one (device and inode, or folder and name for a new file), and
     // every output is open before the run, so that a bad path fails at once, not after it; the

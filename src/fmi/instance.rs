@@ -695,9 +695,11 @@ impl Instance {
     /// `ExitInitializationMode`: builds the model, opens the MCAP log and records the initial state.
     /// A default log that cannot be created is a warning (the run goes on without it).
     pub fn exit_initialization(&mut self) -> Outcome<Status> {
-        self.simulation()?;
-        // What may make the run long is said before the first doStep, as the CLI says it (issue 40).
-        if let Some(note) = crate::one_run::stiff_contact_note(&self.scenario) {
+        let (duration, duration_ns) = (self.scenario.duration, self.scenario.duration_ns());
+        let planned_steps = self.simulation()?.step_estimate(duration_ns);
+        // What may make the run long is said before the first doStep, as the CLI says it (issue 40):
+        // the steps its plan takes over the run's duration (stopTime - startTime when given).
+        if let Some(note) = crate::one_run::large_run_note(planned_steps, duration) {
             self.log(Status::Warning, Status::Warning.category(), &format!("note: {note}"));
         }
         // A resource scenario's load cases (issue 44) need a converged answer per case, which

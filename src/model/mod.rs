@@ -3,6 +3,7 @@
 pub mod assembly;
 pub mod beam;
 pub mod contact_law;
+pub mod contact_range;
 pub mod damping;
 pub mod discretisation;
 pub mod fatigue_fields;

@@ -466,7 +466,12 @@ pub const CONDITIONS: &[(&str, &str)] = &[
     ("contact_position", "at most upper.length (its free end)"),
     ("gravity", "0 only with impact_angular_velocity (a mass: impact_speed) given"),
     ("contact.exponent", "only 0 or 1 with contact.law = \"linear\""),
-    ("contact.stiffness", "at most 4e10 N/m with contact.law = \"linear\" (1e13 N/m^n: the power law's)"),
+    (
+        "contact.stiffness",
+        "at most 4e10 N/m with contact.law = \"linear\" (1e13 N/m^n: the power law's, whose tangent at 4 times the \
+         impact's energy is at most 4e10 N/m)",
+    ),
+    ("upper.radius", "with contact.law = \"hertz\", Hertz's tangent at 4 times the impact's energy at most 4e10 N/m"),
     ("contact.area", "with contact.law = \"linear\" and no contact.stiffness, E A_c / l_c at most 4e10 N/m"),
     ("contact.length", "with contact.law = \"linear\" and no contact.stiffness, E A_c / l_c at most 4e10 N/m"),
     ("contact.elastic_modulus", "with contact.law = \"linear\" and no contact.stiffness, E A_c / l_c at most 4e10 N/m"),

@@ -632,13 +632,22 @@ fn stress(name: &'static str, value: f64) -> Result<()> {
 /// runs within 1.4x the default's; at 5e10 one 3.7x (drop 0.1 m at 8 m, damping 0.05); at that
 /// point 8e10 took 30x (3 414 contact windows), 1e11 18x, 2e11 140x (42 261 windows, 12.4 s);
 /// 1e12 on the default at drop 0.5 m 3.3 s against 0.09 s. (Until issue 40 item 3 the bound
-/// was 1e12, and 1e13 did not pass t = 0.75 s in 400 s.) A power law of exponent 1 is the same
-/// bar in its own unit, up to [`MAX_POWER_LAW_STIFFNESS`], with the note of
-/// `one_run::stiff_contact_note` above 2e11 N/m.
+/// was 1e12, and 1e13 did not pass t = 0.75 s in 400 s.)
+///
+/// Every law's rate is held to it ([`super::contact_range`]): a power law of exponent 1 is the
+/// same bar in its own unit, and chattered above it as the bar did (drop 0.5 m: 1e12 N/m^1 2 166
+/// contact windows, 3.6 s and not trusted against 0.13 s at 4e10; 1e13 2 482 windows). Measured
+/// at the top rate (the whole answer's CPU time against the default bar's at the same point; drop
+/// heights 0.1, 0.5, 1 and 2 m, contact positions 4, 13 and 29 m, damping ratios 0 and 0.03,
+/// exponents 1, 1.3 and 1.5, k set so that the rate is 4e10 N/m): every run within 1.8x (exponent
+/// 1 at 29 m with damping 0.03: 0.21 s against 0.11 s; exponent 1.3 at most 1.6x, 1.5 at most
+/// 1.2x; at 4 m undamped the default bar itself takes 18-25 s, 884-1 836 windows, and the power
+/// laws 0.2-1.6 times that).
 pub const MAX_CONTACT_STIFFNESS: f64 = 4e10;
 
-/// The stiffest power-law contact, N/m^n (its own unit: a Hertz law carrying the paper's 475 kN at
-/// the bar's 17 um compression is 6.8e12 N/m^1.5).
+/// The stiffest power-law contact in its own unit, N/m^n: it keeps the numbers finite (a Hertz
+/// law carrying the paper's 475 kN at the bar's 17 um compression is 6.8e12 N/m^1.5); the law's
+/// rate is held to [`MAX_CONTACT_STIFFNESS`] besides ([`super::contact_range`]).
 pub const MAX_POWER_LAW_STIFFNESS: f64 = 1e13;
 
 /// A yield stress: 0 (none given), or from 1 kPa (below any solid's: the softest elastomers yield
@@ -1084,6 +1093,10 @@ impl Scenario {
             _ => {}
         }
         errors.extend(load_case::validation_errors(&self.load_cases));
+        // The contact's rate (issue 40 item 3) from several fields: judged when each is in range.
+        if errors.is_empty() {
+            errors.extend(super::contact_range::rate_error(self));
+        }
         errors
     }
 

@@ -109,8 +109,9 @@ pub fn stepper_benchmark(runs: usize) -> Result<String> {
 /// The cost per step of the contact laws (issue 28), side by side in one process, on the paper
 /// scenario (paper method, 3 s): the paper's linear bar (Sherman-Morrison, closed form), the same
 /// bar posed as a power law of exponent 1 (the scalar equation solved each contact step: the
-/// solver's cost alone, the same run), a Hertz law (n = 3/2) and a Hertz law with Hunt-Crossley
-/// damping (each its own run: their steps differ). Medians of `runs`.
+/// solver's cost alone, the same run), a Hertz law (n = 3/2) at the top of every law's rate
+/// ([`crate::model::contact_range::MAX_CONTACT_RATE`] at the paper's impact) and the same with
+/// Hunt-Crossley damping (each its own run: their steps differ). Medians of `runs`.
 pub fn contact_law_benchmark(runs: usize) -> Result<String> {
     use crate::model::contact_law::LawKind;
     let mut out = String::new();
@@ -125,15 +126,17 @@ pub fn contact_law_benchmark(runs: usize) -> Result<String> {
     };
     let bar = paper.contact.stiffness();
     let as_power = law(1.0, bar, 0.0);
-    // A Hertz law that carries the paper's 475 kN at the bar's compression (17 um): k = F / d^1.5.
-    let hertz = law(1.5, 4.75e5 / (4.75e5 / bar).powf(1.5), 0.0);
+    // A Hertz law (n = 3/2) at the top of every law's rate (issue 40 item 3): the one carrying
+    // the paper's 475 kN at the bar's 17 um (6.8e12 N/m^1.5) has a rate of 4e11 N/m, refused.
+    let top = crate::model::contact_range::largest_power_stiffness(&law(1.5, bar, 0.0)).unwrap_or(bar);
+    let hertz = law(1.5, top, 0.0);
     let damped = law(1.5, hertz.contact.given_stiffness.unwrap_or(bar), 0.2);
     let (linear, linear_steps) = time_run(|| Simulation::new(&paper), runs)?;
     let mut rows = vec![("linear bar (Sherman-Morrison)      ", linear, linear_steps)];
     for (what, s) in [
         ("power law n = 1 (the same run)     ", &as_power),
-        ("Hertz n = 3/2                      ", &hertz),
-        ("Hertz n = 3/2, Hunt-Crossley c 0.2 ", &damped),
+        ("Hertz n = 3/2 at the top rate      ", &hertz),
+        ("Hertz top, Hunt-Crossley c 0.2     ", &damped),
     ] {
         let (d, n) = time_run(|| Simulation::new(s), runs)?;
         rows.push((what, d, n));
@@ -370,13 +373,21 @@ pub fn campaign_benchmark(runs: usize) -> Result<String> {
 /// the whole converged answer (`answer::run`: the printed rung, its checks and the twin, on the
 /// available cores, as `beam-impact run`) of the default scenario dropped from 0.5 m with the
 /// paper's bar (2.8e10 N/m) and with the linear law's stiffest contact
-/// ([`crate::model::scenario::MAX_CONTACT_STIFFNESS`]); their wall times, contact windows and
-/// ratio; medians of `runs`.
+/// ([`crate::model::scenario::MAX_CONTACT_STIFFNESS`]), and a power law of exponent 1 at the top
+/// of the rate every law is held to ([`crate::model::contact_range::MAX_CONTACT_RATE`]: the same
+/// bar in its own unit, solved as a scalar equation each step); their wall times, contact windows
+/// and ratios; medians of `runs`.
 pub fn stiff_contact_benchmark(runs: usize) -> Result<String> {
+    use crate::model::contact_law::LawKind;
+    use crate::model::contact_range::MAX_CONTACT_RATE;
     use crate::model::scenario::MAX_CONTACT_STIFFNESS;
     let default = Scenario { drop_height: 0.5, ..Scenario::default() };
     let mut stiff = default.clone();
     stiff.contact.given_stiffness = Some(MAX_CONTACT_STIFFNESS);
+    let mut power = default.clone();
+    power.contact.law = LawKind::Power;
+    power.contact.exponent = 1.0;
+    power.contact.given_stiffness = Some(MAX_CONTACT_RATE);
     let time = |s: &Scenario| -> Result<(Duration, usize)> {
         let mut samples = Vec::with_capacity(runs.max(1));
         let mut windows = 0;
@@ -390,6 +401,7 @@ pub fn stiff_contact_benchmark(runs: usize) -> Result<String> {
     };
     let (base, base_windows) = time(&default)?;
     let (slow, stiff_windows) = time(&stiff)?;
+    let (power_time, power_windows) = time(&power)?;
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
     let mut out = String::new();
     let _ = writeln!(
@@ -406,6 +418,14 @@ pub fn stiff_contact_benchmark(runs: usize) -> Result<String> {
         "  the linear law's top, {MAX_CONTACT_STIFFNESS:.0e} N/m : {:8.1} ms  {stiff_windows} contact windows  x{:.2}",
         ms(slow),
         slow.as_secs_f64() / base.as_secs_f64().max(f64::MIN_POSITIVE)
+    );
+    let _ = writeln!(
+        out,
+        "  power law n = 1 at its top rate, {MAX_CONTACT_RATE:.0e} N/m^1: {:8.1} ms  {power_windows} contact windows  \
+         x{:.2} (x{:.2} the linear law's top)",
+        ms(power_time),
+        power_time.as_secs_f64() / base.as_secs_f64().max(f64::MIN_POSITIVE),
+        power_time.as_secs_f64() / slow.as_secs_f64().max(f64::MIN_POSITIVE)
     );
     Ok(out)
 }

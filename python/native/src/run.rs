@@ -247,15 +247,16 @@ fn answer_of(
     }
     // Reading the scenario (and its motion file) and building the modes for the step check take
     // tens of ms: the GIL is released meanwhile.
-    let prepared = py.detach(|| -> beam_impact::Result<Scenario> {
+    let prepared = py.detach(|| -> beam_impact::Result<(Scenario, u64)> {
         let mut s = base_scenario(scenario.as_deref(), scenario_text.as_deref(), has_fields, &mut warnings)?;
         sweep::apply_settings(&mut s, &settings(fields)?)?;
-        beam_impact::one_run::check(&s, max_steps)?;
-        Ok(s)
+        let planned = beam_impact::one_run::check(&s, max_steps)?;
+        Ok((s, planned))
     });
-    let as_given = prepared.map_err(value_error)?;
-    // The CLI says it before the run (issue 40): a contact stiff enough to chatter may be long.
-    warnings.extend(beam_impact::one_run::stiff_contact_note(&as_given).map(|n| format!("note: {n}")));
+    let (as_given, planned_steps) = prepared.map_err(value_error)?;
+    // The CLI says it before the run (issue 40): a plan of many steps is long.
+    warnings
+        .extend(beam_impact::one_run::large_run_note(planned_steps, as_given.duration).map(|n| format!("note: {n}")));
     let mut inputs: Vec<(String, PathBuf)> = Vec::new();
     if let Some(path) = &scenario {
         inputs.push(("the scenario file".into(), path.clone()));
