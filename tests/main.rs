@@ -95,3 +95,4 @@ mod sweep;
 mod sweep_fatigue;
 mod truncation;
 mod verify;
+mod wording;

@@ -261,7 +261,9 @@ impl RangeCheck {
     pub fn reasons(&self) -> Vec<String> {
         let r = &self.range;
         let mut reasons = Vec::new();
-        let beams = [("the arrestor", "clamp"), ("the bridge", "hinge")];
+        // Positions are from the arrestor's first support, a clamp or a pin (issue 45), and from
+        // the bridge's hinge; a rigid impactor has no range of its own to report.
+        let beams = [("the arrestor", "first support"), ("the bridge", "hinge")];
         let at = |position: Option<f64>, support: &str, time: f64| match position {
             Some(x) => format!(" at {x:.3} m from its {support} (t = {time:.4} s)"),
             None => format!(" (t = {time:.4} s)"),
