@@ -184,18 +184,10 @@ fn crane_psi(answer: &Answer, resting: Option<&StaticResponse>) -> CranePsi {
     };
     // A rigid impactor (issue 45) strikes with its whole mass.
     let m = if s.upper.kind == crate::model::scenario::ImpactorKind::Mass { s.upper.mass } else { j_hinge / (d * d) };
-    let k_arrestor = (s.lower.kind == SupportKind::Beam).then(|| {
-        let x = s.lower_contact_position();
-        if s.lower.supports.has_far_support() || x != s.lower.length {
-            // Issue 45: the struck beam's point stiffness (uniform closed forms, Roark Table 8.1).
-            let l = &s.lower;
-            1.0 / l.supports.point_load(l.elastic_modulus * l.second_moment, l.length, x).flexibility
-        } else if s.lower.sections.is_empty() {
-            3.0 * s.lower.elastic_modulus * s.lower.second_moment / s.lower.length.powi(3)
-        } else {
-            1.0 / section::tip_flexibility(&s.lower_segments())
-        }
-    });
+    // Issue 45: the struck beam's point stiffness at the contact, the energy method's own (a beam
+    // of sections on any supports by its exact stepped solution).
+    let k_arrestor =
+        (s.lower.kind == SupportKind::Beam).then(|| crate::solver::energy_method::arrestor_stiffness(s));
     let k_contact = match (s.contact_law(), resting) {
         (Some(law), Some(r)) if law.exponent != 1.0 => law.exponent * law.elastic(r.compression) / r.compression,
         (Some(law), None) if law.exponent != 1.0 => crate::model::system::contact_rate(s),

@@ -96,3 +96,4 @@ mod sweep_fatigue;
 mod truncation;
 mod verify;
 mod wording;
+mod stepped_flexibility;
