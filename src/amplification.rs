@@ -186,8 +186,7 @@ fn crane_psi(answer: &Answer, resting: Option<&StaticResponse>) -> CranePsi {
     let m = if s.upper.kind == crate::model::scenario::ImpactorKind::Mass { s.upper.mass } else { j_hinge / (d * d) };
     // Issue 45: the struck beam's point stiffness at the contact, the energy method's own (a beam
     // of sections on any supports by its exact stepped solution).
-    let k_arrestor =
-        (s.lower.kind == SupportKind::Beam).then(|| crate::solver::energy_method::arrestor_stiffness(s));
+    let k_arrestor = (s.lower.kind == SupportKind::Beam).then(|| crate::solver::energy_method::arrestor_stiffness(s));
     let k_contact = match (s.contact_law(), resting) {
         (Some(law), Some(r)) if law.exponent != 1.0 => law.exponent * law.elastic(r.compression) / r.compression,
         (Some(law), None) if law.exponent != 1.0 => crate::model::system::contact_rate(s),

@@ -200,7 +200,11 @@ fn energy_method_on_a_beam_of_sections_takes_the_stepped_flexibility() {
             fe * em.flexion_stiffness,
             supports.point_load(s.lower.elastic_modulus * 4.0e-4, length, 0.4 * length).flexibility
         );
-        assert!(relative(fe, 1.0 / em.flexion_stiffness) < 1e-9, "{supports:?}: {fe} vs {}", 1.0 / em.flexion_stiffness);
+        assert!(
+            relative(fe, 1.0 / em.flexion_stiffness) < 1e-9,
+            "{supports:?}: {fe} vs {}",
+            1.0 / em.flexion_stiffness
+        );
         let expected_bending = em.force * point.first_moment / 2.0e-3;
         assert!(relative(em.clamp_bending_stress + 1.0, expected_bending + 1.0) < 1e-12, "{supports:?}");
         assert!(relative(em.clamp_shear_stress, em.force * point.first_shear / 0.02) < 1e-12, "{supports:?}");

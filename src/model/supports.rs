@@ -171,9 +171,8 @@ impl Supports {
         let n = nodes.len();
         let dofs = 2 * n;
         let mut k = nalgebra::DMatrix::<f64>::zeros(dofs, dofs);
-        let ei_at = |x: f64| {
-            segments.iter().find(|g| x >= g.start && x <= g.end).map_or(f64::NAN, |g| g.bending_stiffness)
-        };
+        let ei_at =
+            |x: f64| segments.iter().find(|g| x >= g.start && x <= g.end).map_or(f64::NAN, |g| g.bending_stiffness);
         let element = |e: usize| {
             let l = nodes[e + 1] - nodes[e];
             let c = ei_at(0.5 * (nodes[e] + nodes[e + 1])) / l.powi(3);
