@@ -962,7 +962,7 @@ fn summary_text(data: &LogData, scenario: &Scenario, summary: &Summary, out: &mu
     );
     // Issue 45: w_din,a at the contact point on two supports or struck inside the span, a pin's
     // stresses at a pinned first support, no bridge for a rigid impactor.
-    let words = crate::wording::Wording::of(&scenario);
+    let words = crate::wording::Wording::of(scenario);
     let deflection =
         if words.at_contact { "contact-point deflection w_din,a" } else { "arrestor end deflection  w_din,a" };
     let pin = words.first_support == "pin";
