@@ -1,8 +1,8 @@
 //! The sub-impacts of a run (issue 45): each contact window's start, duration, peak force and
 //! apparent restitution ([`crate::results::SubImpact`]), as text for `run` and for `report LOG`,
 //! and as the documents' list (`run --json`, `answer.json`, read back by `report` and Python's
-//! `load_log`). A chattering contact opens thousands of windows (6 672 measured on a stiff power
-//! law), so the documents keep the first [`KEPT`] and, when it comes later, the one of the
+//! `load_log`). A chattering contact opens thousands of windows (6 672 were seen on a stiff
+//! power law), so the documents keep the first [`KEPT`] and, when it comes later, the one of the
 //! largest force (with its `number`), beside `sub_impacts_total` and `sub_impacts_truncated`.
 
 use crate::results::SubImpact;
