@@ -89,6 +89,9 @@ pub struct Amplification {
     pub crane_psi: CranePsi,
     /// What the numbers are, or why there is no static state.
     pub note: String,
+    /// The striking body's name in the printed lines: `"bridge"`, or `"impactor"` for a rigid
+    /// impactor (issue 45; [`crate::wording::Wording::striker`]).
+    pub striker: &'static str,
 }
 
 /// The design quantities' names, in order: the five peaks' quantity names, then the envelope
@@ -118,14 +121,16 @@ pub fn of(answer: &Answer, outcome: StaticOutcome) -> Amplification {
         five.iter().map(|v| Some(*v)).chain(answer.envelope_peaks.iter().map(|p| p.map(|p| p.value))).collect();
     let names = quantity_names();
     let dynamic: Named = names.iter().map(|n| n.to_string()).zip(dynamic).collect();
+    let striker = crate::wording::Wording::of(&answer.resolved).striker();
     let (static_response, note) = match outcome {
         StaticOutcome::Resting(r) => (
             Some(*r),
-            "DAF = the converged dynamic peak over the static value of the same quantity with the bridge resting on \
-             the arrestor (same gravity, tip forces, mesh and stress recovery; clearance closed; supports at rest); \
-             an envelope peak's over the static envelope's largest value along the same beam (their positions may \
-             differ)"
-                .to_string(),
+            format!(
+                "DAF = the converged dynamic peak over the static value of the same quantity with the {striker} \
+                 resting on the arrestor (same gravity, tip forces, mesh and stress recovery; clearance closed; \
+                 supports at rest); an envelope peak's over the static envelope's largest value along the same beam \
+                 (their positions may differ)"
+            ),
         ),
         StaticOutcome::NotResting(why) => (None, why),
     };
@@ -142,7 +147,7 @@ pub fn of(answer: &Answer, outcome: StaticOutcome) -> Amplification {
         .collect();
     let energy_method = energy_method_daf(answer);
     let crane_psi = crane_psi(answer, static_response.as_ref());
-    Amplification { static_response, dynamic, daf, energy_method, crane_psi, note }
+    Amplification { static_response, dynamic, daf, energy_method, crane_psi, note, striker }
 }
 
 /// The energy method's DAF of the answer's scenario (see the module documentation).
@@ -179,18 +184,9 @@ fn crane_psi(answer: &Answer, resting: Option<&StaticResponse>) -> CranePsi {
     };
     // A rigid impactor (issue 45) strikes with its whole mass.
     let m = if s.upper.kind == crate::model::scenario::ImpactorKind::Mass { s.upper.mass } else { j_hinge / (d * d) };
-    let k_arrestor = (s.lower.kind == SupportKind::Beam).then(|| {
-        let x = s.lower_contact_position();
-        if s.lower.supports.has_far_support() || x != s.lower.length {
-            // Issue 45: the struck beam's point stiffness (uniform closed forms, Roark Table 8.1).
-            let l = &s.lower;
-            1.0 / l.supports.point_load(l.elastic_modulus * l.second_moment, l.length, x).flexibility
-        } else if s.lower.sections.is_empty() {
-            3.0 * s.lower.elastic_modulus * s.lower.second_moment / s.lower.length.powi(3)
-        } else {
-            1.0 / section::tip_flexibility(&s.lower_segments())
-        }
-    });
+    // Issue 45: the struck beam's point stiffness at the contact, the energy method's own (a beam
+    // of sections on any supports by its exact stepped solution).
+    let k_arrestor = (s.lower.kind == SupportKind::Beam).then(|| crate::solver::energy_method::arrestor_stiffness(s));
     let k_contact = match (s.contact_law(), resting) {
         (Some(law), Some(r)) if law.exponent != 1.0 => law.exponent * law.elastic(r.compression) / r.compression,
         (Some(law), None) if law.exponent != 1.0 => crate::model::system::contact_rate(s),
@@ -271,15 +267,20 @@ impl Amplification {
         };
         let shown: Vec<String> =
             self.daf.iter().filter_map(|(name, daf)| daf.map(|d| format!("{name} {d:.3}"))).collect::<Vec<_>>();
+        let striker = self.striker;
         let mut text =
-            format!("dynamic amplification (peak / static, bridge resting on the arrestor): {}\n", shown.join(", "));
+            format!("dynamic amplification (peak / static, {striker} resting on the arrestor): {}\n", shown.join(", "));
         let em = self.energy_method.daf.map_or("-".to_string(), |d| format!("{d:.3}"));
         let psi = self.crane_psi.psi.map_or("-".to_string(), |p| format!("{p:.3}"));
         let c = &self.crane_psi;
         text += &format!(
             "  energy method's DAF {em}; crane-style psi = 1 + (v / g) sqrt(k / m) = {psi} (v {:.4} m/s closing \
-             speed, k {:.4e} N/m arrestor and contact in series, m {:.1} kg bridge reduced to the contact, g {} m/s^2)\n",
-            c.v, c.k, c.m, c.g
+             speed, k {:.4e} N/m arrestor and contact in series, m {:.1} kg {} g {} m/s^2)\n",
+            c.v,
+            c.k,
+            c.m,
+            if self.striker == "impactor" { "impactor," } else { "bridge reduced to the contact," },
+            c.g
         );
         text
     }

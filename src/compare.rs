@@ -4,6 +4,7 @@ use std::fmt::Write;
 
 use crate::paper;
 use crate::results::{ContactWindow, Summary, BOUNCE_GAP, SUSTAINED_CONTACT};
+use crate::wording::Wording;
 
 /// Separations between contact windows longer than `min` s, as (start, end) in s.
 pub fn separations(windows: &[ContactWindow], min: f64) -> Vec<(f64, f64)> {
@@ -50,15 +51,29 @@ pub fn printed_ratio(value: f64, printed: f64, half: f64) -> String {
 
 /// Table 1 (FEM peaks and the energy approach), with the paper's values and ratios when `paper`.
 pub fn table1(summary: &Summary, paper: bool) -> String {
+    table1_worded(summary, paper, &Wording::default())
+}
+
+/// [`table1`] in the words of `w` (issue 45): the deflection at the contact point, a pin's
+/// stresses, and for a rigid impactor no bridge (no sigma_din,b row, no Eq. 36 line).
+pub fn table1_worded(summary: &Summary, paper: bool, w: &Wording) -> String {
     let mut s = String::new();
     let p = &summary.peaks;
     let e = &summary.energy_method;
-    let rows = [
-        (END_DEFLECTION_ROW, p.lower_tip_deflection, e.tip_deflection, 1.0),
-        ("sigma_din,a clamp bending stress [MPa]  ", p.lower_clamp_bending_stress, e.clamp_bending_stress, 1e-6),
-        ("tau_din,a clamp shear stress     [MPa]  ", p.lower_clamp_shear_stress, e.clamp_shear_stress, 1e-6),
+    let deflection = if w.at_contact { CONTACT_DEFLECTION_ROW } else { END_DEFLECTION_ROW };
+    let (bending, shear) = if w.first_support == "pin" {
+        ("sigma_din,a pin bending stress   [MPa]  ", "tau_din,a pin shear stress       [MPa]  ")
+    } else {
+        ("sigma_din,a clamp bending stress [MPa]  ", "tau_din,a clamp shear stress     [MPa]  ")
+    };
+    let all_rows = [
+        (deflection, p.lower_tip_deflection, e.tip_deflection, 1.0),
+        (bending, p.lower_clamp_bending_stress, e.clamp_bending_stress, 1e-6),
+        (shear, p.lower_clamp_shear_stress, e.clamp_shear_stress, 1e-6),
         ("sigma_din,b bridge bending, contact [MPa]", p.upper_contact_bending_stress, e.bridge_bending_stress, 1e-6),
     ];
+    // A rigid impactor has no bending stress: its row is left out (never on the paper's scenario).
+    let rows = &all_rows[..if w.rigid_impactor { 3 } else { 4 }];
     let _ = writeln!(s, "Table 1. Results comparison (peaks max |.| over the run)");
     if paper {
         let _ = writeln!(
@@ -87,22 +102,28 @@ pub fn table1(summary: &Summary, paper: bool) -> String {
         }
     }
     let times = &summary.peak_times;
-    let _ = writeln!(
+    let _ = write!(
         s,
-        "peaks reached at t = {:.4} s (deflection), {:.4} s (clamp bending), {:.4} s (shear), {:.4} s (bridge)",
-        times.lower_tip_deflection,
-        times.lower_clamp_bending_stress,
-        times.lower_clamp_shear_stress,
-        times.upper_contact_bending_stress
+        "peaks reached at t = {:.4} s (deflection), {:.4} s ({} bending), {:.4} s (shear)",
+        times.lower_tip_deflection, times.lower_clamp_bending_stress, w.first_support, times.lower_clamp_shear_stress,
     );
+    if w.rigid_impactor {
+        let _ = writeln!(s);
+    } else {
+        let _ = writeln!(s, ", {:.4} s (bridge)", times.upper_contact_bending_stress);
+    }
+    let spring = if w.uniform_cantilever_tip { "3EI/l^3" } else { "1 / (static deflection per newton at the contact)" };
     let _ = writeln!(
         s,
-        "energy approach: k_f = 3EI/l^3 = {:.1} kN/m, F_din = {:.1} kN, E_def,a = {:.1} kJ{}",
+        "energy approach: k_f = {spring} = {:.1} kN/m, F_din = {:.1} kN, E_def,a = {:.1} kJ{}",
         e.flexion_stiffness / 1e3,
         e.force / 1e3,
         e.strain_energy / 1e3,
         if paper { format!(" (paper {:.1} kJ)", paper::ARRESTOR_STRAIN_ENERGY / 1e3) } else { String::new() }
     );
+    if w.rigid_impactor {
+        return first_contact_line(s, summary, w);
+    }
     let _ = writeln!(
         s,
         "energy approach, bridge rigid about its hinge (Eq. 36): alpha = {:.4} rad/s^2, M(d) = {:.1} kN m, \
@@ -131,6 +152,11 @@ pub fn table1(summary: &Summary, paper: bool) -> String {
              past it)"
         );
     }
+    first_contact_line(s, summary, w)
+}
+
+/// Table 1's closing line: the first sustained contact's peaks (or that the beams never touch).
+fn first_contact_line(mut s: String, summary: &Summary, w: &Wording) -> String {
     let first = &summary.first_contact_peaks;
     if summary.contact_windows.is_empty() {
         let _ = writeln!(
@@ -140,13 +166,19 @@ pub fn table1(summary: &Summary, paper: bool) -> String {
         );
         return s;
     }
+    let bridge = if w.rigid_impactor {
+        String::new()
+    } else {
+        format!(
+            "sigma_din,b = {:.1} MPa (whole run {:.1} MPa), ",
+            first.upper_contact_bending_stress * 1e-6,
+            summary.peaks.upper_contact_bending_stress * 1e-6
+        )
+    };
     let _ = writeln!(
         s,
-        "first sustained contact (t = 0 .. {}): sigma_din,b = {:.1} MPa (whole run {:.1} MPa), \
-         sigma_din,a = {:.1} MPa, tau_din,a = {:.1} MPa",
+        "first sustained contact (t = 0 .. {}): {bridge}sigma_din,a = {:.1} MPa, tau_din,a = {:.1} MPa",
         summary.first_contact_end.map_or("end of run".to_string(), |t| format!("{t:.4} s")),
-        first.upper_contact_bending_stress * 1e-6,
-        summary.peaks.upper_contact_bending_stress * 1e-6,
         first.lower_clamp_bending_stress * 1e-6,
         first.lower_clamp_shear_stress * 1e-6
     );
@@ -155,9 +187,15 @@ pub fn table1(summary: &Summary, paper: bool) -> String {
 
 /// Tables 2 and 3 (natural frequencies and periods), beside the paper's when `paper`.
 pub fn tables23(summary: &Summary, paper: bool) -> String {
+    tables23_worded(summary, paper, &Wording::default())
+}
+
+/// [`tables23`] with the striking body's column named by `w` (a rigid impactor's one mode is its
+/// rigid motion, 0 rad/s).
+pub fn tables23_worded(summary: &Summary, paper: bool, w: &Wording) -> String {
     let mut s = String::new();
     let m = &summary.modes;
-    let columns = [("arrestor", &m.lower), ("bridge", &m.upper), ("coupled", &m.coupled)];
+    let columns = [("arrestor", &m.lower), (w.striker(), &m.upper), ("coupled", &m.coupled)];
     for (title, periods) in [("Table 2. Natural frequencies [rad/s]", false), ("Table 3. Natural periods [s]", true)] {
         // The ratios are only shown beside the paper's values.
         let note = if paper && periods { " (ratio to the interval the paper's 3 decimals stand for)" } else { "" };
@@ -261,23 +299,24 @@ const END_DEFLECTION_ROW: &str = "w_din,a   arrestor end deflection  [m]  ";
 /// contact point (the same width, so the columns stay aligned).
 const CONTACT_DEFLECTION_ROW: &str = "w_din,a   arrestor at contact      [m]  ";
 
-/// [`comparison`] for `scenario`: on two supports Table 1's deflection row says where w_din,a is
-/// (the contact point, not an end); the default clamped-free text is unchanged.
+/// [`comparison`] for `scenario`, in its words ([`Wording::of`], issue 45): where w_din,a is
+/// measured, the first support's kind, and no bridge for a rigid impactor; the paper's pair's
+/// text is unchanged.
 pub fn comparison_for(summary: &Summary, scenario: &crate::Scenario) -> String {
-    let text = comparison(summary, scenario.is_paper());
-    if scenario.lower.supports.is_clamped_free() {
-        text
-    } else {
-        text.replacen(END_DEFLECTION_ROW, CONTACT_DEFLECTION_ROW, 1)
-    }
+    comparison_worded(summary, scenario.is_paper(), &Wording::of(scenario))
 }
 
 /// Everything: Table 1, Tables 2-3, contact windows, steps and the energy balance.
 pub fn comparison(summary: &Summary, paper: bool) -> String {
+    comparison_worded(summary, paper, &Wording::default())
+}
+
+/// [`comparison`] in the words of `w`.
+pub fn comparison_worded(summary: &Summary, paper: bool, w: &Wording) -> String {
     let mut s = String::new();
-    s.push_str(&table1(summary, paper));
+    s.push_str(&table1_worded(summary, paper, w));
     s.push('\n');
-    s.push_str(&tables23(summary, paper));
+    s.push_str(&tables23_worded(summary, paper, w));
     s.push('\n');
     s.push_str(&contact_windows(summary, paper));
     let _ = write!(s, "steps: {} to t = {:.4} s", summary.steps, summary.time);

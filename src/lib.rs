@@ -31,6 +31,7 @@ pub mod ssp;
 pub mod studies;
 pub mod sub_impacts;
 pub mod vocabulary;
+pub mod wording;
 
 pub use error::{Error, Result};
 pub use model::Scenario;

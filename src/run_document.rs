@@ -31,7 +31,7 @@ pub fn document(as_given: &Scenario, answer: &Answer, wall_time_s: f64) -> Resul
     doc["dynamic_amplification"] = amplification_json(answer);
     crate::vocabulary::add_quantity_names(&mut doc);
     doc["fatigue"] = fatigue_json(answer)?;
-    doc["sub_impacts"] = serde_json::json!(summary.sub_impacts);
+    crate::sub_impacts::add_to(&mut doc, &summary.sub_impacts);
     Ok(doc)
 }
 
@@ -52,7 +52,7 @@ pub fn answer_attachment(answer: &Answer) -> serde_json::Value {
     doc["fatigue"] = fatigue_json(answer).unwrap_or_else(|e| serde_json::json!({ "error": e.to_string() }));
     crate::vocabulary::add_quantity_names(&mut doc);
     // Each contact window as an impact (issue 45): `report LOG` and `load_log().answer` read them here.
-    doc["sub_impacts"] = serde_json::json!(answer.summary.sub_impacts);
+    crate::sub_impacts::add_to(&mut doc, &answer.summary.sub_impacts);
     doc
 }
 

@@ -260,7 +260,7 @@ fn a_deck_beam_log_replays_through_report() {
     assert!(report.status.success(), "{}", String::from_utf8_lossy(&report.stderr));
     let text = String::from_utf8_lossy(&report.stdout);
     assert!(text.contains("supports = \"pinned-pinned\"") && text.contains("contact_position = 6.0"), "{text}");
-    assert!(text.contains("clamp bending stress     s_din,a     0.0000 MPa"), "{text}");
+    assert!(text.contains("pin bending stress       s_din,a     0.0000 MPa"), "{text}");
     // On two supports w_din,a is the contact point's deflection: the labels say so.
     assert!(text.contains("contact-point deflection w_din,a") && !text.contains("arrestor end deflection"), "{text}");
     assert!(printed.contains("w_din,a arrestor at contact [m]") && !printed.contains("end deflection"), "{printed}");

@@ -124,13 +124,10 @@ pub fn run(args: &RunArgs) -> Result<bool> {
     let resolved = &answer.resolved;
 
     let mut text = format!(
-        "beam-impact: {} scenario, method {}, {} + {}/{} elements (arrestor + bridge to/beyond the contact), {:.3} s \
-         simulated\n\n",
+        "beam-impact: {} scenario, method {}, {}, {:.3} s simulated\n\n",
         if paper { "paper" } else { "user" },
         if resolved.method == beam_impact::model::Method::Paper { "paper" } else { "converged" },
-        resolved.lower.elements,
-        resolved.upper.elements_to_contact,
-        resolved.upper.elements_beyond_contact,
+        header_mesh(resolved),
         scenario.duration
     );
     let impact = summary.impact;
@@ -372,4 +369,17 @@ fn mass_impact_line(scenario: &beam_impact::Scenario, closing_speed: f64) -> Str
         },
         speed(closing_speed)
     )
+}
+
+/// The header's mesh: `56 + 56/1 elements (arrestor + bridge to/beyond the contact)`, or for a
+/// rigid impactor (issue 45), which has no elements, the arrestor's alone.
+fn header_mesh(resolved: &beam_impact::Scenario) -> String {
+    if resolved.upper.kind == beam_impact::model::scenario::ImpactorKind::Mass {
+        format!("{} elements (the arrestor; the impactor is rigid)", resolved.lower.elements)
+    } else {
+        format!(
+            "{} + {}/{} elements (arrestor + bridge to/beyond the contact)",
+            resolved.lower.elements, resolved.upper.elements_to_contact, resolved.upper.elements_beyond_contact
+        )
+    }
 }

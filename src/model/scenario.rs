@@ -1228,10 +1228,17 @@ impl Scenario {
                 errors.push(Error::invalid("lower.contact_position", rule, bound(x)));
             }
         }
+        // Both supports of a deck beam move with the deck (heave h + rotation theta x along it),
+        // which the moving-base loads -M r a already describe; what is missing is the far
+        // support's share of that rigid motion's inertia in its reaction (the stepper's far
+        // support rows, `solver/far_support.rs`, see none of the supports' accelerations), so the
+        // motion is refused rather than reported with a wrong far reaction.
         if two && (!self.motion.is_unset() || self.sea.is_some()) {
             errors.push(Error::Other(format!(
-                "lower.supports = \"{}\" with {}: the supports' motion is the cantilever's clamp heave and rotation; \
-                 a beam on two supports takes fixed supports (leave the motion out, or use lower.supports = \
+                "lower.supports = \"{}\" with {}: moving supports are a cantilever's clamp only; on two supports \
+                 the far support's reaction would miss the deck motion's inertia, so a beam on two supports takes \
+                 fixed supports (leave the motion out and fold a steady deck heave acceleration a into gravity, \
+                 gravity = 9.81 + a, which loads the beam as the moving deck does; or use lower.supports = \
                  \"clamped-free\")",
                 l.supports.name(),
                 if self.sea.is_some() { "[sea]" } else { "[motion]" }

@@ -9,6 +9,7 @@ use std::f64::consts::PI;
 use serde::{Deserialize, Serialize};
 
 use super::mesh::{FarEnd, Support};
+use super::section::Segment;
 
 /// The struck beam's supports, first end (x = 0) then far end (x = `lower.length`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -142,5 +143,93 @@ impl Supports {
             ),
         };
         PointLoad { flexibility, first_moment, first_shear }
+    }
+}
+
+impl Supports {
+    /// The static response to a unit point load at `a` (m from the first support) of a beam of
+    /// piecewise-uniform `segments` (each with its own E I) on these supports: [`PointLoad`] for
+    /// a beam of sections, where Roark's uniform closed forms ([`Self::point_load`]) do not hold.
+    ///
+    /// A static finite-element solve with Euler-Bernoulli cubic (Hermite) elements, one per
+    /// piece between the sections' joints and the load point: their shape functions are the
+    /// exact solutions of E I w'''' = 0 between point loads on a uniform piece, so the nodal
+    /// deflections, and with them the flexibility and the first support's end forces, are exact
+    /// (to round-off) for every support condition, the redundants of the indeterminate ones
+    /// included (Przemieniecki, *Theory of Matrix Structural Analysis*, 1968, Sec. 5.4). Degenerate
+    /// input (no segment, `a` off the beam, a mechanism) gives NaN, never a panic.
+    pub fn stepped_point_load(self, segments: &[Segment], a: f64) -> PointLoad {
+        let nan = PointLoad { flexibility: f64::NAN, first_moment: f64::NAN, first_shear: f64::NAN };
+        let Some(length) = segments.last().map(|g| g.end) else { return nan };
+        if !(a > 0.0 && a <= length && length.is_finite()) {
+            return nan;
+        }
+        // Nodes: the ends, every joint and the load point, in order, without repeats.
+        let mut nodes: Vec<f64> = segments.iter().flat_map(|g| [g.start, g.end]).chain([0.0, a]).collect();
+        nodes.sort_by(f64::total_cmp);
+        nodes.dedup_by(|x, y| (*x - *y).abs() <= 1e-12 * length);
+        let n = nodes.len();
+        let dofs = 2 * n;
+        let mut k = nalgebra::DMatrix::<f64>::zeros(dofs, dofs);
+        let ei_at =
+            |x: f64| segments.iter().find(|g| x >= g.start && x <= g.end).map_or(f64::NAN, |g| g.bending_stiffness);
+        let element = |e: usize| {
+            let l = nodes[e + 1] - nodes[e];
+            let c = ei_at(0.5 * (nodes[e] + nodes[e + 1])) / l.powi(3);
+            let l2 = l * l;
+            nalgebra::Matrix4::new(
+                12.0,
+                6.0 * l,
+                -12.0,
+                6.0 * l,
+                6.0 * l,
+                4.0 * l2,
+                -6.0 * l,
+                2.0 * l2,
+                -12.0,
+                -6.0 * l,
+                12.0,
+                -6.0 * l,
+                6.0 * l,
+                2.0 * l2,
+                -6.0 * l,
+                4.0 * l2,
+            ) * c
+        };
+        for e in 0..n - 1 {
+            let ke = element(e);
+            for r in 0..4 {
+                for c in 0..4 {
+                    k[(2 * e + r, 2 * e + c)] += ke[(r, c)];
+                }
+            }
+        }
+        // The supports' constraints: w = 0 at a held end, theta = 0 at a clamped one.
+        let mut held = vec![0];
+        if self.first_is_clamped() {
+            held.push(1);
+        }
+        match self.far() {
+            FarEnd::Free => {}
+            FarEnd::Pinned => held.push(dofs - 2),
+            FarEnd::Clamped => held.extend([dofs - 2, dofs - 1]),
+        }
+        let free: Vec<usize> = (0..dofs).filter(|d| !held.contains(d)).collect();
+        let Some(load_node) = nodes.iter().position(|x| (x - a).abs() <= 1e-12 * length) else { return nan };
+        let kff = k.select_rows(&free).select_columns(&free);
+        let mut f = nalgebra::DVector::<f64>::zeros(free.len());
+        if let Some(i) = free.iter().position(|&d| d == 2 * load_node) {
+            f[i] = 1.0;
+        }
+        let Some(solution) = kff.lu().solve(&f) else { return nan };
+        let mut u = nalgebra::DVector::<f64>::zeros(dofs);
+        for (i, &d) in free.iter().enumerate() {
+            u[d] = solution[i];
+        }
+        // The first element's end forces k_e u_e at x = 0: its shear and moment there.
+        let ends = element(0) * nalgebra::Vector4::new(u[0], u[1], u[2], u[3]);
+        // A pin carries no moment by construction (its end force is the solve's round-off).
+        let first_moment = if self.first_is_clamped() { ends[1].abs() } else { 0.0 };
+        PointLoad { flexibility: u[2 * load_node], first_moment, first_shear: ends[0].abs() }
     }
 }

@@ -960,21 +960,24 @@ fn summary_text(data: &LogData, scenario: &Scenario, summary: &Summary, out: &mu
         scenario.duration,
         data.steps.len()
     );
-    // On two supports (issue 45) w_din,a is the deflection at the contact point, not at an end.
-    let deflection = if scenario.lower.supports.is_clamped_free() {
-        "arrestor end deflection  w_din,a"
-    } else {
-        "contact-point deflection w_din,a"
-    };
+    // Issue 45: w_din,a at the contact point on two supports or struck inside the span, a pin's
+    // stresses at a pinned first support, no bridge for a rigid impactor.
+    let words = crate::wording::Wording::of(scenario);
+    let deflection =
+        if words.at_contact { "contact-point deflection w_din,a" } else { "arrestor end deflection  w_din,a" };
+    let pin = words.first_support == "pin";
     let names = [
         (deflection, 1.0, "m  "),
-        ("clamp bending stress     s_din,a", 1e-6, "MPa"),
-        ("clamp shear stress       t_din,a", 1e-6, "MPa"),
+        (if pin { "pin bending stress       s_din,a" } else { "clamp bending stress     s_din,a" }, 1e-6, "MPa"),
+        (if pin { "pin shear stress         t_din,a" } else { "clamp shear stress       t_din,a" }, 1e-6, "MPa"),
         ("bridge contact bending   s_din,b", 1e-6, "MPa"),
         ("contact bar force        F_c    ", 1e-3, "kN "),
     ];
     let _ = writeln!(out, "peaks max |.| and when reached:");
     for (k, (name, scale, unit)) in names.iter().enumerate() {
+        if k == 3 && words.rigid_impactor {
+            continue;
+        }
         let _ = writeln!(
             out,
             "  {name} {:10.4} {unit} at t = {:.5} s",
@@ -994,13 +997,24 @@ fn summary_text(data: &LogData, scenario: &Scenario, summary: &Summary, out: &mu
 /// The envelope's lines of a report: where it comes from, then each beam's worst bending and
 /// shear stress with where and when, its utilisation, and the paper's point beside it.
 pub fn envelope_text(summary: &Summary, source: &EnvelopeSource) -> String {
+    envelope_text_worded(summary, source, &crate::wording::Wording::default())
+}
+
+/// [`envelope_text`] in the words of `w` (issue 45): the first support a clamp or a pin; the
+/// paper's point beside it only on the paper's scenario's words.
+pub fn envelope_text_worded(summary: &Summary, source: &EnvelopeSource, w: &crate::wording::Wording) -> String {
     use std::fmt::Write as _;
     let mut out = format!("stress envelope: {}\n", source.describe());
     let e = &summary.envelope;
     let p = &summary.peaks;
+    let (bending_at, shear_at) = if w.first_support == "pin" {
+        ("s_din,a at the pin", "t_din,a at the pin")
+    } else {
+        ("s_din,a at the clamp", "t_din,a at the clamp")
+    };
     let rows = [
-        ("arrestor bending", &e.lower.bending, Some(("s_din,a at the clamp", p.lower_clamp_bending_stress))),
-        ("arrestor shear  ", &e.lower.shear, Some(("t_din,a at the clamp", p.lower_clamp_shear_stress))),
+        ("arrestor bending", &e.lower.bending, Some((bending_at, p.lower_clamp_bending_stress))),
+        ("arrestor shear  ", &e.lower.shear, Some((shear_at, p.lower_clamp_shear_stress))),
         ("bridge bending  ", &e.upper.bending, Some(("s_din,b at contact", p.upper_contact_bending_stress))),
         ("bridge shear    ", &e.upper.shear, None),
     ];
@@ -1010,7 +1024,8 @@ pub fn envelope_text(summary: &Summary, source: &EnvelopeSource) -> String {
             (Some(u), Some(x)) => format!("utilisation {u:.3} at x = {x:.3} m"),
             _ => "no allowable".to_string(),
         };
-        let beside = paper.map_or(String::new(), |(point, v)| format!("; paper's {point} {:.1} MPa", v * 1e-6));
+        let owner = if *w == crate::wording::Wording::default() { "paper's " } else { "the run's " };
+        let beside = paper.map_or(String::new(), |(point, v)| format!("; {owner}{point} {:.1} MPa", v * 1e-6));
         let _ = writeln!(
             out,
             "  {name} {:10.1} MPa at x = {:7.3} m, t = {:.5} s; {utilisation}{beside}",
@@ -1137,7 +1152,7 @@ pub fn report(mcap: &Path, out_dir: &Path, out: &mut dyn Write) -> Result<()> {
     let summary = summary_from_log(&data, &simulation).map_err(|e| mcap_err(mcap, e))?;
     summary_text(&data, &scenario, &summary, &mut text);
     let (_, source) = replay_envelope(&data, &summary.peaks, &summary.peak_times, scenario.contact_position);
-    text.push_str(&envelope_text(&summary, &source));
+    text.push_str(&envelope_text_worded(&summary, &source, &crate::wording::Wording::of(&scenario)));
     text.push('\n');
     text.push_str(&crate::compare::comparison_for(&summary, &scenario));
     out.write_all(text.as_bytes()).map_err(io)?;

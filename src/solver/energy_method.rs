@@ -51,15 +51,17 @@ use crate::model::Scenario;
 /// Results of the energy approach (Table 1, column 2, and Eqs. 35-36).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct EnergyMethod {
-    /// Flexion coefficient k_f = 3 E I / l^3 of the arrestor, N/m.
+    /// Flexion coefficient k_f of the arrestor at the contact, N/m: 3 E I / l^3 at a uniform
+    /// cantilever's free end (the paper), else 1 / its static point flexibility there.
     pub flexion_stiffness: f64,
     /// Dynamic deflection of the arrestor's end w_din, m (Eq. 33).
     pub tip_deflection: f64,
     /// Dynamic contact force F_din = k_f w_din, N (Eq. 29).
     pub force: f64,
-    /// Bending stress at the clamp F_din l / W, Pa.
+    /// Bending stress at the first support F_din m_1 / W, Pa (m_1 its moment per newton at the
+    /// contact: l at a cantilever's free end, 0 at a pin).
     pub clamp_bending_stress: f64,
-    /// Shear stress at the clamp F_din / A_s, Pa.
+    /// Shear stress at the first support F_din r_1 / A_s, Pa (r_1 its share of a newton).
     pub clamp_shear_stress: f64,
     /// Strain energy of the arrestor E_def,a = F_din w_din / 2, J (Eq. 35).
     pub strain_energy: f64,
@@ -84,21 +86,17 @@ impl EnergyMethod {
         // The support's spring: the arrestor's flexion (Eq. 29), or for a rigid support the
         // contact element alone.
         let rigid = s.lower.kind == crate::model::scenario::SupportKind::Rigid;
-        // A stepped arrestor's flexion: the unit-load integral over its sections.
-        // Issue 45: struck elsewhere than a cantilever's free end, the uniform beam's closed forms
-        // (Roark, Table 8.1; a beam of sections by its first section's E I).
-        let x = s.lower_contact_position();
-        let elsewhere = l.supports.has_far_support() || x != l.length;
-        let point = l.supports.point_load(l.elastic_modulus * l.second_moment, l.length, x);
-        let k_f = if rigid {
-            s.contact_stiffness()
-        } else if elsewhere {
-            1.0 / point.flexibility
-        } else if l.sections.is_empty() {
-            3.0 * l.elastic_modulus * l.second_moment / l.length.powi(3)
-        } else {
-            1.0 / crate::model::section::tip_flexibility(&s.lower_segments())
-        };
+        // The arrestor's spring is its static point flexibility at the contact (issue 45): the
+        // paper's 3 E I / l^3 at a uniform cantilever's free end; elsewhere on a uniform beam,
+        // Roark's closed forms (Table 8.1); on a beam of sections, the exact static solution of
+        // the stepped beam on its supports ([`Supports::stepped_point_load`], the unit-load
+        // integral with the indeterminate supports' redundants solved). The first support's
+        // stresses take that section's modulus and shear area.
+        let segments = s.lower_segments();
+        let point = arrestor_point_load(s);
+        let (first_modulus, first_shear_area) =
+            segments.first().map_or((l.section_modulus, l.shear_area), |g| (g.section_modulus, g.shear_area));
+        let k_f = if rigid { s.contact_stiffness() } else { arrestor_stiffness(s) };
         let weight = s.upper.mass * s.gravity;
         let (d, h) = (s.contact_position, s.drop_height);
         // The weight's lever W l_u / 2 about the hinge: twice the centre of gravity's distance
@@ -135,8 +133,8 @@ impl EnergyMethod {
                 flexion_stiffness: k_f,
                 tip_deflection: w,
                 force,
-                clamp_bending_stress: if rigid { 0.0 } else { force * l.length / l.section_modulus },
-                clamp_shear_stress: if rigid { 0.0 } else { force / l.shear_area },
+                clamp_bending_stress: if rigid { 0.0 } else { force * point.first_moment / first_modulus },
+                clamp_shear_stress: if rigid { 0.0 } else { force * point.first_shear / first_shear_area },
                 strain_energy,
                 bridge_deceleration: 0.0,
                 bridge_contact_moment: 0.0,
@@ -149,8 +147,8 @@ impl EnergyMethod {
             flexion_stiffness: k_f,
             tip_deflection: w,
             force,
-            clamp_bending_stress: if rigid { 0.0 } else { force * point.first_moment / l.section_modulus },
-            clamp_shear_stress: if rigid { 0.0 } else { force * point.first_shear / l.shear_area },
+            clamp_bending_stress: if rigid { 0.0 } else { force * point.first_moment / first_modulus },
+            clamp_shear_stress: if rigid { 0.0 } else { force * point.first_shear / first_shear_area },
             strain_energy,
             bridge_deceleration: bridge.deceleration,
             bridge_contact_moment,
@@ -158,6 +156,36 @@ impl EnergyMethod {
             bridge_strain_energy,
             bridge_strain_ratio: bridge_strain_energy / strain_energy,
         }
+    }
+}
+
+/// The struck beam's static response to a unit point load at the contact (issue 45): Roark's
+/// closed forms on a uniform beam ([`crate::model::supports::Supports::point_load`]), the exact
+/// stepped-beam solution on a beam of sections
+/// ([`crate::model::supports::Supports::stepped_point_load`]).
+pub fn arrestor_point_load(s: &Scenario) -> crate::model::supports::PointLoad {
+    let l = &s.lower;
+    let x = s.lower_contact_position();
+    if l.sections.is_empty() {
+        l.supports.point_load(l.elastic_modulus * l.second_moment, l.length, x)
+    } else {
+        l.supports.stepped_point_load(&s.lower_segments(), x)
+    }
+}
+
+/// The struck beam's point stiffness at the contact, N/m, the energy method's k_f and psi's
+/// k_arrestor: the paper's 3 E I / l^3 at a uniform cantilever's free end (bit for bit), the
+/// tip's unit-load sum on a cantilever of sections, else 1 / [`arrestor_point_load`]'s
+/// flexibility.
+pub fn arrestor_stiffness(s: &Scenario) -> f64 {
+    let l = &s.lower;
+    let x = s.lower_contact_position();
+    if l.supports.has_far_support() || x != l.length {
+        1.0 / arrestor_point_load(s).flexibility
+    } else if l.sections.is_empty() {
+        3.0 * l.elastic_modulus * l.second_moment / l.length.powi(3)
+    } else {
+        1.0 / crate::model::section::tip_flexibility(&s.lower_segments())
     }
 }
 

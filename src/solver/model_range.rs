@@ -261,7 +261,9 @@ impl RangeCheck {
     pub fn reasons(&self) -> Vec<String> {
         let r = &self.range;
         let mut reasons = Vec::new();
-        let beams = [("the arrestor", "clamp"), ("the bridge", "hinge")];
+        // Positions are from the arrestor's first support, a clamp or a pin (issue 45), and from
+        // the bridge's hinge; a rigid impactor has no range of its own to report.
+        let beams = [("the arrestor", "first support"), ("the bridge", "hinge")];
         let at = |position: Option<f64>, support: &str, time: f64| match position {
             Some(x) => format!(" at {x:.3} m from its {support} (t = {time:.4} s)"),
             None => format!(" (t = {time:.4} s)"),
@@ -317,6 +319,30 @@ impl RangeCheck {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The arrestor's positions are from its first support, a clamp or a pin (issue 45): a
+    /// deflection of 1.2 m on a 6 m beam (20 %, beyond the 10 % limit) at midspan is reported "at
+    /// 3.000 m from its first support", never "from its clamp"; a beam whose range stays zero
+    /// (a rigid impactor's) is not named.
+    #[test]
+    fn reasons_place_the_arrestors_peaks_from_its_first_support() {
+        let peak = |value: f64, position: Option<f64>| RangePeak { value, position, time: 0.01 };
+        let check = RangeCheck {
+            range: ModelRange {
+                lower_deflection: peak(1.2, Some(3.0)),
+                upper_deflection: peak(0.0, None),
+                lower_rotation: peak(0.0, None),
+                upper_rotation: peak(0.0, None),
+            },
+            lower_strain: None,
+            upper_strain: None,
+            lengths: [6.0, 29.0],
+        };
+        let reasons = check.reasons();
+        assert_eq!(reasons.len(), 1, "{reasons:?}");
+        assert!(reasons[0].contains("the arrestor deflects 1.2000 m at 3.000 m from its first support"), "{reasons:?}");
+        assert!(!reasons[0].contains("clamp") && !reasons[0].contains("bridge"), "{reasons:?}");
+    }
 
     /// A row block whose bound is below the limit reports the bound (an upper bound of every
     /// row's value), and one whose bound reaches it reports the exact largest row and where.

@@ -79,8 +79,8 @@ def test_every_block_runs_and_says_what_the_page_says(page):
     # One run: the verdict line and the keys of `run --json`.
     assert "trusted: True [] | design passes: True" in one_run, one_run
     assert ("['design', 'discretisation', 'dynamic_amplification', 'fatigue', 'impact', 'load_cases', "
-            "'merged_contact_windows', 'quality', 'scenario', 'scenario_as_given', 'sub_impacts', 'summary', 'units', "
-            "'wall_time_s']") in one_run, one_run
+            "'merged_contact_windows', 'quality', 'scenario', 'scenario_as_given', 'sub_impacts', 'sub_impacts_total', "
+            "'sub_impacts_truncated', 'summary', 'units', 'wall_time_s']") in one_run, one_run
     # The log and its steps: the series keeps the internal steps, the log the dense output (a row
     # every 0.1 ms and at every peak, issue 41): more rows than the 3 s run's 30 000 grid points.
     steps = int(with_log.split(" steps;")[0])

@@ -40,3 +40,23 @@ def test_a_sphere_on_a_beam_replays_its_sub_impacts_through_load_log(tmp_path):
     # The first strike's peak is the run's largest contact force.
     assert abs(max(s["peak_force"] for s in stored) - cli["summary"]["peaks"]["contact.force"]) \
         <= 1e-9 * cli["summary"]["peaks"]["contact.force"]
+
+
+def test_a_chattering_sphere_replays_its_truncated_sub_impacts_through_load_log(tmp_path):
+    """The lab sphere made to chatter (no damping, 0.5 s, gravity 98.1 m/s^2: 139 windows): the
+    log's answer keeps the first 100 windows (and the largest-force one if later) with
+    `sub_impacts_total` and `sub_impacts_truncated`, the same as `run --json`."""
+    text = (ROOT / "examples" / "lab-sphere.toml").read_text()
+    text = text.replace("duration = 0.02", "duration = 0.5").replace("damping_ratio = 0.005", "damping_ratio = 0.0")
+    text = text.replace("gravity = 9.81", "gravity = 98.1")
+    scenario, log, out = tmp_path / "chatter.toml", tmp_path / "chatter.mcap", tmp_path / "chatter.json"
+    scenario.write_text(text)
+    run = subprocess.run([binary(), "run", str(scenario), "--mcap", str(log), "--json", str(out)],
+                         capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr
+    cli = json.loads(out.read_text())
+    answer = beam_impact.load_log(str(log)).answer
+    assert cli["sub_impacts_total"] > 100 and cli["sub_impacts_truncated"] is True
+    assert len(cli["sub_impacts"]) in (100, 101)
+    for key in ("sub_impacts", "sub_impacts_total", "sub_impacts_truncated"):
+        assert answer[key] == cli[key], key

@@ -97,7 +97,7 @@ pub fn log_page(mcap: &Path) -> Result<String> {
         summary: &summary,
         steps: &data.steps,
         envelope_source: source.describe(),
-        comparison: crate::compare::comparison(&summary, scenario.is_paper()),
+        comparison: crate::compare::comparison_for(&summary, &scenario),
     }))
 }
 
@@ -121,7 +121,7 @@ pub fn run_page(scenario: &Scenario, summary: &Summary, doc: &Value, title: &str
         summary,
         steps: &data.steps,
         envelope_source: "of the run (the same as its log's envelope.json)".into(),
-        comparison: crate::compare::comparison(summary, scenario.is_paper()),
+        comparison: crate::compare::comparison_for(summary, scenario),
     }))
 }
 

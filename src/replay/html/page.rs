@@ -14,6 +14,7 @@ use super::escape::escape;
 use super::tables::{cell, render, shown_number};
 use crate::model::Scenario;
 use crate::results::{StationEnvelope, StepResult, Summary};
+use crate::wording::Wording;
 
 /// Points kept per time history: the minimum and maximum of each of this many equal time slices
 /// ([`crate::replay::figures::min_max_decimate`]), so every peak stays visible at any zoom down to
@@ -119,13 +120,19 @@ fn scaled_cell(doc: &Value, ptr: &str, scale: f64, decimals: usize) -> String {
 
 /// Table 1: FEM peaks (the printed run and the converged answer) and the energy approach, with the
 /// paper's values and ratios for the paper's scenario (as `compare::table1`).
-fn table1(doc: &Value, paper: bool) -> String {
-    let rows = [
-        ("w_din,a arrestor end deflection [m]", "lower_tip_deflection", "tip_deflection", 1.0),
-        ("sigma_din,a clamp bending stress [MPa]", "lower_clamp_bending_stress", "clamp_bending_stress", 1e-6),
-        ("tau_din,a clamp shear stress [MPa]", "lower_clamp_shear_stress", "clamp_shear_stress", 1e-6),
+/// In the words of `w` (issue 45): w_din,a at the contact point on two supports or struck inside
+/// the span, a pin's stresses, and no sigma_din,b row for a rigid impactor.
+fn table1(doc: &Value, paper: bool, w: &Wording) -> String {
+    let deflection = format!("w_din,a arrestor {} [m]", w.deflection());
+    let bending = format!("sigma_din,a {} bending stress [MPa]", w.first_support);
+    let shear = format!("tau_din,a {} shear stress [MPa]", w.first_support);
+    let all_rows = [
+        (deflection.as_str(), "lower_tip_deflection", "tip_deflection", 1.0),
+        (bending.as_str(), "lower_clamp_bending_stress", "clamp_bending_stress", 1e-6),
+        (shear.as_str(), "lower_clamp_shear_stress", "clamp_shear_stress", 1e-6),
         ("sigma_din,b bridge bending at contact [MPa]", "upper_contact_bending_stress", "bridge_bending_stress", 1e-6),
     ];
+    let rows = &all_rows[..if w.rigid_impactor { 3 } else { 4 }];
     let mut s = String::from("<table class=\"grid\" id=\"table1\"><thead><tr><th></th><th>FEM (printed run)</th>");
     if paper {
         s.push_str("<th>paper</th><th>ratio</th>");
@@ -168,17 +175,35 @@ fn history(steps: &[StepResult], value: fn(&StepResult) -> f64, scale: f64) -> V
 /// A history's curve: its name, colour, value of a step and the scale it is shown at.
 type Curve = (&'static str, &'static str, fn(&StepResult) -> f64, f64);
 
-/// The time histories the reader can zoom: deflections, contact force, clamp stresses, the
-/// bridge's stress at the contact point; contact windows shaded.
-fn histories(steps: &[StepResult], shaded: &[(f64, f64)]) -> Vec<Chart> {
-    let specs: [(&str, &str, &str, Vec<Curve>); 4] = [
+/// The time histories the reader can zoom: deflections, contact force, the first support's
+/// stresses, the bridge's stress at the contact point (none for a rigid impactor); contact
+/// windows shaded; in the words of `w` (issue 45).
+fn histories(steps: &[StepResult], shaded: &[(f64, f64)], w: &Wording) -> Vec<Chart> {
+    let arrestor: &'static str = if w.at_contact {
+        "arrestor deflection at the contact w_a (lower_tip_deflection)"
+    } else {
+        "arrestor end deflection w_a (lower_tip_deflection)"
+    };
+    let striker: &'static str =
+        if w.rigid_impactor { "impactor displacement" } else { "bridge deflection at the contact point" };
+    let (support_title, support_bending, support_shear): (&'static str, &'static str, &'static str) =
+        if w.first_support == "pin" {
+            (
+                "Stresses of the arrestor at its first support (a pin)",
+                "bending stress at the pin sigma_a",
+                "shear stress at the pin tau_a",
+            )
+        } else {
+            ("Clamp stresses of the arrestor", "bending stress at the clamp sigma_a", "shear stress at the clamp tau_a")
+        };
+    let mut specs: Vec<(&str, &str, &str, Vec<Curve>)> = vec![
         (
             "h-deflection",
-            "Tip deflection",
+            if w.at_contact { "Deflection at the contact" } else { "Tip deflection" },
             "deflection, m",
             vec![
-                ("arrestor end deflection w_a (lower_tip_deflection)", "#d7261e", |r| r.lower_tip_deflection, 1.0),
-                ("bridge deflection at the contact point", "#1f5ac8", |r| r.upper_contact_deflection, 1.0),
+                (arrestor, "#d7261e", |r| r.lower_tip_deflection, 1.0),
+                (striker, "#1f5ac8", |r| r.upper_contact_deflection, 1.0),
             ],
         ),
         (
@@ -189,11 +214,11 @@ fn histories(steps: &[StepResult], shaded: &[(f64, f64)]) -> Vec<Chart> {
         ),
         (
             "h-clamp",
-            "Clamp stresses of the arrestor",
+            support_title,
             "stress, MPa",
             vec![
-                ("bending stress at the clamp sigma_a", "#d7261e", |r| r.lower_clamp_bending_stress, 1e-6),
-                ("shear stress at the clamp tau_a", "#963caf", |r| r.lower_clamp_shear_stress, 1e-6),
+                (support_bending, "#d7261e", |r| r.lower_clamp_bending_stress, 1e-6),
+                (support_shear, "#963caf", |r| r.lower_clamp_shear_stress, 1e-6),
             ],
         ),
         (
@@ -208,6 +233,9 @@ fn histories(steps: &[StepResult], shaded: &[(f64, f64)]) -> Vec<Chart> {
             )],
         ),
     ];
+    if w.rigid_impactor {
+        specs.retain(|spec| spec.0 != "h-bridge");
+    }
     specs
         .into_iter()
         .map(|(id, title, y_label, series)| Chart {
@@ -314,7 +342,8 @@ pub fn run_page(p: &RunPage) -> String {
         &scenario,
     );
 
-    let mut t1 = table1(doc, paper);
+    let words = Wording::of(p.scenario);
+    let mut t1 = table1(doc, paper, &words);
     let _ =
         writeln!(t1, "<details><summary>as `run` prints it</summary><pre>{}</pre></details>", escape(&p.comparison));
     section(&mut body, "table1", if paper { "Table 1 beside the paper" } else { "Table 1" }, &t1);
@@ -341,15 +370,27 @@ pub fn run_page(p: &RunPage) -> String {
     let e = &p.summary.envelope;
     let peaks = &p.summary.peaks;
     let mut env = format!("<p class=\"note\">Envelope {}.</p>\n", escape(&p.envelope_source));
+    // The marks are the paper's quantities on its scenario, the run's own peaks on any other.
+    let owner = if paper { "paper's " } else { "" };
     let arrestor_marks = vec![
         Mark {
-            name: format!("paper's sigma_din,a at the clamp: {:.1} MPa", peaks.lower_clamp_bending_stress * 1e-6),
+            name: format!(
+                "{}sigma_din,a at the {}: {:.1} MPa",
+                owner,
+                words.first_support,
+                peaks.lower_clamp_bending_stress * 1e-6
+            ),
             color: "#d7231e",
             at: (0.0, peaks.lower_clamp_bending_stress * 1e-6),
             legend: true,
         },
         Mark {
-            name: format!("paper's tau_din,a at the clamp: {:.1} MPa", peaks.lower_clamp_shear_stress * 1e-6),
+            name: format!(
+                "{}tau_din,a at the {}: {:.1} MPa",
+                owner,
+                words.first_support,
+                peaks.lower_clamp_shear_stress * 1e-6
+            ),
             color: "#963caf",
             at: (0.0, peaks.lower_clamp_shear_stress * 1e-6),
             legend: true,
@@ -357,7 +398,8 @@ pub fn run_page(p: &RunPage) -> String {
     ];
     let bridge_marks = vec![Mark {
         name: format!(
-            "paper's sigma_din,b at the contact point ({} m): {:.1} MPa",
+            "{}sigma_din,b at the contact point ({} m): {:.1} MPa",
+            owner,
             shown_number(p.scenario.contact_position),
             peaks.upper_contact_bending_stress * 1e-6
         ),
@@ -368,20 +410,28 @@ pub fn run_page(p: &RunPage) -> String {
     if e.lower.bending.max.is_empty() && e.upper.bending.max.is_empty() {
         env.push_str("<p>No envelope to draw.</p>");
     } else {
+        let (title, x_label) = if words.first_support == "pin" {
+            ("Arrestor: stress envelope from its first support (a pin)", "x from the first support, m")
+        } else {
+            ("Arrestor: stress envelope from the clamp", "x from the clamp, m")
+        };
         env.push_str(&figure(&envelope_chart(
             "envelope-arrestor",
-            "Arrestor: stress envelope from the clamp",
-            "x from the clamp, m",
+            title,
+            x_label,
             [&e.lower.bending, &e.lower.shear],
             arrestor_marks,
         )));
-        env.push_str(&figure(&envelope_chart(
-            "envelope-bridge",
-            "Bridge: stress envelope from the hinge",
-            "x from the hinge, m",
-            [&e.upper.bending, &e.upper.shear],
-            bridge_marks,
-        )));
+        // A rigid impactor has no stress along it.
+        if !words.rigid_impactor {
+            env.push_str(&figure(&envelope_chart(
+                "envelope-bridge",
+                "Bridge: stress envelope from the hinge",
+                "x from the hinge, m",
+                [&e.upper.bending, &e.upper.shear],
+                bridge_marks,
+            )));
+        }
     }
     section(&mut body, "envelope", "Stress envelope along each beam", &env);
 
@@ -395,7 +445,7 @@ pub fn run_page(p: &RunPage) -> String {
     if p.steps.is_empty() {
         hist.push_str("<p>No recorded steps.</p>");
     } else {
-        for chart in histories(p.steps, &shaded) {
+        for chart in histories(p.steps, &shaded, &words) {
             hist.push_str(&figure(&chart));
         }
     }
