@@ -142,3 +142,28 @@ fn the_pre_run_notes_and_the_contact_rate_reach_the_logger_at_initialization() {
         }
     }
 }
+
+/// Issue 40's re-test: a `log.path` with an escape sequence and a newline reached the importer's
+/// log raw ("MCAP log of the run: /tmp/x^[[31m" and a second line). Every log line now escapes
+/// control characters as the CLI prints paths (docs/security.md): the line names the file as
+/// `\u{1b}[31m\n`, and no raw control character reaches the logger, in FMI 2 and FMI 3.
+#[test]
+fn a_hostile_log_path_reaches_the_importers_log_escaped() {
+    let dir = std::env::temp_dir().join(format!("beam-impact-escape-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("x\u{1b}[31m\n.mcap");
+    let lib = fmi_common::importer::load();
+    let fmu2 = Fmu2::new(&lib);
+    assert_eq!(fmu2.set_string("log.path", path.to_str().unwrap()), OK);
+    assert_eq!(fmu2.initialize(), OK);
+    let fmu3 = Fmu3::try_new(&lib, None, false).0.unwrap();
+    assert_eq!(fmu3.set_string("log.path", dir.join("y\u{1b}[31m\n.mcap").to_str().unwrap()), OK);
+    assert_eq!(fmu3.initialize_until(Some(0.01)), OK);
+    for (version, messages) in [(2, fmu2.log.all()), (3, fmu3.log.all())] {
+        let named = if version == 2 { "x\\u{1b}[31m\\n.mcap" } else { "y\\u{1b}[31m\\n.mcap" };
+        assert!(messages.iter().any(|m| m.text.contains(named)), "FMI {version}: {messages:?}");
+        assert!(messages.iter().all(|m| !m.text.chars().any(char::is_control)), "FMI {version}: {messages:?}");
+    }
+    drop((fmu2, fmu3));
+    let _ = std::fs::remove_dir_all(&dir);
+}

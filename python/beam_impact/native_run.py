@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import errno
 import json
+import math
 import os
 import warnings as _warnings
 from typing import Any
@@ -193,13 +194,15 @@ def run(scenario: Any = None, *, fields: dict | None = None, log: "str | os.Path
 
     path, text = scenario_source(scenario)
     if path is not None and not os.path.lexists(path):
-        raise FileNotFoundError(errno.ENOENT, f"cannot read scenario {path}: no such file", path)
+        # repr: a path's control characters (a terminal's escape sequences) shown, not sent.
+        raise FileNotFoundError(errno.ENOENT, f"cannot read scenario {os.fsdecode(path)!r}: no such file", path)
     pairs = field_pairs(fields, field_keywords)
     limit = _native.MAX_STEPS if max_steps is None else max_steps
     if isinstance(limit, bool) or not isinstance(limit, int) or not 0 < limit < 2**64:
         raise ScenarioError(f"max_steps must be a whole number > 0, got {max_steps!r}")
     every = series_every_of(series_every)
-    if isinstance(log_sample_interval, bool) or not isinstance(log_sample_interval, (int, float)):
+    if isinstance(log_sample_interval, bool) or not isinstance(log_sample_interval, (int, float)) \
+            or not math.isfinite(log_sample_interval):
         raise ScenarioError(f"log_sample_interval must be a number of seconds, got {log_sample_interval!r}")
     log_text = None if log is None else os.fsdecode(os.fspath(log))
     if log_channels is not None and not isinstance(log_channels, str):

@@ -126,9 +126,12 @@ pub fn bound_numbers(text: &str) -> std::borrow::Cow<'_, str> {
 }
 
 /// Logs a message through a logger without an instance (failed instantiation). Numbers of more
-/// than [`MAX_MESSAGE_DIGITS`] digits are shortened ([`bound_numbers`]).
+/// than [`MAX_MESSAGE_DIGITS`] digits are shortened ([`bound_numbers`]), and control characters
+/// (a hostile `log.path`'s escape sequences and newlines) are escaped, never sent to the
+/// importer's log (issue 40's re-test; docs/security.md).
 pub fn log_with(logger: Logger, instance_name: &str, status: Status, category: &str, message: &str) {
-    let message = bound_numbers(message);
+    let message = crate::record::output::escape_controls(message);
+    let message = bound_numbers(&message);
     let (name, category, message) = (c_string(instance_name), c_string(category), c_string(&message));
     match logger {
         Logger::Fmi2 { callback: Some(f), environment } => {

@@ -332,9 +332,14 @@ pub fn same_folder(path: &Path, dir: &Path) -> bool {
 /// `path` as printed to a terminal or a log: its display form with control characters escaped
 /// (`\u{1b}`), so that a hostile file name sends no escape sequence (issue 27).
 pub fn shown(path: &Path) -> String {
-    let text = path.display().to_string();
+    escape_controls(&path.display().to_string()).into_owned()
+}
+
+/// `text` with its control characters escaped (`\u{1b}`, `\n`), as [`shown`] escapes a path's:
+/// for a message that quotes one (the FMU's log lines, issue 40).
+pub fn escape_controls(text: &str) -> std::borrow::Cow<'_, str> {
     if !text.chars().any(char::is_control) {
-        return text;
+        return std::borrow::Cow::Borrowed(text);
     }
     text.chars().flat_map(|c| if c.is_control() { c.escape_default().collect::<Vec<_>>() } else { vec![c] }).collect()
 }

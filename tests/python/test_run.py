@@ -377,9 +377,17 @@ def test_one_exception_type_for_a_refused_field_in_every_door_and_file_not_found
         beam_impact.simulate(beam_impact.fmu_path("fmi3"), {"drop_height": -1})
     assert issubclass(beam_impact.ScenarioError, ValueError)
     assert issubclass(beam_impact.ScenarioError, beam_impact.SimulationError)
-    with pytest.raises(FileNotFoundError, match="cannot read scenario no-such-file.toml") as missing:
+    with pytest.raises(FileNotFoundError, match="cannot read scenario 'no-such-file.toml'") as missing:
         beam_impact.run("no-such-file.toml")
     assert missing.value.filename == "no-such-file.toml"
+    # Issue 40's re-test: a missing path's escape sequence is shown (repr), never sent raw.
+    with pytest.raises(FileNotFoundError) as hostile:
+        beam_impact.run(str(tmp_path / "no\x1b[31mdir" / "x.toml"))
+    assert "\\x1b[31m" in str(hostile.value) and "\x1b" not in str(hostile.value), str(hostile.value)
+    # log_sample_interval is a finite number even when no log is asked for.
+    for bad in (float("nan"), float("inf")):
+        with pytest.raises(beam_impact.ScenarioError, match="log_sample_interval must be a number of seconds"):
+            beam_impact.run(duration=0.01, log_sample_interval=bad)
 
 
 def test_a_result_echoes_in_one_line_and_a_small_html_table():
