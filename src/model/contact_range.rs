@@ -71,6 +71,14 @@ pub fn rate_error(s: &Scenario) -> Option<Error> {
     ))
 }
 
+impl Scenario {
+    /// [`rate_error`] of this scenario: what `Scenario::validate` adds once every field is in
+    /// its own range (a method here, so that scenario.rs needs no path to this file).
+    pub fn contact_rate_error(&self) -> Option<Error> {
+        rate_error(self)
+    }
+}
+
 /// The largest k (N/m^n) of `s`'s power law whose rate at `s`'s impact is within
 /// [`MAX_CONTACT_RATE`] (`None` for the linear law and Hertz's, whose constant is not given, or
 /// when none is): what the refusal names, and the top of the range `beam-impact bench` runs.

@@ -1095,7 +1095,7 @@ impl Scenario {
         errors.extend(load_case::validation_errors(&self.load_cases));
         // The contact's rate (issue 40 item 3) from several fields: judged when each is in range.
         if errors.is_empty() {
-            errors.extend(super::contact_range::rate_error(self));
+            errors.extend(self.contact_rate_error());
         }
         errors
     }

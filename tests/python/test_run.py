@@ -416,12 +416,20 @@ def test_the_peaks_shortcut_gives_one_name_per_quantity():
     assert "contact_force" in result["summary"]["peaks"]
 
 
-def test_a_run_of_many_steps_is_noted_as_the_cli_notes_it():
+def test_a_run_of_many_steps_is_noted_as_the_cli_notes_it(capsys):
     """Issue 40: a plan of more than a million internal steps (0.11 s at 1e-7 s: 1 100 000) is said
-    among the warnings, in the CLI's words; the default run's plan is not."""
+    among the warnings, in the CLI's words, and before the run on sys.stderr as the CLI says it
+    (its re-test: Python said nothing until a long run ended); a run longer than two seconds says
+    how far it is on sys.stderr, as the CLI does; the default run's plan is not noted."""
     with pytest.warns(RuntimeWarning, match="internal steps"):
         result = beam_impact.run(duration=0.11, step_free=1e-7, check_sensitivity=False)
     note = "note: this run may take up to 1100000 internal steps (0.11 s at its smaller time step)"
     assert any(w.startswith(note) for w in result.warnings), result.warnings
+    err = capsys.readouterr().err
+    assert f"beam_impact.run: {note}" in err, err
+    # A progress line only if the run took more than its two quiet seconds (never timed here).
+    if result["wall_time_s"] > 2.5:
+        assert "beam_impact.run: " in err and " of 0.1100 s simulated, " in err, err
     quiet = beam_impact.run(duration=0.002, check_sensitivity=False)
     assert not any("internal steps" in w for w in quiet.warnings), quiet.warnings
+    assert "beam_impact.run" not in capsys.readouterr().err

@@ -90,6 +90,8 @@ struct Series {
 struct Outputs {
     log: Option<McapRecorder>,
     series: Option<Series>,
+    /// The printed run's simulated time, ns, for the progress line the watching thread writes.
+    reached_ns: std::sync::Arc<AtomicU64>,
 }
 
 impl Recorder for Outputs {
@@ -97,6 +99,7 @@ impl Recorder for Outputs {
         self.log.as_mut().map_or(Ok(()), |l| l.start(info))
     }
     fn step(&mut self, result: &StepResult, q: &[f64]) -> beam_impact::Result<()> {
+        self.reached_ns.store(result.time_ns, Ordering::Relaxed);
         if let Some(s) = &mut self.series {
             if result.step.is_multiple_of(s.every) {
                 s.steps.push(*result);
@@ -254,9 +257,12 @@ fn answer_of(
         Ok((s, planned))
     });
     let (as_given, planned_steps) = prepared.map_err(value_error)?;
-    // The CLI says it before the run (issue 40): a plan of many steps is long.
-    warnings
-        .extend(beam_impact::one_run::large_run_note(planned_steps, as_given.duration).map(|n| format!("note: {n}")));
+    // The CLI says it before the run (issue 40): a plan of many steps is long. Written to
+    // sys.stderr now, as the CLI writes it, and among the warnings at the end.
+    if let Some(note) = beam_impact::one_run::large_run_note(planned_steps, as_given.duration) {
+        say(py, &format!("beam_impact.run: note: {note}"));
+        warnings.push(format!("note: {note}"));
+    }
     let mut inputs: Vec<(String, PathBuf)> = Vec::new();
     if let Some(path) = &scenario {
         inputs.push(("the scenario file".into(), path.clone()));
@@ -279,7 +285,9 @@ fn answer_of(
         }
     };
     let series = (series_every > 0).then(|| Series { every: series_every, steps: Vec::new(), last: None });
-    let mut outputs = Outputs { log: log_recorder, series };
+    let reached_ns = std::sync::Arc::new(AtomicU64::new(0));
+    let mut outputs = Outputs { log: log_recorder, series, reached_ns: reached_ns.clone() };
+    let mut progress = Progress { started, said: None, end_ns: as_given.duration_ns() };
     // A sweep's row (no observed order, no log) keeps each envelope's peak only, as the CLI's
     // sweep does: the same row values for a fraction of the envelope's work.
     let station_envelope = observed_order || log.is_some() || fatigue;
@@ -309,6 +317,9 @@ fn answer_of(
                 }
                 if EPOCH.load(Ordering::SeqCst) != epoch {
                     cancel.store(true, Ordering::SeqCst);
+                }
+                if let Some(line) = progress.due(reached_ns.load(Ordering::Relaxed)) {
+                    Python::attach(|py| say(py, &line));
                 }
             }
             worker.join().unwrap_or_else(|_| Err(Error::Other("internal error: the run panicked".into())))
@@ -407,4 +418,43 @@ pub fn sweep_row(
 #[pyfunction]
 pub fn cancel_running() {
     EPOCH.fetch_add(1, Ordering::SeqCst);
+}
+
+/// How long a run goes without a word, and how often its progress line repeats: the CLI's.
+const QUIET_FOR: Duration = Duration::from_secs(2);
+const PROGRESS_EVERY: Duration = Duration::from_secs(10);
+
+/// A long run's progress line, as the CLI's (issue 40 item 3: progress after two seconds).
+struct Progress {
+    started: Instant,
+    said: Option<Instant>,
+    end_ns: u64,
+}
+
+impl Progress {
+    /// The line to write now, with the printed run at `reached_ns`, if one is due.
+    fn due(&mut self, reached_ns: u64) -> Option<String> {
+        let now = Instant::now();
+        let due = match self.said {
+            None => now.duration_since(self.started) >= QUIET_FOR,
+            Some(at) => now.duration_since(at) >= PROGRESS_EVERY,
+        };
+        due.then(|| {
+            self.said = Some(now);
+            format!(
+                "beam_impact.run: {:.4} of {:.4} s simulated, {:.0} s elapsed",
+                reached_ns as f64 * 1e-9,
+                self.end_ns as f64 * 1e-9,
+                now.duration_since(self.started).as_secs_f64()
+            )
+        })
+    }
+}
+
+/// Writes `line` to Python's sys.stderr (a notebook shows it; a failure to write is ignored).
+fn say(py: Python<'_>, line: &str) {
+    if let Ok(stderr) = py.import("sys").and_then(|sys| sys.getattr("stderr")) {
+        let _ = stderr.call_method1("write", (format!("{line}\n"),));
+        let _ = stderr.call_method0("flush");
+    }
 }
