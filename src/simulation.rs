@@ -298,6 +298,8 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     output_peak_instants: Vec<u64>,
     /// The struck beam's far support's reaction rows (issue 45; none for a free far end).
     far_support: Option<std::sync::Arc<crate::solver::far_support::FarSupport>>,
+    /// Whether each step raises the model's range ([`Self::without_model_range`]).
+    follows_range: bool,
 }
 
 impl Simulation<ModalStepper> {
@@ -507,6 +509,7 @@ impl<S: Stepper> Simulation<S> {
             turning_points: None,
             sub_impacts: Vec::new(),
             range_rows: std::sync::Arc::new(range_rows),
+            follows_range: true,
             max_steps: crate::model::scenario::MAX_STEPS,
             peak_instants: Vec::new(),
             output_peak_instants: Vec::new(),
@@ -608,6 +611,9 @@ impl<S: Stepper> Simulation<S> {
     /// Raises the model's range (every node's deflection and rotation) by the current state,
     /// whose correction load coefficients are `loads`.
     fn observe_range(&mut self, loads: Option<&[f64; LOADS]>, time: f64) {
+        if !self.follows_range {
+            return;
+        }
         let q = self.state.kinematics.displacement.as_slice();
         self.range_rows.observe(q, loads, time, &mut self.state.range);
     }
@@ -1896,7 +1902,7 @@ impl<S: Stepper> Simulation<S> {
         let polynomial = self.polynomial_peaks();
         for (at_ns, motion) in self.model.scenario.motion_changes(end_ns)? {
             if polynomial {
-                self.advance_outputs_to(at_ns, recorder, false)?;
+                self.advance_to_row(at_ns, &motion, recorder)?;
             } else {
                 self.advance_to(at_ns, recorder, false)?;
             }
@@ -1905,6 +1911,23 @@ impl<S: Stepper> Simulation<S> {
         self.finish_at(end_ns, recorder, false)?;
         recorder.finish()?;
         Ok(self.summary())
+    }
+
+    /// [`Self::advance_outputs_to`] a motion row's time `at_ns`, from which the supports move as
+    /// `motion`. Where the row breaks the step grid (its motion does not continue the current
+    /// one: [`Self::apply_input`] will end the internal step there), the last step lands on the
+    /// row at once: the step across it that `advance_outputs_to` would take, interpolate and leave
+    /// untaken is never taken (a row every 5 ms of a sea's record: a tenth of the run's steps and
+    /// their interpolations). The same steps and outputs to the bit.
+    fn advance_to_row(&mut self, at_ns: u64, motion: &SupportMotion, recorder: &mut dyn Recorder) -> Result<Advance> {
+        self.apply_input(recorder)?;
+        if continues(&self.motion_at(at_ns), motion) || at_ns <= self.state.output_ns {
+            return self.advance_outputs_to(at_ns, recorder, false);
+        }
+        let advance = self.land_at(at_ns, recorder, false)?;
+        self.outputs_at_latest_step();
+        self.publish_envelope();
+        Ok(advance)
     }
 
     /// Sets the two external tip forces, N (up positive), from the outputs' time on: the next
@@ -2199,6 +2222,15 @@ impl<S: Stepper> Simulation<S> {
     /// (an answer's check rungs and twin): the energies are about a seventh of a step's work.
     pub fn without_energy_account(&mut self) {
         self.stepper.keep_energies(false);
+    }
+
+    /// Follows no model range from here on (issue 40's every node's deflection and rotation): the
+    /// run's [`Summary::model_range`] and its range reasons then say nothing but the envelope's
+    /// strains and the tip deflection's peak; its states, peaks and envelope are the same to the
+    /// bit. For runs whose peaks alone are read (an answer's check rungs and twin: the answer's
+    /// range is the printed run's): a thirtieth of a step's work.
+    pub fn without_model_range(&mut self) {
+        self.follows_range = false;
     }
 
     /// Every station's stress, Pa, at the modal coordinates `q` of a full basis (the paper
