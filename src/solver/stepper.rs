@@ -76,7 +76,7 @@ pub struct ModalStepper {
     last_force_error: Option<f64>,
     /// |probe row| omega_i^4 per coordinate and probe (the exact advance's bound on the fourth
     /// derivative of each probe out of contact, per unit of modal amplitude).
-    fourth_derivative: nalgebra::DMatrix<f64>,
+    fourth_derivative: Vec<[f64; 8]>,
 }
 
 /// The exact coefficients of every mode for one step size (dt = NaN: none yet).
@@ -348,7 +348,7 @@ impl ModalStepper {
             exact_cache: std::array::from_fn(|_| ExactStage::default()),
             last_dissipation: None,
             last_force_error: None,
-            fourth_derivative: nalgebra::DMatrix::zeros(0, 0),
+            fourth_derivative: Vec::new(),
         }
     }
 
@@ -358,9 +358,17 @@ impl ModalStepper {
         self.exact = exact;
         if self.exact {
             let s = &self.system;
-            self.fourth_derivative = nalgebra::DMatrix::from_fn(s.dofs(), PROBES, |i, k| {
-                self.probe_columns[(i, k)].abs() * (s.omega2[i] * s.omega2[i])
-            });
+            self.fourth_derivative = (0..s.dofs())
+                .map(|i| {
+                    std::array::from_fn(|k| {
+                        if k < PROBES {
+                            self.probe_columns[(i, k)].abs() * (s.omega2[i] * s.omega2[i])
+                        } else {
+                            0.0
+                        }
+                    })
+                })
+                .collect();
         }
         self
     }
@@ -1084,7 +1092,7 @@ impl Stepper for ModalStepper {
         }
         // The amplitudes go to the step's work vector (free between steps): no allocation per
         // step.
-        let n = state.displacement.len().min(self.fourth_derivative.nrows());
+        let n = state.displacement.len().min(self.fourth_derivative.len());
         let amplitude = &mut self.y.as_mut_slice()[..n];
         Some(fourth_derivative_bounds(
             &state.displacement.as_slice()[..n],
@@ -1092,8 +1100,7 @@ impl Stepper for ModalStepper {
             &self.load.as_slice()[..n],
             &self.system.omega2.as_slice()[..n],
             amplitude,
-            self.fourth_derivative.as_slice(),
-            self.fourth_derivative.nrows(),
+            &self.fourth_derivative,
         ))
     }
 
@@ -1249,6 +1256,12 @@ fn weighted_squares(w: &[f64], x: &[f64]) -> f64 {
 /// waiting on the one before).
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
 fn probe_dots(rows: &[[f64; 8]], x: &[f64]) -> [f64; PROBES] {
+    dots_side_by_side(rows, x)
+}
+
+/// [`probe_dots`]' sums, inlined into each vectorised caller.
+#[inline(always)]
+fn dots_side_by_side(rows: &[[f64; 8]], x: &[f64]) -> [f64; PROBES] {
     let n = x.len().min(rows.len());
     let (rows, x) = (&rows[..n], &x[..n]);
     let mut lanes = [[0.0f64; 8]; 4];
@@ -1294,9 +1307,9 @@ fn energy_sums(q: &[f64], v: &[f64], omega2: &[f64], damping: &[f64], gravity: &
 
 /// Out of contact each elastic mode swings about its static deflection F_i / omega_i^2 with
 /// amplitude A_i = sqrt(d^2 + (v / omega)^2) (into `amplitude`); its share of a probe's fourth
-/// derivative is at most |P_ki| omega_i^4 A_i (`fourth`: those weights, column-major, `rows` a
-/// column; the rigid mode's motion is a quadratic: none). In the CPU's widest vectors (the same
-/// bits whichever runs).
+/// derivative is at most |P_ki| omega_i^4 A_i (`fourth`: those weights per coordinate, the
+/// probes side by side as [`probe_dots`] takes them; the rigid mode's motion is a quadratic:
+/// none). In the CPU's widest vectors (the same bits whichever runs).
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
 fn fourth_derivative_bounds(
     q: &[f64],
@@ -1304,8 +1317,7 @@ fn fourth_derivative_bounds(
     load: &[f64],
     omega2: &[f64],
     amplitude: &mut [f64],
-    fourth: &[f64],
-    rows: usize,
+    fourth: &[[f64; 8]],
 ) -> [f64; PROBES] {
     let n = amplitude.len();
     let (q, v, load, omega2) = (&q[..n], &v[..n], &load[..n], &omega2[..n]);
@@ -1315,13 +1327,7 @@ fn fourth_derivative_bounds(
         let swing = (d * d + v[i] * v[i] / w2).sqrt();
         amplitude[i] = if w2 <= 0.0 { 0.0 } else { swing };
     }
-    // A plain loop, not `array::from_fn` (whose closure is compiled apart from this function's
-    // targets): the dots in its vectors.
-    let mut bounds = [0.0; PROBES];
-    for (k, b) in bounds.iter_mut().enumerate() {
-        *b = dot(&fourth[k * rows..k * rows + n], amplitude);
-    }
-    bounds
+    dots_side_by_side(fourth, amplitude)
 }
 
 /// sum term(a_i, b_i) over the common length, in four lanes (the compiler vectorises it; a plain
