@@ -356,6 +356,8 @@ pub fn run_cancellable(
                     // none of its energies.
                     sim.set_envelope_scope(EnvelopeScope::Peaks);
                     sim.without_energy_account();
+                    // Nor its model range: the answer's is the printed run's.
+                    sim.without_model_range();
                     let summary = sim.run(&mut Cancellable::new(&mut NullRecorder, cancel))?;
                     let run = rung_run(role, &sim, &summary);
                     Ok((summary, run))
