@@ -22,6 +22,13 @@ fn a_linear_contact_stiffer_than_its_bound_is_refused_by_name() {
     s.contact.given_stiffness = Some(MAX_CONTACT_STIFFNESS.next_up());
     let error = s.validate().unwrap_err().to_string();
     assert!(error.starts_with("contact.stiffness must be between 0.001 and 4e10 N/m"), "{error}");
+    // A negative or NaN stiffness is not refused by the limit, and the message does not say so
+    // (issue 40's re-test: "must be > 0 N/m (the linear law's limit), got -1").
+    for bad in [-1.0, f64::NAN] {
+        s.contact.given_stiffness = Some(bad);
+        let error = s.validate().unwrap_err().to_string();
+        assert!(error.starts_with("contact.stiffness must be > 0 N/m, got"), "{error}");
+    }
     // The bar's E A / l: its fields each within range, their stiffness beyond the bound.
     let mut bar = Scenario::default();
     bar.contact.length = 1e-6;

@@ -44,7 +44,8 @@ pub enum Command {
     /// arrestor alone, the bridge alone and the two coupled, with their frequencies (SVG and PNG;
     /// `report` writes them too, beside Figures 6-9).
     Modes {
-        /// Scenario file (default: the paper scenario).
+        /// Scenario file (default: the paper scenario; with --set and no file, the default
+        /// scenario, as `run --set`).
         file: Option<PathBuf>,
         /// Change a scenario field, KEY=VALUE, as `run --set` (repeatable).
         #[arg(long = "set", value_name = "KEY=VALUE")]

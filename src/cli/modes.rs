@@ -2,17 +2,14 @@
 
 use std::path::Path;
 
-use beam_impact::{Result, Scenario};
+use beam_impact::Result;
 
-use super::common::{emit, read_scenario};
+use super::common::emit;
 
 /// Figures 10-12 of a scenario, with the frequencies of Table 2.
 pub fn modes(file: Option<&Path>, set: &[String], out: &Path) -> Result<()> {
-    let mut scenario = match file {
-        Some(path) => read_scenario(path)?,
-        None => Scenario::paper(),
-    };
-    beam_impact::studies::sweep::apply_settings(&mut scenario, &beam_impact::studies::sweep::parse_settings(set)?)?;
+    // As every subcommand reads it: the file's, else the paper's, else with --set the default.
+    let scenario = super::common::scenario_with_settings(file, set)?;
     // The model and its modes only: no time step is involved ("auto" element counts resolved as a
     // run resolves them).
     if let Some(path) = file {

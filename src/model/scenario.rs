@@ -991,7 +991,12 @@ impl Scenario {
 
         if let Some(k) = c.given_stiffness {
             let max = if c.law == LawKind::Linear { MAX_CONTACT_STIFFNESS } else { MAX_POWER_LAW_STIFFNESS };
-            let unit = if c.law == LawKind::Linear { "N/m (the linear law's limit)" } else { "N/m^n" };
+            // The limit's reason only where it is the limit that refuses (not for -1 or NaN).
+            let unit = match c.law {
+                LawKind::Linear if k > max => "N/m (the linear law's limit)",
+                LawKind::Linear => "N/m",
+                _ => "N/m^n",
+            };
             check(size("contact.stiffness", unit, k, SMALLEST_CONTACT_STIFFNESS, max));
         } else if c.law == LawKind::Linear
             && size("contact.area", "m^2", c.area, 1e-12, 1e3).is_ok()
