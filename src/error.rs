@@ -229,6 +229,18 @@ impl Error {
     }
 }
 
+/// A number for a message, bounded in length (`{}` of 1e-300 is 302 characters): as Rust prints
+/// it (the shortest text that reads back to the same number) for magnitudes from 1e-4 to below
+/// 1e7, and 0, NaN and inf; in exponent form (`1e-300`) beyond. The FMU's log lines
+/// (`fmi::logger::number`), the CLI's and the validation's messages share it.
+pub fn number(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e7).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 /// An error as one line of bounded length: a value quoted from a hostile input (a 4 MiB string in
 /// a scenario) must not become a megabyte of standard error or of an FMU's log. Lines longer than
 /// 600 characters keep their first 400 and last 150, with the count cut between.

@@ -142,7 +142,7 @@ pub fn run(args: &RunArgs) -> Result<bool> {
                 None => format!(
                     "from drop_height = {} m: omega_0 = sqrt(3 g alpha_0 / l_u), alpha_0 = atan(2 h / l_u), Eqs. 20-22",
                     // Bounded: `{}` of a hostile 1e-300 is 302 characters (issue 40's re-test).
-                    beam_impact::fmi::logger::number(scenario.drop_height)
+                    beam_impact::error::number(scenario.drop_height)
                 ),
             },
             speed(impact.closing_speed)
@@ -366,7 +366,7 @@ fn mass_impact_line(scenario: &beam_impact::Scenario, closing_speed: f64) -> Str
         if scenario.impact_speed != 0.0 {
             "as stated: impact_speed".to_string()
         } else {
-            format!("from drop_height = {} m: v = sqrt(2 g h)", beam_impact::fmi::logger::number(scenario.drop_height))
+            format!("from drop_height = {} m: v = sqrt(2 g h)", beam_impact::error::number(scenario.drop_height))
         },
         speed(closing_speed)
     )

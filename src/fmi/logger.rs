@@ -56,11 +56,7 @@ pub fn c_string(text: &str) -> CString {
 /// 302 characters): as Rust prints it (the shortest text that reads back to the same number) for
 /// magnitudes from 1e-4 to below 1e7, and 0, NaN and inf; in exponent form (`1e300`) beyond.
 pub fn number(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() || (1e-4..1e7).contains(&x.abs()) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
+    crate::error::number(x)
 }
 
 /// `x` to `digits` significant digits (at least 1), bounded in length like [`number`]: fixed

@@ -5,7 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{Error, Result};
+use crate::error::{number, Error, Result};
 
 /// Most sections a beam may have: a truss's chords, a telescopic overlap and a bracket fit well
 /// within it, and the mesh needs at least one element per section.
@@ -187,7 +187,7 @@ pub fn validation_errors(beam: &str, elastic_modulus: f64, sections: &[SectionSp
         let name = |field: &str| format!("{beam}.sections[{}].{field}", i + 1);
         let mut check = |field: &str, unit: &str, value: f64, lo: f64, hi: f64| {
             if !(value.is_finite() && value >= lo && value <= hi) {
-                errors.push(Error::invalid(name(field), format!("between {lo:e} and {hi:e} {unit}"), value));
+                errors.push(Error::invalid(name(field), format!("between {lo:e} and {hi:e} {unit}"), number(value)));
             }
         };
         check("length", "m", s.length, 1e-4, 1e3);
@@ -208,10 +208,11 @@ pub fn validation_errors(beam: &str, elastic_modulus: f64, sections: &[SectionSp
             errors.push(Error::invalid(
                 name("length"),
                 format!(
-                    "at least {MIN_SECTION_FRACTION} of the beam's {total} m (shorter than the mesh can resolve beside \
-                     the other sections)"
+                    "at least {MIN_SECTION_FRACTION} of the beam's {} m (shorter than the mesh can resolve beside \
+                     the other sections)",
+                    number(total)
                 ),
-                s.length,
+                number(s.length),
             ));
         }
     }
@@ -273,5 +274,32 @@ pub fn agrees(name: String, unit: &str, given: f64, implied: f64) -> Result<()> 
             format!("equal to what the beam's sections give, {implied} {unit} (or left out: it follows from them)"),
             given,
         ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 40's re-test: a section length of 1e-300 was quoted as 302 characters, filling the
+    /// error line's 600; every quoted value is now bounded in length (`1e-300`).
+    #[test]
+    fn a_tiny_or_huge_section_value_is_quoted_in_a_few_characters() {
+        let section = |length: f64| SectionSpec {
+            length,
+            second_moment: 0.002075,
+            section_modulus: 0.0125,
+            section_modulus_bottom: None,
+            shear_area: 0.0109,
+            mass_per_length: 843.7,
+            allowable_bending_stress: None,
+            allowable_shear_stress: None,
+        };
+        for (length, shown) in [(1e-300, "got 1e-300"), (1e300, "got 1e300")] {
+            let errors = validation_errors("lower", 2.1e11, &[section(length), section(12.0)]);
+            let text = errors.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("; ");
+            assert!(text.contains("lower.sections[1].length") && text.contains(shown), "{text}");
+            assert!(text.len() < 400, "{} characters: {text}", text.len());
+        }
     }
 }
