@@ -41,19 +41,22 @@ pub struct StressHistory {
 }
 
 /// A header or data line's cells, trimmed of spaces and double quotes.
-fn cells(line: &str) -> impl Iterator<Item = &str> {
+pub fn cells(line: &str) -> impl Iterator<Item = &str> {
     line.split(',').map(|c| c.trim().trim_matches('"').trim())
+}
+
+/// A CSV text's lines that hold cells, numbered from 1 and trimmed: a leading byte-order mark
+/// dropped, blank lines and `#` comments skipped (the stress histories' and the campaign's
+/// occurrence tables' one reading).
+pub fn data_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())).filter(|(_, l)| !l.is_empty() && !l.starts_with('#'))
 }
 
 impl StressHistory {
     /// Parses CSV text; the error is one line naming the row, the line and the column.
     pub fn parse(text: &str) -> Result<StressHistory, String> {
-        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-        let mut lines = text
-            .lines()
-            .enumerate()
-            .map(|(i, l)| (i + 1, l.trim()))
-            .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+        let mut lines = data_lines(text);
         let (header_line, header) = lines.next().ok_or("no header line (a `time` column and stress columns in Pa)")?;
         let names: Vec<&str> = cells(header).collect();
         let time_at = names.iter().position(|n| *n == TIME).ok_or_else(|| {

@@ -90,15 +90,8 @@ impl Occurrence {
     /// Parses the table's text: a header naming the columns (any order; `#` comments and blank
     /// lines skipped), then one row per sea state.
     pub fn parse(text: &str) -> Result<Occurrence> {
-        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-        let mut lines = text
-            .lines()
-            .enumerate()
-            .map(|(i, l)| (i + 1, l.trim()))
-            .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
-        let cells = |line: &str| -> Vec<String> {
-            line.split(',').map(|c| c.trim().trim_matches('"').trim().to_string()).collect()
-        };
+        let mut lines = crate::fatigue::history::data_lines(text);
+        let cells = |line: &str| -> Vec<String> { crate::fatigue::history::cells(line).map(String::from).collect() };
         let (header_line, header) = lines.next().ok_or_else(|| {
             table_error(format!("no header line (the columns {HS}, {TP}, [{HEADING},] {PROBABILITY} or {HOURS})"))
         })?;
