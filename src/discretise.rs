@@ -6,7 +6,7 @@ use crate::error::Result;
 use crate::model::discretisation::{Method, DEFAULT_RUNG, LADDER, PAPER_ELEMENTS};
 use crate::model::{Model, Scenario};
 use crate::solver::graded::GRADED_RATIO;
-use crate::solver::ModalSystem;
+use crate::solver::{ModalCache, ModalSystem};
 
 /// The scenario's reference frequency, rad/s: the highest natural frequency of either beam on the
 /// paper's mesh (7 + 7/7 elements), the scale of the automatic cut-offs. A graded beam's short
@@ -39,13 +39,22 @@ impl ReferenceFrequencies {
 
 /// The paper mesh's [`ReferenceFrequencies`] of a scenario.
 pub fn reference_mesh(scenario: &Scenario) -> Result<ReferenceFrequencies> {
+    reference_mesh_with(scenario, None)
+}
+
+/// [`reference_mesh`] with the paper mesh's modes from `cache` (kept there by the first scenario
+/// of its geometry, [`ModalCache::full_modes`]): the same frequencies to the bit, without an
+/// eigen-solve per rung resolved (a campaign resolves three rungs an event, issue 43).
+pub fn reference_mesh_with(scenario: &Scenario, cache: Option<&ModalCache>) -> Result<ReferenceFrequencies> {
     let mut coarse = scenario.clone();
     coarse.method = Method::Paper;
     set_elements(&mut coarse, [PAPER_ELEMENTS; 3]);
     let model = Model::new(&coarse)?;
-    let modal = ModalSystem::new(&model).map_err(|e| {
-        crate::Error::Other(format!("the automatic cut-off's reference mesh ({}): {e}", describe(&coarse)))
-    })?;
+    let modal = match cache.filter(|c| c.is_enabled()) {
+        Some(cache) => cache.full_modes(&model),
+        None => ModalSystem::new(&model).map(std::sync::Arc::new),
+    }
+    .map_err(|e| crate::Error::Other(format!("the automatic cut-off's reference mesh ({}): {e}", describe(&coarse))))?;
     let mesh = modal.resolved_omega_max(&model);
     Ok(ReferenceFrequencies { mesh, contact: contact_frequency_of(&model, &modal, mesh) })
 }
@@ -157,13 +166,19 @@ fn balance_segments(s: &mut Scenario, [inner_auto, outer_auto]: [bool; 2]) {
 /// The scenario as run and printed: `"auto"` element counts become the method's mesh (the
 /// paper's 7 per segment, or the ladder's default rung), an `"auto"` cut-off the rung's.
 pub fn printed(scenario: &Scenario) -> Result<Scenario> {
+    printed_with(scenario, None)
+}
+
+/// [`printed`] with the reference mesh's modes from `cache` ([`reference_mesh_with`]): the same
+/// scenario to the bit.
+pub fn printed_with(scenario: &Scenario, cache: Option<&ModalCache>) -> Result<Scenario> {
     match scenario.method {
         Method::Paper => {
             let mut s = scenario.clone();
             set_elements(&mut s, [PAPER_ELEMENTS; 3]);
             Ok(s)
         }
-        Method::Converged => rung(scenario, DEFAULT_RUNG, 1),
+        Method::Converged => rung(scenario, DEFAULT_RUNG, 1, cache),
     }
 }
 
@@ -171,6 +186,12 @@ pub fn printed(scenario: &Scenario) -> Result<Scenario> {
 /// (the ladder's previous rung, or half of each explicit element count); for the paper method the
 /// converged answer itself, with automatic steps (so its figure is the paper mesh's error).
 pub fn check(scenario: &Scenario) -> Result<Scenario> {
+    check_with(scenario, None)
+}
+
+/// [`check`] with the reference mesh's modes from `cache` ([`reference_mesh_with`]): the same
+/// scenario to the bit.
+pub fn check_with(scenario: &Scenario, cache: Option<&ModalCache>) -> Result<Scenario> {
     match scenario.method {
         Method::Paper => {
             let mut s = scenario.clone();
@@ -181,16 +202,22 @@ pub fn check(scenario: &Scenario) -> Result<Scenario> {
             s.modal_cutoff = 0.0;
             s.step_free = crate::model::TimeStep::Auto;
             s.step_contact = crate::model::TimeStep::Auto;
-            printed(&s)
+            printed_with(&s, cache)
         }
-        Method::Converged => rung(scenario, DEFAULT_RUNG - 1, 2),
+        Method::Converged => rung(scenario, DEFAULT_RUNG - 1, 2, cache),
     }
 }
 
 /// The rung before [`check`]'s (converged method only): the ladder's rung two below the printed
 /// one, or a quarter of each explicit element count.
 pub fn coarse(scenario: &Scenario) -> Result<Scenario> {
-    rung(scenario, DEFAULT_RUNG - 2, 4)
+    coarse_with(scenario, None)
+}
+
+/// [`coarse`] with the reference mesh's modes from `cache` ([`reference_mesh_with`]): the same
+/// scenario to the bit.
+pub fn coarse_with(scenario: &Scenario, cache: Option<&ModalCache>) -> Result<Scenario> {
+    rung(scenario, DEFAULT_RUNG - 2, 4, cache)
 }
 
 /// The automatic cut-offs' multiplier: [`LIGHT_DAMPING_CUTOFF`] below a damping ratio of
@@ -209,8 +236,9 @@ pub fn light_damping_factor(scenario: &Scenario) -> f64 {
 pub const LIGHT_DAMPING_CUTOFF: f64 = 2.0;
 
 /// The ladder's rung `index` for `"auto"` fields; explicit element counts are divided by
-/// `divisor` (rounded up) so that the check rung of an explicit mesh is half as fine.
-fn rung(scenario: &Scenario, index: usize, divisor: u32) -> Result<Scenario> {
+/// `divisor` (rounded up) so that the check rung of an explicit mesh is half as fine; the reference
+/// mesh's modes from `cache` if given.
+fn rung(scenario: &Scenario, index: usize, divisor: u32, cache: Option<&ModalCache>) -> Result<Scenario> {
     let mut s = scenario.clone();
     let r = LADDER[index];
     let auto = [s.upper.elements_to_contact == 0, s.upper.elements_beyond_contact == 0];
@@ -230,7 +258,7 @@ fn rung(scenario: &Scenario, index: usize, divisor: u32) -> Result<Scenario> {
     balance_segments(&mut s, auto);
     if s.modal_cutoff == 0.0 {
         s.validate()?;
-        s.modal_cutoff = r.cutoff_factor * reference_mesh(scenario)?.automatic(scenario);
+        s.modal_cutoff = r.cutoff_factor * reference_mesh_with(scenario, cache)?.automatic(scenario);
     }
     Ok(s)
 }
@@ -255,6 +283,37 @@ mod tests {
         let paper = Scenario::paper();
         assert_eq!(printed(&paper).unwrap(), paper);
         assert_eq!(check(&paper).unwrap().method, Method::Converged);
+    }
+
+    /// Issue 43: the reference mesh's modes from a cache give every rung the uncached scenario to
+    /// the bit (its cut-off's bits), whichever run's per-run fields (drop height, damping, a
+    /// sea's instant) filled the cache; a second geometry gets its own entry and its own
+    /// frequencies.
+    #[test]
+    fn rungs_resolved_through_a_cache_are_the_uncached_ones_to_the_bit() {
+        let cache = ModalCache::default();
+        let base = Scenario::default();
+        let mut variants = Vec::new();
+        for (h, zeta) in [(0.5, 0.02), (1.7, 0.005), (0.2, 0.05)] {
+            variants.push(Scenario { drop_height: h, damping_ratio: zeta, ..base.clone() });
+        }
+        variants.push(Scenario { contact_position: 20.0, ..base.clone() });
+        let bits = |r: ReferenceFrequencies| [r.mesh.to_bits(), r.contact.to_bits()];
+        for s in &variants {
+            assert_eq!(bits(reference_mesh_with(s, Some(&cache)).unwrap()), bits(reference_mesh(s).unwrap()));
+            for (cached, fresh) in [
+                (printed_with(s, Some(&cache)), printed(s)),
+                (check_with(s, Some(&cache)), check(s)),
+                (coarse_with(s, Some(&cache)), coarse(s)),
+            ] {
+                let (cached, fresh) = (cached.unwrap(), fresh.unwrap());
+                assert_eq!(cached.modal_cutoff.to_bits(), fresh.modal_cutoff.to_bits());
+                assert_eq!(format!("{cached:?}"), format!("{fresh:?}"));
+            }
+        }
+        assert_eq!(cache.len(), 2, "one reference mesh per geometry");
+        let other = reference_mesh_with(&variants[3], Some(&cache)).unwrap();
+        assert_ne!(bits(other), bits(reference_mesh(&base).unwrap()));
     }
 
     /// A point mass m on a spring k: one rigid-body mode of modal amplitude 1/sqrt(m) at the

@@ -325,7 +325,9 @@ impl Simulation<ModalStepper> {
     }
 
     fn starting_with_cache(scenario: &Scenario, motion: SupportMotion, cache: Option<&ModalCache>) -> Result<Self> {
-        let resolved = crate::discretise::printed(scenario)?;
+        // The reference mesh of an automatic cut-off shares the cache too (issue 43: one
+        // eigen-solve per geometry, not per run).
+        let resolved = crate::discretise::printed_with(scenario, cache)?;
         let model = Model::new(&resolved)?;
         let (full, run, projector) = match cache.filter(|c| c.is_enabled()) {
             Some(cache) => {

@@ -146,7 +146,28 @@ impl ModalCache {
     /// of the same geometry computed them, else computed here and kept. Errors of
     /// [`ModalSystem::new`] are returned, never kept.
     pub fn modes(&self, model: &Model) -> Result<RunModes> {
-        let shared = match self.slot(model) {
+        let shared = self.shared(model)?;
+        let s = &model.scenario;
+        Ok(RunModes {
+            full: shared.full.clone(),
+            run: shared.run.clone().map(|m| m.with_damping(s)),
+            projector: shared.projector.clone(),
+        })
+    }
+
+    /// The full modal system of `model` ([`ModalSystem::new`], every mode of its mesh, with the
+    /// damping of the run that computed it) from the cache, else computed and kept as
+    /// [`Self::modes`] keeps it: what reads only the frequencies and shapes (the automatic
+    /// cut-off's reference mesh, [`crate::discretise::reference_mesh_with`]) shares it whatever the
+    /// per-run fields.
+    pub fn full_modes(&self, model: &Model) -> Result<Arc<ModalSystem>> {
+        Ok(self.shared(model)?.full.clone())
+    }
+
+    /// What `model`'s key holds, filled here on a miss (a system of no key, or of a cache that
+    /// keeps nothing, is computed and not kept).
+    fn shared(&self, model: &Model) -> Result<Arc<Shared>> {
+        Ok(match self.slot(model) {
             None => Arc::new(compute(model)?),
             Some(slot) => {
                 let mut filled = lock(&slot);
@@ -161,12 +182,6 @@ impl ModalCache {
                     }
                 }
             }
-        };
-        let s = &model.scenario;
-        Ok(RunModes {
-            full: shared.full.clone(),
-            run: shared.run.clone().map(|m| m.with_damping(s)),
-            projector: shared.projector.clone(),
         })
     }
 

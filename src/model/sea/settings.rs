@@ -422,6 +422,12 @@ impl SeaSettings {
         Ok(record)
     }
 
+    /// The same settings with caches of their own: nothing made for `self` or its clones (records,
+    /// tables) is shared with the copy or its clones (a benchmark's fresh campaign).
+    pub fn unshared(&self) -> SeaSettings {
+        SeaSettings { cache: RecordCache::default(), records: RealisationCache::default(), ..self.clone() }
+    }
+
     /// What a record depends on besides the RAO table: the section's fields and the run's
     /// duration, as text.
     pub fn key(&self, duration: f64) -> String {
