@@ -474,3 +474,71 @@ fn not_loaded(file: &str) -> Error {
         format!("'{}', not loaded", crate::model::motion_table::quote_cell(file)),
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::sea::SeaRecord;
+    use crate::Scenario;
+
+    /// A vessel that heaves with the wave and pitches with its slope, both cut off in waves
+    /// shorter than its hull (made-up RAOs, 0.1 to 3 rad/s, head and following seas): the sharing of the tables, not the vessel, is under test.
+    fn scenario(time_shift: f64) -> Scenario {
+        let mut raos = String::from(
+            "frequency,heading,surge,surge_phase,sway,sway_phase,heave,heave_phase,roll,roll_phase,pitch,pitch_phase,yaw,yaw_phase\n",
+        );
+        for heading in [0.0, 180.0] {
+            for k in 0..30 {
+                let w = 0.1 + 0.1 * f64::from(k);
+                let hull = 1.0 / (1.0 + (w / 0.7f64).powi(4));
+                raos += &format!("{w},{heading},0,0,0,0,{hull},0,0,0,{},-90,0,0\n", hull * (w * w / 9.81).to_degrees());
+            }
+        }
+        let text = format!(
+            "duration = 3.0\n[sea]\nsignificant_wave_height = 2.5\npeak_period = 8.0\nseed = 7\ntime_shift = {time_shift}\n\
+             raos = \"test.csv\"\nhinge_point = [-10.0, 0.0, 8.0]\nclamp_point = [15.0, 0.0, 8.0]\n"
+        );
+        let mut s = Scenario::from_toml(&text, "the test's sea").unwrap();
+        if let Some(sea) = s.sea.as_mut() {
+            sea.rao_table = Some(Arc::new(RaoTable::parse_csv(&raos).unwrap()));
+        }
+        s
+    }
+
+    fn bits(table: &MotionTable) -> Vec<u64> {
+        let values = table.motions.iter().flat_map(|m| m.values());
+        table.times.iter().copied().chain(values).map(f64::to_bits).collect()
+    }
+
+    /// Issue 43: the three runs of an answer (the printed rung, its check, the twin: clones of one
+    /// scenario with the same sea) share one motion table, made once; a table made afresh (caches
+    /// of its own, [`SeaSettings::unshared`]) is the shared one to the bit, and the run's start
+    /// motion is the table's first row continued to the instant, which is the record's own row
+    /// there (one block of [`SeaRecord::motions`]), to the bit.
+    #[test]
+    fn an_answers_runs_share_one_table_equal_to_the_unshared_one_to_the_bit() {
+        let printed = scenario(1234.5678);
+        let sea = printed.sea.as_ref().unwrap();
+        let table = sea.motion_table(printed.duration).unwrap();
+        let twin = Scenario { drop_height: printed.drop_height * (1.0 + 1e-9), ..printed.clone() };
+        let check = printed.clone();
+        for other in [&twin, &check] {
+            let shared = other.sea.as_ref().unwrap().motion_table(other.duration).unwrap();
+            assert!(Arc::ptr_eq(&shared, &table), "a clone's table is the one made for the scenario");
+        }
+        let fresh = sea.unshared().motion_table(printed.duration).unwrap();
+        assert!(!Arc::ptr_eq(&fresh, &table));
+        assert_eq!(bits(&fresh), bits(&table));
+        let start = printed.motion_at_start().unwrap();
+        let dt = sea.sample_interval;
+        let (first, _) = SeaRecord::grid(sea.time_shift, sea.time_shift + printed.duration, dt);
+        let row = sea.record().unwrap().motions(first, first, dt)[0];
+        let own = row.after(sea.time_shift - first as f64 * dt);
+        assert_eq!(start.values().map(f64::to_bits), own.values().map(f64::to_bits));
+        assert_eq!(start.values().map(f64::to_bits), table.motion_at(sea.time_shift).values().map(f64::to_bits));
+        // Another instant: a table of its own.
+        let later = scenario(2000.0);
+        let other = later.sea.as_ref().unwrap().motion_table(later.duration).unwrap();
+        assert_ne!(bits(&other), bits(&table));
+    }
+}
