@@ -1007,8 +1007,12 @@ impl<S: Stepper> Simulation<S> {
         for k in 0..5 {
             let (value, at) = extremes[k];
             let floor = if open { running[k].min(first_peaks[k]) } else { running[k] };
+            // Most outputs raise no peak: their instant is not rounded (a call, five a step).
+            if !(value > floor) {
+                continue;
+            }
             let at_ns = (at * 1e9).round();
-            if !(value > floor && inside(at_ns)) {
+            if !inside(at_ns) {
                 continue;
             }
             let mut best = self.values_at(start, at_ns as u64, stage, &mut taken);
