@@ -1682,6 +1682,13 @@ impl<S: Stepper> Simulation<S> {
         // The gap moves with a jump of the supports' position (a master's inconsistent input).
         self.state.gap = probes[Probe::Gap as usize];
         self.state.inertial_potential = energies.inertial_potential;
+        if self.polynomial_peaks() && self.next_stage() == stage && self.state.result.time_ns == at {
+            // The next step's start as its peaks' cubic takes it (`step_extremes` would measure
+            // the same state under the same excitation again: a sea's row every 5 ms).
+            let rates = self.stepper.rates(&self.state.kinematics, stage, &excitation);
+            let step = self.state.result.step;
+            self.step_end = Some(StepEnd { time_ns: at, step, stage, probes, rates });
+        }
         self.outputs_at_latest_step();
         Ok(())
     }
