@@ -83,17 +83,23 @@ impl Block {
 
     /// Each column's weight's magnitude under the state `q` (its beam's kept modes) and `loads`
     /// (0 for a column neither weights), into `out` (one per column).
+    /// Every entry is written once (no clearing pass: it runs twice a step).
     fn magnitudes(&self, q: &[f64], loads: Option<&[f64; LOADS]>, out: &mut Vec<f64>) {
-        out.clear();
         out.resize(self.modes.len() + LOADS, 0.0);
-        let kept = self.modes.start.min(q.len())..self.modes.end.min(q.len());
-        for (o, w) in out.iter_mut().zip(&q[kept]) {
+        let (modes, load_columns) = out.split_at_mut(self.modes.len());
+        let kept = &q[self.modes.start.min(q.len())..self.modes.end.min(q.len())];
+        let (weighted, unweighted) = modes.split_at_mut(kept.len());
+        for (o, w) in weighted.iter_mut().zip(kept) {
             *o = w.abs();
         }
-        if let Some(loads) = loads {
-            for (o, w) in out[self.modes.len()..].iter_mut().zip(loads) {
-                *o = w.abs();
+        unweighted.fill(0.0);
+        match loads {
+            Some(loads) => {
+                for (o, w) in load_columns.iter_mut().zip(loads) {
+                    *o = w.abs();
+                }
             }
+            None => load_columns.fill(0.0),
         }
     }
 }
