@@ -376,7 +376,7 @@ impl StationRows {
                     continue;
                 }
                 let values = &mut work.values[chunk.stations.clone()];
-                product(&self.blocks[chunk.block], chunk.local.clone(), q, loads, values);
+                chunk_product(&self.blocks[chunk.block], chunk.local.clone(), q, loads, values);
                 let stations = chunk.stations.clone();
                 let before = Held::of(&running.max[stations.clone()]);
                 raise(values, &mut running.max[stations.clone()], &mut running.times[stations], time);
@@ -506,11 +506,11 @@ impl StationRows {
                 let (block, local, stations) = (&self.blocks[b], chunk.local.clone(), chunk.stations.clone());
                 if !work.start_held[c] {
                     let (loads, rates) = (work.start_loads, work.start_load_rates);
-                    product(block, local.clone(), start_q, loads.as_ref(), &mut work.start_values[stations.clone()]);
-                    product(block, local.clone(), start_v, rates.as_ref(), &mut work.start_rates[stations.clone()]);
+                    let outs = (&mut work.start_values[stations.clone()], &mut work.start_rates[stations.clone()]);
+                    chunk_product_pair(block, local.clone(), (start_q, loads.as_ref()), (start_v, rates.as_ref()), outs);
                 }
-                product(block, local.clone(), end.q, end.loads, &mut work.values[stations.clone()]);
-                product(block, local, end.v, end.load_rates, &mut work.rates[stations.clone()]);
+                let outs = (&mut work.values[stations.clone()], &mut work.rates[stations.clone()]);
+                chunk_product_pair(block, local, (end.q, end.loads), (end.v, end.load_rates), outs);
                 end_held[c] = true;
                 let running_chunk =
                     Running { max: &mut running.max[stations.clone()], times: &mut running.times[stations.clone()] };
@@ -693,6 +693,95 @@ fn magnitude_sum(a: &[f64], b: &[f64]) -> f64 {
         }
     }
     lanes.iter().sum::<f64>() + tail
+}
+
+/// [`product`] over a chunk's stations (at most [`CHUNK`]) for `N` states at once (a step's
+/// values and rates: `inputs`, each its own coordinates and load coefficients, of the same
+/// length and the same basis), into `outs` (one value per station each): the same sums to the
+/// bit (each station's terms added one after the other from 0, the modes' columns in order,
+/// then the loads'), but each eight stations' sums held in registers over all the columns, and
+/// each column read once for the `N` states (the envelope's products were a tenth of a
+/// campaign's time).
+#[inline(always)]
+fn chunk_products<const N: usize>(
+    block: &Block,
+    local: Range<usize>,
+    inputs: [(&[f64], Option<&[f64; LOADS]>); N],
+    mut outs: [&mut [f64]; N],
+) {
+    let length = inputs[0].0.len();
+    let kept = block.modes.start.min(length)..block.modes.end.min(length);
+    let loads = inputs[0].1.is_some();
+    let m = local.len();
+    let mode = |j: usize| &block.column(j)[local.clone()];
+    let load = |a: usize| &block.column(block.modes.len() + a)[local.clone()];
+    let lanes = m - m % 8;
+    for k in (0..lanes).step_by(8) {
+        let mut sums = [[0.0f64; 8]; N];
+        let mut add = |column: &[f64], weights: [f64; N]| {
+            let c: &[f64; 8] = column[k..k + 8].try_into().expect("eight stations");
+            for (sum, w) in sums.iter_mut().zip(weights) {
+                for i in 0..8 {
+                    sum[i] += c[i] * w;
+                }
+            }
+        };
+        for (j, i) in kept.clone().enumerate() {
+            add(mode(j), inputs.map(|(x, _)| x[i]));
+        }
+        if loads {
+            for a in 0..LOADS {
+                add(load(a), inputs.map(|(_, c)| c.map_or(0.0, |c| c[a])));
+            }
+        }
+        for (out, sum) in outs.iter_mut().zip(&sums) {
+            out[k..k + 8].copy_from_slice(sum);
+        }
+    }
+    for k in lanes..m {
+        let mut sums = [0.0f64; N];
+        for (j, i) in kept.clone().enumerate() {
+            let c = mode(j)[k];
+            for (sum, (x, _)) in sums.iter_mut().zip(inputs) {
+                *sum += c * x[i];
+            }
+        }
+        if loads {
+            for a in 0..LOADS {
+                let c = load(a)[k];
+                for (sum, (_, l)) in sums.iter_mut().zip(inputs) {
+                    *sum += c * l.map_or(0.0, |l| l[a]);
+                }
+            }
+        }
+        for (out, sum) in outs.iter_mut().zip(sums) {
+            out[k] = sum;
+        }
+    }
+}
+
+/// [`chunk_products`] of one state, compiled for the widest vectors the CPU has.
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn chunk_product(block: &Block, local: Range<usize>, q: &[f64], loads: Option<&[f64; LOADS]>, out: &mut [f64]) {
+    chunk_products(block, local, [(q, loads)], [out]);
+}
+
+/// [`chunk_products`] of a state's values and rates (`(q, loads)`, `(v, rates)`) into
+/// `(values, rate_values)`; two [`chunk_product`]s where they do not share a basis.
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn chunk_product_pair(
+    block: &Block,
+    local: Range<usize>,
+    (q, loads): (&[f64], Option<&[f64; LOADS]>),
+    (v, rates): (&[f64], Option<&[f64; LOADS]>),
+    (values, rate_values): (&mut [f64], &mut [f64]),
+) {
+    if q.len() == v.len() && loads.is_some() == rates.is_some() {
+        chunk_products(block, local, [(q, loads), (v, rates)], [values, rate_values]);
+    } else {
+        chunk_products(block, local.clone(), [(q, loads)], [values]);
+        chunk_products(block, local, [(v, rates)], [rate_values]);
+    }
 }
 
 /// The stresses of `block`'s stations `local` (`out`: one value each): compiled for the widest
