@@ -742,13 +742,18 @@ impl<S: Stepper> Simulation<S> {
         if !(must || recorder.keeps(result)) {
             return recorder.step(result, kinematics.displacement.as_slice());
         }
+        let (feed, details) = (self.feed.listened(), recorder.wants_details());
+        if feed.is_none() && !details {
+            // A recorder that keeps no stations and wants no details (a batch run's).
+            return recorder.step(result, kinematics.displacement.as_slice());
+        }
         let excitation = self.excitation_at(result.time_ns);
         let stage = if result.contact { Stage::Contact } else { Stage::Free };
-        if let Some(feed) = self.feed.listened() {
+        if let Some(feed) = feed {
             feed.set_loads(self.correction_loads(own(kinematics), stage, &excitation));
             self.publish_maxima(feed);
         }
-        if recorder.wants_details() {
+        if details {
             let mut detailed = *result;
             self.set_support_and_tips(&mut detailed, kinematics, &excitation);
             return recorder.step(&detailed, kinematics.displacement.as_slice());
