@@ -905,6 +905,57 @@ mod tests {
         assert!(checked >= 5_000, "{checked}");
     }
 
+    /// A chunk's products ([`chunk_product`], and [`chunk_product_pair`] of a state's values and
+    /// rates) are [`product`]'s sums to the bit, on every chunk of the paper model (full basis:
+    /// no loads) and of the converged printed rung (with loads, chunks of 16 stations and shorter
+    /// tails), for random states; and a pair whose two states do not share a basis falls back to
+    /// one product each.
+    #[test]
+    fn a_chunks_products_are_the_dense_products_to_the_bit() {
+        let mut seed = 777u64;
+        let mut random = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let mut checked = 0;
+        for scenario in [Scenario::paper(), Scenario::default()] {
+            let resolved = crate::discretise::printed(&scenario).unwrap();
+            let model = Model::new(&resolved).unwrap();
+            let system = ModalSystem::new(&model).unwrap().for_run(&model).unwrap();
+            let divisors: Vec<f64> = model.stations.all().map(|s| s.divisor).collect();
+            let rows = StationRows::new(&system, &divisors, &vec![0.0; divisors.len()], groups(&model));
+            let n = system.dofs();
+            for _ in 0..5 {
+                let (q, v): (Vec<f64>, Vec<f64>) = (0..n).map(|_| (random(), 1e3 * random())).unzip();
+                let (c, r): ([f64; LOADS], [f64; LOADS]) =
+                    (std::array::from_fn(|_| 1e4 * random()), std::array::from_fn(|_| 1e7 * random()));
+                let (loads, rates) = (system.is_truncated().then_some(&c), system.is_truncated().then_some(&r));
+                for chunk in &rows.chunks {
+                    let (block, local) = (&rows.blocks[chunk.block], chunk.local.clone());
+                    let m = local.len();
+                    let (mut expected, mut expected_rates) = (vec![0.0; m], vec![0.0; m]);
+                    product(block, local.clone(), &q, loads, &mut expected);
+                    product(block, local.clone(), &v, rates, &mut expected_rates);
+                    let (mut one, mut values, mut value_rates) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);
+                    chunk_product(block, local.clone(), &q, loads, &mut one);
+                    chunk_product_pair(block, local.clone(), (&q, loads), (&v, rates), (&mut values, &mut value_rates));
+                    let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(&one), bits(&expected), "chunk {:?}", chunk.stations);
+                    assert_eq!(bits(&values), bits(&expected), "chunk {:?}", chunk.stations);
+                    assert_eq!(bits(&value_rates), bits(&expected_rates), "chunk {:?}", chunk.stations);
+                    // The rates without their loads: two products, each its own.
+                    let mut alone = vec![0.0; m];
+                    product(block, local.clone(), &v, None, &mut alone);
+                    chunk_product_pair(block, local, (&q, loads), (&v, None), (&mut values, &mut value_rates));
+                    assert_eq!(bits(&values), bits(&expected), "chunk {:?}", chunk.stations);
+                    assert_eq!(bits(&value_rates), bits(&alone), "chunk {:?}", chunk.stations);
+                    checked += m;
+                }
+            }
+        }
+        assert!(checked >= 1_000, "{checked}");
+    }
+
     /// Each envelope's (value, first station, time) and worst (utilisation, first station) from
     /// running values, as [`crate::results::StationEnvelope::peak`] takes them.
     fn envelope_peaks(
