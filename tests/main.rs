@@ -100,3 +100,4 @@ mod truncation;
 mod two_support_motion;
 mod verify;
 mod wording;
+mod run_overhead;
