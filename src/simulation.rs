@@ -1013,7 +1013,8 @@ impl<S: Stepper> Simulation<S> {
             let (value, at) = extremes[k];
             let floor = if open { running[k].min(first_peaks[k]) } else { running[k] };
             // Most outputs raise no peak: their instant is not rounded (a call, five a step).
-            if !(value > floor) {
+            let raises = value > floor;
+            if !raises {
                 continue;
             }
             let at_ns = (at * 1e9).round();

@@ -507,7 +507,13 @@ impl StationRows {
                 if !work.start_held[c] {
                     let (loads, rates) = (work.start_loads, work.start_load_rates);
                     let outs = (&mut work.start_values[stations.clone()], &mut work.start_rates[stations.clone()]);
-                    chunk_product_pair(block, local.clone(), (start_q, loads.as_ref()), (start_v, rates.as_ref()), outs);
+                    chunk_product_pair(
+                        block,
+                        local.clone(),
+                        (start_q, loads.as_ref()),
+                        (start_v, rates.as_ref()),
+                        outs,
+                    );
                 }
                 let outs = (&mut work.values[stations.clone()], &mut work.rates[stations.clone()]);
                 chunk_product_pair(block, local, (end.q, end.loads), (end.v, end.load_rates), outs);
