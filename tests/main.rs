@@ -80,6 +80,7 @@ mod report_csv;
 mod rigid_impactor;
 mod robust_meshes;
 mod run_cost;
+mod run_overhead;
 mod scenario;
 mod sea_cli;
 mod sea_raos;
