@@ -1938,8 +1938,9 @@ impl<S: Stepper> Simulation<S> {
         self.start_recording(recorder)?;
         let end_ns = self.model.scenario.duration_ns();
         let polynomial = self.polynomial_peaks();
+        let changes = self.model.scenario.motion_changes(end_ns)?;
         self.outputs_details = recorder.wants_details();
-        for (at_ns, motion) in self.model.scenario.motion_changes(end_ns)? {
+        for (at_ns, motion) in changes {
             let advanced = if polynomial {
                 self.advance_to_row(at_ns, &motion, recorder)
             } else {
