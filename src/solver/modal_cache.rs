@@ -14,6 +14,10 @@
 //! the impact energy). A field missing from [`PER_RUN_FIELDS`] only costs sharing; a field
 //! wrongly in it would share modes that differ, and the tests vary each of them.
 //!
+//! The automatic cut-off's reference mesh (the paper mesh's modes,
+//! [`crate::discretise::reference_mesh_with`]) is kept here too, by the same key, so that the rungs
+//! a sweep or a campaign resolves share one eigen-solve per geometry (issue 43).
+//!
 //! Measured (issue 29, the default scenario, perf): the setup is about 4 % of a run's time, the
 //! eigen decompositions most of it; stepping is the rest.
 

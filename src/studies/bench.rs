@@ -330,7 +330,7 @@ pub fn sea_benchmark(runs: usize) -> Result<String> {
 /// rung: ~25 ms) and then its events: timing campaigns of [`CAMPAIGN_EVENTS`] and of twice as many
 /// events separates the two, the per-event wall (T(2E) - T(E)) / E and the setup T(E) - E x that
 /// (at least 0), so that the projection for 10 000 events counts the setup once, not 500 times
-/// (the bar: 60 s on two cores); medians of `runs`.
+/// (the bar: 60 s on two cores); each part the median of `runs` pairs of campaigns.
 pub fn campaign_benchmark(runs: usize) -> Result<String> {
     use crate::model::sea::RaoTable;
     use crate::studies::campaign::{Campaign, Options};
@@ -343,29 +343,37 @@ pub fn campaign_benchmark(runs: usize) -> Result<String> {
         settings.rao_table = Some(table);
     }
     let jobs = crate::studies::sweep::default_jobs();
-    // A fresh campaign of `events` each time (a scenario of its own: no record, table or mode
-    // made by an earlier one), its records and modes computed inside the timing.
-    let time = |events: u64| -> Result<f64> {
-        let mut samples = Vec::with_capacity(runs.max(1));
-        for _ in 0..runs.max(1) {
-            let fresh = Scenario { sea: sea.sea.as_ref().map(SeaSettings::unshared), ..sea.clone() };
-            let options = Options { events, seeds: 4, record_length: 3600.0, ..Options::default() };
-            let campaign = Campaign::new(fresh, Vec::new(), options, events, crate::model::scenario::MAX_STEPS)?;
-            let start = Instant::now();
-            let tally = campaign.run(jobs, &std::sync::atomic::AtomicBool::new(false), &mut |_| {}, &mut |_| Ok(()))?;
-            samples.push(start.elapsed());
-            if tally.failed > 0 {
-                return Err(crate::Error::Other(format!(
-                    "the bench's campaign: {} of {events} events failed",
-                    tally.failed
-                )));
-            }
+    // A fresh campaign of `events` (a scenario of its own: no record, table or mode made by an
+    // earlier one), its records and modes computed inside the timing.
+    let time = |events: u64| -> Result<Duration> {
+        let fresh = Scenario { sea: sea.sea.as_ref().map(SeaSettings::unshared), ..sea.clone() };
+        let options = Options { events, seeds: 4, record_length: 3600.0, ..Options::default() };
+        let campaign = Campaign::new(fresh, Vec::new(), options, events, crate::model::scenario::MAX_STEPS)?;
+        let start = Instant::now();
+        let tally = campaign.run(jobs, &std::sync::atomic::AtomicBool::new(false), &mut |_| {}, &mut |_| Ok(()))?;
+        let wall = start.elapsed();
+        if tally.failed > 0 {
+            return Err(crate::Error::Other(format!(
+                "the bench's campaign: {} of {events} events failed",
+                tally.failed
+            )));
         }
-        Ok(median(samples).as_secs_f64())
+        Ok(wall)
     };
     const EVENTS: u64 = CAMPAIGN_EVENTS;
-    let (once, twice) = (time(EVENTS)?, time(2 * EVENTS)?);
-    let split = CampaignCost::of(once, twice, EVENTS);
+    // Each run times the two campaigns back to back (the machine's load alike for both) and
+    // splits them; the parts are the medians of the runs' splits.
+    let (mut onces, mut twices, mut setups, mut pers) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for _ in 0..runs.max(1) {
+        let (once, twice) = (time(EVENTS)?, time(2 * EVENTS)?);
+        let split = CampaignCost::of(once.as_secs_f64(), twice.as_secs_f64(), EVENTS);
+        onces.push(once);
+        twices.push(twice);
+        setups.push(Duration::from_secs_f64(split.setup));
+        pers.push(Duration::from_secs_f64(split.per_event));
+    }
+    let (once, twice) = (median(onces).as_secs_f64(), median(twices).as_secs_f64());
+    let split = CampaignCost { setup: median(setups).as_secs_f64(), per_event: median(pers).as_secs_f64() };
     let _ = writeln!(out, "campaign (the sea state above, 3 s runs, converged answers, median of {runs} runs):");
     let _ = writeln!(
         out,
