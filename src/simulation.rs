@@ -1512,12 +1512,20 @@ impl<S: Stepper> Simulation<S> {
                 // The dense output before the stop point, inside the step it breaks: that step
                 // taken again (as the point was interpolated on it), then left untaken.
                 let saved = (self.state.clone(), self.backup.clone(), self.step_end);
+                // The sub-impacts live beside the state: the step left untaken leaves them too (as
+                // `advance_outputs_to` does), or a logged run's last sub-impact would end past the
+                // stop time while an unlogged one's does not.
+                let saved_impacts = (self.sub_impacts.len(), self.sub_impacts.last().copied());
                 let instants = self.output_peak_instants.clone();
                 let peaks = (self.output.peaks, self.output_peak_times);
                 let sent = self
                     .step(u64::MAX, false)
                     .and_then(|_| self.record_samples(recorder, &saved.0, self.output.time_ns, &instants, peaks));
                 (self.state, self.backup, self.step_end) = saved;
+                self.sub_impacts.truncate(saved_impacts.0);
+                if let (Some(last), Some(kept)) = (self.sub_impacts.last_mut(), saved_impacts.1) {
+                    *last = kept;
+                }
                 sent?;
             }
             let record = self.stop_record();

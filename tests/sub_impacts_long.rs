@@ -66,3 +66,35 @@ fn a_chattering_sphere_keeps_the_first_hundred_sub_impacts_and_counts_them_all()
     assert!(b.contains(&more), "{b}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A logged run and an unlogged one list the same sub-impacts: the log's dense output retakes the
+/// step the stop time breaks and leaves it untaken, sub-impacts included (found on
+/// examples/vessel-sea.toml, whose last window is open at the stop: it ended 0.304327874 s long
+/// unlogged and 0.305083106 s logged, past the stop time).
+#[test]
+fn a_logged_run_lists_the_same_sub_impacts_as_an_unlogged_one() {
+    let dir = std::env::temp_dir().join(format!("beam-impact-subimpact-log-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let example = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/vessel-sea.toml");
+    let json = |log: Option<&std::path::Path>| -> serde_json::Value {
+        let mut cmd = beam_impact_cli();
+        cmd.arg("run").arg(example).args(["--json", "-"]);
+        match log {
+            Some(path) => cmd.arg("--mcap").arg(path),
+            None => cmd.arg("--no-mcap"),
+        };
+        let out = cmd.output().unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let (logged, unlogged) = (json(Some(&dir.join("sea.mcap"))), json(None));
+    let list = |doc: &serde_json::Value| doc["sub_impacts"].as_array().unwrap().clone();
+    assert_eq!(list(&logged), list(&unlogged));
+    let duration = 3.0;
+    for w in list(&logged) {
+        let end = w["start"].as_f64().unwrap() + w["duration"].as_f64().unwrap();
+        // The stop time to within the rounding of start + duration (a few ulps of 3 s).
+        assert!(end <= duration + 1e-12, "a sub-impact ends at {end} s, past the stop time {duration} s");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
