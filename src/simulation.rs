@@ -19,6 +19,9 @@ use crate::solver::initial::{initial_state, Pitching};
 use crate::solver::model_range::{ModelRange, RangeCheck, RangeRows, StrainPeak};
 use crate::solver::static_correction::LOADS;
 use crate::solver::turning_points::TurningPoints;
+mod tangent;
+pub use tangent::{Linearised, GRAZE_FRACTION, SCREEN_FRACTION};
+
 use crate::solver::{
     DenseStepper, Energies, EnergyMethod, Excitation, Kinematics, ModalCache, ModalStepper, ModalSystem, StepPlan,
     Stepper, TipForces,
@@ -300,6 +303,8 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     far_support: Option<std::sync::Arc<crate::solver::far_support::FarSupport>>,
     /// Whether each step raises the model's range ([`Self::without_model_range`]).
     follows_range: bool,
+    /// The twin's difference carried alongside (issue 43: [`Self::follow_tangent`]).
+    tangent: Option<Box<tangent::Tangent>>,
 }
 
 impl Simulation<ModalStepper> {
@@ -514,6 +519,7 @@ impl<S: Stepper> Simulation<S> {
             peak_instants: Vec::new(),
             output_peak_instants: Vec::new(),
             far_support: None,
+            tangent: None,
         };
         simulation.far_support =
             crate::solver::far_support::FarSupport::new(&simulation.model, &simulation.modal).map(std::sync::Arc::new);
@@ -1281,7 +1287,12 @@ impl<S: Stepper> Simulation<S> {
             None
         };
         let force_peak = within_step.map_or((result.contact_force.abs(), result.time), |e| e[4]);
+        let first_before =
+            self.tangent.as_ref().map(|_| (self.state.first_contact.peaks, self.state.first_contact.ended));
         self.update_peaks(energies.upper_strain, within_step);
+        if let Some(first_before) = first_before {
+            self.tangent_after_step(stage, &previous, step_ns, within_step.as_ref(), first_before);
+        }
         if stage.is_contact() {
             if let Some(last) = self.sub_impacts.last_mut() {
                 last.observe(result.time, force_peak);
