@@ -1237,6 +1237,9 @@ impl<S: Stepper> Simulation<S> {
                 ),
             });
         }
+        if self.tangent.is_some() {
+            self.tangent_advance(stage, previous.time_ns, step_ns);
+        }
         self.state.gap = probes[Probe::Gap as usize];
         let span = (previous.time_ns, previous.time_ns + step_ns);
         // The end state's correction load coefficients, once for the envelope and the range.

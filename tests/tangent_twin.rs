@@ -5,7 +5,6 @@
 
 use beam_impact::answer::{self, twin_scenario};
 use beam_impact::record::NullRecorder;
-use beam_impact::solver::ModalCache;
 use beam_impact::{Scenario, Simulation};
 
 /// The linearised spreads, their bound and the real twin's spreads, each [whole 5, first 5, env 4].
@@ -127,4 +126,77 @@ fn print_the_sea() {
         );
     }
     println!("{linearised} of {total} linearised");
+}
+
+#[test]
+#[ignore]
+fn time_the_sea() {
+    let shifts: Vec<Scenario> = (0..20).map(|i| sea(i as f64 * 13.7, 1 + (i % 4) as u64)).collect();
+    for round in 0..2 {
+        for linearised in [false, true] {
+            let start = std::time::Instant::now();
+            for s in &shifts {
+                event(s, linearised);
+            }
+            println!(
+                "round {round} linearised {linearised}: {:.1} ms an event",
+                start.elapsed().as_secs_f64() * 1e3 / 20.0
+            );
+        }
+    }
+}
+
+/// The verdict grid: undamped runs whose twin finds them chaotic, lightly and well damped drops
+/// of 0.1-2 m at the contact positions 4, 13 and 29 m (the bridge's free end), and instants of
+/// the example sea. Each case's answer with the tangent standing for the twin where it may, and
+/// with the real twin always: the same sensitivity verdict and the same trust on every case;
+/// where the tangent stood in, every spread below the screen and the real twin's below the
+/// tolerance; the chaotic cases ran the real twin and are flagged.
+#[test]
+fn the_tangent_gives_the_real_twins_verdict_on_every_case_of_the_grid() {
+    let case = |drop: f64, damping: f64, contact: f64| Scenario {
+        drop_height: drop,
+        damping_ratio: damping,
+        contact_position: contact,
+        duration: 1.0,
+        ..Scenario::default()
+    };
+    // (scenario, chaotic: the real twin flags it)
+    let mut cases = vec![
+        (case(0.1, 0.0, 4.0), true),
+        (case(0.1, 0.0, 29.0), true),
+        // Undamped at the free end, its peaks reproducible but its envelope not: the tangent's
+        // bound grows past the screen and the real twin runs.
+        (case(0.5, 0.0, 29.0), false),
+        (case(2.0, 0.0, 13.0), true),
+        (case(0.5, 0.01, 4.0), false),
+        (case(2.0, 0.01, 29.0), false),
+        (case(0.1, 0.02, 13.0), false),
+        (case(2.0, 0.02, 4.0), false),
+        (case(0.5, 0.05, 13.0), false),
+        (case(2.0, 0.05, 29.0), false),
+    ];
+    for shift in [0.0, 137.0, 411.0] {
+        cases.push((sea(shift, 1), false));
+    }
+    let tolerance = Scenario::default().discretisation_tolerance;
+    for (s, chaotic) in cases {
+        let name = format!("drop {} damping {} contact {}", s.drop_height, s.damping_ratio, s.contact_position);
+        let (with, real) = (event(&s, true), event(&s, false));
+        let (a, b) = (with.quality.checks.sensitivity.unwrap(), real.quality.checks.sensitivity.unwrap());
+        assert_eq!(a.pass, b.pass, "{name}: the sensitivity verdict ({} against the real twin's {})", a.value, b.value);
+        assert_eq!(with.quality.trusted, real.quality.trusted, "{name}: trust");
+        assert_eq!(b.pass, !chaotic, "{name}: the real twin's verdict is the case's ({})", b.value);
+        let twin = with.runs.iter().find(|r| r.role == "twin").unwrap();
+        if twin.linearised {
+            // The screen: every spread within a tenth of the tolerance; the real twin's within it.
+            assert!(a.value <= 0.1 * tolerance && b.value <= tolerance, "{name}: {} / {}", a.value, b.value);
+            let real_twin = real.runs.iter().find(|r| r.role == "twin").unwrap();
+            assert!(!real_twin.linearised);
+        } else {
+            // Where the real twin ran, it is the same answer to the bit.
+            assert_eq!(a.value.to_bits(), b.value.to_bits(), "{name}");
+        }
+        assert!(!(chaotic && twin.linearised), "{name}: a chaotic run's figure is the real twin's");
+    }
 }

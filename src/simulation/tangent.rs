@@ -30,6 +30,7 @@
 
 use super::{initial_physical_state, Simulation, StepResult};
 use crate::error::Result;
+use crate::model::system::PROBES;
 use crate::model::{Probe, Scenario};
 use crate::results::{Peaks, Summary};
 use crate::solver::contact::{self, Stage};
@@ -97,6 +98,22 @@ struct Record {
     graze: f64,
     /// A raised first-contact peak whose instant was not found (its bound stands in).
     lost_first: [bool; 5],
+    /// `delta`'s measure at `time_ns` (the next step's start).
+    measure: Measure,
+    /// Each envelope's peak as raised (the stations' group order) and its station's difference
+    /// at its instant.
+    envelope: [(f64, f64); 4],
+}
+
+/// What the outputs and the envelopes' bounds read of a difference `delta`, whatever the stage:
+/// the probes of its displacement and velocity (the kept modes' alone), and each envelope
+/// group's sum_i max |row_i| |x_i| of both.
+#[derive(Clone, Copy, Debug, Default)]
+struct Measure {
+    q: [f64; PROBES],
+    v: [f64; PROBES],
+    envelope_q: [f64; 4],
+    envelope_v: [f64; 4],
 }
 
 /// The tangent a printed run carries.
@@ -109,10 +126,16 @@ pub(super) struct Tangent {
     before: Option<(Kinematics, Record)>,
     /// Per envelope group (stations' order), per kept mode: the largest |row| / divisor over its
     /// stations; then the largest |correction row of the contact load| / divisor.
-    envelope_rows: [Vec<f64>; 4],
+    envelope_rows: Vec<[f64; 4]>,
     envelope_loads: [f64; 4],
+    /// Each group's stations (the stations' order: lower bending, lower shear, upper bending,
+    /// upper shear).
+    groups: [std::ops::Range<usize>; 4],
     /// Why the tangent cannot stand for the twin (a step it could not follow).
     broken: bool,
+    /// The latest step's start and end measures, between [`Simulation::tangent_advance`] and
+    /// [`Simulation::tangent_after_step`].
+    taken: Option<(Measure, Measure)>,
 }
 
 impl<S: Stepper> Simulation<S> {
@@ -157,6 +180,13 @@ impl<S: Stepper> Simulation<S> {
             acceleration: &start.acceleration - &own.acceleration,
         };
         let (envelope_rows, envelope_loads) = self.envelope_rows();
+        let st = &self.model.stations;
+        let counts = [st.lower.bending.len(), st.lower.shear.len(), st.upper.bending.len(), st.upper.shear.len()];
+        let mut from = 0;
+        let groups = counts.map(|c| {
+            from += c;
+            from - c..from
+        });
         let mut tangent = Tangent {
             delta,
             work: TangentWork::default(),
@@ -164,9 +194,12 @@ impl<S: Stepper> Simulation<S> {
             before: None,
             envelope_rows,
             envelope_loads,
+            groups,
             broken: false,
+            taken: None,
         };
-        let (values, _) = self.tangent_outputs(&tangent.delta, Stage::Free);
+        tangent.record.measure = self.tangent_measure(&tangent, &tangent.delta);
+        let (values, _) = self.tangent_outputs(&tangent.record.measure, Stage::Free);
         let peaks = self.state.result.peaks.as_array();
         let first = self.state.first_contact.peaks.as_array();
         let r = &mut tangent.record;
@@ -176,8 +209,14 @@ impl<S: Stepper> Simulation<S> {
             r.whole_bound[k] = values[k].abs();
             r.first_bound[k] = values[k].abs();
         }
-        let bounds = self.envelope_bounds(&tangent, &tangent.delta.displacement, Stage::Free);
-        tangent.record.envelope_bound = bounds;
+        let bounds = self.envelope_bounds(&tangent, &tangent.record.measure, Stage::Free);
+        tangent.record.envelope_bound = bounds.map(|(q, _)| q);
+        for g in 0..4 {
+            if let Some((station, value)) = self.group_peak(tangent.groups[g].clone()) {
+                let d = self.station_difference(station, &tangent.delta, Stage::Free).0;
+                tangent.record.envelope[g] = (value, d);
+            }
+        }
         self.tangent = Some(Box::new(tangent));
         Ok(true)
     }
@@ -229,26 +268,29 @@ impl<S: Stepper> Simulation<S> {
         let group = [2, 3, 0, 1];
         let envelope: [Option<f64>; 4] = std::array::from_fn(|k| {
             values[k].map(|v| {
-                let b = ratio(record.envelope_bound[group[k]], v);
+                let g = group[k];
+                let b = ratio(record.envelope_bound[g], v);
                 bound = bound.max(b);
-                b
+                // The peak raised at an instant the tangent saw; else (a paper point standing for
+                // its station, a stop point) its bound.
+                // A paper point (the clamp's bending and shear, the bridge's contact node) stands
+                // with its probe's peak: that peak's spread.
+                let paper = [Some(3), None, Some(1), Some(2)][k];
+                if record.envelope[g].0 == v {
+                    ratio(record.envelope[g].1, v)
+                } else if let Some(p) = paper.filter(|&p| summary.peaks.as_array()[p] == v) {
+                    whole.as_array()[p]
+                } else {
+                    b
+                }
             })
         });
         Some(Linearised { whole, first_contact: first, envelope, bound, graze: record.graze })
     }
 
-    /// Follows the step just taken (from `previous`, `step_ns` long, in `stage`; the peaks'
-    /// in-step extremes `extremes` and the first contact's peaks and end before it,
-    /// `first_before`): advances the difference, raises the bounds, and takes the difference at
-    /// every raised peak's instant.
-    pub(super) fn tangent_after_step(
-        &mut self,
-        stage: Stage,
-        previous: &StepResult,
-        step_ns: u64,
-        extremes: Option<&[(f64, f64); 5]>,
-        first_before: (Peaks, bool),
-    ) {
+    /// Advances the difference over the step just taken (from `start_ns`, `step_ns` long, in
+    /// `stage`), right after it (the stepper's coefficients of its size are at hand).
+    pub(super) fn tangent_advance(&mut self, stage: Stage, start_ns: u64, step_ns: u64) {
         let Some(mut t) = self.tangent.take() else { return };
         if t.broken {
             self.tangent = Some(t);
@@ -256,9 +298,9 @@ impl<S: Stepper> Simulation<S> {
         }
         // A step left untaken (an output point inside it) was undone with the state: so is the
         // tangent's.
-        if t.record.time_ns != previous.time_ns {
+        if t.record.time_ns != start_ns {
             match t.before.take() {
-                Some((delta, record)) if record.time_ns == previous.time_ns => {
+                Some((delta, record)) if record.time_ns == start_ns => {
                     t.delta = delta;
                     t.record = record;
                 }
@@ -277,19 +319,44 @@ impl<S: Stepper> Simulation<S> {
             None => t.before = Some((t.delta.clone(), t.record)),
         }
         let h = seconds_of(step_ns);
-        let start_bounds = self.envelope_bound_pair(&t, stage);
+        let start = t.record.measure;
         if !self.stepper.tangent_step(&mut t.delta, stage, h, &mut t.work) {
             t.broken = true;
             self.tangent = Some(t);
             return;
         }
-        // The start's outputs after the stage's equilibrium (the step made it): the same q, v.
-        let (d1, r1) = self.tangent_outputs(&t.delta, stage);
-        let (d0, r0) = {
-            let before = &t.before.as_ref().expect("just kept").0;
-            self.tangent_outputs(before, stage)
+        let end = self.tangent_measure(&t, &t.delta);
+        t.record.measure = end;
+        t.record.time_ns = start_ns + step_ns;
+        t.taken = Some((start, end));
+        self.tangent = Some(t);
+    }
+
+    /// Follows the step just taken (from `previous`, `step_ns` long, in `stage`; the peaks'
+    /// in-step extremes `extremes` and the first contact's peaks and end before it,
+    /// `first_before`), which [`Self::tangent_advance`] advanced the difference over: raises the
+    /// bounds, and takes the difference at every raised peak's instant.
+    pub(super) fn tangent_after_step(
+        &mut self,
+        stage: Stage,
+        previous: &StepResult,
+        step_ns: u64,
+        extremes: Option<&[(f64, f64); 5]>,
+        first_before: (Peaks, bool),
+    ) {
+        let Some(mut t) = self.tangent.take() else { return };
+        let taken = t.taken.take();
+        let Some((start, end)) = taken.filter(|_| !t.broken && t.record.time_ns == previous.time_ns + step_ns) else {
+            t.broken = true;
+            self.tangent = Some(t);
+            return;
         };
-        let end_bounds = self.envelope_bound_pair(&t, stage);
+        let h = seconds_of(step_ns);
+        // The start's outputs in this step's stage (its q and v are the measure's).
+        let (d0, r0) = self.tangent_outputs(&start, stage);
+        let (d1, r1) = self.tangent_outputs(&end, stage);
+        let start_bounds = self.envelope_bounds(&t, &start, stage);
+        let end_bounds = self.envelope_bounds(&t, &end, stage);
         let t0 = seconds_of(previous.time_ns);
         let at = |k: usize, time: f64| {
             let s = ((time - t0) / h).clamp(0.0, 1.0);
@@ -309,6 +376,20 @@ impl<S: Stepper> Simulation<S> {
             let (y0, v0) = start_bounds[g];
             let (y1, v1) = end_bounds[g];
             r.envelope_bound[g] = r.envelope_bound[g].max(y0.max(y1) + 4.0 / 27.0 * h * (v0 + v1));
+        }
+        for g in 0..4 {
+            match self.group_peak(t.groups[g].clone()) {
+                Some((station, value)) if value != r.envelope[g].0 => {
+                    let time = self.state.envelope_times[station];
+                    let start_delta = &t.before.as_ref().expect("kept by the advance").0;
+                    let (y0, v0) = self.station_difference(station, start_delta, stage);
+                    let (y1, v1) = self.station_difference(station, &t.delta, stage);
+                    let x = ((time - t0) / h).clamp(0.0, 1.0);
+                    let (c2, c3) = cubic_coefficients(y0, y1, v0 * h, v1 * h);
+                    r.envelope[g] = (value, y0 + x * (v0 * h + x * (c2 + x * c3)));
+                }
+                _ => {}
+            }
         }
         let result = self.state.result;
         let (peaks, times) = (result.peaks.as_array(), self.state.peak_times.as_array());
@@ -352,25 +433,43 @@ impl<S: Stepper> Simulation<S> {
         // A step end close to the threshold in the stage it goes on in: a graze.
         let gap = self.state.gap;
         if contact::stage(gap) == stage {
-            let dgap = self.stepper.probes(&t.delta.displacement)[Probe::Gap as usize];
+            let dgap = end.q[Probe::Gap as usize];
             let margin = (gap + contact::GAP_TOLERANCE).abs();
             let graze = if dgap == 0.0 { 0.0 } else { dgap.abs() / margin };
             r.graze = r.graze.max(graze);
         }
-        r.time_ns = result.time_ns;
         self.tangent = Some(t);
     }
 
-    /// The five peak outputs' differences and their rates at `delta` in `stage` (the truncated
+    /// The probes and the envelopes' mode sums of a difference `delta`.
+    fn tangent_measure(&self, t: &Tangent, delta: &Kinematics) -> Measure {
+        let (q, v) = (delta.displacement.as_slice(), delta.velocity.as_slice());
+        let n = q.len().min(v.len()).min(t.envelope_rows.len());
+        let (mut envelope_q, mut envelope_v) = ([0.0; 4], [0.0; 4]);
+        for i in 0..n {
+            let (a, b, row) = (q[i].abs(), v[i].abs(), &t.envelope_rows[i]);
+            for g in 0..4 {
+                envelope_q[g] += row[g] * a;
+                envelope_v[g] += row[g] * b;
+            }
+        }
+        Measure {
+            q: self.stepper.probes(&delta.displacement),
+            v: self.stepper.probes(&delta.velocity),
+            envelope_q,
+            envelope_v,
+        }
+    }
+
+    /// The five peak outputs' differences and their rates from `m` in `stage` (the truncated
     /// basis's static correction moving with the contact load's difference, -k_eff b^T delta q).
-    fn tangent_outputs(&self, delta: &Kinematics, stage: Stage) -> ([f64; 5], [f64; 5]) {
-        let mut p = self.stepper.probes(&delta.displacement);
-        let mut r = self.stepper.probes(&delta.velocity);
+    fn tangent_outputs(&self, m: &Measure, stage: Stage) -> ([f64; 5], [f64; 5]) {
+        let (mut p, mut r) = (m.q, m.v);
         let contact = stage.is_contact();
         if self.modal.is_truncated() && contact {
             let k = self.modal.bar_stiffness;
-            let (load, load_rate) =
-                (-k * self.modal_gap(delta.displacement.as_slice()), -k * self.modal_gap(delta.velocity.as_slice()));
+            let gap = Probe::Gap as usize;
+            let (load, load_rate) = (-k * m.q[gap], -k * m.v[gap]);
             for (j, row) in self.modal.correction.probes.iter().enumerate() {
                 p[j] += row[CONTACT] * load;
                 r[j] += row[CONTACT] * load_rate;
@@ -392,21 +491,57 @@ impl<S: Stepper> Simulation<S> {
         )
     }
 
-    /// Each envelope group's largest |row| / divisor per kept mode, and of the contact load's
-    /// correction row.
-    fn envelope_rows(&self) -> ([Vec<f64>; 4], [f64; 4]) {
+    /// The running peak of the envelope group of stations `range`: its station and value (None without stations).
+    fn group_peak(&self, range: std::ops::Range<usize>) -> Option<(usize, f64)> {
+        let values = self.state.envelope.get(range.clone())?;
+        let mut best: Option<(usize, f64)> = None;
+        for (i, &v) in values.iter().enumerate() {
+            if best.is_none_or(|(_, b)| v > b) {
+                best = Some((range.start + i, v));
+            }
+        }
+        best
+    }
+
+    /// Station `station`'s stress difference and its rate at the difference `delta` in `stage`.
+    fn station_difference(&self, station: usize, delta: &Kinematics, stage: Stage) -> (f64, f64) {
+        let m = &self.modal;
+        let Some(divisor) = self.model.stations.all().nth(station).map(|s| s.divisor) else { return (0.0, 0.0) };
+        if station >= m.stations.nrows() {
+            return (0.0, 0.0);
+        }
+        let row = m.stations.row(station);
+        let n = row.len().min(delta.displacement.len());
+        let (mut y, mut v) = (0.0, 0.0);
+        for i in 0..n {
+            y += row[i] * delta.displacement[i];
+            v += row[i] * delta.velocity[i];
+        }
+        if m.is_truncated() && stage.is_contact() {
+            if let Some(c) = m.correction.stations.get(station) {
+                let k = m.bar_stiffness;
+                y += c[CONTACT] * -k * self.modal_gap(delta.displacement.as_slice());
+                v += c[CONTACT] * -k * self.modal_gap(delta.velocity.as_slice());
+            }
+        }
+        (y / divisor, v / divisor)
+    }
+
+    /// Per kept mode, each envelope group's largest |row| / divisor over its stations; and each
+    /// group's largest |correction row of the contact load| / divisor.
+    fn envelope_rows(&self) -> (Vec<[f64; 4]>, [f64; 4]) {
         let groups = crate::solver::envelope::groups(&self.model);
         let divisors: Vec<f64> = self.model.stations.all().map(|s| s.divisor).collect();
         let modes = self.modal.stations.ncols();
-        let mut rows: [Vec<f64>; 4] = std::array::from_fn(|_| vec![0.0; modes]);
+        let mut rows = vec![[0.0f64; 4]; modes];
         let mut loads = [0.0f64; 4];
         for (station, (&g, &divisor)) in groups.iter().zip(&divisors).enumerate() {
             let g = usize::from(g).min(3);
             if station >= self.modal.stations.nrows() {
                 break;
             }
-            for (i, max) in rows[g].iter_mut().enumerate() {
-                *max = max.max((self.modal.stations[(station, i)] / divisor).abs());
+            for (i, row) in rows.iter_mut().enumerate() {
+                row[g] = row[g].max((self.modal.stations[(station, i)] / divisor).abs());
             }
             if let Some(c) = self.modal.correction.stations.get(station) {
                 loads[g] = loads[g].max((c[CONTACT] / divisor).abs());
@@ -415,26 +550,19 @@ impl<S: Stepper> Simulation<S> {
         (rows, loads)
     }
 
-    /// Each envelope group's bound of |d sigma| over its stations at `x` (displacements or their
-    /// rates) in `stage`.
-    fn envelope_bounds(&self, t: &Tangent, x: &nalgebra::DVector<f64>, stage: Stage) -> [f64; 4] {
-        let load = if self.modal.is_truncated() && stage.is_contact() {
-            (self.modal.bar_stiffness * self.modal_gap(x.as_slice())).abs()
+    /// Each envelope group's bound of |d sigma| over its stations and of its rate, from `m` in
+    /// `stage`.
+    fn envelope_bounds(&self, t: &Tangent, m: &Measure, stage: Stage) -> [(f64, f64); 4] {
+        let gap = Probe::Gap as usize;
+        let (load, load_rate) = if self.modal.is_truncated() && stage.is_contact() {
+            let k = self.modal.bar_stiffness;
+            ((k * m.q[gap]).abs(), (k * m.v[gap]).abs())
         } else {
-            0.0
+            (0.0, 0.0)
         };
         std::array::from_fn(|g| {
-            let row = &t.envelope_rows[g];
-            let n = row.len().min(x.len());
-            (0..n).map(|i| row[i] * x[i].abs()).sum::<f64>() + t.envelope_loads[g] * load
+            (m.envelope_q[g] + t.envelope_loads[g] * load, m.envelope_v[g] + t.envelope_loads[g] * load_rate)
         })
-    }
-
-    /// [`Self::envelope_bounds`] of the tangent's displacement and velocity.
-    fn envelope_bound_pair(&self, t: &Tangent, stage: Stage) -> [(f64, f64); 4] {
-        let q = self.envelope_bounds(t, &t.delta.displacement, stage);
-        let v = self.envelope_bounds(t, &t.delta.velocity, stage);
-        std::array::from_fn(|g| (q[g], v[g]))
     }
 }
 
