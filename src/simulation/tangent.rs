@@ -423,9 +423,9 @@ impl<S: Stepper> Simulation<S> {
                 r.pending = Default::default();
                 r.seen_contact |= result.contact;
             } else {
-                for k in 0..5 {
-                    if step_values[k].0 > r.pending[k].0 {
-                        r.pending[k] = step_values[k];
+                for (pending, value) in r.pending.iter_mut().zip(step_values) {
+                    if value.0 > pending.0 {
+                        *pending = value;
                     }
                 }
             }
