@@ -10,7 +10,10 @@
 //! - **Sensitivity.** A twin run with the drop height changed by 1e-9 (relative; 1e-9 m from 0):
 //!   the peaks of lightly damped multi-bounce runs can be chaotic, the first sustained contact's
 //!   too (undamped). A whole-run or first-contact peak whose spread exceeds
-//!   `discretisation_tolerance` is flagged.
+//!   `discretisation_tolerance` is flagged. With the linear bar the printed run carries the twin's
+//!   difference from itself (its tangent, [`crate::simulation::Linearised`]), and the twin runs
+//!   only where a spread's first-order bound is not below a tenth of the tolerance (issue 43);
+//!   the FMU's lockstep twin still runs.
 //! - **Design.** Each stress peak's utilisation, converged peak / allowable (the paper's 533 MPa
 //!   bending and 355 MPa shear by default); the design passes when every one is <= 1. The stresses
 //!   exist at the arrestor's clamp (sigma_a, tau_a) and the bridge's contact node (sigma_b).
@@ -29,6 +32,7 @@ use crate::model::{Method, Scenario};
 use crate::record::cancel::Cancellable;
 use crate::record::{NullRecorder, Recorder};
 use crate::results::{EnvelopePeak, Peaks, StressEnvelope, Summary};
+use crate::simulation::Linearised;
 use crate::solver::envelope::EnvelopeScope;
 use crate::solver::ModalCache;
 use crate::Simulation;
@@ -172,6 +176,12 @@ pub struct RungRun {
     pub peaks: Peaks,
     /// First-contact peaks.
     pub first_contact_peaks: Peaks,
+    /// The twin's peaks are the printed run's tangent's (issue 43), not a run of their own: every
+    /// spread's bound was below [`crate::simulation::SCREEN_FRACTION`] of the tolerance. Its
+    /// peaks are then the printed ones moved by their linearised spreads; `steps` the printed
+    /// run's it followed. False for every other run (and in logs from before).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub linearised: bool,
 }
 
 /// The quality of an answer: today's energy verdict keys, and every check.
@@ -261,6 +271,9 @@ pub struct Options {
     /// ([`crate::solver::envelope::EnvelopeScope::Peaks`]: the same peaks to the bit, about half
     /// a run's envelope work). The check runs always keep the peaks only.
     pub station_envelope: bool,
+    /// Let the printed run's tangent stand for the twin where every spread's bound is small
+    /// (issue 43: [`crate::simulation::Linearised`]); false: the twin always runs.
+    pub linearised_twin: bool,
 }
 
 impl Default for Options {
@@ -270,6 +283,7 @@ impl Default for Options {
             max_steps: crate::model::scenario::MAX_STEPS,
             observed_order: true,
             station_envelope: true,
+            linearised_twin: true,
         }
     }
 }
@@ -317,11 +331,14 @@ pub fn run_cancellable(
         printed.set_envelope_scope(EnvelopeScope::Peaks);
     }
     let resolved = printed.scenario().clone();
-    let mut check_scenarios = check_scenarios(scenario)?;
-    if !options.observed_order {
-        check_scenarios.truncate(1);
-    }
+    let check_scenarios = check_scenarios_with(scenario, Some(cache), options.observed_order)?;
     let twin = options.sensitivity.then(|| twin_scenario(scenario));
+    // The twin's sensitivity from the printed run's tangent where the model allows (issue 43);
+    // the real twin then runs only where a spread's bound is not small.
+    let tangent = match twin.as_ref().filter(|_| options.linearised_twin) {
+        Some(t) => printed.follow_tangent(t, cache).unwrap_or(false),
+        None => false,
+    };
     let (printed_run, others) = rayon::join(
         || -> Result<(Summary, RungRun, Option<crate::run_fatigue::StationHistories>)> {
             let summary = printed.run(&mut Cancellable::new(recorder, cancel))?;
@@ -335,49 +352,96 @@ pub fn run_cancellable(
             use rayon::prelude::*;
             let mut jobs: Vec<(&str, Scenario)> =
                 check_scenarios.iter().cloned().zip(["check", "coarse"]).map(|(s, r)| (r, s)).collect();
-            if let Some(t) = &twin {
+            if let Some(t) = twin.as_ref().filter(|_| !tangent) {
                 jobs.push(("twin", t.clone()));
             }
-            jobs.par_iter()
-                .map(|(role, s)| {
-                    // A check rung's mesh the printed one does not share (a short element beyond
-                    // the supported ratio on a coarser rung): say which run it is.
-                    let mut sim = Simulation::new_cached(s, cache).map_err(|e| match e {
-                        crate::Error::InvalidParameter { .. } | crate::Error::Invalid(_) => e,
-                        e => crate::Error::Other(format!(
-                            "the {role} run of the answer ({}): {e}",
-                            crate::discretise::printed(s)
-                                .map_or_else(|_| "?".into(), |r| crate::discretise::describe(&r))
-                        )),
-                    })?;
-                    sim.check_step_count(s.duration_ns(), options.max_steps)?;
-                    sim.set_max_steps(options.max_steps);
-                    // The answer takes each envelope's peak of a check run, no station's own, and
-                    // none of its energies.
-                    sim.set_envelope_scope(EnvelopeScope::Peaks);
-                    sim.without_energy_account();
-                    // Nor its model range: the answer's is the printed run's.
-                    sim.without_model_range();
-                    let summary = sim.run(&mut Cancellable::new(&mut NullRecorder, cancel))?;
-                    let run = rung_run(role, &sim, &summary);
-                    Ok((summary, run))
-                })
-                .collect()
+            jobs.par_iter().map(|(role, s)| check_run(role, s, options, cache, cancel)).collect()
         },
     );
     let (summary, printed_rung, histories) = printed_run?;
-    let others = others?;
-    let mut answer = assemble(&resolved, summary, printed_rung, others);
+    let mut others = others?;
+    let mut linearised = None;
+    if tangent {
+        match printed.linearised(&summary).filter(|l| l.screens(resolved.discretisation_tolerance)) {
+            Some(l) => linearised = Some(l),
+            // A spread that may matter (or a step the tangent could not follow): the real twin.
+            None => {
+                if let Some(t) = &twin {
+                    others.push(check_run("twin", t, options, cache, cancel)?);
+                }
+            }
+        }
+    }
+    let linearised = linearised.map(|l| (l, linearised_twin(&printed_rung, &l)));
+    let mut answer = assemble(&resolved, summary, printed_rung, others, linearised);
     answer.station_histories = histories;
     Ok(answer)
+}
+
+/// One unrecorded run of the answer besides the printed one (a check rung, the twin), `role`.
+fn check_run(
+    role: &str,
+    s: &Scenario,
+    options: Options,
+    cache: &ModalCache,
+    cancel: &AtomicBool,
+) -> Result<(Summary, RungRun)> {
+    // A check rung's mesh the printed one does not share (a short element beyond
+    // the supported ratio on a coarser rung): say which run it is.
+    let mut sim = Simulation::new_cached(s, cache).map_err(|e| match e {
+        crate::Error::InvalidParameter { .. } | crate::Error::Invalid(_) => e,
+        e => crate::Error::Other(format!(
+            "the {role} run of the answer ({}): {e}",
+            crate::discretise::printed(s).map_or_else(|_| "?".into(), |r| crate::discretise::describe(&r))
+        )),
+    })?;
+    sim.check_step_count(s.duration_ns(), options.max_steps)?;
+    sim.set_max_steps(options.max_steps);
+    // The answer takes each envelope's peak of a check run, no station's own, and
+    // none of its energies.
+    sim.set_envelope_scope(EnvelopeScope::Peaks);
+    sim.without_energy_account();
+    // Nor its model range: the answer's is the printed run's.
+    sim.without_model_range();
+    let summary = sim.run(&mut Cancellable::new(&mut NullRecorder, cancel))?;
+    let run = rung_run(role, &sim, &summary);
+    Ok((summary, run))
+}
+
+/// The twin's record where the printed run's tangent stood for it: the printed run's mesh and
+/// steps, its peaks moved by their linearised spreads.
+fn linearised_twin(printed: &RungRun, l: &Linearised) -> RungRun {
+    let moved = |p: &Peaks, spread: &Peaks| {
+        let (p, d) = (p.as_array(), spread.as_array());
+        per_peak(|k| p[k] * (1.0 + d[k]))
+    };
+    RungRun {
+        role: "twin".into(),
+        peaks: moved(&printed.peaks, &l.whole),
+        first_contact_peaks: moved(&printed.first_contact_peaks, &l.first_contact),
+        linearised: true,
+        ..printed.clone()
+    }
 }
 
 /// The scenarios that judge the printed run's discretisation: the next coarser rung and the one
 /// before it (converged method), or the converged answer (paper method).
 pub fn check_scenarios(scenario: &Scenario) -> Result<Vec<Scenario>> {
+    check_scenarios_with(scenario, None, true)
+}
+
+/// [`check_scenarios`] with the reference meshes' modes from `cache` (one eigen-solve per
+/// geometry: the same scenarios to the bit), and the converged method's coarse rung only where
+/// the observed order is asked for (an answer without it judges against the check rung alone).
+pub fn check_scenarios_with(
+    scenario: &Scenario,
+    cache: Option<&ModalCache>,
+    observed_order: bool,
+) -> Result<Vec<Scenario>> {
+    let check = crate::discretise::check_with(scenario, cache)?;
     Ok(match scenario.method {
-        Method::Paper => vec![crate::discretise::check(scenario)?],
-        Method::Converged => vec![crate::discretise::check(scenario)?, crate::discretise::coarse(scenario)?],
+        Method::Converged if observed_order => vec![check, crate::discretise::coarse_with(scenario, cache)?],
+        _ => vec![check],
     })
 }
 
@@ -422,6 +486,7 @@ fn rung_run(role: &str, sim: &Simulation, summary: &Summary) -> RungRun {
         steps: summary.steps,
         peaks: summary.peaks,
         first_contact_peaks: summary.first_contact_peaks,
+        linearised: false,
     }
 }
 
@@ -585,7 +650,13 @@ fn largest(p: &Peaks) -> (usize, f64) {
         .fold((0, 0.0), |(bi, bv), (i, v)| if v > bv || v.is_nan() { (i, v) } else { (bi, bv) })
 }
 
-fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec<(Summary, RungRun)>) -> Answer {
+fn assemble(
+    resolved: &Scenario,
+    summary: Summary,
+    printed: RungRun,
+    others: Vec<(Summary, RungRun)>,
+    linearised: Option<(Linearised, RungRun)>,
+) -> Answer {
     let find = |role: &str| others.iter().find(|(_, r)| r.role == role);
     let check = find("check");
     let coarse = find("coarse");
@@ -611,8 +682,10 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
             per_peak(|k| relative(b[k], a[k]))
         })
     };
-    let sensitivity_spread = spread(|s| s.peaks);
-    let first_contact_sensitivity_spread = spread(|s| s.first_contact_peaks);
+    let (sensitivity_spread, first_contact_sensitivity_spread) = match &linearised {
+        Some((l, _)) => (Some(l.whole), Some(l.first_contact)),
+        None => (spread(|s| s.peaks), spread(|s| s.first_contact_peaks)),
+    };
     // The envelopes: the converged run's (the check's for a paper-method run), their figures
     // against the next coarser rung as the peaks' (the beam's worst against the rung's worst,
     // wherever along the beam each sits) and their spreads against the twin.
@@ -648,10 +721,13 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
         }
         None => [None; 4],
     };
-    let envelope_sensitivity_spread = twin.map(|(t, _)| {
-        let twin_values = t.envelope.peak_values();
-        std::array::from_fn(|k| both(twin_values[k], envelope_values[k], relative))
-    });
+    let envelope_sensitivity_spread = match &linearised {
+        Some((l, _)) => Some(l.envelope),
+        None => twin.map(|(t, _)| {
+            let twin_values = t.envelope.peak_values();
+            std::array::from_fn(|k| both(twin_values[k], envelope_values[k], relative))
+        }),
+    };
     let design = Design::assess(resolved, &converged_peaks, converged_envelope);
 
     let energy = &summary.quality;
@@ -683,7 +759,8 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
     if !late.is_empty() {
         discretisation.pass = false;
     }
-    let runs = Runs { resolved, summary: &summary, printed: &printed, check, coarse, twin };
+    let twin_spreads = sensitivity_spread.zip(first_contact_sensitivity_spread);
+    let runs = Runs { resolved, summary: &summary, printed: &printed, check, coarse, twin_spreads };
     let figures_fail = worst_figure.is_nan() || worst_figure > tolerance;
     for k in 0..5 {
         let (whole, first) = (discretisation_error.as_array()[k], first_contact_discretisation_error.as_array()[k]);
@@ -798,6 +875,7 @@ fn assemble(resolved: &Scenario, summary: Summary, printed: RungRun, others: Vec
     };
     let mut runs = vec![printed];
     runs.extend(others.into_iter().map(|(_, r)| r));
+    runs.extend(linearised.map(|(_, r)| r));
     Answer {
         summary,
         resolved: resolved.clone(),
@@ -855,7 +933,8 @@ struct Runs<'a> {
     printed: &'a RungRun,
     check: Option<&'a (Summary, RungRun)>,
     coarse: Option<&'a (Summary, RungRun)>,
-    twin: Option<&'a (Summary, RungRun)>,
+    /// The twin's spreads, whole run and first contact (the real twin's or the tangent's).
+    twin_spreads: Option<(Peaks, Peaks)>,
 }
 
 impl Runs<'_> {
@@ -956,8 +1035,7 @@ impl Runs<'_> {
 
     /// The twin's spread of peak `k` (whole run or first contact); NaN without a twin.
     fn twin_spread(&self, k: usize, first_contact: bool) -> f64 {
-        let get = |s: &Summary| if first_contact { s.first_contact_peaks } else { s.peaks }.as_array()[k];
-        self.twin.map_or(f64::NAN, |(t, _)| relative(get(t), get(self.summary)))
+        self.twin_spreads.map_or(f64::NAN, |(whole, first)| if first_contact { first } else { whole }.as_array()[k])
     }
 
     /// The paper method's line for peak `k`: its value on the paper mesh against the converged
@@ -1229,6 +1307,12 @@ pub fn table(answer: &Answer) -> String {
     let r = &answer.resolved;
     let paper = r.method == Method::Paper;
     let describe = |run: &RungRun| {
+        if run.linearised {
+            return format!(
+                "linearised from the printed run, every spread below {}",
+                percent(crate::simulation::SCREEN_FRACTION * r.discretisation_tolerance)
+            );
+        }
         let cut = match run.modal_cutoff {
             Some(c) => format!("modes up to {c:.0} rad/s ({} of {} coordinates)", run.modes[0], run.modes[1]),
             None => format!("full modal basis ({} coordinates)", run.modes[1]),

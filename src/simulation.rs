@@ -24,6 +24,9 @@ use crate::solver::{
     Stepper, TipForces,
 };
 
+mod tangent;
+pub use tangent::{Linearised, GRAZE_FRACTION, SCREEN_FRACTION};
+
 /// Everything that changes during a run: enough to restore it exactly (FMU state, rollback).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RunState {
@@ -307,6 +310,8 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     /// The latest step result whose details [`Self::outputs_at_latest_step`] left out, as it
     /// was then.
     skipped_details: Option<StepResult>,
+    /// The twin's difference carried alongside (issue 43: [`Self::follow_tangent`]).
+    tangent: Option<Box<tangent::Tangent>>,
 }
 
 impl Simulation<ModalStepper> {
@@ -525,6 +530,7 @@ impl<S: Stepper> Simulation<S> {
             peak_instants: Vec::new(),
             output_peak_instants: Vec::new(),
             far_support: None,
+            tangent: None,
         };
         simulation.far_support =
             crate::solver::far_support::FarSupport::new(&simulation.model, &simulation.modal).map(std::sync::Arc::new);
@@ -1252,6 +1258,9 @@ impl<S: Stepper> Simulation<S> {
                 ),
             });
         }
+        if self.tangent.is_some() {
+            self.tangent_advance(stage, previous.time_ns, step_ns);
+        }
         self.state.gap = probes[Probe::Gap as usize];
         let span = (previous.time_ns, previous.time_ns + step_ns);
         // The end state's correction load coefficients, once for the envelope and the range.
@@ -1302,7 +1311,12 @@ impl<S: Stepper> Simulation<S> {
             None
         };
         let force_peak = within_step.map_or((result.contact_force.abs(), result.time), |e| e[4]);
+        let first_before =
+            self.tangent.as_ref().map(|_| (self.state.first_contact.peaks, self.state.first_contact.ended));
         self.update_peaks(energies.upper_strain, within_step);
+        if let Some(first_before) = first_before {
+            self.tangent_after_step(stage, &previous, step_ns, within_step.as_ref(), first_before);
+        }
         if stage.is_contact() {
             if let Some(last) = self.sub_impacts.last_mut() {
                 last.observe(result.time, force_peak);

@@ -97,6 +97,7 @@ mod support_motion;
 mod supports;
 mod sweep;
 mod sweep_fatigue;
+mod tangent_twin;
 mod truncation;
 mod two_support_motion;
 mod verify;

@@ -195,4 +195,18 @@ pub trait Stepper {
     fn modal_coordinates(&self) -> bool {
         false
     }
+
+    /// Advances a difference of two states over the step just taken (see
+    /// [`super::stepper::ModalStepper::exact_tangent_step`]); false where the stepper has no such
+    /// tangent (the default: the twin runs instead).
+    fn tangent_step(
+        &self,
+        delta: &mut Kinematics,
+        stage: Stage,
+        dt: f64,
+        work: &mut super::stepper::TangentWork,
+    ) -> bool {
+        let _ = (delta, stage, dt, work);
+        false
+    }
 }

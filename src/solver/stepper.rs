@@ -1086,6 +1086,10 @@ impl Stepper for ModalStepper {
         true
     }
 
+    fn tangent_step(&self, delta: &mut Kinematics, stage: Stage, dt: f64, work: &mut TangentWork) -> bool {
+        self.exact_tangent_step(delta, stage, dt, work)
+    }
+
     fn free_fourth_derivatives(&mut self, state: &Kinematics) -> Option<[f64; PROBES]> {
         if !self.exact {
             return None;
@@ -1234,6 +1238,106 @@ impl Stepper for ModalStepper {
             velocity: &*self.projector * &physical.velocity,
             acceleration: &*self.projector * &physical.acceleration,
         }
+    }
+}
+
+/// The scratch of [`ModalStepper::exact_tangent_step`]: a zero load, the contact step's per-mode sums
+/// and work, and coefficients of its own for a step size the stepper's cache no longer holds
+/// (so that the tangent never touches the stepper's cache or its hit counts).
+#[derive(Clone, Debug, Default)]
+pub struct TangentWork {
+    zero: DVector<f64>,
+    gap: Vec<f64>,
+    rate: Vec<f64>,
+    work: Vec<f64>,
+    own: Option<Box<ExactStage>>,
+}
+
+impl ModalStepper {
+    /// Advances `delta`, a difference of two states (the derivative of the state times a
+    /// nudge), over the step of `dt` in `stage` that the stepper has just taken: the exact
+    /// advance's very coefficients applied to `delta` under no load, no support offset and no
+    /// static gap shift (they cancel in a difference), the bar's force in contact the cubic of
+    /// its own difference. The exact step is affine in the state for a given stage and step,
+    /// so this is the step's derivative. `delta`'s acceleration is first made the equilibrium
+    /// of the stage (zero load; the bar's k_eff b b^T delta q in contact): at a contact change
+    /// the difference's force is the bar's at once (the printed run's own bar force is 0 at the
+    /// touch, to the gap tolerance). Nothing the stepper keeps of its steps changes (its dissipation, its
+    /// force error, its coefficients' cache and hit counts). Returns false where there is no
+    /// such tangent: the linear acceleration method, or a nonlinear contact law.
+    pub fn exact_tangent_step(&self, delta: &mut Kinematics, stage: Stage, dt: f64, work: &mut TangentWork) -> bool {
+        let s = &self.system;
+        if !self.exact || s.law.is_some() {
+            return false;
+        }
+        let n = delta.displacement.len().min(s.omega2.len()).min(s.damping.len()).min(s.contact.len());
+        let contact = stage.is_contact();
+        let k = s.bar_stiffness;
+        {
+            let b = &s.contact.as_slice()[..n];
+            let (q, v) = (&delta.displacement.as_slice()[..n], &delta.velocity.as_slice()[..n]);
+            let bar = if contact { k * dot(b, q) } else { 0.0 };
+            let a = &mut delta.acceleration.as_mut_slice()[..n];
+            for i in 0..n {
+                a[i] = -s.omega2[i] * q[i] - s.damping[i] * v[i] - bar * b[i];
+            }
+        }
+        if work.zero.len() != n {
+            work.zero = DVector::zeros(n);
+            work.gap.resize(n, 0.0);
+            work.rate.resize(n, 0.0);
+            work.work.resize(n, 0.0);
+        }
+        let ready =
+            |c: &ExactStage| c.dt == dt && c.columns[0].len() == n && (!contact || c.cubic_columns[0].len() == n);
+        let coefficients = match self.exact_cache.iter().find(|c| ready(c)) {
+            Some(c) => c,
+            None => {
+                let own = work.own.get_or_insert_with(Default::default);
+                if !ready(own) {
+                    own.reset(s, dt, contact);
+                }
+                work.own.as_deref().expect("just set")
+            }
+        };
+        let TangentWork { zero, gap: gap_terms, rate: rate_terms, work: dissipated, .. } = work;
+        let mut m = ModeArrays {
+            q: &mut delta.displacement.as_mut_slice()[..n],
+            v: &mut delta.velocity.as_mut_slice()[..n],
+            a: &mut delta.acceleration.as_mut_slice()[..n],
+            load: &zero.as_slice()[..n],
+            omega2: &s.omega2.as_slice()[..n],
+            damping: &s.damping.as_slice()[..n],
+        };
+        if !contact {
+            free_exact_step(m, &coefficients.columns, dt, dissipated);
+            return true;
+        }
+        // `contact_step` with no offset: the bar's force is k b^T delta q at both ends.
+        let b = &s.contact.as_slice()[..n];
+        let bar = coefficients.bar;
+        let inv_dt = 1.0 / dt;
+        contact_free_response(&m, b, &coefficients.columns, inv_dt, gap_terms, rate_terms);
+        let (mut gap, mut gap_rate, mut start_gap, mut start_rate) = (0.0, 0.0, 0.0, 0.0);
+        for i in 0..n {
+            gap += gap_terms[i];
+            gap_rate += rate_terms[i];
+            start_gap += b[i] * m.q[i];
+            start_rate += b[i] * m.v[i];
+        }
+        let p0 = k * start_gap;
+        let p0_step = dt * k * start_rate;
+        let start = p0_step + p0;
+        let r1 = k * (gap + bar.ag * start + bar.bg * p0);
+        let r2 = dt * k * (gap_rate + bar.av * start + bar.bv * p0);
+        let force = (r1 * bar.m22 - bar.m12 * r2) / bar.determinant;
+        let force_step = (bar.m11 * r2 - bar.m21 * r1) / bar.determinant;
+        let change = force - p0;
+        let (alpha, beta) = (p0_step - change, force_step - change);
+        let (g2, g3) = (2.0 * alpha + beta, -(alpha + beta));
+        let bar_force = BarForce { force, alpha, g2, g3 };
+        contact_advance(&mut m, b, &coefficients.columns, &coefficients.cubic_columns, dt, bar_force, dissipated);
+        true
     }
 }
 
