@@ -311,7 +311,7 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     /// was then.
     skipped_details: Option<StepResult>,
     /// The twin's difference carried alongside (issue 43: [`Self::follow_tangent`]).
-    tangent: Option<Box<tangent::Tangent>>,
+    tangent: Option<Box<tangent::Tangent<S::TangentWork>>>,
 }
 
 impl Simulation<ModalStepper> {

@@ -36,7 +36,6 @@ use crate::results::{Peaks, Summary};
 use crate::solver::contact::{self, Stage};
 use crate::solver::static_correction::CONTACT;
 use crate::solver::step_extrema::cubic_coefficients;
-use crate::solver::stepper::TangentWork;
 use crate::solver::{Kinematics, ModalCache, Stepper};
 
 /// The screen: the real twin is skipped where every bound on a spread is below this fraction of
@@ -118,9 +117,9 @@ struct Measure {
 
 /// The tangent a printed run carries.
 #[derive(Clone, Debug)]
-pub(super) struct Tangent {
+pub(super) struct Tangent<W> {
     delta: Kinematics,
-    work: TangentWork,
+    work: W,
     record: Record,
     /// The state and record before the latest step (a step left untaken is undone).
     before: Option<(Kinematics, Record)>,
@@ -189,7 +188,7 @@ impl<S: Stepper> Simulation<S> {
         });
         let mut tangent = Tangent {
             delta,
-            work: TangentWork::default(),
+            work: S::TangentWork::default(),
             record: Record::default(),
             before: None,
             envelope_rows,
@@ -442,7 +441,7 @@ impl<S: Stepper> Simulation<S> {
     }
 
     /// The probes and the envelopes' mode sums of a difference `delta`.
-    fn tangent_measure(&self, t: &Tangent, delta: &Kinematics) -> Measure {
+    fn tangent_measure(&self, t: &Tangent<S::TangentWork>, delta: &Kinematics) -> Measure {
         let (q, v) = (delta.displacement.as_slice(), delta.velocity.as_slice());
         let n = q.len().min(v.len()).min(t.envelope_rows.len());
         let (mut envelope_q, mut envelope_v) = ([0.0; 4], [0.0; 4]);
@@ -552,7 +551,7 @@ impl<S: Stepper> Simulation<S> {
 
     /// Each envelope group's bound of |d sigma| over its stations and of its rate, from `m` in
     /// `stage`.
-    fn envelope_bounds(&self, t: &Tangent, m: &Measure, stage: Stage) -> [(f64, f64); 4] {
+    fn envelope_bounds(&self, t: &Tangent<S::TangentWork>, m: &Measure, stage: Stage) -> [(f64, f64); 4] {
         let gap = Probe::Gap as usize;
         let (load, load_rate) = if self.modal.is_truncated() && stage.is_contact() {
             let k = self.modal.bar_stiffness;

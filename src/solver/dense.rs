@@ -139,6 +139,8 @@ impl DenseStepper {
 }
 
 impl Stepper for DenseStepper {
+    type TangentWork = ();
+
     fn step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, excitation: &Excitation) {
         if let (true, Some(law)) = (stage.is_contact(), self.law) {
             return self.step_with_law(state, &law, dt, excitation);

@@ -108,6 +108,10 @@ pub struct SupportAndTips {
 
 /// One integration method for Eqs. (7)-(11) over a model.
 pub trait Stepper {
+    /// The scratch a tangent step keeps between steps ([`Self::tangent_step`]; `()` for a
+    /// stepper without one).
+    type TangentWork: Clone + std::fmt::Debug + Default + Send + Sync;
+
     /// Advances `state` by `dt` in `stage`, with the excitation at the end of the step (F_{i+1}).
     fn step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, excitation: &Excitation);
     /// [`Stepper::step`], then the probes and energies of the new state (a stepper may sum them
@@ -197,14 +201,14 @@ pub trait Stepper {
     }
 
     /// Advances a difference of two states over the step just taken (see
-    /// [`super::stepper::ModalStepper::exact_tangent_step`]); false where the stepper has no such
+    /// the modal stepper's `exact_tangent_step`); false where the stepper has no such
     /// tangent (the default: the twin runs instead).
     fn tangent_step(
         &self,
         delta: &mut Kinematics,
         stage: Stage,
         dt: f64,
-        work: &mut super::stepper::TangentWork,
+        work: &mut Self::TangentWork,
     ) -> bool {
         let _ = (delta, stage, dt, work);
         false

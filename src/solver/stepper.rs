@@ -1046,6 +1046,8 @@ fn apply_correction(
 }
 
 impl Stepper for ModalStepper {
+    type TangentWork = TangentWork;
+
     fn step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, excitation: &Excitation) {
         self.advance::<false>(state, stage, dt, excitation);
     }
