@@ -203,13 +203,7 @@ pub trait Stepper {
     /// Advances a difference of two states over the step just taken (see
     /// the modal stepper's `exact_tangent_step`); false where the stepper has no such
     /// tangent (the default: the twin runs instead).
-    fn tangent_step(
-        &self,
-        delta: &mut Kinematics,
-        stage: Stage,
-        dt: f64,
-        work: &mut Self::TangentWork,
-    ) -> bool {
+    fn tangent_step(&self, delta: &mut Kinematics, stage: Stage, dt: f64, work: &mut Self::TangentWork) -> bool {
         let _ = (delta, stage, dt, work);
         false
     }
