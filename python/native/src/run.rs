@@ -291,7 +291,7 @@ fn answer_of(
     // A sweep's row (no observed order, no log) keeps each envelope's peak only, as the CLI's
     // sweep does: the same row values for a fraction of the envelope's work.
     let station_envelope = observed_order || log.is_some() || fatigue;
-    let options = Options { sensitivity, max_steps, observed_order, station_envelope };
+    let options = Options { sensitivity, max_steps, observed_order, station_envelope, linearised_twin: true };
     let cancel = AtomicBool::new(false);
     let mut interrupt: Option<PyErr> = None;
     let answer = py.detach(|| {
