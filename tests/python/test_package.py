@@ -168,7 +168,14 @@ def test_local_cluster_sweep_equals_the_cli_sweep(cli_rows, engine_rows, request
         assert (np.isnan(got) == np.isnan(want)).all(), f"{column}: {engine_rows} {got} vs CLI {want} (empty cells)"
         got, want = got[~np.isnan(want)], want[~np.isnan(want)]
         if column in FIGURES:
-            assert np.abs(got - want).max(initial=0) <= 1e-9, f"{column}: {engine_rows} {got} vs CLI {want}"
+            # The FMU's sensitivity figure is its real twin's finite difference (drop height x (1 +
+            # 1e-9): a floor of ~1e-7 from the twin's own nanosecond step choices), the CLI's the
+            # printed run's tangent (issue 43): both round-off-level here, held to 1e-4 absolute,
+            # a hundredth of the 1 % tolerance they are judged against (the verdicts, compared
+            # above, agree). Every other figure, and the native engine's, to 1e-9.
+            sensitivity = "sensitivity" in column and engine_rows == "cluster_rows"
+            tolerance = 1e-4 if sensitivity else 1e-9
+            assert np.abs(got - want).max(initial=0) <= tolerance, f"{column}: {engine_rows} {got} vs CLI {want}"
             continue
         rel = np.abs(got - want) / np.maximum(np.abs(want), 1e-300)
         worst = max(worst, rel.max(initial=0))
