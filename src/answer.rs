@@ -633,14 +633,7 @@ pub fn peak_figures(paper: bool, damping_ratio: f64, printed: [&Peaks; 2], check
 }
 
 fn per_peak(f: impl Fn(usize) -> f64) -> Peaks {
-    let v: [f64; 5] = std::array::from_fn(f);
-    Peaks {
-        lower_tip_deflection: v[0],
-        lower_clamp_bending_stress: v[1],
-        lower_clamp_shear_stress: v[2],
-        upper_contact_bending_stress: v[3],
-        contact_force: v[4],
-    }
+    Peaks::from_array(std::array::from_fn(f))
 }
 
 fn largest(p: &Peaks) -> (usize, f64) {

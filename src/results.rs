@@ -53,6 +53,17 @@ impl Peaks {
         ]
     }
 
+    /// The peaks from five values in the order of [`Peaks::as_array`].
+    pub fn from_array(v: [f64; 5]) -> Peaks {
+        Peaks {
+            lower_tip_deflection: v[0],
+            lower_clamp_bending_stress: v[1],
+            lower_clamp_shear_stress: v[2],
+            upper_contact_bending_stress: v[3],
+            contact_force: v[4],
+        }
+    }
+
     /// Raises each peak to |value| where that is larger (values in the order of [`Peaks::as_array`]).
     pub fn raise(&mut self, values: &[f64; 5]) {
         for (peak, value) in self.as_mut_array().into_iter().zip(values) {

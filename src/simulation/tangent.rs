@@ -251,13 +251,7 @@ impl<S: Stepper> Simulation<S> {
                         b
                     }
                 });
-                Peaks {
-                    lower_tip_deflection: v[0],
-                    lower_clamp_bending_stress: v[1],
-                    lower_clamp_shear_stress: v[2],
-                    upper_contact_bending_stress: v[3],
-                    contact_force: v[4],
-                }
+                Peaks::from_array(v)
             };
         let whole = spreads(whole, &record.whole, &record.whole_bound, [false; 5], &mut bound);
         let first = spreads(first, &record.first, &record.first_bound, record.lost_first, &mut bound);

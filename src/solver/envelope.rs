@@ -864,17 +864,23 @@ mod tests {
     use super::*;
     use crate::model::{Model, Scenario};
 
+    /// A reproducible uniform source on [0, 1) (a 64-bit linear congruential generator's top 53
+    /// bits) for the random states of the tests below.
+    fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
     /// The dense product is the stations' functionals summed term by term: every station's value
     /// equals a plain loop over its beam's modes (s_ki / divisor q_i) and then the loads
     /// (C_ka / divisor c_a), to the bit, on the paper model (full basis: no loads) and on the
     /// converged printed rung's truncated basis (with loads), for random states.
     #[test]
     fn the_dense_product_is_each_stations_plain_sum() {
-        let mut seed = 4242u64;
-        let mut random = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut uniform = uniform(4242);
+        let mut random = || uniform() - 0.5;
         let mut checked = 0;
         for scenario in [Scenario::paper(), Scenario::default()] {
             let resolved = crate::discretise::printed(&scenario).unwrap();
@@ -918,11 +924,8 @@ mod tests {
     /// one product each.
     #[test]
     fn a_chunks_products_are_the_dense_products_to_the_bit() {
-        let mut seed = 777u64;
-        let mut random = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut uniform = uniform(777);
+        let mut random = || uniform() - 0.5;
         let mut checked = 0;
         for scenario in [Scenario::paper(), Scenario::default()] {
             let resolved = crate::discretise::printed(&scenario).unwrap();
@@ -997,11 +1000,7 @@ mod tests {
     /// bound of a step's crest leaves out the rates, or when the utilisation's floor is dropped.
     #[test]
     fn the_peaks_scope_skips_chunks_and_keeps_each_envelopes_peak_to_the_bit() {
-        let mut seed = 99u64;
-        let mut random = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut random = uniform(99);
         let resolved = crate::discretise::printed(&Scenario::default()).unwrap();
         let model = Model::new(&resolved).unwrap();
         let system = ModalSystem::new(&model).unwrap().for_run(&model).unwrap();
@@ -1088,11 +1087,8 @@ mod tests {
         let (mut max, mut times) = (vec![0.0; rows.len()], vec![0.0; rows.len()]);
         let mut running = vec![0.0f64; rows.len()];
         let mut values = vec![0.0; rows.len()];
-        let mut seed = 777u64;
-        let mut random = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut uniform = uniform(777);
+        let mut random = || uniform() - 0.5;
         for step in 0..200 {
             let q: Vec<f64> = (0..n).map(|i| random() / (1.0 + system.omega2[i].sqrt())).collect();
             let loads: [f64; LOADS] = std::array::from_fn(|_| 1e3 * random());
