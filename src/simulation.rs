@@ -401,6 +401,7 @@ fn excitation(model: &Model, forces: TipForces, motion: &SupportMotion) -> Excit
         support_acceleration: motion.accelerations(),
         gap_offset: if clearance == 0.0 { offset } else { offset + clearance },
         gap_offset_rate: motion.gap_offset_rate(length),
+        gap_offset_acceleration: motion.gap_offset_acceleration(length),
     }
 }
 

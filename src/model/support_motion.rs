@@ -188,6 +188,11 @@ impl SupportMotion {
         self.hinge_heave.velocity - self.clamp_heave.velocity - self.clamp_rotation.velocity * lower_length
     }
 
+    /// The acceleration of [`Self::gap_offset`], m/s^2 (constant until the next change).
+    pub fn gap_offset_acceleration(&self, lower_length: f64) -> f64 {
+        self.hinge_heave.acceleration - self.clamp_heave.acceleration - self.clamp_rotation.acceleration * lower_length
+    }
+
     /// True when every value is zero (the supports at rest: the run of fixed supports).
     pub fn is_rest(&self) -> bool {
         self.values().iter().all(|v| *v == 0.0)

@@ -51,6 +51,9 @@ pub struct Excitation {
     pub gap_offset: f64,
     /// Its rate, m/s.
     pub gap_offset_rate: f64,
+    /// Its acceleration, m/s^2 (constant between the supports' motion changes): an exact contact
+    /// step takes the offset as the quadratic it is, not as a line through its end.
+    pub gap_offset_acceleration: f64,
 }
 
 impl Excitation {
