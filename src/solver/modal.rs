@@ -174,26 +174,47 @@ impl ModalSystem {
 
     /// The modal load Phi^T (F_g + F_tips + sum_j a_j x_j) of an excitation.
     pub fn load(&self, excitation: &super::kinematics::Excitation) -> DVector<f64> {
-        let f = excitation.forces;
-        let mut load = &self.gravity + &self.upper_tip * f.upper + &self.lower_tip * f.lower;
-        for (x, a) in self.support_loads.iter().zip(excitation.support_acceleration) {
-            if a != 0.0 {
-                load.axpy(a, x, 1.0);
-            }
-        }
+        let mut load = DVector::zeros(self.dofs());
+        self.load_into(excitation, &mut load);
         load
+    }
+
+    /// [`Self::load`] into `load` (resized to the modes): no allocation for a stepper that keeps
+    /// it (a sea's load changes every 5 ms).
+    pub fn load_into(&self, excitation: &super::kinematics::Excitation, load: &mut DVector<f64>) {
+        let f = excitation.forces;
+        let n = self.dofs();
+        load.resize_vertically_mut(n, 0.0);
+        for i in 0..n {
+            load[i] = (self.gravity[i] + self.upper_tip[i] * f.upper) + self.lower_tip[i] * f.lower;
+        }
+        self.add_support_loads(excitation, load);
     }
 
     /// The combined support inertia load sum_j a_j Phi^T x_j of an excitation (zero when no support
     /// accelerates).
     pub fn support_load(&self, excitation: &super::kinematics::Excitation) -> DVector<f64> {
         let mut load = DVector::zeros(self.dofs());
+        self.support_load_into(excitation, &mut load);
+        load
+    }
+
+    /// [`Self::support_load`] into `load` (resized to the modes).
+    pub fn support_load_into(&self, excitation: &super::kinematics::Excitation, load: &mut DVector<f64>) {
+        load.resize_vertically_mut(self.dofs(), 0.0);
+        load.fill(0.0);
+        self.add_support_loads(excitation, load);
+    }
+
+    /// Adds a_j Phi^T x_j of each accelerating support to `load`, one support after the other.
+    fn add_support_loads(&self, excitation: &super::kinematics::Excitation, load: &mut DVector<f64>) {
         for (x, a) in self.support_loads.iter().zip(excitation.support_acceleration) {
             if a != 0.0 {
-                load.axpy(a, x, 1.0);
+                for (l, xi) in load.iter_mut().zip(x.iter()) {
+                    *l += a * xi;
+                }
             }
         }
-        load
     }
 
     /// True when modes were discarded (the static correction is in use).

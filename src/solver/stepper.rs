@@ -598,6 +598,19 @@ impl StageInverse {
 }
 
 impl ModalStepper {
+    /// The modal load F = Phi^T (F_g + F_ext + sum_j a_j x_j), the supports' share and the
+    /// static correction's gap shift of `excitation`, computed anew only when the tip forces or
+    /// the supports' accelerations changed, into the stepper's own vectors.
+    fn refresh_load(&mut self, excitation: &Excitation) {
+        if !self.load_excitation.is_some_and(|e| e.same_load(excitation)) {
+            let s = &self.system;
+            s.load_into(excitation, &mut self.load);
+            s.support_load_into(excitation, &mut self.support_load);
+            self.shift = s.correction.gap_shift(excitation);
+            self.load_excitation = Some(*excitation);
+        }
+    }
+
     /// Eqs. (7)-(11) for one step; with `MEASURE`, the probes and energies of the new state too
     /// (otherwise zero), summed four lanes at a time.
     fn advance<const MEASURE: bool>(
@@ -609,13 +622,7 @@ impl ModalStepper {
     ) -> ([f64; PROBES], Energies) {
         // The modal load F = Phi^T (F_g + F_ext + sum_j a_j x_j) changes only when the tip forces
         // or the supports' accelerations do.
-        if !self.load_excitation.is_some_and(|e| e.same_load(excitation)) {
-            let s = &self.system;
-            self.load = s.load(excitation);
-            self.support_load = s.support_load(excitation);
-            self.shift = s.correction.gap_shift(excitation);
-            self.load_excitation = Some(*excitation);
-        }
+        self.refresh_load(excitation);
         if self.exact {
             self.exact_step(state, stage, dt, excitation);
         } else {
@@ -1130,8 +1137,11 @@ impl Stepper for ModalStepper {
         // In modal coordinates M = I: a = F - diag(omega^2) q - diag(c) v - kappa b (b . q + s + d),
         // or + b P for a nonlinear law.
         let law = self.law_force(state, stage, excitation);
+        // The load into the third work vector (free between steps), not the stepper's own: the
+        // energies measured before the next step keep reading the last step's (the same bits).
         let s = &self.system;
-        let load = s.load(excitation);
+        s.load_into(excitation, &mut self.w);
+        let load = &self.w;
         let bar = if let Some(law) = law {
             -law.force
         } else if stage.is_contact() {
