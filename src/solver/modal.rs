@@ -184,9 +184,13 @@ impl ModalSystem {
     pub fn load_into(&self, excitation: &super::kinematics::Excitation, load: &mut DVector<f64>) {
         let f = excitation.forces;
         let n = self.dofs();
-        load.resize_vertically_mut(n, 0.0);
-        for i in 0..n {
-            load[i] = (self.gravity[i] + self.upper_tip[i] * f.upper) + self.lower_tip[i] * f.lower;
+        if load.len() != n {
+            *load = DVector::zeros(n);
+        }
+        let (g, u, l) =
+            (&self.gravity.as_slice()[..n], &self.upper_tip.as_slice()[..n], &self.lower_tip.as_slice()[..n]);
+        for (i, out) in load.as_mut_slice().iter_mut().enumerate() {
+            *out = (g[i] + u[i] * f.upper) + l[i] * f.lower;
         }
         self.add_support_loads(excitation, load);
     }
@@ -201,8 +205,11 @@ impl ModalSystem {
 
     /// [`Self::support_load`] into `load` (resized to the modes).
     pub fn support_load_into(&self, excitation: &super::kinematics::Excitation, load: &mut DVector<f64>) {
-        load.resize_vertically_mut(self.dofs(), 0.0);
-        load.fill(0.0);
+        if load.len() == self.dofs() {
+            load.fill(0.0);
+        } else {
+            *load = DVector::zeros(self.dofs());
+        }
         self.add_support_loads(excitation, load);
     }
 
@@ -210,7 +217,7 @@ impl ModalSystem {
     fn add_support_loads(&self, excitation: &super::kinematics::Excitation, load: &mut DVector<f64>) {
         for (x, a) in self.support_loads.iter().zip(excitation.support_acceleration) {
             if a != 0.0 {
-                for (l, xi) in load.iter_mut().zip(x.iter()) {
+                for (l, xi) in load.as_mut_slice().iter_mut().zip(x.as_slice()) {
                     *l += a * xi;
                 }
             }
