@@ -217,35 +217,14 @@ impl ExactStage {
                 column.resize(n, 0.0);
             }
         }
-        let mut sums = BarSums::default();
-        for i in 0..n {
-            let (w2, c) = (s.omega2[i], s.damping[i]);
-            let (mode, responses) = ModeStep::with_responses(w2, c, dt);
-            self.set_mode(i, &mode);
-            if contact {
-                let cubic = match responses {
-                    Some(psi) => CubicStep::from_responses(c, dt, &psi),
-                    None => CubicStep::new(w2, c, dt, &mode),
-                };
-                self.set_cubic(i, &cubic);
-                sums.add(s.contact[i], (w2, c), &mode, &cubic);
-            }
-        }
+        let modes = (&s.omega2.as_slice()[..n], &s.damping.as_slice()[..n], &s.contact.as_slice()[..n]);
+        let sums = mode_coefficients(modes, dt, &mut self.columns, &mut self.cubic_columns);
         if contact {
             self.bar = BarSolve::new(s, dt, &sums);
         }
         self.dt = dt;
         self.hits = 0;
         self.last_used = 0;
-    }
-
-    /// Mode `i`'s coefficients into the twelve columns.
-    #[inline(always)]
-    fn set_mode(&mut self, i: usize, m: &ModeStep) {
-        let values = [m.q, m.v, m.integral];
-        for (k, column) in self.columns.iter_mut().enumerate() {
-            column[i] = values[k / 4][k % 4];
-        }
     }
 
     /// Mode `i`'s coefficients back from the twelve columns (the same numbers).
@@ -257,30 +236,7 @@ impl ExactStage {
     /// Mode `i`'s contact coefficients into the eighteen columns.
     #[inline(always)]
     fn set_cubic(&mut self, i: usize, c: &CubicStep) {
-        let [m0, m1] = c.moments;
-        let values = [
-            c.q[0],
-            c.q[1],
-            c.v[0],
-            c.v[1],
-            c.integral[0],
-            c.integral[1],
-            m0[0],
-            m0[1],
-            m0[2],
-            m0[3],
-            m0[4],
-            m0[5],
-            m1[0],
-            m1[1],
-            m1[2],
-            m1[3],
-            m1[4],
-            m1[5],
-        ];
-        for (column, value) in self.cubic_columns.iter_mut().zip(values) {
-            column[i] = value;
-        }
+        set_cubic(&mut self.cubic_columns, i, c);
     }
 
     /// The contact stage's coefficients of this step size where a free step's reset left them
@@ -1253,6 +1209,70 @@ impl Stepper for ModalStepper {
             velocity: &*self.projector * &physical.velocity,
             acceleration: &*self.projector * &physical.acceleration,
         }
+    }
+}
+
+/// Each mode's coefficients of a step `dt` into `columns`, and the contact stage's into `cubic`
+/// when it is not empty (then with the bar's sums over the modes, in the modes' order): one pass
+/// over the modes, each mode's responses computed once for both ([`ModeStep::with_responses`]).
+/// `modes`: omega^2, damping and contact coefficient per mode. Compiled for the CPU's widest
+/// vectors too (the nine sums of a series term side by side; no fused multiply-add: the same bits
+/// whichever runs).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn mode_coefficients(
+    (omega2, damping, b): (&[f64], &[f64], &[f64]),
+    dt: f64,
+    columns: &mut [Vec<f64>; 12],
+    cubic: &mut [Vec<f64>; 18],
+) -> BarSums {
+    let n = omega2.len();
+    let contact = cubic[0].len() == n;
+    let mut sums = BarSums::default();
+    for i in 0..n {
+        let (w2, c) = (omega2[i], damping[i]);
+        let (mode, responses) = ModeStep::with_responses(w2, c, dt);
+        let values = [mode.q, mode.v, mode.integral];
+        for (k, column) in columns.iter_mut().enumerate() {
+            column[i] = values[k / 4][k % 4];
+        }
+        if contact {
+            let step = match responses {
+                Some(psi) => CubicStep::from_responses(c, dt, &psi),
+                None => CubicStep::new(w2, c, dt, &mode),
+            };
+            set_cubic(cubic, i, &step);
+            sums.add(b[i], (w2, c), &mode, &step);
+        }
+    }
+    sums
+}
+
+/// Mode `i`'s contact coefficients into the eighteen columns of [`ExactStage::cubic_columns`].
+#[inline(always)]
+fn set_cubic(columns: &mut [Vec<f64>; 18], i: usize, c: &CubicStep) {
+    let [m0, m1] = c.moments;
+    let values = [
+        c.q[0],
+        c.q[1],
+        c.v[0],
+        c.v[1],
+        c.integral[0],
+        c.integral[1],
+        m0[0],
+        m0[1],
+        m0[2],
+        m0[3],
+        m0[4],
+        m0[5],
+        m1[0],
+        m1[1],
+        m1[2],
+        m1[3],
+        m1[4],
+        m1[5],
+    ];
+    for (column, value) in columns.iter_mut().zip(values) {
+        column[i] = value;
     }
 }
 
