@@ -227,6 +227,12 @@ impl ExactStage {
         self.last_used = 0;
     }
 
+    /// Books one step taken with these coefficients at `clock` (the stepper's exact steps so far).
+    fn used(&mut self, clock: u64) {
+        self.hits += 1;
+        self.last_used = clock;
+    }
+
     /// Mode `i`'s coefficients back from the twelve columns (the same numbers).
     fn mode(&self, i: usize) -> ModeStep {
         let c = |k: usize| self.columns[k][i];
@@ -686,17 +692,15 @@ impl ModalStepper {
     /// Books the damping's exact work over the step (the modes' energy balance).
     fn exact_step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, excitation: &Excitation) {
         let s = &self.system;
-        let slot = match self.exact_cache.iter().position(|c| c.dt == dt) {
-            Some(j) => j,
-            None => {
-                let j = evicted(&self.exact_cache);
+        let slot = match exact_slot(&self.exact_cache, dt) {
+            Ok(j) => j,
+            Err(j) => {
                 self.exact_cache[j].reset(s, dt, stage.is_contact());
                 j
             }
         };
         self.exact_clock += 1;
-        self.exact_cache[slot].hits += 1;
-        self.exact_cache[slot].last_used = self.exact_clock;
+        self.exact_cache[slot].used(self.exact_clock);
         if stage.is_contact() {
             self.exact_cache[slot].prepare_contact(s);
             match s.law {
@@ -1276,6 +1280,12 @@ fn set_cubic(columns: &mut [Vec<f64>; 18], i: usize, c: &CubicStep) {
     }
 }
 
+/// The slot of the exact cache holding the coefficients of step `dt` (`Ok`), else the one to
+/// reset for it (`Err`, [`evicted`]).
+fn exact_slot(cache: &[ExactStage], dt: f64) -> Result<usize, usize> {
+    cache.iter().position(|c| c.dt == dt).ok_or_else(|| evicted(cache))
+}
+
 /// Single-use entries the exact cache keeps apart before it evicts a reused one (see [`evicted`]).
 const EXACT_PROBATION: usize = 4;
 
@@ -1507,6 +1517,86 @@ fn four_lanes(a: &[f64], b: &[f64], term: impl Fn(f64, f64) -> f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The resets of the exact cache over a sequence of step sizes, replayed through its
+    /// bookkeeping as `exact_step` does (a reset here only sets the size: the coefficients do not
+    /// matter to which slot goes).
+    fn resets_over(sizes: &[f64]) -> usize {
+        let mut cache: [ExactStage; 32] = std::array::from_fn(|_| ExactStage::default());
+        let (mut clock, mut resets) = (0, 0);
+        for &dt in sizes {
+            let slot = exact_slot(&cache, dt).unwrap_or_else(|j| {
+                cache[j] = ExactStage { dt, ..ExactStage::default() };
+                resets += 1;
+                j
+            });
+            clock += 1;
+            cache[slot].used(clock);
+        }
+        resets
+    }
+
+    /// The sea example's pattern (issue 43): a contact's steps and the retakes that located its
+    /// changes, then the free stage's long step cut at every motion row into the step and its
+    /// remainder, with a few sizes met once (a peak's instant, a landing) now and then. Every
+    /// recurring size is computed once: the resets are the distinct sizes. (The least used
+    /// evicted, the first of equals, the row's two sizes took one slot in turn: 2 resets a row.)
+    #[test]
+    fn recurring_step_sizes_keep_their_coefficients_among_sizes_met_once() {
+        let mut once = (1..).map(|k| 1e-6 + k as f64 * 1e-9);
+        let mut sizes = Vec::new();
+        let contact = [23.601e-6, 47.202e-6, 94.404e-6];
+        for _ in 0..3 {
+            for level in [0, 1, 2, 2, 1, 0, 0] {
+                sizes.extend(std::iter::repeat_n(contact[level], 5));
+            }
+            sizes.extend(once.by_ref().take(40));
+        }
+        let (step, remainder) = (3.020928e-3, 1.979072e-3);
+        for row in 0..300 {
+            sizes.extend([step, remainder]);
+            if row % 7 == 0 {
+                sizes.extend(once.by_ref().take(3));
+            }
+        }
+        sizes.extend(contact);
+        let mut distinct = sizes.clone();
+        distinct.sort_by(f64::total_cmp);
+        distinct.dedup();
+        assert_eq!(resets_over(&sizes), distinct.len());
+    }
+
+    /// A step size met first out of contact and then in contact gets the very contact
+    /// coefficients (to the bit) of one met first in contact: the cache's history cannot move an
+    /// answer. Sizes from a 1 ns retake (every mode in the series) to a long free step (every mode
+    /// but the lowest in the closed form), on the default scenario's printed mesh with its modal
+    /// damping and with Rayleigh's beta = 1e-3 (the high modes overdamped).
+    #[test]
+    fn a_sizes_contact_coefficients_do_not_depend_on_the_stage_that_met_it_first() {
+        let mut overdamped = crate::model::Scenario::default();
+        overdamped.rayleigh_beta = 1e-3;
+        for scenario in [crate::model::Scenario::default(), overdamped] {
+            let scenario = crate::discretise::printed(&scenario).unwrap();
+            let model = Model::new(&scenario).unwrap();
+            let system = ModalSystem::new(&model).unwrap().with_damping(&scenario);
+            for dt in [1e-9, 7.3e-7, 23.601e-6, 90.992e-6, 1.510464e-3] {
+                let mut first_in_contact = ExactStage::default();
+                first_in_contact.reset(&system, dt, true);
+                let mut first_free = ExactStage::default();
+                first_free.reset(&system, dt, false);
+                first_free.prepare_contact(&system);
+                let bits = |stage: &ExactStage| {
+                    let columns = stage.columns.iter().chain(&stage.cubic_columns).flatten().map(|x| x.to_bits());
+                    let bar = stage.bar;
+                    let bar =
+                        [bar.ag, bar.bg, bar.av, bar.bv, bar.ramp, bar.vramp, bar.af, bar.aa, bar.ab, bar.m11, bar.m22];
+                    columns.chain(bar.map(f64::to_bits)).collect::<Vec<_>>()
+                };
+                assert_eq!(bits(&first_in_contact), bits(&first_free), "dt {dt}");
+                assert_eq!(first_in_contact.cubic_columns[0].len(), system.omega2.len());
+            }
+        }
+    }
 
     #[test]
     fn the_probes_dots_side_by_side_are_each_columns_dot_to_the_bit() {
