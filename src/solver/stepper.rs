@@ -1583,8 +1583,7 @@ mod tests {
     /// damping and with Rayleigh's beta = 1e-3 (the high modes overdamped).
     #[test]
     fn a_sizes_contact_coefficients_do_not_depend_on_the_stage_that_met_it_first() {
-        let mut overdamped = crate::model::Scenario::default();
-        overdamped.rayleigh_beta = 1e-3;
+        let overdamped = crate::model::Scenario { rayleigh_beta: 1e-3, ..Default::default() };
         for scenario in [crate::model::Scenario::default(), overdamped] {
             let scenario = crate::discretise::printed(&scenario).unwrap();
             let model = Model::new(&scenario).unwrap();
