@@ -70,6 +70,10 @@ pub struct ModalStepper {
     /// landing on an output time), with how often and when each was last used: [`EXACT_SLOTS`]
     /// of them, boxed (the stepper moves with its run).
     exact_cache: Box<[ExactStage]>,
+    /// The step size of each slot of `exact_cache` (NaN: none yet), side by side for the lookup.
+    exact_sizes: [f64; EXACT_SLOTS],
+    /// The slot of the last exact step (the next takes the same size as a rule).
+    exact_last: usize,
     /// Exact steps taken so far: the clock of [`ExactStage::last_used`].
     exact_clock: u64,
     /// The damping's work over the last exact step, J (None for the linear acceleration method).
@@ -321,6 +325,8 @@ impl ModalStepper {
             exact: false,
             energies: true,
             exact_cache: (0..EXACT_SLOTS).map(|_| ExactStage::default()).collect(),
+            exact_sizes: [f64::NAN; EXACT_SLOTS],
+            exact_last: 0,
             exact_clock: 0,
             last_dissipation: None,
             last_force_error: None,
@@ -693,13 +699,16 @@ impl ModalStepper {
     /// Books the damping's exact work over the step (the modes' energy balance).
     fn exact_step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, excitation: &Excitation) {
         let s = &self.system;
-        let slot = match exact_slot(&self.exact_cache, dt) {
-            Ok(j) => j,
-            Err(j) => {
+        let slot = match exact_slot(&self.exact_sizes, self.exact_last, dt) {
+            Some(j) => j,
+            None => {
+                let j = evicted(&self.exact_cache);
                 self.exact_cache[j].reset(s, dt, stage.is_contact());
+                self.exact_sizes[j] = dt;
                 j
             }
         };
+        self.exact_last = slot;
         self.exact_clock += 1;
         self.exact_cache[slot].used(self.exact_clock);
         if stage.is_contact() {
@@ -1281,10 +1290,13 @@ fn set_cubic(columns: &mut [Vec<f64>; 18], i: usize, c: &CubicStep) {
     }
 }
 
-/// The slot of the exact cache holding the coefficients of step `dt` (`Ok`), else the one to
-/// reset for it (`Err`, [`evicted`]).
-fn exact_slot(cache: &[ExactStage], dt: f64) -> Result<usize, usize> {
-    cache.iter().position(|c| c.dt == dt).ok_or_else(|| evicted(cache))
+/// The slot of the exact cache holding the coefficients of step `dt`, from the slots' `sizes`:
+/// `last`, the last step's, first (a run's steps take the same size as a rule).
+fn exact_slot(sizes: &[f64; EXACT_SLOTS], last: usize, dt: f64) -> Option<usize> {
+    if sizes.get(last) == Some(&dt) {
+        return Some(last);
+    }
+    sizes.iter().position(|&size| size == dt)
 }
 
 /// The step sizes whose coefficients a stepper keeps. A campaign event's runs meet some 380
@@ -1533,13 +1545,17 @@ mod tests {
     /// matter to which slot goes).
     fn resets_over(sizes: &[f64]) -> usize {
         let mut cache: Vec<ExactStage> = (0..EXACT_SLOTS).map(|_| ExactStage::default()).collect();
-        let (mut clock, mut resets) = (0, 0);
+        let mut slots = [f64::NAN; EXACT_SLOTS];
+        let (mut clock, mut resets, mut last) = (0, 0, 0);
         for &dt in sizes {
-            let slot = exact_slot(&cache, dt).unwrap_or_else(|j| {
+            let slot = exact_slot(&slots, last, dt).unwrap_or_else(|| {
+                let j = evicted(&cache);
                 cache[j] = ExactStage { dt, ..ExactStage::default() };
+                slots[j] = dt;
                 resets += 1;
                 j
             });
+            last = slot;
             clock += 1;
             cache[slot].used(clock);
         }
