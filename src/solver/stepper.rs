@@ -1320,9 +1320,22 @@ const EXACT_PROBATION: usize = 4;
 /// row, 260 of a run's 600 resets on the sea example. Measured over 40 runs of 20 campaign events,
 /// this keeps 382 resets a run against 377 for the clairvoyant eviction that knows the future.)
 fn evicted(cache: &[ExactStage]) -> usize {
-    let once = cache.iter().filter(|c| c.hits <= 1).count();
-    let key = |c: &ExactStage| (once >= EXACT_PROBATION && c.hits > 1, c.last_used);
-    (0..cache.len()).min_by_key(|&j| key(&cache[j])).unwrap_or(0)
+    // One pass: the count of sizes met once, the least recently used of them and of all (the
+    // first of equals: the empty slots, never used, in their order).
+    let (mut once, mut oldest_once, mut oldest) = (0, None::<(u64, usize)>, None::<(u64, usize)>);
+    for (j, c) in cache.iter().enumerate() {
+        if c.hits <= 1 {
+            once += 1;
+            if oldest_once.is_none_or(|(used, _)| c.last_used < used) {
+                oldest_once = Some((c.last_used, j));
+            }
+        }
+        if oldest.is_none_or(|(used, _)| c.last_used < used) {
+            oldest = Some((c.last_used, j));
+        }
+    }
+    let chosen = if once >= EXACT_PROBATION { oldest_once } else { oldest };
+    chosen.map_or(0, |(_, j)| j)
 }
 
 /// The scratch of [`ModalStepper::exact_tangent_step`]: a zero load, the contact step's per-mode sums
