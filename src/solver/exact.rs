@@ -66,6 +66,7 @@ impl ModeStep {
     /// documentation) where they came with the coefficients (the series, an overdamped mode), for
     /// the contact stage's [`CubicStep::from_responses`]: a step cut at a contact change or a
     /// motion row takes both for one new step size, from one series.
+    #[inline(always)]
     pub fn with_responses(omega2: f64, damping: f64, h: f64) -> (ModeStep, Option<[f64; 9]>) {
         let omega = libm::sqrt(omega2.max(0.0));
         if overdamped_beyond_series(omega2, damping, h) {
@@ -80,6 +81,7 @@ impl ModeStep {
     }
 
     /// The underdamped closed form (omega h >= [`SERIES_BELOW`], c < 2 omega).
+    #[inline(always)]
     fn closed_form(omega2: f64, damping: f64, h: f64) -> ModeStep {
         let (w2, c) = (omega2, damping);
         let sigma = 0.5 * c;
@@ -106,6 +108,7 @@ impl ModeStep {
     /// The coefficients from the responses psi_-2 ..= psi_6 at the step's end (module
     /// documentation): B = psi_-1, D = psi_-2, A = D + c B, C = -omega^2 B; the forced ones
     /// psi_0 and psi_1, and each integral the next psi (psi_k' = psi_(k-1)).
+    #[inline(always)]
     fn from_responses(omega2: f64, damping: f64, psi: &[f64; 9]) -> ModeStep {
         let p = |k: i32| psi[(k + 2) as usize];
         let (b, d) = (p(-1), p(-2));
@@ -204,6 +207,7 @@ impl CubicStep {
     /// The coefficients of q'' + `damping` q' + `omega2` q = f(t) over a step `h` > 0, from the
     /// same step's [`ModeStep`] (`linear`: its B = psi_-1, D = psi_-2, psi_0 and psi_1 seed the
     /// recurrence).
+    #[inline(always)]
     pub fn new(omega2: f64, damping: f64, h: f64, linear: &ModeStep) -> CubicStep {
         Self::from_responses(damping, h, &Self::responses(omega2, damping, h, linear))
     }
@@ -211,6 +215,7 @@ impl CubicStep {
     /// psi_-2 ..= psi_6 at `h` (index k + 2) of q'' + `damping` q' + `omega2` q: the first four
     /// from the same step's [`ModeStep`] (`linear`), the rest by the recurrence, the series or
     /// the overdamped forms (module documentation).
+    #[inline(always)]
     fn responses(omega2: f64, damping: f64, h: f64, linear: &ModeStep) -> [f64; 9] {
         let (w2, c) = (omega2, damping);
         // psi[k + 2] = psi_k for k = -2..=6.
@@ -262,6 +267,7 @@ impl CubicStep {
     /// The coefficients of q'' + `damping` q' + omega^2 q = f(t) over a step `h` > 0 from its
     /// responses psi_-2 ..= psi_6 at `h` (index k + 2; [`ModeStep::with_responses`] or
     /// [`Self::new`]).
+    #[inline(always)]
     pub fn from_responses(damping: f64, h: f64, psi: &[f64; 9]) -> CubicStep {
         let c = damping;
         let p = |k: i32| psi[(k + 2) as usize];
@@ -312,6 +318,7 @@ const INVERSE_INTEGERS: [f64; 40] = {
 /// [`SERIES_TERMS`] terms; no division a term (the reciprocals are tables). One series serves
 /// the twelve coefficients of [`ModeStep`] and the five further responses of [`CubicStep`]: a
 /// step cut at a contact change or at a motion row (a new step size) pays for it once.
+#[inline(always)]
 fn series_responses(omega2: f64, damping: f64, h: f64) -> [f64; 9] {
     let (ch, wh2) = (damping * h, omega2 * h * h);
     let scale = libm::sqrt(omega2.abs()).max(damping.abs()) * h;
@@ -344,6 +351,7 @@ fn series_responses(omega2: f64, damping: f64, h: f64) -> [f64; 9] {
 /// apply, the series' alternating terms grow as (c h)^k / k! (at c h = 40, 1e16: nothing left;
 /// Rayleigh's beta = 1e-3 puts c h = 1.8e6 h on the paper mesh's top mode), and the recurrence of
 /// [`CubicStep::new`] loses 1 / (|lambda_slow| h) per order (lambda_slow ~ -omega^2 / c).
+#[inline(always)]
 fn overdamped_beyond_series(omega2: f64, damping: f64, h: f64) -> bool {
     damping >= 2.0 * libm::sqrt(omega2.max(0.0)) && damping * h >= SERIES_BELOW
 }

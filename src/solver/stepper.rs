@@ -67,8 +67,15 @@ pub struct ModalStepper {
     /// Measurements take the energy terms (see [`Stepper::keep_energies`]).
     energies: bool,
     /// Exact coefficients of the step sizes met (the stages' own, a located contact change's, a
-    /// landing on an output time), with how often each was used.
-    exact_cache: [ExactStage; 32],
+    /// landing on an output time), with how often and when each was last used: [`EXACT_SLOTS`]
+    /// of them, boxed (the stepper moves with its run).
+    exact_cache: Box<[ExactStage]>,
+    /// The step size of each slot of `exact_cache` (NaN: none yet), side by side for the lookup.
+    exact_sizes: [f64; EXACT_SLOTS],
+    /// The slot of the last exact step (the next takes the same size as a rule).
+    exact_last: usize,
+    /// Exact steps taken so far: the clock of [`ExactStage::last_used`].
+    exact_clock: u64,
     /// The damping's work over the last exact step, J (None for the linear acceleration method).
     last_dissipation: Option<f64>,
     /// The estimated departure of the bar's force from the cubic the last exact contact step
@@ -94,6 +101,8 @@ struct ExactStage {
     bar: BarSolve,
     /// Steps taken with them.
     hits: u64,
+    /// The stepper's exact step count at their last use (0: never), for the eviction.
+    last_used: u64,
 }
 
 impl Default for ExactStage {
@@ -104,6 +113,7 @@ impl Default for ExactStage {
             cubic_columns: Default::default(),
             bar: BarSolve::default(),
             hits: 0,
+            last_used: 0,
         }
     }
 }
@@ -212,34 +222,20 @@ impl ExactStage {
                 column.resize(n, 0.0);
             }
         }
-        let mut sums = BarSums::default();
-        for i in 0..n {
-            let (w2, c) = (s.omega2[i], s.damping[i]);
-            let (mode, responses) = ModeStep::with_responses(w2, c, dt);
-            self.set_mode(i, &mode);
-            if contact {
-                let cubic = match responses {
-                    Some(psi) => CubicStep::from_responses(c, dt, &psi),
-                    None => CubicStep::new(w2, c, dt, &mode),
-                };
-                self.set_cubic(i, &cubic);
-                sums.add(s.contact[i], (w2, c), &mode, &cubic);
-            }
-        }
+        let modes = (&s.omega2.as_slice()[..n], &s.damping.as_slice()[..n], &s.contact.as_slice()[..n]);
+        let sums = mode_coefficients(modes, dt, &mut self.columns, &mut self.cubic_columns);
         if contact {
             self.bar = BarSolve::new(s, dt, &sums);
         }
         self.dt = dt;
         self.hits = 0;
+        self.last_used = 0;
     }
 
-    /// Mode `i`'s coefficients into the twelve columns.
-    #[inline(always)]
-    fn set_mode(&mut self, i: usize, m: &ModeStep) {
-        let values = [m.q, m.v, m.integral];
-        for (k, column) in self.columns.iter_mut().enumerate() {
-            column[i] = values[k / 4][k % 4];
-        }
+    /// Books one step taken with these coefficients at `clock` (the stepper's exact steps so far).
+    fn used(&mut self, clock: u64) {
+        self.hits += 1;
+        self.last_used = clock;
     }
 
     /// Mode `i`'s coefficients back from the twelve columns (the same numbers).
@@ -251,34 +247,14 @@ impl ExactStage {
     /// Mode `i`'s contact coefficients into the eighteen columns.
     #[inline(always)]
     fn set_cubic(&mut self, i: usize, c: &CubicStep) {
-        let [m0, m1] = c.moments;
-        let values = [
-            c.q[0],
-            c.q[1],
-            c.v[0],
-            c.v[1],
-            c.integral[0],
-            c.integral[1],
-            m0[0],
-            m0[1],
-            m0[2],
-            m0[3],
-            m0[4],
-            m0[5],
-            m1[0],
-            m1[1],
-            m1[2],
-            m1[3],
-            m1[4],
-            m1[5],
-        ];
-        for (column, value) in self.cubic_columns.iter_mut().zip(values) {
-            column[i] = value;
-        }
+        set_cubic(&mut self.cubic_columns, i, c);
     }
 
     /// The contact stage's coefficients of this step size where a free step's reset left them
-    /// out (a step size both stages take).
+    /// out (a step size both stages take): the very numbers a contact step's [`Self::reset`]
+    /// gives (a series mode's from the same series, [`ModeStep::with_responses`]), so that the
+    /// coefficients of a size never depend on which stage met it first or on what the cache
+    /// evicted in between.
     fn prepare_contact(&mut self, s: &ModalSystem) {
         let n = self.columns[0].len();
         if self.cubic_columns[0].len() == n || n == 0 {
@@ -292,7 +268,10 @@ impl ExactStage {
         for i in 0..n {
             let (w2, c) = (s.omega2[i], s.damping[i]);
             let mode = self.mode(i);
-            let cubic = CubicStep::new(w2, c, dt, &mode);
+            let cubic = match ModeStep::with_responses(w2, c, dt).1 {
+                Some(psi) => CubicStep::from_responses(c, dt, &psi),
+                None => CubicStep::new(w2, c, dt, &mode),
+            };
             self.set_cubic(i, &cubic);
             sums.add(s.contact[i], (w2, c), &mode, &cubic);
         }
@@ -345,7 +324,10 @@ impl ModalStepper {
             w: DVector::zeros(n),
             exact: false,
             energies: true,
-            exact_cache: std::array::from_fn(|_| ExactStage::default()),
+            exact_cache: (0..EXACT_SLOTS).map(|_| ExactStage::default()).collect(),
+            exact_sizes: [f64::NAN; EXACT_SLOTS],
+            exact_last: 0,
+            exact_clock: 0,
             last_dissipation: None,
             last_force_error: None,
             fourth_derivative: Vec::new(),
@@ -724,17 +706,18 @@ impl ModalStepper {
     /// Books the damping's exact work over the step (the modes' energy balance).
     fn exact_step(&mut self, state: &mut Kinematics, stage: Stage, dt: f64, excitation: &Excitation) {
         let s = &self.system;
-        // The stages' own steps recur, a located change's or a landing's rarely: on a miss the
-        // least used coefficients give way.
-        let slot = match self.exact_cache.iter().position(|c| c.dt == dt) {
+        let slot = match exact_slot(&self.exact_sizes, self.exact_last, dt) {
             Some(j) => j,
             None => {
-                let j = (0..self.exact_cache.len()).min_by_key(|&j| self.exact_cache[j].hits).unwrap_or(0);
+                let j = evicted(&self.exact_cache);
                 self.exact_cache[j].reset(s, dt, stage.is_contact());
+                self.exact_sizes[j] = dt;
                 j
             }
         };
-        self.exact_cache[slot].hits += 1;
+        self.exact_last = slot;
+        self.exact_clock += 1;
+        self.exact_cache[slot].used(self.exact_clock);
         if stage.is_contact() {
             self.exact_cache[slot].prepare_contact(s);
             match s.law {
@@ -1269,6 +1252,119 @@ impl Stepper for ModalStepper {
     }
 }
 
+/// Each mode's coefficients of a step `dt` into `columns`, and the contact stage's into `cubic`
+/// when it is not empty (then with the bar's sums over the modes, in the modes' order): one pass
+/// over the modes, each mode's responses computed once for both ([`ModeStep::with_responses`]).
+/// `modes`: omega^2, damping and contact coefficient per mode. Compiled for the CPU's widest
+/// vectors too (the nine sums of a series term side by side; no fused multiply-add: the same bits
+/// whichever runs).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn mode_coefficients(
+    (omega2, damping, b): (&[f64], &[f64], &[f64]),
+    dt: f64,
+    columns: &mut [Vec<f64>; 12],
+    cubic: &mut [Vec<f64>; 18],
+) -> BarSums {
+    let n = omega2.len();
+    let contact = cubic[0].len() == n;
+    let mut sums = BarSums::default();
+    for i in 0..n {
+        let (w2, c) = (omega2[i], damping[i]);
+        let (mode, responses) = ModeStep::with_responses(w2, c, dt);
+        let values = [mode.q, mode.v, mode.integral];
+        for (k, column) in columns.iter_mut().enumerate() {
+            column[i] = values[k / 4][k % 4];
+        }
+        if contact {
+            let step = match responses {
+                Some(psi) => CubicStep::from_responses(c, dt, &psi),
+                None => CubicStep::new(w2, c, dt, &mode),
+            };
+            set_cubic(cubic, i, &step);
+            sums.add(b[i], (w2, c), &mode, &step);
+        }
+    }
+    sums
+}
+
+/// Mode `i`'s contact coefficients into the eighteen columns of [`ExactStage::cubic_columns`].
+#[inline(always)]
+fn set_cubic(columns: &mut [Vec<f64>; 18], i: usize, c: &CubicStep) {
+    let [m0, m1] = c.moments;
+    let values = [
+        c.q[0],
+        c.q[1],
+        c.v[0],
+        c.v[1],
+        c.integral[0],
+        c.integral[1],
+        m0[0],
+        m0[1],
+        m0[2],
+        m0[3],
+        m0[4],
+        m0[5],
+        m1[0],
+        m1[1],
+        m1[2],
+        m1[3],
+        m1[4],
+        m1[5],
+    ];
+    for (column, value) in columns.iter_mut().zip(values) {
+        column[i] = value;
+    }
+}
+
+/// The slot of the exact cache holding the coefficients of step `dt`, from the slots' `sizes`:
+/// `last`, the last step's, first (a run's steps take the same size as a rule).
+fn exact_slot(sizes: &[f64; EXACT_SLOTS], last: usize, dt: f64) -> Option<usize> {
+    if sizes.get(last) == Some(&dt) {
+        return Some(last);
+    }
+    sizes.iter().position(|&size| size == dt)
+}
+
+/// The step sizes whose coefficients a stepper keeps. A campaign event's runs meet some 380
+/// distinct sizes each (issue 43, the sea example: about 250 retakes locating contact changes, 75
+/// peaks' instants, 50 motion rows' cuts, and the stages' own few), of which only the stages' own
+/// and the rows' remainders recur: 32 slots keep those (382 resets a run, 64 slots 379). A run
+/// that writes its samples meets more sizes that recur (each sample inside a contact step an
+/// advance from the step's start): the printed run of `run examples/vessel-sea.toml` resets
+/// 18 300 times with 32 slots, 16 600 with 64 (21 000 before issue 43). A slot of the printed
+/// mesh's 65 modes is 16 kB.
+const EXACT_SLOTS: usize = 64;
+
+/// Single-use entries the exact cache keeps apart before it evicts a reused one (see [`evicted`]).
+const EXACT_PROBATION: usize = 4;
+
+/// The slot of the exact cache whose coefficients give way to a new step size: an empty one,
+/// else the least recently used of the sizes met once so far (a located change's retakes, a
+/// peak's instant, a landing) while at least [`EXACT_PROBATION`] of them are held, else the least
+/// recently used of all. The stages' own sizes recur every step and a motion row's remainder every
+/// row: they stay. (Until issue 43 the least used went, the first of equals: the new size after a
+/// row's cut then took the slot of the size before it, and the two evicted each other at every
+/// row, 260 of a run's 600 resets on the sea example. Measured over the 40 runs of 20 campaign
+/// events: 543 resets a run before, 379 now, against 377 distinct sizes.)
+fn evicted(cache: &[ExactStage]) -> usize {
+    // One pass: the count of sizes met once, the least recently used of them and of all (the
+    // first of equals: the empty slots, never used, in their order).
+    let (mut once, mut oldest_once, mut oldest) = (0, None::<(u64, usize)>, None::<(u64, usize)>);
+    for (j, c) in cache.iter().enumerate() {
+        if c.hits <= 1 {
+            once += 1;
+            if oldest_once.is_none_or(|(used, _)| c.last_used < used) {
+                oldest_once = Some((c.last_used, j));
+            }
+        }
+        if oldest.is_none_or(|(used, _)| c.last_used < used) {
+            oldest = Some((c.last_used, j));
+        }
+    }
+    let chosen = if once >= EXACT_PROBATION { oldest_once } else { oldest };
+    chosen.map_or(0, |(_, j)| j)
+}
+
 /// The scratch of [`ModalStepper::exact_tangent_step`]: a zero load, the contact step's per-mode sums
 /// and work, and coefficients of its own for a step size the stepper's cache no longer holds
 /// (so that the tangent never touches the stepper's cache or its hit counts).
@@ -1483,6 +1579,89 @@ fn four_lanes(a: &[f64], b: &[f64], term: impl Fn(f64, f64) -> f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The resets of the exact cache over a sequence of step sizes, replayed through its
+    /// bookkeeping as `exact_step` does (a reset here only sets the size: the coefficients do not
+    /// matter to which slot goes).
+    fn resets_over(sizes: &[f64]) -> usize {
+        let mut cache: Vec<ExactStage> = (0..EXACT_SLOTS).map(|_| ExactStage::default()).collect();
+        let mut slots = [f64::NAN; EXACT_SLOTS];
+        let (mut clock, mut resets, mut last) = (0, 0, 0);
+        for &dt in sizes {
+            let slot = exact_slot(&slots, last, dt).unwrap_or_else(|| {
+                let j = evicted(&cache);
+                cache[j] = ExactStage { dt, ..ExactStage::default() };
+                slots[j] = dt;
+                resets += 1;
+                j
+            });
+            last = slot;
+            clock += 1;
+            cache[slot].used(clock);
+        }
+        resets
+    }
+
+    /// The sea example's pattern (issue 43): a contact's steps and the retakes that located its
+    /// changes, then the free stage's long step cut at every motion row into the step and its
+    /// remainder, with a few sizes met once (a peak's instant, a landing) now and then. Every
+    /// recurring size is computed once: the resets are the distinct sizes. (The least used
+    /// evicted, the first of equals, the row's two sizes took one slot in turn: 2 resets a row.)
+    #[test]
+    fn recurring_step_sizes_keep_their_coefficients_among_sizes_met_once() {
+        let mut once = (1..).map(|k| 1e-6 + k as f64 * 1e-9);
+        let mut sizes = Vec::new();
+        let contact = [23.601e-6, 47.202e-6, 94.404e-6];
+        for _ in 0..3 {
+            for level in [0, 1, 2, 2, 1, 0, 0] {
+                sizes.extend(std::iter::repeat_n(contact[level], 5));
+            }
+            sizes.extend(once.by_ref().take(40));
+        }
+        let (step, remainder) = (3.020928e-3, 1.979072e-3);
+        for row in 0..300 {
+            sizes.extend([step, remainder]);
+            if row % 7 == 0 {
+                sizes.extend(once.by_ref().take(3));
+            }
+        }
+        sizes.extend(contact);
+        let mut distinct = sizes.clone();
+        distinct.sort_by(f64::total_cmp);
+        distinct.dedup();
+        assert_eq!(resets_over(&sizes), distinct.len());
+    }
+
+    /// A step size met first out of contact and then in contact gets the very contact
+    /// coefficients (to the bit) of one met first in contact: the cache's history cannot move an
+    /// answer. Sizes from a 1 ns retake (every mode in the series) to a long free step (every mode
+    /// but the lowest in the closed form), on the default scenario's printed mesh with its modal
+    /// damping and with Rayleigh's beta = 1e-3 (the high modes overdamped).
+    #[test]
+    fn a_sizes_contact_coefficients_do_not_depend_on_the_stage_that_met_it_first() {
+        let overdamped = crate::model::Scenario { rayleigh_beta: 1e-3, ..Default::default() };
+        for scenario in [crate::model::Scenario::default(), overdamped] {
+            let scenario = crate::discretise::printed(&scenario).unwrap();
+            let model = Model::new(&scenario).unwrap();
+            let system = ModalSystem::new(&model).unwrap().with_damping(&scenario);
+            for dt in [1e-9, 7.3e-7, 23.601e-6, 90.992e-6, 1.510464e-3] {
+                let mut first_in_contact = ExactStage::default();
+                first_in_contact.reset(&system, dt, true);
+                let mut first_free = ExactStage::default();
+                first_free.reset(&system, dt, false);
+                first_free.prepare_contact(&system);
+                let bits = |stage: &ExactStage| {
+                    let columns = stage.columns.iter().chain(&stage.cubic_columns).flatten().map(|x| x.to_bits());
+                    let bar = stage.bar;
+                    let bar =
+                        [bar.ag, bar.bg, bar.av, bar.bv, bar.ramp, bar.vramp, bar.af, bar.aa, bar.ab, bar.m11, bar.m22];
+                    columns.chain(bar.map(f64::to_bits)).collect::<Vec<_>>()
+                };
+                assert_eq!(bits(&first_in_contact), bits(&first_free), "dt {dt}");
+                assert_eq!(first_in_contact.cubic_columns[0].len(), system.omega2.len());
+            }
+        }
+    }
 
     #[test]
     fn the_probes_dots_side_by_side_are_each_columns_dot_to_the_bit() {
