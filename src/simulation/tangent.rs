@@ -329,6 +329,7 @@ impl<S: Stepper> Simulation<S> {
     /// in-step extremes `extremes` and the first contact's peaks and end before it,
     /// `first_before`), which [`Self::tangent_advance`] advanced the difference over: raises the
     /// bounds, and takes the difference at every raised peak's instant.
+    #[inline(never)]
     pub(super) fn tangent_after_step(
         &mut self,
         stage: Stage,
@@ -371,7 +372,13 @@ impl<S: Stepper> Simulation<S> {
             r.envelope_bound[g] = r.envelope_bound[g].max(y0.max(y1) + 4.0 / 27.0 * h * (v0 + v1));
         }
         for g in 0..4 {
-            match self.group_peak(t.groups[g].clone()) {
+            // The envelope only rises: its group's peak is the one taken unless a station of
+            // the group now exceeds it (a vectorised maximum first; the station only then).
+            let range = t.groups[g].clone();
+            if self.state.envelope.get(range.clone()).is_some_and(|values| largest(values) == r.envelope[g].0) {
+                continue;
+            }
+            match self.group_peak(range) {
                 Some((station, value)) if value != r.envelope[g].0 => {
                     let time = self.state.envelope_times[station];
                     let start_delta = &t.before.as_ref().expect("kept by the advance").0;
@@ -436,16 +443,8 @@ impl<S: Stepper> Simulation<S> {
 
     /// The probes and the envelopes' mode sums of a difference `delta`.
     fn tangent_measure(&self, t: &Tangent<S::TangentWork>, delta: &Kinematics) -> Measure {
-        let (q, v) = (delta.displacement.as_slice(), delta.velocity.as_slice());
-        let n = q.len().min(v.len()).min(t.envelope_rows.len());
-        let (mut envelope_q, mut envelope_v) = ([0.0; 4], [0.0; 4]);
-        for i in 0..n {
-            let (a, b, row) = (q[i].abs(), v[i].abs(), &t.envelope_rows[i]);
-            for g in 0..4 {
-                envelope_q[g] += row[g] * a;
-                envelope_v[g] += row[g] * b;
-            }
-        }
+        let (envelope_q, envelope_v) =
+            envelope_sums(&t.envelope_rows, delta.displacement.as_slice(), delta.velocity.as_slice());
         Measure {
             q: self.stepper.probes(&delta.displacement),
             v: self.stepper.probes(&delta.velocity),
@@ -557,6 +556,53 @@ impl<S: Stepper> Simulation<S> {
             (m.envelope_q[g] + t.envelope_loads[g] * load, m.envelope_v[g] + t.envelope_loads[g] * load_rate)
         })
     }
+}
+
+/// Each envelope group's sum_i rows[i][g] |q_i| and sum_i rows[i][g] |v_i|, the modes in their
+/// order, the four groups side by side in one vector (the CPU's widest: the same bits whichever
+/// runs, the same as one group after the other).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn envelope_sums(rows: &[[f64; 4]], q: &[f64], v: &[f64]) -> ([f64; 4], [f64; 4]) {
+    let n = q.len().min(v.len()).min(rows.len());
+    let (rows, q, v) = (&rows[..n], &q[..n], &v[..n]);
+    let (mut envelope_q, mut envelope_v) = ([0.0; 4], [0.0; 4]);
+    for i in 0..n {
+        let (a, b, row) = (q[i].abs(), v[i].abs(), &rows[i]);
+        for g in 0..4 {
+            envelope_q[g] += row[g] * a;
+            envelope_v[g] += row[g] * b;
+        }
+    }
+    (envelope_q, envelope_v)
+}
+
+/// The largest of `values` (-inf for none, NaN where one is NaN), in four lanes of the CPU's
+/// widest vectors (the maximum is exact: the same whichever order).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn largest(values: &[f64]) -> f64 {
+    let mut lanes = [f64::NEG_INFINITY; 4];
+    let mut nan = false;
+    let chunks = values.chunks_exact(4);
+    let rest = chunks.remainder();
+    for chunk in chunks {
+        for l in 0..4 {
+            let v = chunk[l];
+            nan |= v.is_nan();
+            lanes[l] = if v > lanes[l] { v } else { lanes[l] };
+        }
+    }
+    let mut best = lanes.into_iter().chain(rest.iter().copied()).fold(f64::NEG_INFINITY, |b, v| {
+        nan |= v.is_nan();
+        if v > b {
+            v
+        } else {
+            b
+        }
+    });
+    if nan {
+        best = f64::NAN;
+    }
+    best
 }
 
 fn seconds_of(ns: u64) -> f64 {
