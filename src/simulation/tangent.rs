@@ -156,7 +156,8 @@ impl<S: Stepper> Simulation<S> {
         if !covered {
             return Ok(false);
         }
-        let resolved = crate::discretise::printed(twin)?;
+        // The reference mesh's modes from the cache: the same scenario to the bit.
+        let resolved = crate::discretise::printed_with(twin, Some(cache))?;
         let same_mesh =
             [resolved.lower.elements, resolved.upper.elements_to_contact, resolved.upper.elements_beyond_contact]
                 == [s.lower.elements, s.upper.elements_to_contact, s.upper.elements_beyond_contact]
@@ -329,7 +330,6 @@ impl<S: Stepper> Simulation<S> {
     /// in-step extremes `extremes` and the first contact's peaks and end before it,
     /// `first_before`), which [`Self::tangent_advance`] advanced the difference over: raises the
     /// bounds, and takes the difference at every raised peak's instant.
-    #[inline(never)]
     pub(super) fn tangent_after_step(
         &mut self,
         stage: Stage,
