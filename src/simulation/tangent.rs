@@ -330,6 +330,7 @@ impl<S: Stepper> Simulation<S> {
     /// in-step extremes `extremes` and the first contact's peaks and end before it,
     /// `first_before`), which [`Self::tangent_advance`] advanced the difference over: raises the
     /// bounds, and takes the difference at every raised peak's instant.
+    #[inline(never)]
     pub(super) fn tangent_after_step(
         &mut self,
         stage: Stage,

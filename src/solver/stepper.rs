@@ -1251,6 +1251,9 @@ impl Stepper for ModalStepper {
 pub struct TangentWork {
     own: Option<Box<ExactStage>>,
     slot: usize,
+    /// Per slot of the stepper's cache, the step size and [`ramp_sums`] of its coefficients
+    /// (functions of the step size alone: the same numbers whenever they are computed).
+    ramps: [(f64, [f64; 4]); 32],
 }
 
 impl ModalStepper {
@@ -1283,14 +1286,14 @@ impl ModalStepper {
                 work.slot = j;
             }
         }
-        let coefficients = match self.exact_cache.get(work.slot).filter(|c| ready(c)) {
-            Some(c) => c,
+        let (coefficients, ramp) = match self.exact_cache.get(work.slot).filter(|c| ready(c)) {
+            Some(c) => (c, work.ramps.get_mut(work.slot)),
             None => {
                 let own = work.own.get_or_insert_with(Default::default);
                 if !ready(own) {
                     own.reset(s, dt, contact);
                 }
-                work.own.as_deref().expect("just set")
+                (work.own.as_deref().expect("just set"), None)
             }
         };
         let modes = TangentModes {
@@ -1310,13 +1313,21 @@ impl ModalStepper {
         let k = s.bar_stiffness;
         let bar = coefficients.bar;
         let inv_dt = 1.0 / dt;
-        let sums = tangent_contact_sums(&modes, &coefficients.columns);
-        let p0 = k * sums[2];
-        let p0_step = dt * k * sums[3];
+        let [free_gap, free_rate, start_gap, start_rate] = tangent_contact_sums(&modes, &coefficients.columns);
+        let ramps = match ramp {
+            Some((at, sums)) if *at == dt => *sums,
+            Some((at, sums)) => {
+                (*at, *sums) = (dt, ramp_sums(modes.b, &coefficients.columns));
+                *sums
+            }
+            None => ramp_sums(modes.b, &coefficients.columns),
+        };
+        let p0 = k * start_gap;
+        let p0_step = dt * k * start_rate;
         // The end's gap and rate without the bar's change: the modes' free response, and their
         // response to the start's force as the chord to no load (f0 = -P0 b_i, r = P0 b_i / dt).
-        let gap = sums[0] + p0 * (sums[5] * inv_dt - sums[4]);
-        let gap_rate = sums[1] + p0 * (sums[7] * inv_dt - sums[6]);
+        let gap = free_gap + p0 * (ramps[1] * inv_dt - ramps[0]);
+        let gap_rate = free_rate + p0 * (ramps[3] * inv_dt - ramps[2]);
         let start = p0_step + p0;
         let r1 = k * (gap + bar.ag * start + bar.bg * p0);
         let r2 = dt * k * (gap_rate + bar.av * start + bar.bv * p0);
@@ -1362,24 +1373,26 @@ fn free_tangent_advance(m: TangentModes, columns: &[Vec<f64>; 12]) {
 }
 
 /// The sums over the modes behind the tangent's contact step, each in four lanes: b^T of the
-/// free response's end q and v (C0 q + C1 v, C4 q + C5 v), b^T q and b^T v at the start, and
-/// sum C b^2 of C2, C3, C6 and C7 (the end's q and v per start force and per ramp). One pass
-/// each: a single pass for all eight, its accumulators side by side, vectorises across the sums
+/// free response's end q and v (C0 q + C1 v, C4 q + C5 v), b^T q and b^T v at the start. One
+/// pass each: a single pass for all, its accumulators side by side, vectorises across the sums
 /// instead of the modes (twice the instructions, measured).
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn tangent_contact_sums(m: &TangentModes, columns: &[Vec<f64>; 12]) -> [f64; 8] {
+fn tangent_contact_sums(m: &TangentModes, columns: &[Vec<f64>; 12]) -> [f64; 4] {
     let n = m.q.len();
     let (q, v, b) = (&m.q[..n], &m.v[..n], &m.b[..n]);
-    let c: [&[f64]; 8] = std::array::from_fn(|k| &columns[k][..n]);
+    let c: [&[f64]; 6] = std::array::from_fn(|k| &columns[[0, 1, 4, 5, 2, 3][k]][..n]);
+    [response_dot(b, [c[0], c[1]], q, v), response_dot(b, [c[2], c[3]], q, v), dot(b, q), dot(b, v)]
+}
+
+/// sum C b^2 over the modes of C2, C3, C6 and C7 (the end's q and v per start force and per
+/// ramp), each in four lanes: the end gap's and gap rate's response to the start force.
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn ramp_sums(b: &[f64], columns: &[Vec<f64>; 12]) -> [f64; 4] {
     [
-        response_dot(b, [c[0], c[1]], q, v),
-        response_dot(b, [c[4], c[5]], q, v),
-        dot(b, q),
-        dot(b, v),
-        weighted_squares(c[2], b),
-        weighted_squares(c[3], b),
-        weighted_squares(c[6], b),
-        weighted_squares(c[7], b),
+        weighted_squares(&columns[2], b),
+        weighted_squares(&columns[3], b),
+        weighted_squares(&columns[6], b),
+        weighted_squares(&columns[7], b),
     ]
 }
 
