@@ -609,3 +609,45 @@ fn largest(values: &[f64]) -> f64 {
 fn seconds_of(ns: u64) -> f64 {
     crate::results::seconds(ns)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// [`envelope_sums`] is the plain loop over the modes, one group after the other, to the bit
+    /// (lengths with and without a tail of the vectors', rows longer than the state).
+    #[test]
+    fn the_envelope_sums_are_the_plain_loops_to_the_bit() {
+        for (modes, n) in [(65, 65), (46, 46), (9, 7), (3, 3)] {
+            let rows: Vec<[f64; 4]> =
+                (0..modes).map(|i| std::array::from_fn(|g| ((i * 31 + g * 7) % 17) as f64 / 3.0 + 0.1)).collect();
+            let q: Vec<f64> = (0..n).map(|i| (i as f64 * 0.7).sin() * 1e-9).collect();
+            let v: Vec<f64> = (0..n).map(|i| (i as f64 * 1.3).cos() * 1e-6).collect();
+            let (eq, ev) = envelope_sums(&rows, &q, &v);
+            for g in 0..4 {
+                let (mut sq, mut sv) = (0.0, 0.0);
+                for i in 0..n {
+                    sq += rows[i][g] * q[i].abs();
+                    sv += rows[i][g] * v[i].abs();
+                }
+                assert_eq!((eq[g].to_bits(), ev[g].to_bits()), (sq.to_bits(), sv.to_bits()), "{modes} {n} group {g}");
+            }
+        }
+    }
+
+    /// [`largest`] is the maximum of the values (whatever their position among the lanes and the
+    /// tail), -inf of none, NaN where one is NaN.
+    #[test]
+    fn the_largest_value_is_the_maximum_wherever_it_stands() {
+        for len in [1, 3, 4, 5, 8, 11] {
+            for at in 0..len {
+                let mut values: Vec<f64> = (0..len).map(|i| i as f64 * 0.25 - 3.0).collect();
+                values[at] = 7.5;
+                assert_eq!(largest(&values), 7.5, "len {len} at {at}");
+                values[at] = f64::NAN;
+                assert!(largest(&values).is_nan(), "len {len} NaN at {at}");
+            }
+        }
+        assert_eq!(largest(&[]), f64::NEG_INFINITY);
+    }
+}

@@ -1560,6 +1560,57 @@ fn four_lanes(a: &[f64], b: &[f64], term: impl Fn(f64, f64) -> f64) -> f64 {
 mod tests {
     use super::*;
 
+    /// The contact step's sums of the ramp's responses are functions of the step size alone:
+    /// the tangent's step with them kept from an earlier step (the second step of one scratch)
+    /// gives the same bits as with them computed afresh (a new scratch), and the same as with
+    /// the tangent's own coefficients (the stepper's cache without this size). And the step is
+    /// the exact advance's derivative: out of contact each undamped mode turns by its angle
+    /// omega dt (q1 = cos q0 + sin / omega v0), to 1e-12 of the difference (the cosine and sine
+    /// series' round-off).
+    #[test]
+    fn the_tangent_steps_kept_sums_give_the_same_bits_as_fresh_ones() {
+        use crate::solver::kinematics::TipForces;
+        let scenario = crate::Scenario { damping_ratio: 0.0, ..crate::Scenario::default() };
+        let sim = crate::Simulation::new(&scenario).expect("the default scenario runs");
+        let mut stepper = ModalStepper::new(sim.model(), sim.modal().clone()).with_exact(true);
+        let excitation = Excitation::forces(TipForces { upper: 0.0, lower: 0.0 });
+        let mut state = sim.state().kinematics.clone();
+        let n = state.displacement.len();
+        let delta = Kinematics {
+            displacement: DVector::from_fn(n, |i, _| 1e-9 * (1.0 + i as f64).sin()),
+            velocity: DVector::from_fn(n, |i, _| 1e-7 * (2.0 + i as f64).cos()),
+            acceleration: DVector::zeros(n),
+        };
+        let dt = 3.0e-5;
+        stepper.step(&mut state, Stage::Contact, dt, &excitation);
+        let bits = |k: &Kinematics| -> Vec<u64> {
+            k.displacement.iter().chain(k.velocity.iter()).map(|x| x.to_bits()).collect()
+        };
+        let mut kept = TangentWork::default();
+        let (mut first, mut second, mut fresh) = (delta.clone(), delta.clone(), delta.clone());
+        assert!(stepper.exact_tangent_step(&mut first, Stage::Contact, dt, &mut kept));
+        assert!(stepper.exact_tangent_step(&mut second, Stage::Contact, dt, &mut kept));
+        assert!(stepper.exact_tangent_step(&mut fresh, Stage::Contact, dt, &mut TangentWork::default()));
+        assert_eq!(bits(&first), bits(&second));
+        assert_eq!(bits(&first), bits(&fresh));
+        // A size the stepper never took: the tangent's own coefficients.
+        let mut own = delta.clone();
+        let unseen = 1.7e-5;
+        assert!(stepper.exact_tangent_step(&mut own, Stage::Free, unseen, &mut kept));
+        let s = stepper.system();
+        let scale = delta.displacement.amax() + delta.velocity.amax() / s.omega2.max().sqrt();
+        for i in 0..n {
+            let w = s.omega2[i].sqrt();
+            let (q0, v0) = (delta.displacement[i], delta.velocity[i]);
+            let q1 = if w > 0.0 { (w * unseen).cos() * q0 + (w * unseen).sin() / w * v0 } else { q0 + unseen * v0 };
+            assert!(
+                (own.displacement[i] - q1).abs() <= 1e-12 * scale,
+                "mode {i}: {} against {q1}",
+                own.displacement[i]
+            );
+        }
+    }
+
     #[test]
     fn the_probes_dots_side_by_side_are_each_columns_dot_to_the_bit() {
         // Lengths with and without a tail of the four lanes, x shorter than the rows.
