@@ -156,7 +156,8 @@ impl<S: Stepper> Simulation<S> {
         if !covered {
             return Ok(false);
         }
-        let resolved = crate::discretise::printed(twin)?;
+        // The reference mesh's modes from the cache: the same scenario to the bit.
+        let resolved = crate::discretise::printed_with(twin, Some(cache))?;
         let same_mesh =
             [resolved.lower.elements, resolved.upper.elements_to_contact, resolved.upper.elements_beyond_contact]
                 == [s.lower.elements, s.upper.elements_to_contact, s.upper.elements_beyond_contact]
@@ -329,6 +330,7 @@ impl<S: Stepper> Simulation<S> {
     /// in-step extremes `extremes` and the first contact's peaks and end before it,
     /// `first_before`), which [`Self::tangent_advance`] advanced the difference over: raises the
     /// bounds, and takes the difference at every raised peak's instant.
+    #[inline(never)]
     pub(super) fn tangent_after_step(
         &mut self,
         stage: Stage,
@@ -371,7 +373,13 @@ impl<S: Stepper> Simulation<S> {
             r.envelope_bound[g] = r.envelope_bound[g].max(y0.max(y1) + 4.0 / 27.0 * h * (v0 + v1));
         }
         for g in 0..4 {
-            match self.group_peak(t.groups[g].clone()) {
+            // The envelope only rises: its group's peak is the one taken unless a station of
+            // the group now exceeds it (a vectorised maximum first; the station only then).
+            let range = t.groups[g].clone();
+            if self.state.envelope.get(range.clone()).is_some_and(|values| largest(values) == r.envelope[g].0) {
+                continue;
+            }
+            match self.group_peak(range) {
                 Some((station, value)) if value != r.envelope[g].0 => {
                     let time = self.state.envelope_times[station];
                     let start_delta = &t.before.as_ref().expect("kept by the advance").0;
@@ -436,16 +444,8 @@ impl<S: Stepper> Simulation<S> {
 
     /// The probes and the envelopes' mode sums of a difference `delta`.
     fn tangent_measure(&self, t: &Tangent<S::TangentWork>, delta: &Kinematics) -> Measure {
-        let (q, v) = (delta.displacement.as_slice(), delta.velocity.as_slice());
-        let n = q.len().min(v.len()).min(t.envelope_rows.len());
-        let (mut envelope_q, mut envelope_v) = ([0.0; 4], [0.0; 4]);
-        for i in 0..n {
-            let (a, b, row) = (q[i].abs(), v[i].abs(), &t.envelope_rows[i]);
-            for g in 0..4 {
-                envelope_q[g] += row[g] * a;
-                envelope_v[g] += row[g] * b;
-            }
-        }
+        let (envelope_q, envelope_v) =
+            envelope_sums(&t.envelope_rows, delta.displacement.as_slice(), delta.velocity.as_slice());
         Measure {
             q: self.stepper.probes(&delta.displacement),
             v: self.stepper.probes(&delta.velocity),
@@ -559,6 +559,95 @@ impl<S: Stepper> Simulation<S> {
     }
 }
 
+/// Each envelope group's sum_i rows[i][g] |q_i| and sum_i rows[i][g] |v_i|, the modes in their
+/// order, the four groups side by side in one vector (the CPU's widest: the same bits whichever
+/// runs, the same as one group after the other).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn envelope_sums(rows: &[[f64; 4]], q: &[f64], v: &[f64]) -> ([f64; 4], [f64; 4]) {
+    let n = q.len().min(v.len()).min(rows.len());
+    let (rows, q, v) = (&rows[..n], &q[..n], &v[..n]);
+    let (mut envelope_q, mut envelope_v) = ([0.0; 4], [0.0; 4]);
+    for i in 0..n {
+        let (a, b, row) = (q[i].abs(), v[i].abs(), &rows[i]);
+        for g in 0..4 {
+            envelope_q[g] += row[g] * a;
+            envelope_v[g] += row[g] * b;
+        }
+    }
+    (envelope_q, envelope_v)
+}
+
+/// The largest of `values` (-inf for none, NaN where one is NaN), in four lanes of the CPU's
+/// widest vectors (the maximum is exact: the same whichever order).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn largest(values: &[f64]) -> f64 {
+    let mut lanes = [f64::NEG_INFINITY; 4];
+    let mut nan = false;
+    let chunks = values.chunks_exact(4);
+    let rest = chunks.remainder();
+    for chunk in chunks {
+        for l in 0..4 {
+            let v = chunk[l];
+            nan |= v.is_nan();
+            lanes[l] = if v > lanes[l] { v } else { lanes[l] };
+        }
+    }
+    let mut best = lanes.into_iter().chain(rest.iter().copied()).fold(f64::NEG_INFINITY, |b, v| {
+        nan |= v.is_nan();
+        if v > b {
+            v
+        } else {
+            b
+        }
+    });
+    if nan {
+        best = f64::NAN;
+    }
+    best
+}
+
 fn seconds_of(ns: u64) -> f64 {
     crate::results::seconds(ns)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// [`envelope_sums`] is the plain loop over the modes, one group after the other, to the bit
+    /// (lengths with and without a tail of the vectors', rows longer than the state).
+    #[test]
+    fn the_envelope_sums_are_the_plain_loops_to_the_bit() {
+        for (modes, n) in [(65, 65), (46, 46), (9, 7), (3, 3)] {
+            let rows: Vec<[f64; 4]> =
+                (0..modes).map(|i| std::array::from_fn(|g| ((i * 31 + g * 7) % 17) as f64 / 3.0 + 0.1)).collect();
+            let q: Vec<f64> = (0..n).map(|i| (i as f64 * 0.7).sin() * 1e-9).collect();
+            let v: Vec<f64> = (0..n).map(|i| (i as f64 * 1.3).cos() * 1e-6).collect();
+            let (eq, ev) = envelope_sums(&rows, &q, &v);
+            for g in 0..4 {
+                let (mut sq, mut sv) = (0.0, 0.0);
+                for i in 0..n {
+                    sq += rows[i][g] * q[i].abs();
+                    sv += rows[i][g] * v[i].abs();
+                }
+                assert_eq!((eq[g].to_bits(), ev[g].to_bits()), (sq.to_bits(), sv.to_bits()), "{modes} {n} group {g}");
+            }
+        }
+    }
+
+    /// [`largest`] is the maximum of the values (whatever their position among the lanes and the
+    /// tail), -inf of none, NaN where one is NaN.
+    #[test]
+    fn the_largest_value_is_the_maximum_wherever_it_stands() {
+        for len in [1, 3, 4, 5, 8, 11] {
+            for at in 0..len {
+                let mut values: Vec<f64> = (0..len).map(|i| i as f64 * 0.25 - 3.0).collect();
+                values[at] = 7.5;
+                assert_eq!(largest(&values), 7.5, "len {len} at {at}");
+                values[at] = f64::NAN;
+                assert!(largest(&values).is_nan(), "len {len} NaN at {at}");
+            }
+        }
+        assert_eq!(largest(&[]), f64::NEG_INFINITY);
+    }
 }

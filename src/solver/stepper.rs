@@ -1365,16 +1365,17 @@ fn evicted(cache: &[ExactStage]) -> usize {
     chosen.map_or(0, |(_, j)| j)
 }
 
-/// The scratch of [`ModalStepper::exact_tangent_step`]: a zero load, the contact step's per-mode sums
-/// and work, and coefficients of its own for a step size the stepper's cache no longer holds
-/// (so that the tangent never touches the stepper's cache or its hit counts).
+/// The scratch of [`ModalStepper::exact_tangent_step`]: coefficients of its own for a step size
+/// the stepper's cache no longer holds (so that the tangent never touches the stepper's cache or
+/// its hit counts), and where in that cache the latest step's were (the next step's are most
+/// often the same: the stages' own sizes recur).
 #[derive(Clone, Debug, Default)]
 pub struct TangentWork {
-    zero: DVector<f64>,
-    gap: Vec<f64>,
-    rate: Vec<f64>,
-    work: Vec<f64>,
     own: Option<Box<ExactStage>>,
+    slot: usize,
+    /// Per slot of the stepper's cache, the step size and [`ramp_sums`] of its coefficients
+    /// (functions of the step size alone: the same numbers whenever they are computed).
+    ramps: Vec<(f64, [f64; 4])>,
 }
 
 impl ModalStepper {
@@ -1383,12 +1384,16 @@ impl ModalStepper {
     /// advance's very coefficients applied to `delta` under no load, no support offset and no
     /// static gap shift (they cancel in a difference), the bar's force in contact the cubic of
     /// its own difference. The exact step is affine in the state for a given stage and step,
-    /// so this is the step's derivative. `delta`'s acceleration is first made the equilibrium
-    /// of the stage (zero load; the bar's k_eff b b^T delta q in contact): at a contact change
-    /// the difference's force is the bar's at once (the printed run's own bar force is 0 at the
-    /// touch, to the gap tolerance). Nothing the stepper keeps of its steps changes (its dissipation, its
-    /// force error, its coefficients' cache and hit counts). Returns false where there is no
-    /// such tangent: the linear acceleration method, or a nonlinear contact law.
+    /// so this is the step's derivative. `delta` starts at the equilibrium of the stage (zero
+    /// load; the bar's k_eff b b^T delta q in contact): at a contact change the difference's
+    /// force is the bar's at once (the printed run's own bar force is 0 at the touch, to the gap
+    /// tolerance); so each mode's start force is -P0 b_i (0 out of contact), whatever `delta`'s
+    /// acceleration, which is set to the end's equilibrium. Only what the difference needs is
+    /// computed: no damping work, no force error (out of contact two products per coordinate;
+    /// in contact one pass for the gap's sums and one for the advance). Nothing the stepper
+    /// keeps of its steps changes (its dissipation, its force error, its coefficients' cache and
+    /// hit counts). Returns false where there is no such tangent: the linear acceleration
+    /// method, or a nonlinear contact law.
     pub fn exact_tangent_step(&self, delta: &mut Kinematics, stage: Stage, dt: f64, work: &mut TangentWork) -> bool {
         let s = &self.system;
         if !self.exact || s.law.is_some() {
@@ -1396,61 +1401,58 @@ impl ModalStepper {
         }
         let n = delta.displacement.len().min(s.omega2.len()).min(s.damping.len()).min(s.contact.len());
         let contact = stage.is_contact();
-        let k = s.bar_stiffness;
-        {
-            let b = &s.contact.as_slice()[..n];
-            let (q, v) = (&delta.displacement.as_slice()[..n], &delta.velocity.as_slice()[..n]);
-            let bar = if contact { k * dot(b, q) } else { 0.0 };
-            let a = &mut delta.acceleration.as_mut_slice()[..n];
-            for i in 0..n {
-                a[i] = -s.omega2[i] * q[i] - s.damping[i] * v[i] - bar * b[i];
-            }
-        }
-        if work.zero.len() != n {
-            work.zero = DVector::zeros(n);
-            work.gap.resize(n, 0.0);
-            work.rate.resize(n, 0.0);
-            work.work.resize(n, 0.0);
-        }
         let ready =
             |c: &ExactStage| c.dt == dt && c.columns[0].len() == n && (!contact || c.cubic_columns[0].len() == n);
-        let coefficients = match self.exact_cache.iter().find(|c| ready(c)) {
-            Some(c) => c,
+        if !self.exact_cache.get(work.slot).is_some_and(ready) {
+            if let Some(j) = self.exact_cache.iter().position(ready) {
+                work.slot = j;
+            }
+        }
+        if work.ramps.len() != EXACT_SLOTS {
+            work.ramps = vec![(f64::NAN, [0.0; 4]); EXACT_SLOTS];
+        }
+        let (coefficients, ramp) = match self.exact_cache.get(work.slot).filter(|c| ready(c)) {
+            Some(c) => (c, work.ramps.get_mut(work.slot)),
             None => {
                 let own = work.own.get_or_insert_with(Default::default);
                 if !ready(own) {
                     own.reset(s, dt, contact);
                 }
-                work.own.as_deref().expect("just set")
+                (work.own.as_deref().expect("just set"), None)
             }
         };
-        let TangentWork { zero, gap: gap_terms, rate: rate_terms, work: dissipated, .. } = work;
-        let mut m = ModeArrays {
+        let modes = TangentModes {
             q: &mut delta.displacement.as_mut_slice()[..n],
             v: &mut delta.velocity.as_mut_slice()[..n],
             a: &mut delta.acceleration.as_mut_slice()[..n],
-            load: &zero.as_slice()[..n],
             omega2: &s.omega2.as_slice()[..n],
             damping: &s.damping.as_slice()[..n],
+            b: &s.contact.as_slice()[..n],
         };
         if !contact {
-            free_exact_step(m, &coefficients.columns, dt, dissipated);
+            free_tangent_advance(modes, &coefficients.columns);
             return true;
         }
-        // `contact_step` with no offset: the bar's force is k b^T delta q at both ends.
-        let b = &s.contact.as_slice()[..n];
+        // `contact_step` with no load and no offset: the bar's force is k b^T delta q at both
+        // ends, and each mode's start force f0 = -P0 b_i.
+        let k = s.bar_stiffness;
         let bar = coefficients.bar;
         let inv_dt = 1.0 / dt;
-        contact_free_response(&m, b, &coefficients.columns, inv_dt, gap_terms, rate_terms);
-        let (mut gap, mut gap_rate, mut start_gap, mut start_rate) = (0.0, 0.0, 0.0, 0.0);
-        for i in 0..n {
-            gap += gap_terms[i];
-            gap_rate += rate_terms[i];
-            start_gap += b[i] * m.q[i];
-            start_rate += b[i] * m.v[i];
-        }
+        let [free_gap, free_rate, start_gap, start_rate] = tangent_contact_sums(&modes, &coefficients.columns);
+        let ramps = match ramp {
+            Some((at, sums)) if *at == dt => *sums,
+            Some((at, sums)) => {
+                (*at, *sums) = (dt, ramp_sums(modes.b, &coefficients.columns));
+                *sums
+            }
+            None => ramp_sums(modes.b, &coefficients.columns),
+        };
         let p0 = k * start_gap;
         let p0_step = dt * k * start_rate;
+        // The end's gap and rate without the bar's change: the modes' free response, and their
+        // response to the start's force as the chord to no load (f0 = -P0 b_i, r = P0 b_i / dt).
+        let gap = free_gap + p0 * (ramps[1] * inv_dt - ramps[0]);
+        let gap_rate = free_rate + p0 * (ramps[3] * inv_dt - ramps[2]);
         let start = p0_step + p0;
         let r1 = k * (gap + bar.ag * start + bar.bg * p0);
         let r2 = dt * k * (gap_rate + bar.av * start + bar.bv * p0);
@@ -1458,10 +1460,113 @@ impl ModalStepper {
         let force_step = (bar.m11 * r2 - bar.m21 * r1) / bar.determinant;
         let change = force - p0;
         let (alpha, beta) = (p0_step - change, force_step - change);
-        let (g2, g3) = (2.0 * alpha + beta, -(alpha + beta));
-        let bar_force = BarForce { force, alpha, g2, g3 };
-        contact_advance(&mut m, b, &coefficients.columns, &coefficients.cubic_columns, dt, bar_force, dissipated);
+        // Mode i's forcing per b_i: -P0 at the start, the chord's and the cubic's departure from it.
+        let forcing = [-p0, (p0 - force - alpha) * inv_dt, 2.0 * alpha + beta, -(alpha + beta), -force];
+        contact_tangent_advance(modes, &coefficients.columns, &coefficients.cubic_columns, forcing);
         true
+    }
+}
+
+/// A difference's modal arrays and the parameters a tangent step reads, each `n` long.
+struct TangentModes<'a> {
+    q: &'a mut [f64],
+    v: &'a mut [f64],
+    a: &'a mut [f64],
+    omega2: &'a [f64],
+    damping: &'a [f64],
+    b: &'a [f64],
+}
+
+/// The tangent's exact step out of contact ([`ModalStepper::exact_tangent_step`]): under no
+/// force each mode's end is q(h) = C0 q0 + C1 v0, v(h) = C4 q0 + C5 v0 (the step's own columns;
+/// `free_exact_step`'s terms in f0 and r vanish), its acceleration the free equilibrium. In the
+/// CPU's widest vectors (no fused multiply-add: the same bits whichever runs).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn free_tangent_advance(m: TangentModes, columns: &[Vec<f64>; 12]) {
+    let n = m.q.len();
+    let (q, v, a) = (m.q, &mut m.v[..n], &mut m.a[..n]);
+    let (omega2, damping) = (&m.omega2[..n], &m.damping[..n]);
+    let (c0, c1, c4, c5) = (&columns[0][..n], &columns[1][..n], &columns[4][..n], &columns[5][..n]);
+    for i in 0..n {
+        let (q0, v0) = (q[i], v[i]);
+        let q1 = c0[i] * q0 + c1[i] * v0;
+        let v1 = c4[i] * q0 + c5[i] * v0;
+        q[i] = q1;
+        v[i] = v1;
+        a[i] = -damping[i] * v1 - omega2[i] * q1;
+    }
+}
+
+/// The sums over the modes behind the tangent's contact step, each in four lanes: b^T of the
+/// free response's end q and v (C0 q + C1 v, C4 q + C5 v), b^T q and b^T v at the start. One
+/// pass each: a single pass for all, its accumulators side by side, vectorises across the sums
+/// instead of the modes (twice the instructions, measured).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn tangent_contact_sums(m: &TangentModes, columns: &[Vec<f64>; 12]) -> [f64; 4] {
+    let n = m.q.len();
+    let (q, v, b) = (&m.q[..n], &m.v[..n], &m.b[..n]);
+    let c: [&[f64]; 6] = std::array::from_fn(|k| &columns[[0, 1, 4, 5, 2, 3][k]][..n]);
+    [response_dot(b, [c[0], c[1]], q, v), response_dot(b, [c[2], c[3]], q, v), dot(b, q), dot(b, v)]
+}
+
+/// sum C b^2 over the modes of C2, C3, C6 and C7 (the end's q and v per start force and per
+/// ramp), each in four lanes: the end gap's and gap rate's response to the start force.
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn ramp_sums(b: &[f64], columns: &[Vec<f64>; 12]) -> [f64; 4] {
+    [
+        weighted_squares(&columns[2], b),
+        weighted_squares(&columns[3], b),
+        weighted_squares(&columns[6], b),
+        weighted_squares(&columns[7], b),
+    ]
+}
+
+/// sum b_i (c0_i q_i + c1_i v_i) in four lanes (as [`four_lanes`]).
+#[inline(always)]
+fn response_dot(b: &[f64], [c0, c1]: [&[f64]; 2], q: &[f64], v: &[f64]) -> f64 {
+    let n = b.len().min(c0.len()).min(c1.len()).min(q.len()).min(v.len());
+    let (b, c0, c1, q, v) = (&b[..n], &c0[..n], &c1[..n], &q[..n], &v[..n]);
+    let mut lanes = [0.0f64; 4];
+    let whole = n - n % 4;
+    let chunks = b[..whole]
+        .chunks_exact(4)
+        .zip(c0[..whole].chunks_exact(4))
+        .zip(c1[..whole].chunks_exact(4))
+        .zip(q[..whole].chunks_exact(4).zip(v[..whole].chunks_exact(4)));
+    for (((b, c0), c1), (q, v)) in chunks {
+        for l in 0..4 {
+            lanes[l] += b[l] * (c0[l] * q[l] + c1[l] * v[l]);
+        }
+    }
+    let mut tail = 0.0;
+    for i in whole..n {
+        tail += b[i] * (c0[i] * q[i] + c1[i] * v[i]);
+    }
+    (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) + tail
+}
+
+/// The tangent's exact step in contact: each mode under b_i times the forcing `f` = [start
+/// value, ramp per second, s^2 and s^3 coefficients, end value] (see
+/// [`ModalStepper::exact_tangent_step`]; `contact_advance`'s terms without the damping's work),
+/// its acceleration the end's equilibrium. In the CPU's widest vectors (no fused multiply-add:
+/// the same bits whichever runs).
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn contact_tangent_advance(m: TangentModes, columns: &[Vec<f64>; 12], cubic: &[Vec<f64>; 18], f: [f64; 5]) {
+    let n = m.q.len();
+    let (q, v, a) = (m.q, &mut m.v[..n], &mut m.a[..n]);
+    let (omega2, damping, b) = (&m.omega2[..n], &m.damping[..n], &m.b[..n]);
+    let c: [&[f64]; 8] = std::array::from_fn(|k| &columns[k][..n]);
+    let cu: [&[f64]; 4] = std::array::from_fn(|k| &cubic[k][..n]);
+    let [start, ramp, g2, g3, end] = f;
+    for i in 0..n {
+        let (q0, v0) = (q[i], v[i]);
+        let x = start * c[2][i] + ramp * c[3][i] + g2 * cu[0][i] + g3 * cu[1][i];
+        let y = start * c[6][i] + ramp * c[7][i] + g2 * cu[2][i] + g3 * cu[3][i];
+        let q1 = c[0][i] * q0 + c[1][i] * v0 + b[i] * x;
+        let v1 = c[4][i] * q0 + c[5][i] * v0 + b[i] * y;
+        q[i] = q1;
+        v[i] = v1;
+        a[i] = b[i] * end - damping[i] * v1 - omega2[i] * q1;
     }
 }
 
@@ -1660,6 +1765,57 @@ mod tests {
                 assert_eq!(bits(&first_in_contact), bits(&first_free), "dt {dt}");
                 assert_eq!(first_in_contact.cubic_columns[0].len(), system.omega2.len());
             }
+        }
+    }
+
+    /// The contact step's sums of the ramp's responses are functions of the step size alone:
+    /// the tangent's step with them kept from an earlier step (the second step of one scratch)
+    /// gives the same bits as with them computed afresh (a new scratch), and the same as with
+    /// the tangent's own coefficients (the stepper's cache without this size). And the step is
+    /// the exact advance's derivative: out of contact each undamped mode turns by its angle
+    /// omega dt (q1 = cos q0 + sin / omega v0), to 1e-12 of the difference (the cosine and sine
+    /// series' round-off).
+    #[test]
+    fn the_tangent_steps_kept_sums_give_the_same_bits_as_fresh_ones() {
+        use crate::solver::kinematics::TipForces;
+        let scenario = crate::Scenario { damping_ratio: 0.0, ..crate::Scenario::default() };
+        let sim = crate::Simulation::new(&scenario).expect("the default scenario runs");
+        let mut stepper = ModalStepper::new(sim.model(), sim.modal().clone()).with_exact(true);
+        let excitation = Excitation::forces(TipForces { upper: 0.0, lower: 0.0 });
+        let mut state = sim.state().kinematics.clone();
+        let n = state.displacement.len();
+        let delta = Kinematics {
+            displacement: DVector::from_fn(n, |i, _| 1e-9 * (1.0 + i as f64).sin()),
+            velocity: DVector::from_fn(n, |i, _| 1e-7 * (2.0 + i as f64).cos()),
+            acceleration: DVector::zeros(n),
+        };
+        let dt = 3.0e-5;
+        stepper.step(&mut state, Stage::Contact, dt, &excitation);
+        let bits = |k: &Kinematics| -> Vec<u64> {
+            k.displacement.iter().chain(k.velocity.iter()).map(|x| x.to_bits()).collect()
+        };
+        let mut kept = TangentWork::default();
+        let (mut first, mut second, mut fresh) = (delta.clone(), delta.clone(), delta.clone());
+        assert!(stepper.exact_tangent_step(&mut first, Stage::Contact, dt, &mut kept));
+        assert!(stepper.exact_tangent_step(&mut second, Stage::Contact, dt, &mut kept));
+        assert!(stepper.exact_tangent_step(&mut fresh, Stage::Contact, dt, &mut TangentWork::default()));
+        assert_eq!(bits(&first), bits(&second));
+        assert_eq!(bits(&first), bits(&fresh));
+        // A size the stepper never took: the tangent's own coefficients.
+        let mut own = delta.clone();
+        let unseen = 1.7e-5;
+        assert!(stepper.exact_tangent_step(&mut own, Stage::Free, unseen, &mut kept));
+        let s = stepper.system();
+        let scale = delta.displacement.amax() + delta.velocity.amax() / s.omega2.max().sqrt();
+        for i in 0..n {
+            let w = s.omega2[i].sqrt();
+            let (q0, v0) = (delta.displacement[i], delta.velocity[i]);
+            let q1 = if w > 0.0 { (w * unseen).cos() * q0 + (w * unseen).sin() / w * v0 } else { q0 + unseen * v0 };
+            assert!(
+                (own.displacement[i] - q1).abs() <= 1e-12 * scale,
+                "mode {i}: {} against {q1}",
+                own.displacement[i]
+            );
         }
     }
 
