@@ -15,7 +15,7 @@ use crate::results::{
 };
 use crate::solver::contact::{self, Stage};
 use crate::solver::envelope::{EnvelopeScope, Running, StationRows, StationState};
-use crate::solver::initial::{initial_state, Pitching};
+use crate::solver::initial::Pitching;
 use crate::solver::model_range::{ModelRange, RangeCheck, RangeRows, StrainPeak};
 use crate::solver::static_correction::LOADS;
 use crate::solver::turning_points::TurningPoints;
@@ -338,17 +338,23 @@ impl Simulation<ModalStepper> {
 
     fn starting_with_cache(scenario: &Scenario, motion: SupportMotion, cache: Option<&ModalCache>) -> Result<Self> {
         // The reference mesh of an automatic cut-off shares the cache too (issue 43: one
-        // eigen-solve per geometry, not per run).
+        // eigen-solve per geometry, not per run), and so do the assembled model and what the
+        // initial state takes from the geometry alone (the same bits: see
+        // [`crate::solver::modal_cache`]).
         let resolved = crate::discretise::printed_with(scenario, cache)?;
-        let model = Model::new(&resolved)?;
-        let (full, run, projector) = match cache.filter(|c| c.is_enabled()) {
+        let cache = cache.filter(|c| c.is_enabled());
+        let model = match cache {
+            Some(cache) => cache.model(&resolved)?,
+            None => Model::new(&resolved)?,
+        };
+        let (full, run, projector, factors) = match cache {
             Some(cache) => {
                 let modes = cache.modes(&model)?;
-                (modes.full, modes.run, modes.projector)
+                (modes.full, modes.run, modes.projector, Some(modes.initial))
             }
-            None => (std::sync::Arc::new(ModalSystem::new(&model)?), None, None),
+            None => (std::sync::Arc::new(ModalSystem::new(&model)?), None, None, None),
         };
-        let physical = initial_physical_state(&model, &full, &motion)?;
+        let physical = initial_physical_state_with(&model, &full, &motion, factors.as_deref())?;
         let (modal, projector) = match (run, projector) {
             (Some(run), Some(projector)) => (run, projector),
             (Some(run), None) => {
@@ -383,8 +389,19 @@ impl Simulation<DenseStepper> {
 /// The initial state in physical coordinates (from the full basis: the bridge's quasi-static
 /// deflection of Eq. 24 in every mode), under the supports' motion at t = 0.
 fn initial_physical_state(model: &Model, full: &ModalSystem, motion: &SupportMotion) -> Result<Kinematics> {
+    initial_physical_state_with(model, full, motion, None)
+}
+
+/// [`initial_physical_state`] with what it takes from the geometry alone given (a cache's, for
+/// `model`'s geometry and `full`): the same state to the bit.
+fn initial_physical_state_with(
+    model: &Model,
+    full: &ModalSystem,
+    motion: &SupportMotion,
+    factors: Option<&crate::solver::modal_cache::InitialFactors>,
+) -> Result<Kinematics> {
     let forces = TipForces { upper: model.scenario.upper.tip_force, lower: model.scenario.lower.tip_force };
-    initial_state(model, full, &excitation(model, forces, motion))
+    crate::solver::initial::initial_state_with(model, full, &excitation(model, forces, motion), factors)
 }
 
 /// The excitation of the tip forces and the supports' motion at one instant.

@@ -18,13 +18,21 @@
 //! [`crate::discretise::reference_mesh_with`]) is kept here too, by the same key, so that the rungs
 //! a sweep or a campaign resolves share one eigen-solve per geometry (issue 43).
 //!
+//! The assembled [`Model`] of a scenario is kept too ([`ModalCache::model`]), by the scenario less
+//! the fields no part of a model reads (a campaign's events differ only by the sea's instant: its
+//! three runs and their rungs build six models an event from three meshes), and so is what each
+//! run's initial state takes from its geometry alone (the arrestor's stiffness factored, the
+//! bridge's shapes transposed: [`RunModes::initial`]) and the reference mesh's frequencies
+//! ([`ModalCache::reference`]). Each is what a fresh computation gives, to the bit (the same
+//! operations on the same inputs), as the tests below hold.
+//!
 //! Measured (issue 29, the default scenario, perf): the setup is about 4 % of a run's time, the
 //! eigen decompositions most of it; stepping is the rest.
 
 use std::collections::VecDeque;
 use std::sync::{Arc, Mutex, MutexGuard};
 
-use nalgebra::DMatrix;
+use nalgebra::{Cholesky, DMatrix, Dyn};
 
 use super::modal::ModalSystem;
 use crate::error::Result;
@@ -76,7 +84,30 @@ struct Shared {
     run: Option<ModalSystem>,
     /// The run basis's [`crate::solver::stepper::projector`].
     projector: Option<Arc<DMatrix<f64>>>,
+    /// What the initial state takes from the geometry alone.
+    initial: Arc<InitialFactors>,
     bytes: usize,
+}
+
+/// What [`crate::solver::initial::initial_state`] computes from a geometry alone, whatever the
+/// run's speed, supports' motion or tip forces: computed once per geometry, the same bits as
+/// computed per run.
+#[derive(Debug)]
+pub struct InitialFactors {
+    /// The arrestor's stiffness factored (Cholesky); `None` when it has no DOF or is not
+    /// positive definite (the initial state then meets its own error).
+    pub lower_stiffness: Option<Cholesky<f64, Dyn>>,
+    /// The full system's bridge shapes transposed, Phi_u^T.
+    pub upper_shapes_transposed: DMatrix<f64>,
+}
+
+impl InitialFactors {
+    /// The factors of `model` with its full modal system `full`.
+    pub fn new(model: &Model, full: &ModalSystem) -> InitialFactors {
+        let lower_stiffness =
+            if model.lower.dofs() == 0 { None } else { model.lower.stiffness.clone().cholesky() };
+        InitialFactors { lower_stiffness, upper_shapes_transposed: full.upper.shapes.transpose() }
+    }
 }
 
 /// One key's slot: filled by the first run that needs it, while later ones wait on its lock.
@@ -88,6 +119,10 @@ type Slot = Arc<Mutex<Option<Arc<Shared>>>>;
 pub struct ModalCache {
     /// Most recently used first.
     entries: Mutex<VecDeque<(Key, Slot)>>,
+    /// Assembled models by [`model_key`], most recently used first.
+    models: Mutex<VecDeque<(String, Arc<Model>)>>,
+    /// The reference mesh's frequencies by [`model_key`] and contact rate, most recent first.
+    references: Mutex<VecDeque<(Key, (f64, f64))>>,
     max_entries: usize,
     max_bytes: usize,
 }
@@ -115,6 +150,8 @@ pub struct RunModes {
     pub run: Option<ModalSystem>,
     /// `run`'s projector Phi^T M (with `run`).
     pub projector: Option<Arc<DMatrix<f64>>>,
+    /// What the initial state takes from the geometry alone ([`InitialFactors`]).
+    pub initial: Arc<InitialFactors>,
 }
 
 impl ModalCache {
@@ -122,7 +159,13 @@ impl ModalCache {
     /// recently used leave first; a system larger than `max_bytes` is computed but not kept).
     /// `max_entries` 0 keeps nothing.
     pub fn new(max_entries: usize, max_bytes: usize) -> ModalCache {
-        ModalCache { entries: Mutex::new(VecDeque::new()), max_entries, max_bytes }
+        ModalCache {
+            entries: Mutex::new(VecDeque::new()),
+            models: Mutex::new(VecDeque::new()),
+            references: Mutex::new(VecDeque::new()),
+            max_entries,
+            max_bytes,
+        }
     }
 
     /// A cache that keeps nothing: every run computes its own modes ([`crate::answer::run`]).
@@ -156,7 +199,63 @@ impl ModalCache {
             full: shared.full.clone(),
             run: shared.run.clone().map(|m| m.with_damping(s)),
             projector: shared.projector.clone(),
+            initial: shared.initial.clone(),
         })
+    }
+
+    /// The assembled model of `scenario` ([`Model::new`]): a clone of the one built for a scenario
+    /// of the same [`model_key`], with this scenario and its contact rate
+    /// ([`crate::model::system::contact_rate`], which follows the impact energy for a nonlinear
+    /// law), else built here and kept. The scenario is validated either way (its own errors, in
+    /// [`Model::new`]'s order: a kept model's element counts passed that check already, and they
+    /// are in the key).
+    pub fn model(&self, scenario: &Scenario) -> Result<Model> {
+        if !self.is_enabled() {
+            return Model::new(scenario);
+        }
+        let key = model_key(scenario);
+        let kept = {
+            let mut models = lock(&self.models);
+            let found = models.iter().position(|(k, _)| *k == key);
+            found.and_then(|i| models.remove(i)).inspect(|entry| models.push_front(entry.clone()))
+        };
+        match kept {
+            Some((_, kept)) => {
+                scenario.validate()?;
+                let mut model = Model::clone(&kept);
+                model.scenario = scenario.clone();
+                model.bar_stiffness = crate::model::system::contact_rate(scenario);
+                Ok(model)
+            }
+            None => {
+                let model = Model::new(scenario)?;
+                let mut models = lock(&self.models);
+                models.retain(|(k, _)| *k != key);
+                models.push_front((key, Arc::new(model.clone())));
+                models.truncate(self.max_entries);
+                Ok(model)
+            }
+        }
+    }
+
+    /// The automatic cut-off's reference frequencies of the reference mesh's `model` (what
+    /// [`crate::discretise::reference_mesh_with`] computes from it and its modes), kept by its
+    /// [`model_key`] and contact rate: `compute` runs on a miss, its errors are returned, never
+    /// kept.
+    pub fn reference(&self, model: &Model, compute: impl FnOnce() -> Result<(f64, f64)>) -> Result<(f64, f64)> {
+        if !self.is_enabled() {
+            return compute();
+        }
+        let key = Key { scenario: model_key(&model.scenario), bar_stiffness: model.bar_stiffness.to_bits() };
+        if let Some((_, value)) = lock(&self.references).iter().find(|(k, _)| *k == key) {
+            return Ok(*value);
+        }
+        let value = compute()?;
+        let mut references = lock(&self.references);
+        references.retain(|(k, _)| *k != key);
+        references.push_front((key, value));
+        references.truncate(self.max_entries);
+        Ok(value)
     }
 
     /// The full modal system of `model` ([`ModalSystem::new`], every mode of its mesh, with the
@@ -226,10 +325,12 @@ fn compute(model: &Model) -> Result<Shared> {
     let full = ModalSystem::new(model)?;
     let run = full.clone().for_run(model).ok();
     let projector = run.as_ref().map(|r| Arc::new(crate::solver::stepper::projector(model, r)));
+    let initial = Arc::new(InitialFactors::new(model, &full));
     let bytes = approximate_bytes(&full)
         + run.as_ref().map_or(0, approximate_bytes)
-        + 8 * projector.as_ref().map_or(0, |p| p.len());
-    Ok(Shared { full: Arc::new(full), run, projector, bytes })
+        + 8 * projector.as_ref().map_or(0, |p| p.len())
+        + 8 * (initial.upper_shapes_transposed.len() + model.lower.stiffness.len());
+    Ok(Shared { full: Arc::new(full), run, projector, initial, bytes })
 }
 
 /// The matrices' and vectors' bytes of a system.
@@ -267,6 +368,30 @@ fn key(model: &Model) -> Option<Key> {
     s.fatigue = d.fatigue;
     let scenario = serde_json::to_string(&s).ok()?;
     Some(Key { scenario, bar_stiffness: model.bar_stiffness.to_bits() })
+}
+
+/// The key of [`ModalCache::model`]: `scenario` without the fields [`Model::new`] does not read
+/// (the impact's, the damping's, the steps', the duration, the tolerances, the tip forces, the
+/// supports' motion, the sea, the fatigue section; the contact rate, which reads the impact, is
+/// set per scenario), written by `Debug` (every f64 as its shortest round-trip decimal, -0 as
+/// -0.0: equal text, equal bits).
+fn model_key(scenario: &Scenario) -> String {
+    let d = Scenario::default();
+    let mut s = Scenario { motion: d.motion.clone(), sea: None, fatigue: None, ..scenario.clone() };
+    s.drop_height = d.drop_height;
+    s.impact_angular_velocity = d.impact_angular_velocity;
+    s.impact_speed = d.impact_speed;
+    s.damping_ratio = d.damping_ratio;
+    s.rayleigh_alpha = d.rayleigh_alpha;
+    s.rayleigh_beta = d.rayleigh_beta;
+    s.step_free = d.step_free;
+    s.step_contact = d.step_contact;
+    s.duration = d.duration;
+    s.energy_tolerance = d.energy_tolerance;
+    s.discretisation_tolerance = d.discretisation_tolerance;
+    s.upper.tip_force = d.upper.tip_force;
+    s.lower.tip_force = d.lower.tip_force;
+    format!("{s:?}")
 }
 
 #[cfg(test)]
