@@ -50,25 +50,21 @@ pub fn reference_mesh_with(scenario: &Scenario, cache: Option<&ModalCache>) -> R
     coarse.method = Method::Paper;
     set_elements(&mut coarse, [PAPER_ELEMENTS; 3]);
     let cache = cache.filter(|c| c.is_enabled());
-    let model = match cache {
-        Some(cache) => cache.model(&coarse)?,
-        None => Model::new(&coarse)?,
-    };
-    let compute = || {
+    let compute = |model: &Model| {
         let modal = match cache {
-            Some(cache) => cache.full_modes(&model),
-            None => ModalSystem::new(&model).map(std::sync::Arc::new),
+            Some(cache) => cache.full_modes(model),
+            None => ModalSystem::new(model).map(std::sync::Arc::new),
         }
         .map_err(|e| {
             crate::Error::Other(format!("the automatic cut-off's reference mesh ({}): {e}", describe(&coarse)))
         })?;
-        let mesh = modal.resolved_omega_max(&model);
-        Ok((mesh, contact_frequency_of(&model, &modal, mesh)))
+        let mesh = modal.resolved_omega_max(model);
+        Ok((mesh, contact_frequency_of(model, &modal, mesh)))
     };
-    // Kept by the cache with the reference mesh's model (its frequencies read nothing else).
+    // Kept by the cache by the reference mesh's model (its frequencies read nothing else).
     let (mesh, contact) = match cache {
-        Some(cache) => cache.reference(&model, compute)?,
-        None => compute()?,
+        Some(cache) => cache.reference(&coarse, compute)?,
+        None => compute(&Model::new(&coarse)?)?,
     };
     Ok(ReferenceFrequencies { mesh, contact })
 }

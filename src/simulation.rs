@@ -347,12 +347,12 @@ impl Simulation<ModalStepper> {
             Some(cache) => cache.model(&resolved)?,
             None => Model::new(&resolved)?,
         };
-        let (full, run, projector, factors) = match cache {
+        let (full, run, projector, factors, range) = match cache {
             Some(cache) => {
                 let modes = cache.modes(&model)?;
-                (modes.full, modes.run, modes.projector, Some(modes.initial))
+                (modes.full, modes.run, modes.projector, Some(modes.initial), Some(modes.range_rows))
             }
-            None => (std::sync::Arc::new(ModalSystem::new(&model)?), None, None, None),
+            None => (std::sync::Arc::new(ModalSystem::new(&model)?), None, None, None, None),
         };
         let physical = initial_physical_state_with(&model, &full, &motion, factors.as_deref())?;
         let (modal, projector) = match (run, projector) {
@@ -369,7 +369,7 @@ impl Simulation<ModalStepper> {
         };
         let exact = model.scenario.method == Method::Converged;
         let stepper = ModalStepper::with_projector(modal.clone(), projector).with_exact(exact);
-        Self::with_stepper(model, modal, stepper, &physical, motion)
+        Self::with_stepper(model, modal, stepper, &physical, motion, range.as_deref())
     }
 }
 
@@ -382,7 +382,7 @@ impl Simulation<DenseStepper> {
         let motion = scenario.motion_at_start()?;
         let physical = initial_physical_state(&model, &modal, &motion)?;
         let stepper = DenseStepper::new(&model, &modal);
-        Self::with_stepper(model, modal, stepper, &physical, motion)
+        Self::with_stepper(model, modal, stepper, &physical, motion, None)
     }
 }
 
@@ -459,12 +459,15 @@ pub const FORCE_RAMP_TOLERANCE: f64 = 1e-4;
 pub const LIGHT_DAMPING_FORCE_RAMP_TOLERANCE: f64 = 1e-5;
 
 impl<S: Stepper> Simulation<S> {
+    /// The run from its parts; `range`: a cache's slot for the model-range rows of `modal`'s
+    /// geometry (filled here if empty, else taken from it: the same rows).
     fn with_stepper(
         model: Model,
         modal: ModalSystem,
         stepper: S,
         physical: &Kinematics,
         motion: SupportMotion,
+        range: Option<&std::sync::OnceLock<std::sync::Arc<RangeRows>>>,
     ) -> Result<Self> {
         let plan = StepPlan::new(&model.scenario, &modal)?;
         let forces = TipForces { upper: model.scenario.upper.tip_force, lower: model.scenario.lower.tip_force };
@@ -498,7 +501,11 @@ impl<S: Stepper> Simulation<S> {
             envelope_times: vec![0.0; model.stations.len()],
             range: ModelRange::default(),
         };
-        let range_rows = range_rows(&model, &modal, &shapes, stepper.modal_coordinates());
+        let in_modes = stepper.modal_coordinates();
+        let range_rows = match range.filter(|_| in_modes) {
+            Some(slot) => slot.get_or_init(|| std::sync::Arc::new(range_rows(&model, &modal, &shapes, true))).clone(),
+            None => std::sync::Arc::new(range_rows(&model, &modal, &shapes, in_modes)),
+        };
         let stations = if stepper.modal_coordinates() {
             let divisors: Vec<f64> = model.stations.all().map(|s| s.divisor).collect();
             let allowables: Vec<f64> = model.stations.all().map(|s| s.allowable).collect();
@@ -539,7 +546,7 @@ impl<S: Stepper> Simulation<S> {
             feed: FeedEnd::default(),
             turning_points: None,
             sub_impacts: Vec::new(),
-            range_rows: std::sync::Arc::new(range_rows),
+            range_rows,
             follows_range: true,
             outputs_details: true,
             skipped_details: None,

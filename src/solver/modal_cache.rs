@@ -30,11 +30,12 @@
 //! eigen decompositions most of it; stepping is the rest.
 
 use std::collections::VecDeque;
-use std::sync::{Arc, Mutex, MutexGuard};
+use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
 
 use nalgebra::{Cholesky, DMatrix, Dyn};
 
 use super::modal::ModalSystem;
+use super::model_range::RangeRows;
 use crate::error::Result;
 use crate::model::{Model, Scenario};
 
@@ -86,6 +87,8 @@ struct Shared {
     projector: Option<Arc<DMatrix<f64>>>,
     /// What the initial state takes from the geometry alone.
     initial: Arc<InitialFactors>,
+    /// The run basis's model-range rows, filled by the first run that steps in it.
+    range_rows: Arc<OnceLock<Arc<RangeRows>>>,
     bytes: usize,
 }
 
@@ -152,6 +155,10 @@ pub struct RunModes {
     pub projector: Option<Arc<DMatrix<f64>>>,
     /// What the initial state takes from the geometry alone ([`InitialFactors`]).
     pub initial: Arc<InitialFactors>,
+    /// The run basis's model-range rows ([`crate::solver::model_range`]), filled by the first run
+    /// that steps in `run` and shared by the later ones (they read its shapes only, which the
+    /// damping leaves alone).
+    pub range_rows: Arc<OnceLock<Arc<RangeRows>>>,
 }
 
 impl ModalCache {
@@ -200,6 +207,7 @@ impl ModalCache {
             run: shared.run.clone().map(|m| m.with_damping(s)),
             projector: shared.projector.clone(),
             initial: shared.initial.clone(),
+            range_rows: shared.range_rows.clone(),
         })
     }
 
@@ -238,19 +246,26 @@ impl ModalCache {
         }
     }
 
-    /// The automatic cut-off's reference frequencies of the reference mesh's `model` (what
-    /// [`crate::discretise::reference_mesh_with`] computes from it and its modes), kept by its
-    /// [`model_key`] and contact rate: `compute` runs on a miss, its errors are returned, never
-    /// kept.
-    pub fn reference(&self, model: &Model, compute: impl FnOnce() -> Result<(f64, f64)>) -> Result<(f64, f64)> {
+    /// The automatic cut-off's reference frequencies of the reference mesh's `scenario` (what
+    /// [`crate::discretise::reference_mesh_with`] computes from its model and modes with
+    /// `compute`), kept by its [`model_key`] and contact rate: a scenario of a kept key is only
+    /// validated (its own errors; a kept key's model was built, so its element counts pass);
+    /// `compute` runs on a miss, its errors are returned, never kept.
+    pub fn reference(
+        &self,
+        scenario: &Scenario,
+        compute: impl FnOnce(&Model) -> Result<(f64, f64)>,
+    ) -> Result<(f64, f64)> {
         if !self.is_enabled() {
-            return compute();
+            return compute(&Model::new(scenario)?);
         }
-        let key = Key { scenario: model_key(&model.scenario), bar_stiffness: model.bar_stiffness.to_bits() };
+        scenario.validate()?;
+        let rate = crate::model::system::contact_rate(scenario);
+        let key = Key { scenario: model_key(scenario), bar_stiffness: rate.to_bits() };
         if let Some((_, value)) = lock(&self.references).iter().find(|(k, _)| *k == key) {
             return Ok(*value);
         }
-        let value = compute()?;
+        let value = compute(&self.model(scenario)?)?;
         let mut references = lock(&self.references);
         references.retain(|(k, _)| *k != key);
         references.push_front((key, value));
@@ -330,7 +345,7 @@ fn compute(model: &Model) -> Result<Shared> {
         + run.as_ref().map_or(0, approximate_bytes)
         + 8 * projector.as_ref().map_or(0, |p| p.len())
         + 8 * (initial.upper_shapes_transposed.len() + model.lower.stiffness.len());
-    Ok(Shared { full: Arc::new(full), run, projector, initial, bytes })
+    Ok(Shared { full: Arc::new(full), run, projector, initial, range_rows: Arc::default(), bytes })
 }
 
 /// The matrices' and vectors' bytes of a system.
