@@ -350,7 +350,7 @@ impl Simulation<ModalStepper> {
         let (full, run, projector, factors, range) = match cache {
             Some(cache) => {
                 let modes = cache.modes(&model)?;
-                (modes.full, modes.run, modes.projector, Some(modes.initial), Some(modes.range_rows))
+                (modes.full, modes.run, modes.projector, Some(modes.initial), Some(modes.rows))
             }
             None => (std::sync::Arc::new(ModalSystem::new(&model)?), None, None, None, None),
         };
@@ -459,15 +459,15 @@ pub const FORCE_RAMP_TOLERANCE: f64 = 1e-4;
 pub const LIGHT_DAMPING_FORCE_RAMP_TOLERANCE: f64 = 1e-5;
 
 impl<S: Stepper> Simulation<S> {
-    /// The run from its parts; `range`: a cache's slot for the model-range rows of `modal`'s
-    /// geometry (filled here if empty, else taken from it: the same rows).
+    /// The run from its parts; `rows`: a cache's rows of `modal`'s run basis (filled here where
+    /// empty, else taken from it: the same rows).
     fn with_stepper(
         model: Model,
         modal: ModalSystem,
         stepper: S,
         physical: &Kinematics,
         motion: SupportMotion,
-        range: Option<&std::sync::OnceLock<std::sync::Arc<RangeRows>>>,
+        rows: Option<&crate::solver::modal_cache::RunRows>,
     ) -> Result<Self> {
         let plan = StepPlan::new(&model.scenario, &modal)?;
         let forces = TipForces { upper: model.scenario.upper.tip_force, lower: model.scenario.lower.tip_force };
@@ -502,15 +502,31 @@ impl<S: Stepper> Simulation<S> {
             range: ModelRange::default(),
         };
         let in_modes = stepper.modal_coordinates();
-        let range_rows = match range.filter(|_| in_modes) {
-            Some(slot) => slot.get_or_init(|| std::sync::Arc::new(range_rows(&model, &modal, &shapes, true))).clone(),
+        let rows = rows.filter(|_| in_modes);
+        let range_rows = match rows {
+            Some(rows) => {
+                rows.range.get_or_init(|| std::sync::Arc::new(range_rows(&model, &modal, &shapes, true))).clone()
+            }
             None => std::sync::Arc::new(range_rows(&model, &modal, &shapes, in_modes)),
         };
-        let stations = if stepper.modal_coordinates() {
+        let stations = if in_modes {
             let divisors: Vec<f64> = model.stations.all().map(|s| s.divisor).collect();
             let allowables: Vec<f64> = model.stations.all().map(|s| s.allowable).collect();
             let groups = crate::solver::envelope::groups(&model);
-            std::sync::Arc::new(StationRows::new(&modal, &divisors, &allowables, groups))
+            let make = || std::sync::Arc::new(StationRows::new(&modal, &divisors, &allowables, groups.clone()));
+            match rows {
+                Some(rows) => {
+                    let bits = divisors.iter().chain(&allowables).map(|v| v.to_bits());
+                    let key: Vec<u64> = bits.chain(groups.iter().map(|&g| u64::from(g))).collect();
+                    let (kept, shared) = rows.stations.get_or_init(|| (key.clone(), make()));
+                    if *kept == key {
+                        shared.clone()
+                    } else {
+                        make()
+                    }
+                }
+                None => make(),
+            }
         } else {
             std::sync::Arc::default()
         };

@@ -34,6 +34,7 @@ use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
 
 use nalgebra::{Cholesky, DMatrix, Dyn};
 
+use super::envelope::StationRows;
 use super::modal::ModalSystem;
 use super::model_range::RangeRows;
 use crate::error::Result;
@@ -87,8 +88,8 @@ struct Shared {
     projector: Option<Arc<DMatrix<f64>>>,
     /// What the initial state takes from the geometry alone.
     initial: Arc<InitialFactors>,
-    /// The run basis's model-range rows, filled by the first run that steps in it.
-    range_rows: Arc<OnceLock<Arc<RangeRows>>>,
+    /// The rows the runs stepping in the run basis read, filled by the first of them.
+    rows: Arc<RunRows>,
     bytes: usize,
 }
 
@@ -107,8 +108,7 @@ pub struct InitialFactors {
 impl InitialFactors {
     /// The factors of `model` with its full modal system `full`.
     pub fn new(model: &Model, full: &ModalSystem) -> InitialFactors {
-        let lower_stiffness =
-            if model.lower.dofs() == 0 { None } else { model.lower.stiffness.clone().cholesky() };
+        let lower_stiffness = if model.lower.dofs() == 0 { None } else { model.lower.stiffness.clone().cholesky() };
         InitialFactors { lower_stiffness, upper_shapes_transposed: full.upper.shapes.transpose() }
     }
 }
@@ -155,10 +155,20 @@ pub struct RunModes {
     pub projector: Option<Arc<DMatrix<f64>>>,
     /// What the initial state takes from the geometry alone ([`InitialFactors`]).
     pub initial: Arc<InitialFactors>,
-    /// The run basis's model-range rows ([`crate::solver::model_range`]), filled by the first run
-    /// that steps in `run` and shared by the later ones (they read its shapes only, which the
-    /// damping leaves alone).
-    pub range_rows: Arc<OnceLock<Arc<RangeRows>>>,
+    /// The rows the runs stepping in `run` read ([`RunRows`]), filled by the first of them.
+    pub rows: Arc<RunRows>,
+}
+
+/// The rows a run stepping in a cached run basis builds from the basis and its model alone,
+/// filled by the first such run and shared by the later ones (they read the basis's shapes and
+/// stations, which the damping leaves alone; each is what that run builds, to the bit).
+#[derive(Debug, Default)]
+pub struct RunRows {
+    /// The model-range rows ([`crate::solver::model_range`]).
+    pub range: OnceLock<Arc<RangeRows>>,
+    /// The stress stations' rows ([`StationRows`]) with the bits of the divisors, allowables and
+    /// groups they were made for (the allowables are per run: a run of others makes its own).
+    pub stations: OnceLock<(Vec<u64>, Arc<StationRows>)>,
 }
 
 impl ModalCache {
@@ -207,7 +217,7 @@ impl ModalCache {
             run: shared.run.clone().map(|m| m.with_damping(s)),
             projector: shared.projector.clone(),
             initial: shared.initial.clone(),
-            range_rows: shared.range_rows.clone(),
+            rows: shared.rows.clone(),
         })
     }
 
@@ -345,7 +355,7 @@ fn compute(model: &Model) -> Result<Shared> {
         + run.as_ref().map_or(0, approximate_bytes)
         + 8 * projector.as_ref().map_or(0, |p| p.len())
         + 8 * (initial.upper_shapes_transposed.len() + model.lower.stiffness.len());
-    Ok(Shared { full: Arc::new(full), run, projector, initial, range_rows: Arc::default(), bytes })
+    Ok(Shared { full: Arc::new(full), run, projector, initial, rows: Arc::default(), bytes })
 }
 
 /// The matrices' and vectors' bytes of a system.
