@@ -461,6 +461,72 @@ mod tests {
         assert_eq!(cache.len(), 2, "one entry per geometry");
     }
 
+    /// Issue 43: a model from the cache is [`Model::new`]'s to the bit whatever the per-run fields
+    /// of the scenario that filled it (drop, speed, damping, tip forces, the sea's instant), its
+    /// contact rate the scenario's own where a nonlinear law makes it follow the impact energy; a
+    /// bad per-run field is refused as [`Model::new`] refuses it; another mesh gets its own entry.
+    #[test]
+    fn cached_models_equal_fresh_ones_to_the_bit() {
+        let power = Scenario::from_toml("[contact]\nlaw = \"power\"\nstiffness = 1e10\n", "the test's law").unwrap();
+        for base in [Scenario::default(), power] {
+            let cache = ModalCache::default();
+            let base = crate::discretise::printed(&base).unwrap();
+            let mut variants = vec![base.clone()];
+            for (h, zeta, tip) in [(1.7, 0.05, 0.0), (0.2, 0.0, 3e3)] {
+                let mut s = Scenario { drop_height: h, damping_ratio: zeta, duration: 0.3, ..base.clone() };
+                s.upper.tip_force = tip;
+                variants.push(s);
+            }
+            variants.push(Scenario { impact_angular_velocity: Some(0.4), drop_height: 0.0, ..base.clone() });
+            for s in &variants {
+                let (cached, fresh) = (cache.model(s).unwrap(), Model::new(s).unwrap());
+                assert_eq!(format!("{cached:?}"), format!("{fresh:?}"), "drop {}", s.drop_height);
+            }
+            let rates: Vec<u64> = variants.iter().map(|s| cache.model(s).unwrap().bar_stiffness.to_bits()).collect();
+            let linear = base.contact_law().is_none();
+            assert_eq!(rates.iter().all(|r| *r == rates[0]), linear, "the rate follows the impact only for a law");
+            let bad = Scenario { drop_height: -1.0, ..base.clone() };
+            assert_eq!(cache.model(&bad).unwrap_err().to_string(), Model::new(&bad).unwrap_err().to_string());
+            assert_eq!(lock(&cache.models).len(), 1, "one model per mesh");
+            let coarser = crate::discretise::check(&base).unwrap();
+            assert_eq!(format!("{:?}", cache.model(&coarser).unwrap()), format!("{:?}", Model::new(&coarser).unwrap()));
+            assert_eq!(lock(&cache.models).len(), 2);
+        }
+    }
+
+    /// Issue 43: the initial state from the cached factors (the arrestor's stiffness factored, the
+    /// bridge's shapes transposed, made for the geometry by another run) is the one computed
+    /// afresh, to the bit, for other drops, speeds, tip forces and supports' motions.
+    #[test]
+    fn the_initial_state_from_cached_factors_is_the_fresh_one_to_the_bit() {
+        use crate::solver::initial::{initial_state, initial_state_with};
+        use crate::solver::kinematics::{Excitation, TipForces};
+        let cache = ModalCache::default();
+        let base = crate::discretise::printed(&Scenario::default()).unwrap();
+        cache.modes(&cache.model(&base).unwrap()).unwrap();
+        let excitations = [
+            Excitation::default(),
+            Excitation {
+                forces: TipForces { upper: 2e3, lower: -5e2 },
+                support_acceleration: [0.7, -0.3, 0.05],
+                gap_offset: 0.012,
+                gap_offset_rate: -0.2,
+            },
+        ];
+        for s in [
+            Scenario { drop_height: 1.3, ..base.clone() },
+            Scenario { impact_angular_velocity: Some(0.3), drop_height: 0.0, ..base },
+        ] {
+            let model = cache.model(&s).unwrap();
+            let modes = cache.modes(&model).unwrap();
+            for e in &excitations {
+                let cached = initial_state_with(&model, &modes.full, e, Some(&modes.initial)).unwrap();
+                let fresh = initial_state(&model, &ModalSystem::new(&model).unwrap(), e).unwrap();
+                assert_eq!(format!("{cached:?}"), format!("{fresh:?}"));
+            }
+        }
+    }
+
     /// The cache stays within its entries, and one of no entries keeps nothing.
     #[test]
     fn the_cache_is_bounded() {
