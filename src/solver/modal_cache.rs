@@ -221,6 +221,14 @@ impl ModalCache {
         })
     }
 
+    /// The full modal system of `model` and what its initial state takes from the geometry alone
+    /// ([`InitialFactors`]), from the cache as [`Self::modes`] keeps them, without a copy of the
+    /// run basis (a run that only starts from `model`'s state: the tangent's twin).
+    pub fn initial_modes(&self, model: &Model) -> Result<(Arc<ModalSystem>, Arc<InitialFactors>)> {
+        let shared = self.shared(model)?;
+        Ok((shared.full.clone(), shared.initial.clone()))
+    }
+
     /// The assembled model of `scenario` ([`Model::new`]): a clone of the one built for a scenario
     /// of the same [`model_key`], with this scenario and its contact rate
     /// ([`crate::model::system::contact_rate`], which follows the impact energy for a nonlinear
