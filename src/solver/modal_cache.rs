@@ -230,9 +230,9 @@ impl ModalCache {
     }
 
     /// The assembled model of `scenario` ([`Model::new`]): a clone of the one built for a scenario
-    /// of the same [`model_key`], with this scenario and its contact rate
-    /// ([`crate::model::system::contact_rate`], which follows the impact energy for a nonlinear
-    /// law), else built here and kept. The scenario is validated either way (its own errors, in
+    /// of the same key (the scenario less the fields no model reads), with this scenario and its
+    /// contact rate ([`crate::model::system::contact_rate`], which follows the impact energy for a
+    /// nonlinear law), else built here and kept. The scenario is validated either way (its own errors, in
     /// [`Model::new`]'s order: a kept model's element counts passed that check already, and they
     /// are in the key).
     pub fn model(&self, scenario: &Scenario) -> Result<Model> {
@@ -266,7 +266,7 @@ impl ModalCache {
 
     /// The automatic cut-off's reference frequencies of the reference mesh's `scenario` (what
     /// [`crate::discretise::reference_mesh_with`] computes from its model and modes with
-    /// `compute`), kept by its [`model_key`] and contact rate: a scenario of a kept key is only
+    /// `compute`), kept by its model's key and contact rate: a scenario of a kept key is only
     /// validated (its own errors; a kept key's model was built, so its element counts pass);
     /// `compute` runs on a miss, its errors are returned, never kept.
     pub fn reference(
