@@ -49,14 +49,24 @@ pub fn reference_mesh_with(scenario: &Scenario, cache: Option<&ModalCache>) -> R
     let mut coarse = scenario.clone();
     coarse.method = Method::Paper;
     set_elements(&mut coarse, [PAPER_ELEMENTS; 3]);
-    let model = Model::new(&coarse)?;
-    let modal = match cache.filter(|c| c.is_enabled()) {
-        Some(cache) => cache.full_modes(&model),
-        None => ModalSystem::new(&model).map(std::sync::Arc::new),
-    }
-    .map_err(|e| crate::Error::Other(format!("the automatic cut-off's reference mesh ({}): {e}", describe(&coarse))))?;
-    let mesh = modal.resolved_omega_max(&model);
-    Ok(ReferenceFrequencies { mesh, contact: contact_frequency_of(&model, &modal, mesh) })
+    let cache = cache.filter(|c| c.is_enabled());
+    let compute = |model: &Model| {
+        let modal = match cache {
+            Some(cache) => cache.full_modes(model),
+            None => ModalSystem::new(model).map(std::sync::Arc::new),
+        }
+        .map_err(|e| {
+            crate::Error::Other(format!("the automatic cut-off's reference mesh ({}): {e}", describe(&coarse)))
+        })?;
+        let mesh = modal.resolved_omega_max(model);
+        Ok((mesh, contact_frequency_of(model, &modal, mesh)))
+    };
+    // Kept by the cache by the reference mesh's model (its frequencies read nothing else).
+    let (mesh, contact) = match cache {
+        Some(cache) => cache.reference(&coarse, compute)?,
+        None => compute(&Model::new(&coarse)?)?,
+    };
+    Ok(ReferenceFrequencies { mesh, contact })
 }
 
 /// The automatic cut-off at the printed rung as a multiple of the contact's own frequency

@@ -15,7 +15,7 @@ use crate::results::{
 };
 use crate::solver::contact::{self, Stage};
 use crate::solver::envelope::{EnvelopeScope, Running, StationRows, StationState};
-use crate::solver::initial::{initial_state, Pitching};
+use crate::solver::initial::Pitching;
 use crate::solver::model_range::{ModelRange, RangeCheck, RangeRows, StrainPeak};
 use crate::solver::static_correction::LOADS;
 use crate::solver::turning_points::TurningPoints;
@@ -338,17 +338,23 @@ impl Simulation<ModalStepper> {
 
     fn starting_with_cache(scenario: &Scenario, motion: SupportMotion, cache: Option<&ModalCache>) -> Result<Self> {
         // The reference mesh of an automatic cut-off shares the cache too (issue 43: one
-        // eigen-solve per geometry, not per run).
+        // eigen-solve per geometry, not per run), and so do the assembled model and what the
+        // initial state takes from the geometry alone (the same bits: see
+        // [`crate::solver::modal_cache`]).
         let resolved = crate::discretise::printed_with(scenario, cache)?;
-        let model = Model::new(&resolved)?;
-        let (full, run, projector) = match cache.filter(|c| c.is_enabled()) {
+        let cache = cache.filter(|c| c.is_enabled());
+        let model = match cache {
+            Some(cache) => cache.model(&resolved)?,
+            None => Model::new(&resolved)?,
+        };
+        let (full, run, projector, factors, range) = match cache {
             Some(cache) => {
                 let modes = cache.modes(&model)?;
-                (modes.full, modes.run, modes.projector)
+                (modes.full, modes.run, modes.projector, Some(modes.initial), Some(modes.rows))
             }
-            None => (std::sync::Arc::new(ModalSystem::new(&model)?), None, None),
+            None => (std::sync::Arc::new(ModalSystem::new(&model)?), None, None, None, None),
         };
-        let physical = initial_physical_state(&model, &full, &motion)?;
+        let physical = initial_physical_state_with(&model, &full, &motion, factors.as_deref())?;
         let (modal, projector) = match (run, projector) {
             (Some(run), Some(projector)) => (run, projector),
             (Some(run), None) => {
@@ -363,7 +369,7 @@ impl Simulation<ModalStepper> {
         };
         let exact = model.scenario.method == Method::Converged;
         let stepper = ModalStepper::with_projector(modal.clone(), projector).with_exact(exact);
-        Self::with_stepper(model, modal, stepper, &physical, motion)
+        Self::with_stepper(model, modal, stepper, &physical, motion, range.as_deref())
     }
 }
 
@@ -376,15 +382,26 @@ impl Simulation<DenseStepper> {
         let motion = scenario.motion_at_start()?;
         let physical = initial_physical_state(&model, &modal, &motion)?;
         let stepper = DenseStepper::new(&model, &modal);
-        Self::with_stepper(model, modal, stepper, &physical, motion)
+        Self::with_stepper(model, modal, stepper, &physical, motion, None)
     }
 }
 
 /// The initial state in physical coordinates (from the full basis: the bridge's quasi-static
 /// deflection of Eq. 24 in every mode), under the supports' motion at t = 0.
 fn initial_physical_state(model: &Model, full: &ModalSystem, motion: &SupportMotion) -> Result<Kinematics> {
+    initial_physical_state_with(model, full, motion, None)
+}
+
+/// [`initial_physical_state`] with what it takes from the geometry alone given (a cache's, for
+/// `model`'s geometry and `full`): the same state to the bit.
+fn initial_physical_state_with(
+    model: &Model,
+    full: &ModalSystem,
+    motion: &SupportMotion,
+    factors: Option<&crate::solver::modal_cache::InitialFactors>,
+) -> Result<Kinematics> {
     let forces = TipForces { upper: model.scenario.upper.tip_force, lower: model.scenario.lower.tip_force };
-    initial_state(model, full, &excitation(model, forces, motion))
+    crate::solver::initial::initial_state_with(model, full, &excitation(model, forces, motion), factors)
 }
 
 /// The excitation of the tip forces and the supports' motion at one instant.
@@ -443,12 +460,15 @@ pub const FORCE_RAMP_TOLERANCE: f64 = 1e-4;
 pub const LIGHT_DAMPING_FORCE_RAMP_TOLERANCE: f64 = 1e-5;
 
 impl<S: Stepper> Simulation<S> {
+    /// The run from its parts; `rows`: a cache's rows of `modal`'s run basis (filled here where
+    /// empty, else taken from it: the same rows).
     fn with_stepper(
         model: Model,
         modal: ModalSystem,
         stepper: S,
         physical: &Kinematics,
         motion: SupportMotion,
+        rows: Option<&crate::solver::modal_cache::RunRows>,
     ) -> Result<Self> {
         let plan = StepPlan::new(&model.scenario, &modal)?;
         let forces = TipForces { upper: model.scenario.upper.tip_force, lower: model.scenario.lower.tip_force };
@@ -482,12 +502,32 @@ impl<S: Stepper> Simulation<S> {
             envelope_times: vec![0.0; model.stations.len()],
             range: ModelRange::default(),
         };
-        let range_rows = range_rows(&model, &modal, &shapes, stepper.modal_coordinates());
-        let stations = if stepper.modal_coordinates() {
+        let in_modes = stepper.modal_coordinates();
+        let rows = rows.filter(|_| in_modes);
+        let range_rows = match rows {
+            Some(rows) => {
+                rows.range.get_or_init(|| std::sync::Arc::new(range_rows(&model, &modal, &shapes, true))).clone()
+            }
+            None => std::sync::Arc::new(range_rows(&model, &modal, &shapes, in_modes)),
+        };
+        let stations = if in_modes {
             let divisors: Vec<f64> = model.stations.all().map(|s| s.divisor).collect();
             let allowables: Vec<f64> = model.stations.all().map(|s| s.allowable).collect();
             let groups = crate::solver::envelope::groups(&model);
-            std::sync::Arc::new(StationRows::new(&modal, &divisors, &allowables, groups))
+            let make = || std::sync::Arc::new(StationRows::new(&modal, &divisors, &allowables, groups.clone()));
+            match rows {
+                Some(rows) => {
+                    let bits = divisors.iter().chain(&allowables).map(|v| v.to_bits());
+                    let key: Vec<u64> = bits.chain(groups.iter().map(|&g| u64::from(g))).collect();
+                    let (kept, shared) = rows.stations.get_or_init(|| (key.clone(), make()));
+                    if *kept == key {
+                        shared.clone()
+                    } else {
+                        make()
+                    }
+                }
+                None => make(),
+            }
         } else {
             std::sync::Arc::default()
         };
@@ -523,7 +563,7 @@ impl<S: Stepper> Simulation<S> {
             feed: FeedEnd::default(),
             turning_points: None,
             sub_impacts: Vec::new(),
-            range_rows: std::sync::Arc::new(range_rows),
+            range_rows,
             follows_range: true,
             outputs_details: true,
             skipped_details: None,

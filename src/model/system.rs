@@ -1,6 +1,8 @@
 //! The two beams and the contact bar as one model (paper Eqs. 2-4). Global DOFs: the arrestor's
 //! first, then the bridge's. Outputs are linear functionals of the global displacement vector.
 
+use std::sync::Arc;
+
 use nalgebra::{DMatrix, DVector};
 
 use super::assembly::Beam;
@@ -56,10 +58,11 @@ pub const REACTIONS: usize = 3;
 pub struct Model {
     /// The validated scenario it was built from.
     pub scenario: Scenario,
-    /// The arrestor.
-    pub lower: Beam,
-    /// The bridge.
-    pub upper: Beam,
+    /// The arrestor (shared by the clones of a model: a cached model's runs, issue 43; no one
+    /// changes an assembled beam).
+    pub lower: Arc<Beam>,
+    /// The bridge (shared likewise).
+    pub upper: Arc<Beam>,
     /// Index of the bridge's contact node in `upper.mesh.nodes`.
     pub contact_node: usize,
     /// Index of the arrestor's contact node in `lower.mesh.nodes` (issue 45: its free end by
@@ -203,8 +206,8 @@ impl Model {
             bar_stiffness: contact_rate(s),
             contact_node: inner,
             lower_contact_node: lower_contact,
-            lower,
-            upper,
+            lower: Arc::new(lower),
+            upper: Arc::new(upper),
             probes,
         })
     }

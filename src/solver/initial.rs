@@ -6,6 +6,7 @@ use nalgebra::DVector;
 
 use super::kinematics::{Excitation, Kinematics};
 use super::modal::ModalSystem;
+use super::modal_cache::InitialFactors;
 use crate::error::{Error, Result};
 use crate::model::scenario::ImpactorKind;
 use crate::model::{damping, Model, Probe};
@@ -88,6 +89,19 @@ impl Pitching {
 /// self-weight and its clamp's inertia loads), and the beams touch, the supports' offset included.
 /// So supports sharing one constant vertical acceleration a give the run with gravity g + a.
 pub fn initial_state(model: &Model, modal: &ModalSystem, excitation: &Excitation) -> Result<Kinematics> {
+    initial_state_with(model, modal, excitation, None)
+}
+
+/// [`initial_state`] with what it takes from the geometry alone given (`factors`, made for
+/// `model`'s geometry and `modal`: [`crate::solver::ModalCache`] keeps them per geometry): the
+/// same operations on the same bits, so the same state to the bit, without factoring the
+/// arrestor's stiffness and transposing the bridge's shapes each run.
+pub fn initial_state_with(
+    model: &Model,
+    modal: &ModalSystem,
+    excitation: &Excitation,
+    factors: Option<&InitialFactors>,
+) -> Result<Kinematics> {
     let s = &model.scenario;
     let forces = excitation.forces;
     let (upper_tip, lower_tip) = model.tip_force_vectors();
@@ -120,6 +134,8 @@ pub fn initial_state(model: &Model, modal: &ModalSystem, excitation: &Excitation
     // Arrestor, Eqs. (25)-(26): at rest in its static deflection (a rigid support: none).
     let lower_displacement = if nl == 0 {
         DVector::zeros(0)
+    } else if let Some(factor) = factors.and_then(|f| f.lower_stiffness.as_ref()) {
+        factor.solve(&load_lower)
     } else {
         model.lower.stiffness.clone().cholesky().map(|c| c.solve(&load_lower)).ok_or_else(|| Error::Numerical {
             what: "initial conditions",
@@ -154,12 +170,20 @@ pub fn initial_state(model: &Model, modal: &ModalSystem, excitation: &Excitation
     // into its acceleration, and its amplitude is set so that the contact node meets the arrestor's end.
     // C v through the bridge's modes (Eq. 34: C = M Phi diag(c) Phi^T M), without forming C.
     let phi = &modal.upper.shapes;
+    let transposed;
+    let phi_t = match factors {
+        Some(f) => &f.upper_shapes_transposed,
+        None => {
+            transposed = phi.transpose();
+            &transposed
+        }
+    };
     let coefficients =
         damping::modal_coefficients(&modal.upper.omega, s.damping_ratio, s.rayleigh_alpha, s.rayleigh_beta);
-    let modal_velocity = phi.transpose() * (&model.upper.mass * &upper_velocity);
+    let modal_velocity = phi_t * (&model.upper.mass * &upper_velocity);
     let damping_force = &model.upper.mass * (phi * modal_velocity.component_mul(&coefficients));
     let residual = &load_upper - damping_force - &model.upper.mass * &upper_acceleration;
-    let modal_residual = phi.transpose() * residual;
+    let modal_residual = phi_t * residual;
     let mut q = DVector::zeros(nu);
     for i in 0..nu {
         let omega = modal.upper.omega[i];

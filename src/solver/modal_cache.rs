@@ -18,15 +18,25 @@
 //! [`crate::discretise::reference_mesh_with`]) is kept here too, by the same key, so that the rungs
 //! a sweep or a campaign resolves share one eigen-solve per geometry (issue 43).
 //!
+//! The assembled [`Model`] of a scenario is kept too ([`ModalCache::model`]), by the scenario less
+//! the fields no part of a model reads (a campaign's events differ only by the sea's instant: its
+//! three runs and their rungs build six models an event from three meshes), and so is what each
+//! run's initial state takes from its geometry alone (the arrestor's stiffness factored, the
+//! bridge's shapes transposed: [`RunModes::initial`]) and the reference mesh's frequencies
+//! ([`ModalCache::reference`]). Each is what a fresh computation gives, to the bit (the same
+//! operations on the same inputs), as the tests below hold.
+//!
 //! Measured (issue 29, the default scenario, perf): the setup is about 4 % of a run's time, the
 //! eigen decompositions most of it; stepping is the rest.
 
 use std::collections::VecDeque;
-use std::sync::{Arc, Mutex, MutexGuard};
+use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
 
-use nalgebra::DMatrix;
+use nalgebra::{Cholesky, DMatrix, Dyn};
 
+use super::envelope::StationRows;
 use super::modal::ModalSystem;
+use super::model_range::RangeRows;
 use crate::error::Result;
 use crate::model::{Model, Scenario};
 
@@ -76,7 +86,31 @@ struct Shared {
     run: Option<ModalSystem>,
     /// The run basis's [`crate::solver::stepper::projector`].
     projector: Option<Arc<DMatrix<f64>>>,
+    /// What the initial state takes from the geometry alone.
+    initial: Arc<InitialFactors>,
+    /// The rows the runs stepping in the run basis read, filled by the first of them.
+    rows: Arc<RunRows>,
     bytes: usize,
+}
+
+/// What [`crate::solver::initial::initial_state`] computes from a geometry alone, whatever the
+/// run's speed, supports' motion or tip forces: computed once per geometry, the same bits as
+/// computed per run.
+#[derive(Debug)]
+pub struct InitialFactors {
+    /// The arrestor's stiffness factored (Cholesky); `None` when it has no DOF or is not
+    /// positive definite (the initial state then meets its own error).
+    pub lower_stiffness: Option<Cholesky<f64, Dyn>>,
+    /// The full system's bridge shapes transposed, Phi_u^T.
+    pub upper_shapes_transposed: DMatrix<f64>,
+}
+
+impl InitialFactors {
+    /// The factors of `model` with its full modal system `full`.
+    pub fn new(model: &Model, full: &ModalSystem) -> InitialFactors {
+        let lower_stiffness = if model.lower.dofs() == 0 { None } else { model.lower.stiffness.clone().cholesky() };
+        InitialFactors { lower_stiffness, upper_shapes_transposed: full.upper.shapes.transpose() }
+    }
 }
 
 /// One key's slot: filled by the first run that needs it, while later ones wait on its lock.
@@ -88,6 +122,10 @@ type Slot = Arc<Mutex<Option<Arc<Shared>>>>;
 pub struct ModalCache {
     /// Most recently used first.
     entries: Mutex<VecDeque<(Key, Slot)>>,
+    /// Assembled models by [`model_key`], most recently used first.
+    models: Mutex<VecDeque<(String, Arc<Model>)>>,
+    /// The reference mesh's frequencies by [`model_key`] and contact rate, most recent first.
+    references: Mutex<VecDeque<(Key, (f64, f64))>>,
     max_entries: usize,
     max_bytes: usize,
 }
@@ -115,6 +153,22 @@ pub struct RunModes {
     pub run: Option<ModalSystem>,
     /// `run`'s projector Phi^T M (with `run`).
     pub projector: Option<Arc<DMatrix<f64>>>,
+    /// What the initial state takes from the geometry alone ([`InitialFactors`]).
+    pub initial: Arc<InitialFactors>,
+    /// The rows the runs stepping in `run` read ([`RunRows`]), filled by the first of them.
+    pub rows: Arc<RunRows>,
+}
+
+/// The rows a run stepping in a cached run basis builds from the basis and its model alone,
+/// filled by the first such run and shared by the later ones (they read the basis's shapes and
+/// stations, which the damping leaves alone; each is what that run builds, to the bit).
+#[derive(Debug, Default)]
+pub struct RunRows {
+    /// The model-range rows ([`crate::solver::model_range`]).
+    pub range: OnceLock<Arc<RangeRows>>,
+    /// The stress stations' rows ([`StationRows`]) with the bits of the divisors, allowables and
+    /// groups they were made for (the allowables are per run: a run of others makes its own).
+    pub stations: OnceLock<(Vec<u64>, Arc<StationRows>)>,
 }
 
 impl ModalCache {
@@ -122,7 +176,13 @@ impl ModalCache {
     /// recently used leave first; a system larger than `max_bytes` is computed but not kept).
     /// `max_entries` 0 keeps nothing.
     pub fn new(max_entries: usize, max_bytes: usize) -> ModalCache {
-        ModalCache { entries: Mutex::new(VecDeque::new()), max_entries, max_bytes }
+        ModalCache {
+            entries: Mutex::new(VecDeque::new()),
+            models: Mutex::new(VecDeque::new()),
+            references: Mutex::new(VecDeque::new()),
+            max_entries,
+            max_bytes,
+        }
     }
 
     /// A cache that keeps nothing: every run computes its own modes ([`crate::answer::run`]).
@@ -156,7 +216,79 @@ impl ModalCache {
             full: shared.full.clone(),
             run: shared.run.clone().map(|m| m.with_damping(s)),
             projector: shared.projector.clone(),
+            initial: shared.initial.clone(),
+            rows: shared.rows.clone(),
         })
+    }
+
+    /// The full modal system of `model` and what its initial state takes from the geometry alone
+    /// ([`InitialFactors`]), from the cache as [`Self::modes`] keeps them, without a copy of the
+    /// run basis (a run that only starts from `model`'s state: the tangent's twin).
+    pub fn initial_modes(&self, model: &Model) -> Result<(Arc<ModalSystem>, Arc<InitialFactors>)> {
+        let shared = self.shared(model)?;
+        Ok((shared.full.clone(), shared.initial.clone()))
+    }
+
+    /// The assembled model of `scenario` ([`Model::new`]): a clone of the one built for a scenario
+    /// of the same key (the scenario less the fields no model reads), with this scenario and its
+    /// contact rate ([`crate::model::system::contact_rate`], which follows the impact energy for a
+    /// nonlinear law), else built here and kept. The scenario is validated either way (its own errors, in
+    /// [`Model::new`]'s order: a kept model's element counts passed that check already, and they
+    /// are in the key).
+    pub fn model(&self, scenario: &Scenario) -> Result<Model> {
+        if !self.is_enabled() {
+            return Model::new(scenario);
+        }
+        let key = model_key(scenario);
+        let kept = {
+            let mut models = lock(&self.models);
+            let found = models.iter().position(|(k, _)| *k == key);
+            found.and_then(|i| models.remove(i)).inspect(|entry| models.push_front(entry.clone()))
+        };
+        match kept {
+            Some((_, kept)) => {
+                scenario.validate()?;
+                let mut model = Model::clone(&kept);
+                model.scenario = scenario.clone();
+                model.bar_stiffness = crate::model::system::contact_rate(scenario);
+                Ok(model)
+            }
+            None => {
+                let model = Model::new(scenario)?;
+                let mut models = lock(&self.models);
+                models.retain(|(k, _)| *k != key);
+                models.push_front((key, Arc::new(model.clone())));
+                models.truncate(self.max_entries);
+                Ok(model)
+            }
+        }
+    }
+
+    /// The automatic cut-off's reference frequencies of the reference mesh's `scenario` (what
+    /// [`crate::discretise::reference_mesh_with`] computes from its model and modes with
+    /// `compute`), kept by its model's key and contact rate: a scenario of a kept key is only
+    /// validated (its own errors; a kept key's model was built, so its element counts pass);
+    /// `compute` runs on a miss, its errors are returned, never kept.
+    pub fn reference(
+        &self,
+        scenario: &Scenario,
+        compute: impl FnOnce(&Model) -> Result<(f64, f64)>,
+    ) -> Result<(f64, f64)> {
+        if !self.is_enabled() {
+            return compute(&Model::new(scenario)?);
+        }
+        scenario.validate()?;
+        let rate = crate::model::system::contact_rate(scenario);
+        let key = Key { scenario: model_key(scenario), bar_stiffness: rate.to_bits() };
+        if let Some((_, value)) = lock(&self.references).iter().find(|(k, _)| *k == key) {
+            return Ok(*value);
+        }
+        let value = compute(&self.model(scenario)?)?;
+        let mut references = lock(&self.references);
+        references.retain(|(k, _)| *k != key);
+        references.push_front((key, value));
+        references.truncate(self.max_entries);
+        Ok(value)
     }
 
     /// The full modal system of `model` ([`ModalSystem::new`], every mode of its mesh, with the
@@ -226,10 +358,12 @@ fn compute(model: &Model) -> Result<Shared> {
     let full = ModalSystem::new(model)?;
     let run = full.clone().for_run(model).ok();
     let projector = run.as_ref().map(|r| Arc::new(crate::solver::stepper::projector(model, r)));
+    let initial = Arc::new(InitialFactors::new(model, &full));
     let bytes = approximate_bytes(&full)
         + run.as_ref().map_or(0, approximate_bytes)
-        + 8 * projector.as_ref().map_or(0, |p| p.len());
-    Ok(Shared { full: Arc::new(full), run, projector, bytes })
+        + 8 * projector.as_ref().map_or(0, |p| p.len())
+        + 8 * (initial.upper_shapes_transposed.len() + model.lower.stiffness.len());
+    Ok(Shared { full: Arc::new(full), run, projector, initial, rows: Arc::default(), bytes })
 }
 
 /// The matrices' and vectors' bytes of a system.
@@ -267,6 +401,30 @@ fn key(model: &Model) -> Option<Key> {
     s.fatigue = d.fatigue;
     let scenario = serde_json::to_string(&s).ok()?;
     Some(Key { scenario, bar_stiffness: model.bar_stiffness.to_bits() })
+}
+
+/// The key of [`ModalCache::model`]: `scenario` without the fields [`Model::new`] does not read
+/// (the impact's, the damping's, the steps', the duration, the tolerances, the tip forces, the
+/// supports' motion, the sea, the fatigue section; the contact rate, which reads the impact, is
+/// set per scenario), written by `Debug` (every f64 as its shortest round-trip decimal, -0 as
+/// -0.0: equal text, equal bits).
+fn model_key(scenario: &Scenario) -> String {
+    let d = Scenario::default();
+    let mut s = Scenario { motion: d.motion.clone(), sea: None, fatigue: None, ..scenario.clone() };
+    s.drop_height = d.drop_height;
+    s.impact_angular_velocity = d.impact_angular_velocity;
+    s.impact_speed = d.impact_speed;
+    s.damping_ratio = d.damping_ratio;
+    s.rayleigh_alpha = d.rayleigh_alpha;
+    s.rayleigh_beta = d.rayleigh_beta;
+    s.step_free = d.step_free;
+    s.step_contact = d.step_contact;
+    s.duration = d.duration;
+    s.energy_tolerance = d.energy_tolerance;
+    s.discretisation_tolerance = d.discretisation_tolerance;
+    s.upper.tip_force = d.upper.tip_force;
+    s.lower.tip_force = d.lower.tip_force;
+    format!("{s:?}")
 }
 
 #[cfg(test)]
@@ -309,6 +467,72 @@ mod tests {
             assert_eq!(bits(cached.run.as_ref().unwrap()), bits(&run), "run, {}", s.drop_height);
         }
         assert_eq!(cache.len(), 2, "one entry per geometry");
+    }
+
+    /// Issue 43: a model from the cache is [`Model::new`]'s to the bit whatever the per-run fields
+    /// of the scenario that filled it (drop, speed, damping, tip forces, the sea's instant), its
+    /// contact rate the scenario's own where a nonlinear law makes it follow the impact energy; a
+    /// bad per-run field is refused as [`Model::new`] refuses it; another mesh gets its own entry.
+    #[test]
+    fn cached_models_equal_fresh_ones_to_the_bit() {
+        let power = Scenario::from_toml("[contact]\nlaw = \"power\"\nstiffness = 1e10\n", "the test's law").unwrap();
+        for base in [Scenario::default(), power] {
+            let cache = ModalCache::default();
+            let base = crate::discretise::printed(&base).unwrap();
+            let mut variants = vec![base.clone()];
+            for (h, zeta, tip) in [(1.7, 0.05, 0.0), (0.2, 0.0, 3e3)] {
+                let mut s = Scenario { drop_height: h, damping_ratio: zeta, duration: 0.3, ..base.clone() };
+                s.upper.tip_force = tip;
+                variants.push(s);
+            }
+            variants.push(Scenario { impact_angular_velocity: Some(0.4), drop_height: 0.0, ..base.clone() });
+            for s in &variants {
+                let (cached, fresh) = (cache.model(s).unwrap(), Model::new(s).unwrap());
+                assert_eq!(format!("{cached:?}"), format!("{fresh:?}"), "drop {}", s.drop_height);
+            }
+            let rates: Vec<u64> = variants.iter().map(|s| cache.model(s).unwrap().bar_stiffness.to_bits()).collect();
+            let linear = base.contact_law().is_none();
+            assert_eq!(rates.iter().all(|r| *r == rates[0]), linear, "the rate follows the impact only for a law");
+            let bad = Scenario { drop_height: -1.0, ..base.clone() };
+            assert_eq!(cache.model(&bad).unwrap_err().to_string(), Model::new(&bad).unwrap_err().to_string());
+            assert_eq!(lock(&cache.models).len(), 1, "one model per mesh");
+            let coarser = crate::discretise::check(&base).unwrap();
+            assert_eq!(format!("{:?}", cache.model(&coarser).unwrap()), format!("{:?}", Model::new(&coarser).unwrap()));
+            assert_eq!(lock(&cache.models).len(), 2);
+        }
+    }
+
+    /// Issue 43: the initial state from the cached factors (the arrestor's stiffness factored, the
+    /// bridge's shapes transposed, made for the geometry by another run) is the one computed
+    /// afresh, to the bit, for other drops, speeds, tip forces and supports' motions.
+    #[test]
+    fn the_initial_state_from_cached_factors_is_the_fresh_one_to_the_bit() {
+        use crate::solver::initial::{initial_state, initial_state_with};
+        use crate::solver::kinematics::{Excitation, TipForces};
+        let cache = ModalCache::default();
+        let base = crate::discretise::printed(&Scenario::default()).unwrap();
+        cache.modes(&cache.model(&base).unwrap()).unwrap();
+        let excitations = [
+            Excitation::default(),
+            Excitation {
+                forces: TipForces { upper: 2e3, lower: -5e2 },
+                support_acceleration: [0.7, -0.3, 0.05],
+                gap_offset: 0.012,
+                gap_offset_rate: -0.2,
+            },
+        ];
+        for s in [
+            Scenario { drop_height: 1.3, ..base.clone() },
+            Scenario { impact_angular_velocity: Some(0.3), drop_height: 0.0, ..base },
+        ] {
+            let model = cache.model(&s).unwrap();
+            let modes = cache.modes(&model).unwrap();
+            for e in &excitations {
+                let cached = initial_state_with(&model, &modes.full, e, Some(&modes.initial)).unwrap();
+                let fresh = initial_state(&model, &ModalSystem::new(&model).unwrap(), e).unwrap();
+                assert_eq!(format!("{cached:?}"), format!("{fresh:?}"));
+            }
+        }
     }
 
     /// The cache stays within its entries, and one of no entries keeps nothing.

@@ -34,35 +34,60 @@ fn add_terms(v: &mut [f64; 9], c: &[Complex<f64>; 3], w: f64, co: f64, s: f64) {
     }
 }
 
-/// One component's terms added to every row of every block ([`SeaRecord::motions`]): `sums`
-/// holds nine planes (the sums of [`add_terms`]), each row j of block b at j * blocks + b;
+/// Blocks advanced side by side in [`add_component`] (the CPU's vector across the blocks): eight
+/// f64 fill an AVX-512 register, four an AVX2 one ([`lanes`]).
+const WIDE: usize = 8;
+/// The lanes where AVX-512 is missing.
+const NARROW: usize = 4;
+
+/// Whether this CPU advances [`WIDE`] blocks at once (AVX-512), else [`NARROW`]: the rows' bits
+/// are the same either way (each lane is one block's own sums).
+fn wide() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx512f")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+/// The nine sums of [`add_terms`] for each row of `N` blocks: `[row][sum][lane]`.
+type Chunk<const N: usize> = [[[f64; N]; 9]; ANCHOR_ROWS];
+
+/// One component's terms added to every row of one chunk of `N` blocks ([`SeaRecord::motions`]):
 /// (`re`, `im`) hold each block's e^(i w t) at its anchor and are advanced by `step` = e^(i w dt)
-/// row by row (the complex product of the recurrence), each term as `add_terms` makes it.
+/// row by row (num-complex's product, written out: the same operations in the same order), each
+/// term as [`add_terms`] makes it (the same bits). The chunk's sums (9 to 18 KB) stay in the
+/// first-level cache while every component passes over them, and each row's phase stays in
+/// registers for its nine sums.
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn add_blocks(sums: &mut [f64], (re, im): (&mut [f64], &mut [f64]), c: &[Complex<f64>; 3], w: f64, step: Complex<f64>) {
-    let blocks = re.len().min(im.len());
-    let (re, im) = (&mut re[..blocks], &mut im[..blocks]);
-    let plane = ANCHOR_ROWS * blocks;
-    for j in 0..ANCHOR_ROWS {
+fn add_component<const N: usize>(
+    sums: &mut Chunk<N>,
+    (mut re, mut im): ([f64; N], [f64; N]),
+    c: &[Complex<f64>; 3],
+    w: f64,
+    step: Complex<f64>,
+) {
+    let w2 = w * w;
+    for (j, row) in sums.iter_mut().enumerate() {
         if j > 0 {
-            for b in 0..blocks {
-                let z = Complex::new(re[b], im[b]) * step;
-                (re[b], im[b]) = (z.re, z.im);
+            for l in 0..N {
+                let (a, b) = (re[l], im[l]);
+                re[l] = a * step.re - b * step.im;
+                im[l] = a * step.im + b * step.re;
             }
         }
-        let row = j * blocks..(j + 1) * blocks;
         for (k, cj) in c.iter().enumerate() {
-            let (value, rest) = sums[3 * k * plane..].split_at_mut(plane);
-            let (rate_sum, rest) = rest.split_at_mut(plane);
-            let acceleration = &mut rest[row.clone()];
-            let (value, rate_sum) = (&mut value[row.clone()], &mut rate_sum[row.clone()]);
-            for b in 0..blocks {
-                let (co, s) = (re[b], im[b]);
+            let [value, rate_sum, acceleration] = &mut row[3 * k..3 * k + 3] else { unreachable!() };
+            for l in 0..N {
+                let (co, s) = (re[l], im[l]);
                 let re = cj.re * co - cj.im * s;
                 let rate = -(cj.re * s + cj.im * co);
-                value[b] += re;
-                rate_sum[b] += w * rate;
-                acceleration[b] -= w * w * re;
+                value[l] += re;
+                rate_sum[l] += w * rate;
+                acceleration[l] -= w2 * re;
             }
         }
     }
@@ -146,31 +171,53 @@ impl SeaRecord {
         if rows == 0 {
             return Vec::new();
         }
+        if wide() {
+            self.motions_by::<WIDE>(first, last, dt)
+        } else {
+            self.motions_by::<NARROW>(first, last, dt)
+        }
+    }
+
+    /// [`Self::motions`] with `N` blocks advanced side by side (the same rows to the bit for any
+    /// `N`).
+    fn motions_by<const N: usize>(&self, first: i64, last: i64, dt: f64) -> Vec<SupportMotion> {
         // The rows by blocks of ANCHOR_ROWS, each from its anchor's exact phase: the blocks are
-        // independent, so each component advances all of them side by side (the CPU's vectors
+        // independent, so each component advances N of them side by side (the CPU's vectors
         // across the blocks), every row getting the same terms in the same order as one block
-        // after the other would give it (the same bits, a third of the time).
+        // after the other would give it (the same bits). A chunk of N blocks takes every
+        // component before the next chunk (its sums stay in cache); lanes past the last block
+        // are padding (phase 1, never read).
         let block = ANCHOR_ROWS as i64;
         let anchor = first.div_euclid(block) * block;
         let blocks = ((last - anchor) / block + 1) as usize;
-        let mut sums = vec![0.0; 9 * ANCHOR_ROWS * blocks];
-        let (mut re, mut im) = (vec![0.0; blocks], vec![0.0; blocks]);
-        for (i, c) in self.coefficients.iter().enumerate() {
-            let w = self.components.frequencies[i];
-            let (s, co) = libm::sincos(w * dt);
-            let step = Complex::new(co, s);
-            for b in 0..blocks {
-                let k = anchor + b as i64 * block;
-                let (s, co) = libm::sincos(w * (k as f64 * dt));
-                (re[b], im[b]) = (co, s);
+        let chunks = blocks.div_ceil(N);
+        let steps: Vec<Complex<f64>> = self
+            .components
+            .frequencies
+            .iter()
+            .map(|&w| {
+                let (s, co) = libm::sincos(w * dt);
+                Complex::new(co, s)
+            })
+            .collect();
+        let mut sums: Vec<Chunk<N>> = vec![[[[0.0; N]; 9]; ANCHOR_ROWS]; chunks];
+        for (n, chunk) in sums.iter_mut().enumerate() {
+            for (i, c) in self.coefficients.iter().enumerate() {
+                let w = self.components.frequencies[i];
+                let (mut re, mut im) = ([1.0; N], [0.0; N]);
+                for l in 0..N.min(blocks - n * N) {
+                    let k = anchor + ((n * N + l) as i64) * block;
+                    let (s, co) = libm::sincos(w * (k as f64 * dt));
+                    (re[l], im[l]) = (co, s);
+                }
+                add_component::<N>(chunk, (re, im), c, w, steps[i]);
             }
-            add_blocks(&mut sums, (&mut re, &mut im), c, w, step);
         }
         (first..=last)
             .map(|k| {
                 let (b, j) = (((k - anchor) / block) as usize, ((k - anchor) % block) as usize);
-                let plane = ANCHOR_ROWS * blocks;
-                support_motion(&std::array::from_fn(|m| sums[m * plane + j * blocks + b]))
+                let row = &sums[b / N][j];
+                support_motion(&std::array::from_fn(|m| row[m][b % N]))
             })
             .collect()
     }
@@ -243,19 +290,24 @@ mod tests {
     }
 
     #[test]
-    fn blocked_rows_are_the_row_by_row_recurrence_to_the_bit() {
+    fn blocked_rows_are_the_row_by_row_recurrence_to_the_bit_at_either_width() {
         let record = record();
         // Tables starting on an anchor, inside a block, before the record's zero, one row long,
         // and ending inside a block.
         for (first, last) in [(0, 600), (17, 618), (-45, 3), (31, 31), (64, 95), (-1, 0), (1000, 1632)] {
-            let blocked = record.motions(first, last, 0.005);
             let reference = motions_row_by_row(&record, first, last, 0.005);
-            assert_eq!(blocked.len(), reference.len());
-            for (k, (a, b)) in blocked.iter().zip(&reference).enumerate() {
+            let narrow = record.motions_by::<NARROW>(first, last, 0.005);
+            let wide = record.motions_by::<WIDE>(first, last, 0.005);
+            assert_eq!(narrow.len(), reference.len());
+            assert_eq!(wide.len(), reference.len());
+            let both = narrow.iter().zip(&wide).flat_map(|(n, w)| [n, w]);
+            for (k, (a, b)) in both.zip(reference.iter().flat_map(|r| [r, r])).enumerate() {
                 let (a, b) = (a.values(), b.values());
                 assert!(
                     a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()),
-                    "rows {first}..={last}, row {k}: {a:?} against {b:?}"
+                    "rows {first}..={last}, row {}, {} lanes: {a:?} against {b:?}",
+                    k / 2,
+                    [NARROW, WIDE][k % 2]
                 );
             }
         }

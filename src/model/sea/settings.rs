@@ -139,7 +139,25 @@ pub struct SeaSettings {
 struct RecordCache(Arc<Mutex<Vec<CachedRecord>>>);
 
 /// A record's key, the RAO table it was made from and its table.
-type CachedRecord = (String, Arc<RaoTable>, Arc<MotionTable>);
+type CachedRecord = (TableKey, Arc<RaoTable>, Arc<MotionTable>);
+
+/// What a realisation depends on besides the RAO table ([`SeaSettings::realisation_key`]): every
+/// field but `time_shift` and `sample_interval`, the numbers by their bits (equal bits, equal
+/// key: what the fields' text gave, without writing them out for every run's every look-up).
+#[derive(Clone, Debug, PartialEq)]
+struct RealisationKey {
+    numbers: Vec<u64>,
+    spectrum: SpectrumKind,
+    raos: String,
+}
+
+/// What a motion table depends on besides the RAO table: the realisation's key with
+/// `time_shift`, `sample_interval` and the run's duration, by their bits.
+#[derive(Clone, Debug, PartialEq)]
+struct TableKey {
+    realisation: RealisationKey,
+    span: [u64; 3],
+}
 
 impl PartialEq for RecordCache {
     fn eq(&self, _: &Self) -> bool {
@@ -154,7 +172,7 @@ impl PartialEq for RecordCache {
 struct RealisationCache(Arc<Mutex<Vec<CachedRealisation>>>);
 
 /// A realisation's key, the RAO table it was made from and the record.
-type CachedRealisation = (String, Arc<RaoTable>, Arc<SeaRecord>);
+type CachedRealisation = (RealisationKey, Arc<RaoTable>, Arc<SeaRecord>);
 
 impl PartialEq for RealisationCache {
     fn eq(&self, _: &Self) -> bool {
@@ -394,9 +412,60 @@ impl SeaSettings {
     }
 
     /// What a realisation depends on besides the RAO table: every field but `time_shift` and
-    /// `sample_interval`, as text.
-    fn realisation_key(&self) -> String {
-        toml::to_string(&SeaSettings { time_shift: 0.0, sample_interval: 0.0, ..self.clone() }).unwrap_or_default()
+    /// `sample_interval` (each named here: a field added to the section must say whether it
+    /// changes the record), the loaded files' contents left out as the TOML leaves them out.
+    fn realisation_key(&self) -> RealisationKey {
+        let SeaSettings {
+            significant_wave_height,
+            peak_period,
+            spectrum,
+            peak_enhancement,
+            heading,
+            seed,
+            components,
+            frequency_min,
+            frequency_max,
+            time_shift: _,
+            raos,
+            hinge_point,
+            clamp_point,
+            arrestor_direction,
+            sample_interval: _,
+            rao_table: _,
+            rao_sha256: _,
+            recorded: _,
+            cache: _,
+            records: _,
+        } = self;
+        let mut numbers = vec![
+            significant_wave_height.to_bits(),
+            peak_period.to_bits(),
+            heading.to_bits(),
+            *seed,
+            u64::from(*components),
+            arrestor_direction.to_bits(),
+        ];
+        for value in [peak_enhancement, frequency_min, frequency_max] {
+            numbers.extend(match value {
+                Some(v) => [1, v.to_bits()],
+                None => [0, 0],
+            });
+        }
+        for point in [hinge_point, clamp_point] {
+            match point {
+                Some(p) => numbers.extend([1, p[0].to_bits(), p[1].to_bits(), p[2].to_bits()]),
+                None => numbers.extend([0; 4]),
+            }
+        }
+        RealisationKey { numbers, spectrum: *spectrum, raos: raos.clone() }
+    }
+
+    /// What the motion table over a run of `duration` s depends on besides the RAO table.
+    fn table_key(&self, duration: f64) -> TableKey {
+        TableKey {
+            realisation: self.realisation_key(),
+            span: [self.time_shift.to_bits(), self.sample_interval.to_bits(), duration.to_bits()],
+        }
     }
 
     /// The record (components and the supports' response) for the loaded RAO table: made once
@@ -441,12 +510,12 @@ impl SeaSettings {
         if let Some(e) = self.validation_errors(duration).into_iter().next() {
             return Err(e);
         }
-        let key = self.key(duration);
         if let Some((recorded_key, table)) = &self.recorded {
-            if *recorded_key == key {
+            if *recorded_key == self.key(duration) {
                 return Ok(Arc::clone(table));
             }
         }
+        let key = self.table_key(duration);
         let raos = self.rao_table.as_ref().ok_or_else(|| not_loaded(&self.raos))?;
         if let Ok(entries) = self.cache.0.lock() {
             if let Some((_, _, table)) = entries.iter().find(|(k, r, _)| *k == key && Arc::ptr_eq(r, raos)) {
