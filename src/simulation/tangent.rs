@@ -28,7 +28,7 @@
 //! of its own difference (a graze the twin could take otherwise: [`GRAZE_FRACTION`]); else the
 //! twin runs as before, so every flagged figure is the real twin's.
 
-use super::{initial_physical_state, Simulation, StepResult};
+use super::{initial_physical_state_with, Simulation, StepResult};
 use crate::error::Result;
 use crate::model::system::PROBES;
 use crate::model::{Probe, Scenario};
@@ -165,13 +165,16 @@ impl<S: Stepper> Simulation<S> {
         if !same_mesh {
             return Ok(false);
         }
-        let model = crate::model::Model::new(&resolved)?;
-        let full = if cache.is_enabled() {
-            cache.modes(&model)?.full
+        // The twin's model, modes and initial factors from the cache (the printed run put them
+        // there; the same bits).
+        let model = cache.model(&resolved)?;
+        let (full, factors) = if cache.is_enabled() {
+            let (full, factors) = cache.initial_modes(&model)?;
+            (full, Some(factors))
         } else {
-            std::sync::Arc::new(crate::solver::ModalSystem::new(&model)?)
+            (std::sync::Arc::new(crate::solver::ModalSystem::new(&model)?), None)
         };
-        let physical = initial_physical_state(&model, &full, &self.state.motion)?;
+        let physical = initial_physical_state_with(&model, &full, &self.state.motion, factors.as_deref())?;
         let start = self.stepper.own_coordinates(&physical);
         let own = &self.state.kinematics;
         let delta = Kinematics {
