@@ -519,6 +519,7 @@ mod tests {
                 support_acceleration: [0.7, -0.3, 0.05],
                 gap_offset: 0.012,
                 gap_offset_rate: -0.2,
+                gap_offset_acceleration: 0.4,
             },
         ];
         for s in [
