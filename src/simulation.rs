@@ -398,7 +398,7 @@ fn initial_physical_state_with(
     model: &Model,
     full: &ModalSystem,
     motion: &SupportMotion,
-    factors: Option<&crate::solver::modal_cache::InitialFactors>,
+    factors: Option<&crate::solver::initial::InitialFactors>,
 ) -> Result<Kinematics> {
     let forces = TipForces { upper: model.scenario.upper.tip_force, lower: model.scenario.lower.tip_force };
     crate::solver::initial::initial_state_with(model, full, &excitation(model, forces, motion), factors)

@@ -2,14 +2,33 @@
 //! convention of docs/scenario.md: time 0 is the impact, the bridge is horizontal and rotating
 //! rigidly, the arrestor rests in its self-weight deflection, and the beams touch.
 
-use nalgebra::DVector;
+use nalgebra::{Cholesky, DMatrix, DVector, Dyn};
 
 use super::kinematics::{Excitation, Kinematics};
 use super::modal::ModalSystem;
-use super::modal_cache::InitialFactors;
 use crate::error::{Error, Result};
 use crate::model::scenario::ImpactorKind;
 use crate::model::{damping, Model, Probe};
+
+/// What [`initial_state`] computes from a geometry alone, whatever the
+/// run's speed, supports' motion or tip forces: computed once per geometry, the same bits as
+/// computed per run.
+#[derive(Debug)]
+pub struct InitialFactors {
+    /// The arrestor's stiffness factored (Cholesky); `None` when it has no DOF or is not
+    /// positive definite (the initial state then meets its own error).
+    pub lower_stiffness: Option<Cholesky<f64, Dyn>>,
+    /// The full system's bridge shapes transposed, Phi_u^T.
+    pub upper_shapes_transposed: DMatrix<f64>,
+}
+
+impl InitialFactors {
+    /// The factors of `model` with its full modal system `full`.
+    pub fn new(model: &Model, full: &ModalSystem) -> InitialFactors {
+        let lower_stiffness = if model.lower.dofs() == 0 { None } else { model.lower.stiffness.clone().cholesky() };
+        InitialFactors { lower_stiffness, upper_shapes_transposed: full.upper.shapes.transpose() }
+    }
+}
 
 /// The rigid pitching of the bridge before impact (Eqs. 15-22).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -32,9 +32,10 @@
 use std::collections::VecDeque;
 use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
 
-use nalgebra::{Cholesky, DMatrix, Dyn};
+use nalgebra::DMatrix;
 
 use super::envelope::StationRows;
+use super::initial::InitialFactors;
 use super::modal::ModalSystem;
 use super::model_range::RangeRows;
 use crate::error::Result;
@@ -91,26 +92,6 @@ struct Shared {
     /// The rows the runs stepping in the run basis read, filled by the first of them.
     rows: Arc<RunRows>,
     bytes: usize,
-}
-
-/// What [`crate::solver::initial::initial_state`] computes from a geometry alone, whatever the
-/// run's speed, supports' motion or tip forces: computed once per geometry, the same bits as
-/// computed per run.
-#[derive(Debug)]
-pub struct InitialFactors {
-    /// The arrestor's stiffness factored (Cholesky); `None` when it has no DOF or is not
-    /// positive definite (the initial state then meets its own error).
-    pub lower_stiffness: Option<Cholesky<f64, Dyn>>,
-    /// The full system's bridge shapes transposed, Phi_u^T.
-    pub upper_shapes_transposed: DMatrix<f64>,
-}
-
-impl InitialFactors {
-    /// The factors of `model` with its full modal system `full`.
-    pub fn new(model: &Model, full: &ModalSystem) -> InitialFactors {
-        let lower_stiffness = if model.lower.dofs() == 0 { None } else { model.lower.stiffness.clone().cholesky() };
-        InitialFactors { lower_stiffness, upper_shapes_transposed: full.upper.shapes.transpose() }
-    }
 }
 
 /// One key's slot: filled by the first run that needs it, while later ones wait on its lock.
