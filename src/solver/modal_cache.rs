@@ -357,26 +357,13 @@ fn approximate_bytes(m: &ModalSystem) -> usize {
 /// The key of `model`: its scenario without the [`PER_RUN_FIELDS`], written out in full, and the
 /// contact's rate. `None` if it cannot be written (then nothing is shared).
 fn key(model: &Model) -> Option<Key> {
-    let mut s = model.scenario.clone();
     let d = Scenario::default();
-    s.drop_height = d.drop_height;
-    s.impact_angular_velocity = d.impact_angular_velocity;
-    s.impact_speed = d.impact_speed;
-    s.damping_ratio = d.damping_ratio;
-    s.rayleigh_alpha = d.rayleigh_alpha;
-    s.rayleigh_beta = d.rayleigh_beta;
-    s.step_free = d.step_free;
-    s.step_contact = d.step_contact;
-    s.duration = d.duration;
-    s.energy_tolerance = d.energy_tolerance;
-    s.discretisation_tolerance = d.discretisation_tolerance;
+    let mut s = without_run_fields(&model.scenario, &d);
     s.upper.allowable_bending_stress = d.upper.allowable_bending_stress;
     s.upper.yield_stress = d.upper.yield_stress;
-    s.upper.tip_force = d.upper.tip_force;
     s.lower.allowable_bending_stress = d.lower.allowable_bending_stress;
     s.lower.allowable_shear_stress = d.lower.allowable_shear_stress;
     s.lower.yield_stress = d.lower.yield_stress;
-    s.lower.tip_force = d.lower.tip_force;
     s.motion = d.motion;
     s.sea = d.sea;
     s.fatigue = d.fatigue;
@@ -391,7 +378,15 @@ fn key(model: &Model) -> Option<Key> {
 /// -0.0: equal text, equal bits).
 fn model_key(scenario: &Scenario) -> String {
     let d = Scenario::default();
-    let mut s = Scenario { motion: d.motion.clone(), sea: None, fatigue: None, ..scenario.clone() };
+    let s = Scenario { motion: d.motion.clone(), sea: None, fatigue: None, ..without_run_fields(scenario, &d) };
+    format!("{s:?}")
+}
+
+/// `scenario` with the fields neither the assembled model nor its modes read set to `d`'s (the
+/// impact's, the damping's, the steps', the duration, the tolerances, the tip forces): the part
+/// both cache keys share.
+fn without_run_fields(scenario: &Scenario, d: &Scenario) -> Scenario {
+    let mut s = scenario.clone();
     s.drop_height = d.drop_height;
     s.impact_angular_velocity = d.impact_angular_velocity;
     s.impact_speed = d.impact_speed;
@@ -405,7 +400,7 @@ fn model_key(scenario: &Scenario) -> String {
     s.discretisation_tolerance = d.discretisation_tolerance;
     s.upper.tip_force = d.upper.tip_force;
     s.lower.tip_force = d.lower.tip_force;
-    format!("{s:?}")
+    s
 }
 
 #[cfg(test)]
