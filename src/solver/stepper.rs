@@ -371,14 +371,26 @@ pub fn projector(model: &Model, system: &ModalSystem) -> nalgebra::DMatrix<f64> 
     system.shapes().transpose() * model.mass()
 }
 
-/// One state's modal arrays and the stage's modal loads and parameters, each `n` long.
+/// The stage's modal loads and the modes' parameters (omega^2, damping, contact coefficient b),
+/// each `n` long.
+#[derive(Clone, Copy)]
+struct ModeInputs<'a> {
+    load: &'a [f64],
+    omega2: &'a [f64],
+    damping: &'a [f64],
+    contact: &'a [f64],
+}
+
+/// One state's modal arrays and the stage's [`ModeInputs`], each `n` long. The kernels that
+/// write q, v and a take them as arguments of their own, never inside a struct: a `&mut`
+/// argument overlaps nothing else, so the compiler needs no run-time check of the written arrays
+/// against the read ones (on the contact step's 34 arrays a thousand instructions a call, a
+/// third of its cost).
 struct ModeArrays<'a> {
     q: &'a mut [f64],
     v: &'a mut [f64],
     a: &'a mut [f64],
-    load: &'a [f64],
-    omega2: &'a [f64],
-    damping: &'a [f64],
+    inputs: ModeInputs<'a>,
 }
 
 impl<'a> ModeArrays<'a> {
@@ -389,9 +401,12 @@ impl<'a> ModeArrays<'a> {
             q: &mut state.displacement.as_mut_slice()[..n],
             v: &mut state.velocity.as_mut_slice()[..n],
             a: &mut state.acceleration.as_mut_slice()[..n],
-            load: &load.as_slice()[..n],
-            omega2: &system.omega2.as_slice()[..n],
-            damping: &system.damping.as_slice()[..n],
+            inputs: ModeInputs {
+                load: &load.as_slice()[..n],
+                omega2: &system.omega2.as_slice()[..n],
+                damping: &system.damping.as_slice()[..n],
+                contact: &system.contact.as_slice()[..n],
+            },
         }
     }
 }
@@ -399,13 +414,22 @@ impl<'a> ModeArrays<'a> {
 /// One exact step out of contact ([`ModalStepper::exact_step`]) over every mode, in the widest
 /// vectors the CPU has (chosen once at run time; no fused multiply-add, so the same bits whichever
 /// runs): each mode under the forcing linear from its start's f0 = a + c v + omega^2 q to its end
-/// load; `dissipated[i]` gets mode i's damping work over the step (0 for an undamped mode).
+/// load; with `WORK`, `dissipated[i]` gets mode i's damping work over the step (0 for an undamped
+/// mode; without, `dissipated` is left alone and the integral of q is not formed).
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn free_exact_step(m: ModeArrays, columns: &[Vec<f64>; 12], dt: f64, dissipated: &mut [f64]) {
-    let n = m.q.len();
-    let (q, v, a) = (m.q, &mut m.v[..n], &mut m.a[..n]);
+fn free_exact_step<const WORK: bool>(
+    q: &mut [f64],
+    v: &mut [f64],
+    a: &mut [f64],
+    dissipated: &mut [f64],
+    m: ModeInputs,
+    columns: &[Vec<f64>; 12],
+    dt: f64,
+) {
+    let n = q.len();
+    let (v, a) = (&mut v[..n], &mut a[..n]);
     let (load, omega2, damping) = (&m.load[..n], &m.omega2[..n], &m.damping[..n]);
-    let dissipated = &mut dissipated[..n];
+    let dissipated = &mut dissipated[..if WORK { n } else { 0 }];
     let c: [&[f64]; 12] = std::array::from_fn(|k| &columns[k][..n]);
     let inv_dt = 1.0 / dt;
     for i in 0..n {
@@ -416,12 +440,14 @@ fn free_exact_step(m: ModeArrays, columns: &[Vec<f64>; 12], dt: f64, dissipated:
         // ModeStep::apply, term by term in its order.
         let q1 = c[0][i] * q0 + c[1][i] * v0 + c[2][i] * f0 + c[3][i] * r;
         let v1 = c[4][i] * q0 + c[5][i] * v0 + c[6][i] * f0 + c[7][i] * r;
-        let integral = c[8][i] * q0 + c[9][i] * v0 + c[10][i] * f0 + c[11][i] * r;
-        // The mode's energy balance: c int v^2 = -(E1 - E0) + int v f, with
-        // int v f = f0 (q1 - q0) + r (dt q1 - int q).
-        let energy_change = 0.5 * (v1 * v1 - v0 * v0) + 0.5 * omega2[i] * (q1 * q1 - q0 * q0);
-        let work = -energy_change + f0 * (q1 - q0) + r * (dt * q1 - integral);
-        dissipated[i] = if damping[i] != 0.0 { work } else { 0.0 };
+        if WORK {
+            let integral = c[8][i] * q0 + c[9][i] * v0 + c[10][i] * f0 + c[11][i] * r;
+            // The mode's energy balance: c int v^2 = -(E1 - E0) + int v f, with
+            // int v f = f0 (q1 - q0) + r (dt q1 - int q).
+            let energy_change = 0.5 * (v1 * v1 - v0 * v0) + 0.5 * omega2[i] * (q1 * q1 - q0 * q0);
+            let work = -energy_change + f0 * (q1 - q0) + r * (dt * q1 - integral);
+            dissipated[i] = if damping[i] != 0.0 { work } else { 0.0 };
+        }
         q[i] = q1;
         v[i] = v1;
         a[i] = f1 - damping[i] * v1 - omega2[i] * q1;
@@ -432,17 +458,11 @@ fn free_exact_step(m: ModeArrays, columns: &[Vec<f64>; 12], dt: f64, dissipated:
 /// bar's change over it (`gap[i]`, `rate[i]`; see [`ModalStepper::contact_step`]), in the CPU's
 /// widest vectors (no fused multiply-add: the same bits whichever runs).
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn contact_free_response(
-    m: &ModeArrays,
-    b: &[f64],
-    columns: &[Vec<f64>; 12],
-    inv_dt: f64,
-    gap: &mut [f64],
-    rate: &mut [f64],
-) {
+fn contact_free_response(m: &ModeArrays, columns: &[Vec<f64>; 12], inv_dt: f64, gap: &mut [f64], rate: &mut [f64]) {
     let n = m.q.len();
     let (q, v, a) = (&m.q[..n], &m.v[..n], &m.a[..n]);
-    let (load, omega2, damping, b) = (&m.load[..n], &m.omega2[..n], &m.damping[..n], &b[..n]);
+    let ModeInputs { load, omega2, damping, contact: b } = m.inputs;
+    let (load, omega2, damping, b) = (&load[..n], &omega2[..n], &damping[..n], &b[..n]);
     let (gap, rate) = (&mut gap[..n], &mut rate[..n]);
     let c: [&[f64]; 8] = std::array::from_fn(|k| &columns[k][..n]);
     for i in 0..n {
@@ -458,14 +478,16 @@ fn contact_free_response(
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
 fn contact_free_response_accelerated(
     m: &ModeArrays,
-    b: &[f64],
     columns: &[Vec<f64>; 12],
     inv_dt: f64,
-    (gap, rate, acceleration): (&mut [f64], &mut [f64], &mut [f64]),
+    gap: &mut [f64],
+    rate: &mut [f64],
+    acceleration: &mut [f64],
 ) {
     let n = m.q.len();
     let (q, v, a) = (&m.q[..n], &m.v[..n], &m.a[..n]);
-    let (load, omega2, damping, b) = (&m.load[..n], &m.omega2[..n], &m.damping[..n], &b[..n]);
+    let ModeInputs { load, omega2, damping, contact: b } = m.inputs;
+    let (load, omega2, damping, b) = (&load[..n], &omega2[..n], &damping[..n], &b[..n]);
     let (gap, rate, acceleration) = (&mut gap[..n], &mut rate[..n], &mut acceleration[..n]);
     let c: [&[f64]; 8] = std::array::from_fn(|k| &columns[k][..n]);
     for i in 0..n {
@@ -489,25 +511,26 @@ struct BarForce {
     g3: f64,
 }
 
-/// Every mode's exact advance over a contact step under `bar`'s force, in the CPU's widest
-/// vectors (no fused multiply-add: the same bits whichever runs); `dissipated[i]` gets mode i's
-/// damping work over the step (0 for an undamped mode).
+/// Every mode's exact advance over a contact step of `stage`'s size under `bar`'s force, in the
+/// CPU's widest vectors (no fused multiply-add: the same bits whichever runs); with `WORK`,
+/// `dissipated[i]` gets mode i's damping work over the step (0 for an undamped mode; without,
+/// `dissipated` is left alone and neither the integral of q nor its moments are formed).
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn contact_advance(
-    m: &mut ModeArrays,
-    b: &[f64],
-    columns: &[Vec<f64>; 12],
-    cubic: &[Vec<f64>; 18],
-    dt: f64,
-    bar: BarForce,
+fn contact_advance<const WORK: bool>(
+    q: &mut [f64],
+    v: &mut [f64],
+    a: &mut [f64],
     dissipated: &mut [f64],
+    m: ModeInputs,
+    stage: &ExactStage,
+    bar: BarForce,
 ) {
-    let n = m.q.len();
-    let (q, v, a) = (&mut m.q[..n], &mut m.v[..n], &mut m.a[..n]);
-    let (load, omega2, damping, b) = (&m.load[..n], &m.omega2[..n], &m.damping[..n], &b[..n]);
-    let dissipated = &mut dissipated[..n];
-    let c: [&[f64]; 12] = std::array::from_fn(|k| &columns[k][..n]);
-    let cu: [&[f64]; 18] = std::array::from_fn(|k| &cubic[k][..n]);
+    let n = q.len();
+    let (v, a, dissipated) = (&mut v[..n], &mut a[..n], &mut dissipated[..if WORK { n } else { 0 }]);
+    let (load, omega2, damping, b) = (&m.load[..n], &m.omega2[..n], &m.damping[..n], &m.contact[..n]);
+    let c: [&[f64]; 12] = std::array::from_fn(|k| &stage.columns[k][..n]);
+    let cu: [&[f64]; 18] = std::array::from_fn(|k| &stage.cubic_columns[k][..n]);
+    let dt = stage.dt;
     let inv_dt = 1.0 / dt;
     for i in 0..n {
         let (q0, v0) = (q[i], v[i]);
@@ -518,19 +541,23 @@ fn contact_advance(
         // ModeStep::apply, term by term in its order, then the cubic's s^2 and s^3 forcings.
         let q1 = c[0][i] * q0 + c[1][i] * v0 + c[2][i] * f0 + c[3][i] * r;
         let v1 = c[4][i] * q0 + c[5][i] * v0 + c[6][i] * f0 + c[7][i] * r;
-        let integral = c[8][i] * q0 + c[9][i] * v0 + c[10][i] * f0 + c[11][i] * r;
         let q1 = q1 + c2 * cu[0][i] + c3 * cu[1][i];
         let v1 = v1 + c2 * cu[2][i] + c3 * cu[3][i];
-        // The mode's energy balance: c int v^2 = -(E1 - E0) + int v f, with
-        // int v f = f0 (q1 - q0) + r (dt q1 - int q) + c2 (q1 - 2/dt int q s)
-        //         + c3 (q1 - 3/dt int q s^2).
-        let integral = integral + c2 * cu[4][i] + c3 * cu[5][i];
-        let m1 = cu[6][i] * q0 + cu[7][i] * v0 + cu[8][i] * f0 + cu[9][i] * r + cu[10][i] * c2 + cu[11][i] * c3;
-        let m2 = cu[12][i] * q0 + cu[13][i] * v0 + cu[14][i] * f0 + cu[15][i] * r + cu[16][i] * c2 + cu[17][i] * c3;
-        let energy_change = 0.5 * (v1 * v1 - v0 * v0) + 0.5 * omega2[i] * (q1 * q1 - q0 * q0);
-        let work =
-            f0 * (q1 - q0) + r * (dt * q1 - integral) + c2 * (q1 - 2.0 * inv_dt * m1) + c3 * (q1 - 3.0 * inv_dt * m2);
-        dissipated[i] = if damping[i] != 0.0 { -energy_change + work } else { 0.0 };
+        if WORK {
+            // The mode's energy balance: c int v^2 = -(E1 - E0) + int v f, with
+            // int v f = f0 (q1 - q0) + r (dt q1 - int q) + c2 (q1 - 2/dt int q s)
+            //         + c3 (q1 - 3/dt int q s^2).
+            let integral = c[8][i] * q0 + c[9][i] * v0 + c[10][i] * f0 + c[11][i] * r;
+            let integral = integral + c2 * cu[4][i] + c3 * cu[5][i];
+            let m1 = cu[6][i] * q0 + cu[7][i] * v0 + cu[8][i] * f0 + cu[9][i] * r + cu[10][i] * c2 + cu[11][i] * c3;
+            let m2 = cu[12][i] * q0 + cu[13][i] * v0 + cu[14][i] * f0 + cu[15][i] * r + cu[16][i] * c2 + cu[17][i] * c3;
+            let energy_change = 0.5 * (v1 * v1 - v0 * v0) + 0.5 * omega2[i] * (q1 * q1 - q0 * q0);
+            let work = f0 * (q1 - q0)
+                + r * (dt * q1 - integral)
+                + c2 * (q1 - 2.0 * inv_dt * m1)
+                + c3 * (q1 - 3.0 * inv_dt * m2);
+            dissipated[i] = if damping[i] != 0.0 { -energy_change + work } else { 0.0 };
+        }
         q[i] = q1;
         v[i] = v1;
         a[i] = f1 - damping[i] * v1 - omega2[i] * q1;
@@ -728,10 +755,18 @@ impl ModalStepper {
         }
         let n = state.displacement.len();
         let work = &mut self.z.as_mut_slice()[..n];
-        free_exact_step(ModeArrays::new(state, &self.load, s), &self.exact_cache[slot].columns, dt, work);
+        let m = ModeArrays::new(state, &self.load, s);
+        let columns = &self.exact_cache[slot].columns;
         // The modes' dissipated work in their order (the same sum as one mode after the other);
-        // none without an energy account (a chain of additions as long as the modes).
-        self.last_dissipation = Some(if self.energies { work.iter().fold(0.0, |sum, w| sum + w) } else { 0.0 });
+        // none without an energy account (neither the work's terms nor a chain of additions as
+        // long as the modes).
+        self.last_dissipation = Some(if self.energies {
+            free_exact_step::<true>(m.q, m.v, m.a, work, m.inputs, columns, dt);
+            work.iter().fold(0.0, |sum, w| sum + w)
+        } else {
+            free_exact_step::<false>(m.q, m.v, m.a, work, m.inputs, columns, dt);
+            0.0
+        });
         self.last_force_error = None;
     }
 
@@ -765,10 +800,10 @@ impl ModalStepper {
         let (offset, offset_rate) = (self.shift + excitation.gap_offset, excitation.gap_offset_rate);
         let offset_acceleration = excitation.gap_offset_acceleration;
         let (gap_terms, rate_terms) = (&mut self.z.as_mut_slice()[..n], &mut self.y.as_mut_slice()[..n]);
-        let mut m = ModeArrays::new(state, &self.load, s);
+        let m = ModeArrays::new(state, &self.load, s);
         // The end's gap and gap rate without the bar's change over the step (each mode's share
         // in the vectors, summed in the modes' order), and the start's gap, rate and acceleration.
-        contact_free_response(&m, b, &coefficients.columns, inv_dt, gap_terms, rate_terms);
+        contact_free_response(&m, &coefficients.columns, inv_dt, gap_terms, rate_terms);
         let (mut gap, mut gap_rate) = (0.0, 0.0);
         let (mut start_gap, mut start_rate, mut start_acceleration) = (0.0, 0.0, 0.0);
         for i in 0..n {
@@ -793,12 +828,19 @@ impl ModalStepper {
         let (g2, g3) = (2.0 * alpha + beta, -(alpha + beta));
         let work = gap_terms;
         let bar_force = BarForce { force, alpha, g2, g3 };
-        contact_advance(&mut m, b, &coefficients.columns, &coefficients.cubic_columns, dt, bar_force, work);
-        let mut end_acceleration = 0.0;
+        // The modes' dissipated work as the free step's: none without an energy account.
         let mut dissipated = 0.0;
+        if self.energies {
+            contact_advance::<true>(m.q, m.v, m.a, work, m.inputs, coefficients, bar_force);
+            for w in work.iter() {
+                dissipated += w;
+            }
+        } else {
+            contact_advance::<false>(m.q, m.v, m.a, work, m.inputs, coefficients, bar_force);
+        }
+        let mut end_acceleration = 0.0;
         for i in 0..n {
             end_acceleration += b[i] * m.a[i];
-            dissipated += work[i];
         }
         self.last_dissipation = Some(dissipated);
         // The quintic through the force's second derivatives at the ends against the cubic.
@@ -842,9 +884,9 @@ impl ModalStepper {
         let gap_terms = &mut self.z.as_mut_slice()[..n];
         let rate_terms = &mut self.y.as_mut_slice()[..n];
         let acceleration_terms = &mut self.w.as_mut_slice()[..n];
-        let mut m = ModeArrays::new(state, &self.load, s);
+        let m = ModeArrays::new(state, &self.load, s);
         let terms = (&mut *gap_terms, &mut *rate_terms, &mut *acceleration_terms);
-        contact_free_response_accelerated(&m, b, &coefficients.columns, inv_dt, terms);
+        contact_free_response_accelerated(&m, &coefficients.columns, inv_dt, terms.0, terms.1, terms.2);
         let (mut gap, mut gap_rate, mut gap_acceleration) = (0.0, 0.0, 0.0);
         let (mut start_gap, mut start_rate, mut start_acceleration, mut start_turn) = (0.0, 0.0, 0.0, 0.0);
         for i in 0..n {
@@ -854,7 +896,7 @@ impl ModalStepper {
             start_gap += b[i] * m.q[i];
             start_rate += b[i] * m.v[i];
             start_acceleration += b[i] * m.a[i];
-            start_turn += b[i] * (m.damping[i] * m.a[i] + m.omega2[i] * m.v[i]);
+            start_turn += b[i] * (m.inputs.damping[i] * m.a[i] + m.inputs.omega2[i] * m.v[i]);
         }
         // The offset's (constant) acceleration belongs to the gap's at both ends.
         let start_acceleration = start_acceleration + offset_acceleration;
@@ -944,11 +986,11 @@ impl ModalStepper {
         let (g2, g3) = (2.0 * alpha + beta, -(alpha + beta));
         let work = gap_terms;
         let bar_force = BarForce { force, alpha, g2, g3 };
-        contact_advance(&mut m, b, &coefficients.columns, &coefficients.cubic_columns, dt, bar_force, work);
+        contact_advance::<true>(m.q, m.v, m.a, work, m.inputs, coefficients, bar_force);
         let (mut end_acceleration, mut end_turn, mut dissipated) = (0.0, 0.0, 0.0);
         for i in 0..n {
             end_acceleration += b[i] * m.a[i];
-            end_turn += b[i] * (m.damping[i] * m.a[i] + m.omega2[i] * m.v[i]);
+            end_turn += b[i] * (m.inputs.damping[i] * m.a[i] + m.inputs.omega2[i] * m.v[i]);
             dissipated += work[i];
         }
         let end_jerk = -bar.bb * (force_step * inv_dt) - end_turn;
@@ -1421,16 +1463,16 @@ impl ModalStepper {
                 (work.own.as_deref().expect("just set"), None)
             }
         };
+        let q = &mut delta.displacement.as_mut_slice()[..n];
+        let v = &mut delta.velocity.as_mut_slice()[..n];
+        let a = &mut delta.acceleration.as_mut_slice()[..n];
         let modes = TangentModes {
-            q: &mut delta.displacement.as_mut_slice()[..n],
-            v: &mut delta.velocity.as_mut_slice()[..n],
-            a: &mut delta.acceleration.as_mut_slice()[..n],
             omega2: &s.omega2.as_slice()[..n],
             damping: &s.damping.as_slice()[..n],
             b: &s.contact.as_slice()[..n],
         };
         if !contact {
-            free_tangent_advance(modes, &coefficients.columns);
+            free_tangent_advance(q, v, a, modes, &coefficients.columns);
             return true;
         }
         // `contact_step` with no load and no offset: the bar's force is k b^T delta q at both
@@ -1438,7 +1480,7 @@ impl ModalStepper {
         let k = s.bar_stiffness;
         let bar = coefficients.bar;
         let inv_dt = 1.0 / dt;
-        let [free_gap, free_rate, start_gap, start_rate] = tangent_contact_sums(&modes, &coefficients.columns);
+        let [free_gap, free_rate, start_gap, start_rate] = tangent_contact_sums(q, v, modes.b, &coefficients.columns);
         let ramps = match ramp {
             Some((at, sums)) if *at == dt => *sums,
             Some((at, sums)) => {
@@ -1462,16 +1504,15 @@ impl ModalStepper {
         let (alpha, beta) = (p0_step - change, force_step - change);
         // Mode i's forcing per b_i: -P0 at the start, the chord's and the cubic's departure from it.
         let forcing = [-p0, (p0 - force - alpha) * inv_dt, 2.0 * alpha + beta, -(alpha + beta), -force];
-        contact_tangent_advance(modes, &coefficients.columns, &coefficients.cubic_columns, forcing);
+        contact_tangent_advance(q, v, a, modes, &coefficients.columns, &coefficients.cubic_columns, forcing);
         true
     }
 }
 
-/// A difference's modal arrays and the parameters a tangent step reads, each `n` long.
+/// The modes' parameters a tangent step reads, each `n` long (the difference's arrays are the
+/// kernels' own arguments, as [`ModeArrays`]' are).
+#[derive(Clone, Copy)]
 struct TangentModes<'a> {
-    q: &'a mut [f64],
-    v: &'a mut [f64],
-    a: &'a mut [f64],
     omega2: &'a [f64],
     damping: &'a [f64],
     b: &'a [f64],
@@ -1482,9 +1523,9 @@ struct TangentModes<'a> {
 /// `free_exact_step`'s terms in f0 and r vanish), its acceleration the free equilibrium. In the
 /// CPU's widest vectors (no fused multiply-add: the same bits whichever runs).
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn free_tangent_advance(m: TangentModes, columns: &[Vec<f64>; 12]) {
-    let n = m.q.len();
-    let (q, v, a) = (m.q, &mut m.v[..n], &mut m.a[..n]);
+fn free_tangent_advance(q: &mut [f64], v: &mut [f64], a: &mut [f64], m: TangentModes, columns: &[Vec<f64>; 12]) {
+    let n = q.len();
+    let (v, a) = (&mut v[..n], &mut a[..n]);
     let (omega2, damping) = (&m.omega2[..n], &m.damping[..n]);
     let (c0, c1, c4, c5) = (&columns[0][..n], &columns[1][..n], &columns[4][..n], &columns[5][..n]);
     for i in 0..n {
@@ -1502,9 +1543,9 @@ fn free_tangent_advance(m: TangentModes, columns: &[Vec<f64>; 12]) {
 /// pass each: a single pass for all, its accumulators side by side, vectorises across the sums
 /// instead of the modes (twice the instructions, measured).
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn tangent_contact_sums(m: &TangentModes, columns: &[Vec<f64>; 12]) -> [f64; 4] {
-    let n = m.q.len();
-    let (q, v, b) = (&m.q[..n], &m.v[..n], &m.b[..n]);
+fn tangent_contact_sums(q: &[f64], v: &[f64], b: &[f64], columns: &[Vec<f64>; 12]) -> [f64; 4] {
+    let n = q.len();
+    let (v, b) = (&v[..n], &b[..n]);
     let c: [&[f64]; 6] = std::array::from_fn(|k| &columns[[0, 1, 4, 5, 2, 3][k]][..n]);
     [response_dot(b, [c[0], c[1]], q, v), response_dot(b, [c[2], c[3]], q, v), dot(b, q), dot(b, v)]
 }
@@ -1551,9 +1592,17 @@ fn response_dot(b: &[f64], [c0, c1]: [&[f64]; 2], q: &[f64], v: &[f64]) -> f64 {
 /// its acceleration the end's equilibrium. In the CPU's widest vectors (no fused multiply-add:
 /// the same bits whichever runs).
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn contact_tangent_advance(m: TangentModes, columns: &[Vec<f64>; 12], cubic: &[Vec<f64>; 18], f: [f64; 5]) {
-    let n = m.q.len();
-    let (q, v, a) = (m.q, &mut m.v[..n], &mut m.a[..n]);
+fn contact_tangent_advance(
+    q: &mut [f64],
+    v: &mut [f64],
+    a: &mut [f64],
+    m: TangentModes,
+    columns: &[Vec<f64>; 12],
+    cubic: &[Vec<f64>; 18],
+    f: [f64; 5],
+) {
+    let n = q.len();
+    let (v, a) = (&mut v[..n], &mut a[..n]);
     let (omega2, damping, b) = (&m.omega2[..n], &m.damping[..n], &m.b[..n]);
     let c: [&[f64]; 8] = std::array::from_fn(|k| &columns[k][..n]);
     let cu: [&[f64]; 4] = std::array::from_fn(|k| &cubic[k][..n]);
