@@ -1148,14 +1148,14 @@ impl Stepper for ModalStepper {
         // step.
         let n = state.displacement.len().min(self.fourth_derivative.len());
         let amplitude = &mut self.y.as_mut_slice()[..n];
-        Some(fourth_derivative_bounds(
+        Some(first_probes(fourth_derivative_bounds(
             &state.displacement.as_slice()[..n],
             &state.velocity.as_slice()[..n],
             &self.load.as_slice()[..n],
             &self.system.omega2.as_slice()[..n],
             amplitude,
             &self.fourth_derivative,
-        ))
+        )))
     }
 
     fn equilibrium_acceleration(&mut self, state: &mut Kinematics, stage: Stage, excitation: &Excitation) {
@@ -1636,14 +1636,28 @@ fn weighted_squares(w: &[f64], x: &[f64]) -> f64 {
 /// [`dot`] of each probe's column, and so the same bits, but the probes' lanes side by side in
 /// one pass over x (a tenth of a campaign's time was these seven dots, each a chain of additions
 /// waiting on the one before).
-#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+#[inline(always)]
 fn probe_dots(rows: &[[f64; 8]], x: &[f64]) -> [f64; PROBES] {
+    first_probes(padded_probe_dots(rows, x))
+}
+
+/// [`probe_dots`] with the padding's lane too.
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn padded_probe_dots(rows: &[[f64; 8]], x: &[f64]) -> [f64; 8] {
     dots_side_by_side(rows, x)
 }
 
-/// [`probe_dots`]' sums, inlined into each vectorised caller.
+/// The probes' sums of eight lanes (the last the padding's).
 #[inline(always)]
-fn dots_side_by_side(rows: &[[f64; 8]], x: &[f64]) -> [f64; PROBES] {
+fn first_probes(dots: [f64; 8]) -> [f64; PROBES] {
+    std::array::from_fn(|k| dots[k])
+}
+
+/// [`probe_dots`]' sums, inlined into each vectorised caller, the padding's lane too: returned
+/// out of the vectorised function, so that the compiler keeps it, and with it every row two whole
+/// vectors (without it the seventh probe's lanes went into shuffles: a third more instructions).
+#[inline(always)]
+fn dots_side_by_side(rows: &[[f64; 8]], x: &[f64]) -> [f64; 8] {
     let n = x.len().min(rows.len());
     let (rows, x) = (&rows[..n], &x[..n]);
     let mut lanes = [[0.0f64; 8]; 4];
@@ -1656,12 +1670,15 @@ fn dots_side_by_side(rows: &[[f64; 8]], x: &[f64]) -> [f64; PROBES] {
             }
         }
     }
-    let mut dots = [0.0; PROBES];
-    for (k, d) in dots.iter_mut().enumerate() {
-        let tail: f64 = rest.iter().zip(rest_x).map(|(r, &x)| r[k] * x).sum();
-        *d = (lanes[0][k] + lanes[1][k]) + (lanes[2][k] + lanes[3][k]) + tail;
+    // The tail's terms added in order from -0.0, as `Iterator::sum` adds them, every probe's
+    // side by side.
+    let mut tail = [-0.0f64; 8];
+    for (r, &x) in rest.iter().zip(rest_x) {
+        for k in 0..8 {
+            tail[k] += r[k] * x;
+        }
     }
-    dots
+    std::array::from_fn(|k| (lanes[0][k] + lanes[1][k]) + (lanes[2][k] + lanes[3][k]) + tail[k])
 }
 
 /// The sums behind a modal state's energies ([`ModalStepper::measure_state`]): sum omega^2 q^2
@@ -1691,7 +1708,8 @@ fn energy_sums(q: &[f64], v: &[f64], omega2: &[f64], damping: &[f64], gravity: &
 /// amplitude A_i = sqrt(d^2 + (v / omega)^2) (into `amplitude`); its share of a probe's fourth
 /// derivative is at most |P_ki| omega_i^4 A_i (`fourth`: those weights per coordinate, the
 /// probes side by side as [`probe_dots`] takes them; the rigid mode's motion is a quadratic:
-/// none). In the CPU's widest vectors (the same bits whichever runs).
+/// none). In the CPU's widest vectors (the same bits whichever runs), the padding's lane too
+/// (see [`dots_side_by_side`]).
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
 fn fourth_derivative_bounds(
     q: &[f64],
@@ -1700,7 +1718,7 @@ fn fourth_derivative_bounds(
     omega2: &[f64],
     amplitude: &mut [f64],
     fourth: &[[f64; 8]],
-) -> [f64; PROBES] {
+) -> [f64; 8] {
     let n = amplitude.len();
     let (q, v, load, omega2) = (&q[..n], &v[..n], &load[..n], &omega2[..n]);
     for i in 0..n {
