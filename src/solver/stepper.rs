@@ -1583,7 +1583,7 @@ fn response_dot(b: &[f64], [c0, c1]: [&[f64]; 2], q: &[f64], v: &[f64]) -> f64 {
     for i in whole..n {
         tail += b[i] * (c0[i] * q[i] + c1[i] * v[i]);
     }
-    (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) + tail
+    lanes_total(lanes, tail)
 }
 
 /// The tangent's exact step in contact: each mode under b_i times the forcing `f` = [start
@@ -1745,6 +1745,13 @@ fn four_lanes(a: &[f64], b: &[f64], term: impl Fn(f64, f64) -> f64) -> f64 {
         }
     }
     let tail: f64 = ra.iter().zip(rb).map(|(&x, &y)| term(x, y)).sum();
+    lanes_total(lanes, tail)
+}
+
+/// Four lanes' sums added pairwise, then the tail's ([`four_lanes`]' order). Out of line: inlined,
+/// the compiler kept the lanes in pairs of halves for this order, two shuffles a vector of terms.
+#[inline(never)]
+fn lanes_total(lanes: [f64; 4], tail: f64) -> f64 {
     (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) + tail
 }
 
