@@ -929,7 +929,10 @@ impl<S: Stepper> Simulation<S> {
     /// converged method) the largest |value| of each output over the step and when it was reached.
     fn update_peaks(&mut self, upper_strain: f64, within_step: Option<[(f64, f64); 5]>) {
         let r = &mut self.state.result;
-        let extremes = within_step.unwrap_or(r.peak_magnitudes().map(|v| (v, r.time)));
+        let extremes = match within_step {
+            Some(extremes) => extremes,
+            None => r.peak_magnitudes().map(|v| (v, r.time)),
+        };
         self.state.first_contact.observe_values(r, &extremes.map(|(v, _)| v));
         for (k, (peak, when)) in
             r.peaks.as_mut_array().into_iter().zip(self.state.peak_times.as_mut_array()).enumerate()
@@ -959,10 +962,11 @@ impl<S: Stepper> Simulation<S> {
     /// peaks so far, in the order of [`Peaks::as_array`]), an output whose cubic is bounded below
     /// its floor (|H00 p0 + H01 p1| <= max(|p0|, |p1|), |H10|, |H11| <= 4/27 on [0, 1]) is not
     /// sought: its step-end value stands in, which raises no peak, as the cubic's would not.
+    /// `e1` is the excitation at the step's end (its caller's: not evaluated again).
     fn step_extremes(
         &self,
         start: &StepResult,
-        end: &[f64; PROBES],
+        (end, e1): (&[f64; PROBES], &Excitation),
         stage: Stage,
         fraction: f64,
         floors: Option<[f64; 5]>,
@@ -970,12 +974,14 @@ impl<S: Stepper> Simulation<S> {
         let s = &self.model.scenario;
         let (k0, k1) = (&self.backup, &self.state.kinematics);
         let dt = seconds(self.state.result.time_ns - start.time_ns);
-        let (e0, e1) = (self.excitation_at(start.time_ns), self.excitation_at(self.state.result.time_ns));
         let (p0, r0) = match &self.step_end {
             Some(c) if c.time_ns == start.time_ns && c.step == start.step && c.stage == stage => (c.probes, c.rates),
-            _ => (self.stepper.measure(k0, stage, &e0).0, self.stepper.rates(k0, stage, &e0)),
+            _ => {
+                let e0 = self.excitation_at(start.time_ns);
+                (self.stepper.measure(k0, stage, &e0).0, self.stepper.rates(k0, stage, &e0))
+            }
         };
-        let r1 = self.stepper.rates(k1, stage, &e1);
+        let r1 = self.stepper.rates(k1, stage, e1);
         let bar = if stage.is_contact() { self.model.bar_stiffness } else { 0.0 };
         let outputs = [
             (Probe::LowerTipDeflection, 1.0),
@@ -985,24 +991,25 @@ impl<S: Stepper> Simulation<S> {
             (Probe::Gap, bar),
         ];
         let law = self.modal.law.filter(|_| stage.is_contact());
-        let mut index = 0;
-        let extremes = outputs.map(|(probe, scale)| {
+        // A loop, not a map over the outputs: the map's closure stayed a call of its own, five a step.
+        let mut extremes = [(0.0, 0.0); 5];
+        for (index, (probe, scale)) in outputs.into_iter().enumerate() {
             let k = probe as usize;
             let floor = floors.map(|f| f[index]);
-            index += 1;
             if let (Some(floor), None) = (floor, law) {
                 let reach =
                     (p0[k].abs().max(end[k].abs()) + 4.0 / 27.0 * dt * (r0[k].abs() + r1[k].abs())) * scale.abs();
                 // A margin far above the bound's and the cubic's round-off.
                 if reach * (1.0 + 1e-10) < floor {
-                    return (end[k].abs() * scale.abs(), self.state.result.time);
+                    extremes[index] = (end[k].abs() * scale.abs(), self.state.result.time);
+                    continue;
                 }
             }
             let (value, at) =
                 crate::solver::step_extrema::cubic_extremum(p0[k], end[k], r0[k] * dt, r1[k] * dt, fraction);
             // The time within the run (never past the step's end by round-off).
             let at = (seconds(start.time_ns) + at * dt).min(self.state.result.time);
-            match (probe, law) {
+            extremes[index] = match (probe, law) {
                 // With damping the force crests before the largest compression: the largest of
                 // the force's own cubic over the step.
                 (Probe::Gap, Some(law)) if law.damping > 0.0 => {
@@ -1025,8 +1032,8 @@ impl<S: Stepper> Simulation<S> {
                     }
                 }
                 _ => (value * scale.abs(), at),
-            }
-        });
+            };
+        }
         (extremes, r1)
     }
 
@@ -1340,7 +1347,7 @@ impl<S: Stepper> Simulation<S> {
         let within_step = if self.polynomial_peaks() {
             // Once the first contact's peaks are settled, only the run's own can rise.
             let floors = self.state.first_contact.end().is_some().then(|| previous.peaks.as_array());
-            let (mut extremes, rates) = self.step_extremes(&previous, &probes, stage, 1.0, floors);
+            let (mut extremes, rates) = self.step_extremes(&previous, (&probes, &excitation), stage, 1.0, floors);
             let ends = result.peak_magnitudes();
             self.peak_instants.clear();
             let mut instants = std::mem::take(&mut self.peak_instants);
@@ -1983,7 +1990,7 @@ impl<S: Stepper> Simulation<S> {
             let fraction = seconds(at_ns - start.time_ns) / seconds(end_ns - start.time_ns);
             let end_excitation = self.excitation_at(end_ns);
             let (end, _) = self.stepper.measure(&self.state.kinematics, stage, &end_excitation);
-            let (mut extremes, _) = self.step_extremes(&start, &end, stage, fraction, None);
+            let (mut extremes, _) = self.step_extremes(&start, (&end, &end_excitation), stage, fraction, None);
             // The exact advance's point is its own value, not the cubic's: a peak is never below
             // an output.
             let own = result.peak_magnitudes();
