@@ -312,6 +312,9 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     skipped_details: Option<StepResult>,
     /// The twin's difference carried alongside (issue 43: [`Self::follow_tangent`]).
     tangent: Option<Box<tangent::Tangent<S::TangentWork>>>,
+    /// The kept modes' gap functional b (the modal probes' gap row), contiguous: [`Self::modal_gap`]
+    /// reads it at every step.
+    gap_row: Vec<f64>,
 }
 
 impl Simulation<ModalStepper> {
@@ -572,7 +575,9 @@ impl<S: Stepper> Simulation<S> {
             output_peak_instants: Vec::new(),
             far_support: None,
             tangent: None,
+            gap_row: Vec::new(),
         };
+        simulation.gap_row = simulation.modal.probes.row(Probe::Gap as usize).iter().copied().collect();
         simulation.far_support =
             crate::solver::far_support::FarSupport::new(&simulation.model, &simulation.modal).map(std::sync::Arc::new);
         simulation.evaluate_initial();
@@ -769,8 +774,7 @@ impl<S: Stepper> Simulation<S> {
     /// The kept modes' gap functional b^T x of own coordinates `x` (displacements or their rates),
     /// without the supports' offset.
     fn modal_gap(&self, x: &[f64]) -> f64 {
-        let b = self.modal.probes.row(Probe::Gap as usize);
-        (0..x.len().min(b.len())).map(|i| b[i] * x[i]).sum::<f64>()
+        self.gap_row.iter().zip(x).map(|(b, x)| b * x).sum::<f64>()
     }
 
     /// Sends `result` with its own coordinates q (of `kinematics`) to `recorder`, after telling
@@ -934,18 +938,19 @@ impl<S: Stepper> Simulation<S> {
             None => r.peak_magnitudes().map(|v| (v, r.time)),
         };
         self.state.first_contact.observe_values(r, &extremes.map(|(v, _)| v));
-        for (k, (peak, when)) in
-            r.peaks.as_mut_array().into_iter().zip(self.state.peak_times.as_mut_array()).enumerate()
-        {
-            let (value, time) = extremes[k];
-            if value > *peak || r.step == 0 {
-                *peak = value;
-                *when = time;
+        // By value, not through `as_mut_array`'s references (which the loop kept as pointers).
+        let (mut peaks, mut times) = (r.peaks.as_array(), self.state.peak_times.as_array());
+        for (k, &(value, time)) in extremes.iter().enumerate() {
+            if value > peaks[k] || r.step == 0 {
+                peaks[k] = value;
+                times[k] = time;
                 if k == 0 {
                     self.state.upper_strain_at_peak = upper_strain;
                 }
             }
         }
+        r.peaks = Peaks::from_array(peaks);
+        self.state.peak_times = Peaks::from_array(times);
     }
 
     /// Whether the running peaks are the largest |value| over each internal step (the converged
