@@ -829,7 +829,7 @@ impl<S: Stepper> Simulation<S> {
         let loads = self.correction_loads(own(&self.state.kinematics), Stage::Free, &excitation);
         let _ = self.observe_envelope(loads.as_ref(), 0.0, 0);
         self.observe_range(loads.as_ref(), 0.0);
-        let mut result = self.outputs(&probes, Stage::Free, 0, 0.0);
+        let mut result = self.outputs(&probes, Stage::Free, &self.motion_at(0), 0.0);
         self.set_support_and_tips(&mut result, &self.state.kinematics, &excitation);
         self.state.inertial_potential = energies.inertial_potential;
         self.state.gap = probes[Probe::Gap as usize];
@@ -854,7 +854,12 @@ impl<S: Stepper> Simulation<S> {
 
     /// The excitation at `at_ns` under the current tip forces and support motion.
     fn excitation_at(&self, at_ns: u64) -> Excitation {
-        excitation(&self.model, self.state.forces, &self.motion_at(at_ns))
+        self.excitation_of(&self.motion_at(at_ns))
+    }
+
+    /// The excitation of the supports' `motion` under the current tip forces.
+    fn excitation_of(&self, motion: &SupportMotion) -> Excitation {
+        excitation(&self.model, self.state.forces, motion)
     }
 
     /// Sets the support reactions and tip velocities of `kinematics` on `result`.
@@ -881,7 +886,6 @@ impl<S: Stepper> Simulation<S> {
         }
     }
 
-    /// The outputs of the current displacement probes at `at_ns`, without time or energy.
     /// The contact force (N, negative in compression) at gap `gap` closing at `rate` (m/s): the
     /// linear bar's k gap (Eq. 5), or a nonlinear law's -P(-gap, -rate).
     fn contact_force(&self, gap: f64, rate: f64, stage: Stage) -> f64 {
@@ -907,10 +911,11 @@ impl<S: Stepper> Simulation<S> {
         }
     }
 
-    fn outputs(&self, probes: &[f64; PROBES], stage: Stage, at_ns: u64, rate: f64) -> StepResult {
+    /// The outputs of the displacement probes `probes` with the supports at `motion`, without
+    /// time or energy.
+    fn outputs(&self, probes: &[f64; PROBES], stage: Stage, motion: &SupportMotion, rate: f64) -> StepResult {
         let s = &self.model.scenario;
         let force = self.contact_force(probes[Probe::Gap as usize], rate, stage);
-        let motion = self.motion_at(at_ns);
         let (hinge, clamp, rotation) = (motion.hinge_heave, motion.clamp_heave, motion.clamp_rotation);
         StepResult {
             upper_support_displacement: hinge.displacement,
@@ -1147,7 +1152,7 @@ impl<S: Stepper> Simulation<S> {
         let excitation = self.excitation_at(at_ns);
         let (probes, _) = self.stepper.measure(kinematics, stage, &excitation);
         let rate = self.gap_rate(kinematics, stage, &excitation);
-        let mut result = self.outputs(&probes, stage, at_ns, rate);
+        let mut result = self.outputs(&probes, stage, &self.motion_at(at_ns), rate);
         result.time_ns = at_ns;
         result.time = seconds(at_ns);
         result
@@ -1288,13 +1293,16 @@ impl<S: Stepper> Simulation<S> {
         let mut dt = seconds(step_ns);
         let forces = self.state.forces;
         self.backup.copy_from(&self.state.kinematics);
-        let mut excitation = self.excitation_at(previous.time_ns + step_ns);
+        // The supports' motion at the step's end: its excitation, outputs and energy account.
+        let mut motion = self.motion_at(previous.time_ns + step_ns);
+        let mut excitation = self.excitation_of(&motion);
         let (mut probes, mut energies) = self.stepper.step_measured(&mut self.state.kinematics, stage, dt, &excitation);
         if contact::stage(probes[Probe::Gap as usize]) != stage && step_ns > 1 {
             // The located step's end as its last retake measured it (the same sums).
             (step_ns, probes, energies) = self.locate_stage_change(stage, step_ns, probes[Probe::Gap as usize]);
             dt = seconds(step_ns);
-            excitation = self.excitation_at(previous.time_ns + step_ns);
+            motion = self.motion_at(previous.time_ns + step_ns);
+            excitation = self.excitation_of(&motion);
         }
         if !(probes.iter().all(|p| p.is_finite()) && energies.kinetic.is_finite() && energies.beam_strain.is_finite()) {
             self.state.kinematics.copy_from(&self.backup);
@@ -1323,7 +1331,7 @@ impl<S: Stepper> Simulation<S> {
         self.observe_range(loads.as_ref(), seconds(span.1));
         let rate = self.gap_rate(&self.state.kinematics, stage, &excitation);
         energies.dissipation_rate += self.contact_dissipation_rate(self.state.gap, rate, stage);
-        let mut result = self.outputs(&probes, stage, previous.time_ns + step_ns, rate);
+        let mut result = self.outputs(&probes, stage, &motion, rate);
         if details {
             self.set_support_and_tips(&mut result, &self.state.kinematics, &excitation);
         }
@@ -1339,8 +1347,14 @@ impl<S: Stepper> Simulation<S> {
             .stepper
             .step_dissipation()
             .unwrap_or(0.5 * dt * (self.state.dissipation_rate + energies.dissipation_rate));
-        let energy =
-            self.energy_account(&self.state, &result, stage, probes[Probe::Gap as usize], &energies, dissipated);
+        let energy = self.energy_account(
+            &self.state,
+            (&result, &motion),
+            stage,
+            probes[Probe::Gap as usize],
+            &energies,
+            dissipated,
+        );
         result.energy = energy;
         self.state.max_residual = self.state.max_residual.max(energy.residual.abs());
         self.state.max_strain_energy = self.state.max_strain_energy.max(energy.strain);
@@ -2039,7 +2053,8 @@ impl<S: Stepper> Simulation<S> {
         energies.dissipation_rate += self.contact_dissipation_rate(probes[Probe::Gap as usize], rate, stage);
         self.set_support_and_tips(&mut result, &kinematics, &excitation);
         let dissipated = 0.5 * tau * (before.dissipation_rate + energies.dissipation_rate);
-        result.energy = self.energy_account(before, &result, stage, probes[Probe::Gap as usize], &energies, dissipated);
+        let reached = (&result, &self.motion_at(at_ns));
+        result.energy = self.energy_account(before, reached, stage, probes[Probe::Gap as usize], &energies, dissipated);
         result.step = before.result.step;
         result.step_size = dt;
         result.peaks = before.result.peaks;
@@ -2130,8 +2145,8 @@ impl<S: Stepper> Simulation<S> {
         self.record(recorder, &self.state.result, &self.state.kinematics, must)
     }
 
-    /// The energy account at `reached` after `before`'s latest step (a whole step's end, or a
-    /// point inside the step), the damping having done `dissipated` J since (the exact advance's
+    /// The energy account at `reached` (the supports' motion there `reached_motion`) after
+    /// `before`'s latest step (a whole step's end, or a point inside the step), the damping having done `dissipated` J since (the exact advance's
     /// own, or the dissipation rate's trapezoid): the tip forces' work as a trapezoid over the
     /// deflection change, the bar's energy in contact, and
     /// the residual against the initial total. One function so that [`Self::step`] and the
@@ -2145,7 +2160,7 @@ impl<S: Stepper> Simulation<S> {
     fn energy_account(
         &self,
         before: &RunState,
-        reached: &StepResult,
+        (reached, reached_motion): (&StepResult, &SupportMotion),
         stage: Stage,
         gap: f64,
         energies: &Energies,
@@ -2156,8 +2171,7 @@ impl<S: Stepper> Simulation<S> {
         let work = 0.5 * (last.upper + forces.upper) * (reached.upper_tip_deflection - start.upper_tip_deflection)
             + 0.5 * (last.lower + forces.lower) * (reached.lower_tip_deflection - start.lower_tip_deflection);
         let length = self.model.scenario.lower_contact_position();
-        let offset_change =
-            self.motion_at(reached.time_ns).gap_offset(length) - self.motion_at(start.time_ns).gap_offset(length);
+        let offset_change = reached_motion.gap_offset(length) - self.motion_at(start.time_ns).gap_offset(length);
         let supports = -(energies.inertial_potential - before.inertial_potential)
             + 0.5 * (start.contact_force + reached.contact_force) * offset_change;
         let bar = match self.modal.law {
