@@ -265,7 +265,7 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     modal: ModalSystem,
     stepper: S,
     energy_method: EnergyMethod,
-    nodal_shapes: DMatrix<f64>,
+    nodal_shapes: std::sync::Arc<DMatrix<f64>>,
     plan: StepPlan,
     state: RunState,
     /// The state before the current step, to retake it when a stage change is located.
@@ -476,8 +476,15 @@ impl<S: Stepper> Simulation<S> {
         let plan = StepPlan::new(&model.scenario, &modal)?;
         let forces = TipForces { upper: model.scenario.upper.tip_force, lower: model.scenario.lower.tip_force };
         let kinematics = stepper.own_coordinates(physical);
-        let shapes = modal.shapes();
-        let nodal_shapes = nodal_shapes(&model, &shapes);
+        // The basis's shapes, made only where a cache's rows do not hold what is made of them.
+        let shapes = std::cell::OnceCell::new();
+        let shapes = || shapes.get_or_init(|| modal.shapes());
+        let in_modes = stepper.modal_coordinates();
+        let rows = rows.filter(|_| in_modes);
+        let nodal_shapes = match rows {
+            Some(rows) => rows.nodal_shapes.get_or_init(|| std::sync::Arc::new(nodal_shapes(&model, shapes()))).clone(),
+            None => std::sync::Arc::new(nodal_shapes(&model, shapes())),
+        };
         let energy_method = EnergyMethod::new(&model.scenario);
         let state = RunState {
             kinematics,
@@ -505,13 +512,11 @@ impl<S: Stepper> Simulation<S> {
             envelope_times: vec![0.0; model.stations.len()],
             range: ModelRange::default(),
         };
-        let in_modes = stepper.modal_coordinates();
-        let rows = rows.filter(|_| in_modes);
         let range_rows = match rows {
             Some(rows) => {
-                rows.range.get_or_init(|| std::sync::Arc::new(range_rows(&model, &modal, &shapes, true))).clone()
+                rows.range.get_or_init(|| std::sync::Arc::new(range_rows(&model, &modal, shapes(), true))).clone()
             }
-            None => std::sync::Arc::new(range_rows(&model, &modal, &shapes, in_modes)),
+            None => std::sync::Arc::new(range_rows(&model, &modal, shapes(), in_modes)),
         };
         let stations = if in_modes {
             let divisors: Vec<f64> = model.stations.all().map(|s| s.divisor).collect();
