@@ -66,9 +66,11 @@ impl Peaks {
 
     /// Raises each peak to |value| where that is larger (values in the order of [`Peaks::as_array`]).
     pub fn raise(&mut self, values: &[f64; 5]) {
-        for (peak, value) in self.as_mut_array().into_iter().zip(values) {
+        let mut peaks = self.as_array();
+        for (peak, value) in peaks.iter_mut().zip(values) {
             *peak = peak.max(value.abs());
         }
+        *self = Peaks::from_array(peaks);
     }
 
     /// Mutable access in the order of [`Peaks::as_array`].

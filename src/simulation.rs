@@ -265,7 +265,7 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     modal: ModalSystem,
     stepper: S,
     energy_method: EnergyMethod,
-    nodal_shapes: DMatrix<f64>,
+    nodal_shapes: std::sync::Arc<DMatrix<f64>>,
     plan: StepPlan,
     state: RunState,
     /// The state before the current step, to retake it when a stage change is located.
@@ -312,6 +312,9 @@ pub struct Simulation<S: Stepper = ModalStepper> {
     skipped_details: Option<StepResult>,
     /// The twin's difference carried alongside (issue 43: [`Self::follow_tangent`]).
     tangent: Option<Box<tangent::Tangent<S::TangentWork>>>,
+    /// The kept modes' gap functional b (the modal probes' gap row), contiguous: [`Self::modal_gap`]
+    /// reads it at every step.
+    gap_row: Vec<f64>,
 }
 
 impl Simulation<ModalStepper> {
@@ -473,8 +476,15 @@ impl<S: Stepper> Simulation<S> {
         let plan = StepPlan::new(&model.scenario, &modal)?;
         let forces = TipForces { upper: model.scenario.upper.tip_force, lower: model.scenario.lower.tip_force };
         let kinematics = stepper.own_coordinates(physical);
-        let shapes = modal.shapes();
-        let nodal_shapes = nodal_shapes(&model, &shapes);
+        // The basis's shapes, made only where a cache's rows do not hold what is made of them.
+        let shapes = std::cell::OnceCell::new();
+        let shapes = || shapes.get_or_init(|| modal.shapes());
+        let in_modes = stepper.modal_coordinates();
+        let rows = rows.filter(|_| in_modes);
+        let nodal_shapes = match rows {
+            Some(rows) => rows.nodal_shapes.get_or_init(|| std::sync::Arc::new(nodal_shapes(&model, shapes()))).clone(),
+            None => std::sync::Arc::new(nodal_shapes(&model, shapes())),
+        };
         let energy_method = EnergyMethod::new(&model.scenario);
         let state = RunState {
             kinematics,
@@ -502,13 +512,11 @@ impl<S: Stepper> Simulation<S> {
             envelope_times: vec![0.0; model.stations.len()],
             range: ModelRange::default(),
         };
-        let in_modes = stepper.modal_coordinates();
-        let rows = rows.filter(|_| in_modes);
         let range_rows = match rows {
             Some(rows) => {
-                rows.range.get_or_init(|| std::sync::Arc::new(range_rows(&model, &modal, &shapes, true))).clone()
+                rows.range.get_or_init(|| std::sync::Arc::new(range_rows(&model, &modal, shapes(), true))).clone()
             }
-            None => std::sync::Arc::new(range_rows(&model, &modal, &shapes, in_modes)),
+            None => std::sync::Arc::new(range_rows(&model, &modal, shapes(), in_modes)),
         };
         let stations = if in_modes {
             let divisors: Vec<f64> = model.stations.all().map(|s| s.divisor).collect();
@@ -572,7 +580,9 @@ impl<S: Stepper> Simulation<S> {
             output_peak_instants: Vec::new(),
             far_support: None,
             tangent: None,
+            gap_row: Vec::new(),
         };
+        simulation.gap_row = simulation.modal.probes.row(Probe::Gap as usize).iter().copied().collect();
         simulation.far_support =
             crate::solver::far_support::FarSupport::new(&simulation.model, &simulation.modal).map(std::sync::Arc::new);
         simulation.evaluate_initial();
@@ -769,8 +779,7 @@ impl<S: Stepper> Simulation<S> {
     /// The kept modes' gap functional b^T x of own coordinates `x` (displacements or their rates),
     /// without the supports' offset.
     fn modal_gap(&self, x: &[f64]) -> f64 {
-        let b = self.modal.probes.row(Probe::Gap as usize);
-        (0..x.len().min(b.len())).map(|i| b[i] * x[i]).sum::<f64>()
+        self.gap_row.iter().zip(x).map(|(b, x)| b * x).sum::<f64>()
     }
 
     /// Sends `result` with its own coordinates q (of `kinematics`) to `recorder`, after telling
@@ -825,7 +834,7 @@ impl<S: Stepper> Simulation<S> {
         let loads = self.correction_loads(own(&self.state.kinematics), Stage::Free, &excitation);
         let _ = self.observe_envelope(loads.as_ref(), 0.0, 0);
         self.observe_range(loads.as_ref(), 0.0);
-        let mut result = self.outputs(&probes, Stage::Free, 0, 0.0);
+        let mut result = self.outputs(&probes, Stage::Free, &self.motion_at(0), 0.0);
         self.set_support_and_tips(&mut result, &self.state.kinematics, &excitation);
         self.state.inertial_potential = energies.inertial_potential;
         self.state.gap = probes[Probe::Gap as usize];
@@ -850,7 +859,12 @@ impl<S: Stepper> Simulation<S> {
 
     /// The excitation at `at_ns` under the current tip forces and support motion.
     fn excitation_at(&self, at_ns: u64) -> Excitation {
-        excitation(&self.model, self.state.forces, &self.motion_at(at_ns))
+        self.excitation_of(&self.motion_at(at_ns))
+    }
+
+    /// The excitation of the supports' `motion` under the current tip forces.
+    fn excitation_of(&self, motion: &SupportMotion) -> Excitation {
+        excitation(&self.model, self.state.forces, motion)
     }
 
     /// Sets the support reactions and tip velocities of `kinematics` on `result`.
@@ -877,7 +891,6 @@ impl<S: Stepper> Simulation<S> {
         }
     }
 
-    /// The outputs of the current displacement probes at `at_ns`, without time or energy.
     /// The contact force (N, negative in compression) at gap `gap` closing at `rate` (m/s): the
     /// linear bar's k gap (Eq. 5), or a nonlinear law's -P(-gap, -rate).
     fn contact_force(&self, gap: f64, rate: f64, stage: Stage) -> f64 {
@@ -903,10 +916,11 @@ impl<S: Stepper> Simulation<S> {
         }
     }
 
-    fn outputs(&self, probes: &[f64; PROBES], stage: Stage, at_ns: u64, rate: f64) -> StepResult {
+    /// The outputs of the displacement probes `probes` with the supports at `motion`, without
+    /// time or energy.
+    fn outputs(&self, probes: &[f64; PROBES], stage: Stage, motion: &SupportMotion, rate: f64) -> StepResult {
         let s = &self.model.scenario;
         let force = self.contact_force(probes[Probe::Gap as usize], rate, stage);
-        let motion = self.motion_at(at_ns);
         let (hinge, clamp, rotation) = (motion.hinge_heave, motion.clamp_heave, motion.clamp_rotation);
         StepResult {
             upper_support_displacement: hinge.displacement,
@@ -929,20 +943,24 @@ impl<S: Stepper> Simulation<S> {
     /// converged method) the largest |value| of each output over the step and when it was reached.
     fn update_peaks(&mut self, upper_strain: f64, within_step: Option<[(f64, f64); 5]>) {
         let r = &mut self.state.result;
-        let extremes = within_step.unwrap_or(r.peak_magnitudes().map(|v| (v, r.time)));
+        let extremes = match within_step {
+            Some(extremes) => extremes,
+            None => r.peak_magnitudes().map(|v| (v, r.time)),
+        };
         self.state.first_contact.observe_values(r, &extremes.map(|(v, _)| v));
-        for (k, (peak, when)) in
-            r.peaks.as_mut_array().into_iter().zip(self.state.peak_times.as_mut_array()).enumerate()
-        {
-            let (value, time) = extremes[k];
-            if value > *peak || r.step == 0 {
-                *peak = value;
-                *when = time;
+        // By value, not through `as_mut_array`'s references (which the loop kept as pointers).
+        let (mut peaks, mut times) = (r.peaks.as_array(), self.state.peak_times.as_array());
+        for (k, &(value, time)) in extremes.iter().enumerate() {
+            if value > peaks[k] || r.step == 0 {
+                peaks[k] = value;
+                times[k] = time;
                 if k == 0 {
                     self.state.upper_strain_at_peak = upper_strain;
                 }
             }
         }
+        r.peaks = Peaks::from_array(peaks);
+        self.state.peak_times = Peaks::from_array(times);
     }
 
     /// Whether the running peaks are the largest |value| over each internal step (the converged
@@ -959,10 +977,11 @@ impl<S: Stepper> Simulation<S> {
     /// peaks so far, in the order of [`Peaks::as_array`]), an output whose cubic is bounded below
     /// its floor (|H00 p0 + H01 p1| <= max(|p0|, |p1|), |H10|, |H11| <= 4/27 on [0, 1]) is not
     /// sought: its step-end value stands in, which raises no peak, as the cubic's would not.
+    /// `e1` is the excitation at the step's end (its caller's: not evaluated again).
     fn step_extremes(
         &self,
         start: &StepResult,
-        end: &[f64; PROBES],
+        (end, e1): (&[f64; PROBES], &Excitation),
         stage: Stage,
         fraction: f64,
         floors: Option<[f64; 5]>,
@@ -970,12 +989,14 @@ impl<S: Stepper> Simulation<S> {
         let s = &self.model.scenario;
         let (k0, k1) = (&self.backup, &self.state.kinematics);
         let dt = seconds(self.state.result.time_ns - start.time_ns);
-        let (e0, e1) = (self.excitation_at(start.time_ns), self.excitation_at(self.state.result.time_ns));
         let (p0, r0) = match &self.step_end {
             Some(c) if c.time_ns == start.time_ns && c.step == start.step && c.stage == stage => (c.probes, c.rates),
-            _ => (self.stepper.measure(k0, stage, &e0).0, self.stepper.rates(k0, stage, &e0)),
+            _ => {
+                let e0 = self.excitation_at(start.time_ns);
+                (self.stepper.measure(k0, stage, &e0).0, self.stepper.rates(k0, stage, &e0))
+            }
         };
-        let r1 = self.stepper.rates(k1, stage, &e1);
+        let r1 = self.stepper.rates(k1, stage, e1);
         let bar = if stage.is_contact() { self.model.bar_stiffness } else { 0.0 };
         let outputs = [
             (Probe::LowerTipDeflection, 1.0),
@@ -985,24 +1006,25 @@ impl<S: Stepper> Simulation<S> {
             (Probe::Gap, bar),
         ];
         let law = self.modal.law.filter(|_| stage.is_contact());
-        let mut index = 0;
-        let extremes = outputs.map(|(probe, scale)| {
+        // A loop, not a map over the outputs: the map's closure stayed a call of its own, five a step.
+        let mut extremes = [(0.0, 0.0); 5];
+        for (index, (probe, scale)) in outputs.into_iter().enumerate() {
             let k = probe as usize;
             let floor = floors.map(|f| f[index]);
-            index += 1;
             if let (Some(floor), None) = (floor, law) {
                 let reach =
                     (p0[k].abs().max(end[k].abs()) + 4.0 / 27.0 * dt * (r0[k].abs() + r1[k].abs())) * scale.abs();
                 // A margin far above the bound's and the cubic's round-off.
                 if reach * (1.0 + 1e-10) < floor {
-                    return (end[k].abs() * scale.abs(), self.state.result.time);
+                    extremes[index] = (end[k].abs() * scale.abs(), self.state.result.time);
+                    continue;
                 }
             }
             let (value, at) =
                 crate::solver::step_extrema::cubic_extremum(p0[k], end[k], r0[k] * dt, r1[k] * dt, fraction);
             // The time within the run (never past the step's end by round-off).
             let at = (seconds(start.time_ns) + at * dt).min(self.state.result.time);
-            match (probe, law) {
+            extremes[index] = match (probe, law) {
                 // With damping the force crests before the largest compression: the largest of
                 // the force's own cubic over the step.
                 (Probe::Gap, Some(law)) if law.damping > 0.0 => {
@@ -1025,8 +1047,8 @@ impl<S: Stepper> Simulation<S> {
                     }
                 }
                 _ => (value * scale.abs(), at),
-            }
-        });
+            };
+        }
         (extremes, r1)
     }
 
@@ -1135,7 +1157,7 @@ impl<S: Stepper> Simulation<S> {
         let excitation = self.excitation_at(at_ns);
         let (probes, _) = self.stepper.measure(kinematics, stage, &excitation);
         let rate = self.gap_rate(kinematics, stage, &excitation);
-        let mut result = self.outputs(&probes, stage, at_ns, rate);
+        let mut result = self.outputs(&probes, stage, &self.motion_at(at_ns), rate);
         result.time_ns = at_ns;
         result.time = seconds(at_ns);
         result
@@ -1276,13 +1298,16 @@ impl<S: Stepper> Simulation<S> {
         let mut dt = seconds(step_ns);
         let forces = self.state.forces;
         self.backup.copy_from(&self.state.kinematics);
-        let mut excitation = self.excitation_at(previous.time_ns + step_ns);
+        // The supports' motion at the step's end: its excitation, outputs and energy account.
+        let mut motion = self.motion_at(previous.time_ns + step_ns);
+        let mut excitation = self.excitation_of(&motion);
         let (mut probes, mut energies) = self.stepper.step_measured(&mut self.state.kinematics, stage, dt, &excitation);
         if contact::stage(probes[Probe::Gap as usize]) != stage && step_ns > 1 {
             // The located step's end as its last retake measured it (the same sums).
             (step_ns, probes, energies) = self.locate_stage_change(stage, step_ns, probes[Probe::Gap as usize]);
             dt = seconds(step_ns);
-            excitation = self.excitation_at(previous.time_ns + step_ns);
+            motion = self.motion_at(previous.time_ns + step_ns);
+            excitation = self.excitation_of(&motion);
         }
         if !(probes.iter().all(|p| p.is_finite()) && energies.kinetic.is_finite() && energies.beam_strain.is_finite()) {
             self.state.kinematics.copy_from(&self.backup);
@@ -1311,7 +1336,7 @@ impl<S: Stepper> Simulation<S> {
         self.observe_range(loads.as_ref(), seconds(span.1));
         let rate = self.gap_rate(&self.state.kinematics, stage, &excitation);
         energies.dissipation_rate += self.contact_dissipation_rate(self.state.gap, rate, stage);
-        let mut result = self.outputs(&probes, stage, previous.time_ns + step_ns, rate);
+        let mut result = self.outputs(&probes, stage, &motion, rate);
         if details {
             self.set_support_and_tips(&mut result, &self.state.kinematics, &excitation);
         }
@@ -1327,8 +1352,14 @@ impl<S: Stepper> Simulation<S> {
             .stepper
             .step_dissipation()
             .unwrap_or(0.5 * dt * (self.state.dissipation_rate + energies.dissipation_rate));
-        let energy =
-            self.energy_account(&self.state, &result, stage, probes[Probe::Gap as usize], &energies, dissipated);
+        let energy = self.energy_account(
+            &self.state,
+            (&result, &motion),
+            stage,
+            probes[Probe::Gap as usize],
+            &energies,
+            dissipated,
+        );
         result.energy = energy;
         self.state.max_residual = self.state.max_residual.max(energy.residual.abs());
         self.state.max_strain_energy = self.state.max_strain_energy.max(energy.strain);
@@ -1340,7 +1371,7 @@ impl<S: Stepper> Simulation<S> {
         let within_step = if self.polynomial_peaks() {
             // Once the first contact's peaks are settled, only the run's own can rise.
             let floors = self.state.first_contact.end().is_some().then(|| previous.peaks.as_array());
-            let (mut extremes, rates) = self.step_extremes(&previous, &probes, stage, 1.0, floors);
+            let (mut extremes, rates) = self.step_extremes(&previous, (&probes, &excitation), stage, 1.0, floors);
             let ends = result.peak_magnitudes();
             self.peak_instants.clear();
             let mut instants = std::mem::take(&mut self.peak_instants);
@@ -1983,7 +2014,7 @@ impl<S: Stepper> Simulation<S> {
             let fraction = seconds(at_ns - start.time_ns) / seconds(end_ns - start.time_ns);
             let end_excitation = self.excitation_at(end_ns);
             let (end, _) = self.stepper.measure(&self.state.kinematics, stage, &end_excitation);
-            let (mut extremes, _) = self.step_extremes(&start, &end, stage, fraction, None);
+            let (mut extremes, _) = self.step_extremes(&start, (&end, &end_excitation), stage, fraction, None);
             // The exact advance's point is its own value, not the cubic's: a peak is never below
             // an output.
             let own = result.peak_magnitudes();
@@ -2027,7 +2058,8 @@ impl<S: Stepper> Simulation<S> {
         energies.dissipation_rate += self.contact_dissipation_rate(probes[Probe::Gap as usize], rate, stage);
         self.set_support_and_tips(&mut result, &kinematics, &excitation);
         let dissipated = 0.5 * tau * (before.dissipation_rate + energies.dissipation_rate);
-        result.energy = self.energy_account(before, &result, stage, probes[Probe::Gap as usize], &energies, dissipated);
+        let reached = (&result, &self.motion_at(at_ns));
+        result.energy = self.energy_account(before, reached, stage, probes[Probe::Gap as usize], &energies, dissipated);
         result.step = before.result.step;
         result.step_size = dt;
         result.peaks = before.result.peaks;
@@ -2118,8 +2150,8 @@ impl<S: Stepper> Simulation<S> {
         self.record(recorder, &self.state.result, &self.state.kinematics, must)
     }
 
-    /// The energy account at `reached` after `before`'s latest step (a whole step's end, or a
-    /// point inside the step), the damping having done `dissipated` J since (the exact advance's
+    /// The energy account at `reached` (the supports' motion there `reached_motion`) after
+    /// `before`'s latest step (a whole step's end, or a point inside the step), the damping having done `dissipated` J since (the exact advance's
     /// own, or the dissipation rate's trapezoid): the tip forces' work as a trapezoid over the
     /// deflection change, the bar's energy in contact, and
     /// the residual against the initial total. One function so that [`Self::step`] and the
@@ -2133,7 +2165,7 @@ impl<S: Stepper> Simulation<S> {
     fn energy_account(
         &self,
         before: &RunState,
-        reached: &StepResult,
+        (reached, reached_motion): (&StepResult, &SupportMotion),
         stage: Stage,
         gap: f64,
         energies: &Energies,
@@ -2144,8 +2176,7 @@ impl<S: Stepper> Simulation<S> {
         let work = 0.5 * (last.upper + forces.upper) * (reached.upper_tip_deflection - start.upper_tip_deflection)
             + 0.5 * (last.lower + forces.lower) * (reached.lower_tip_deflection - start.lower_tip_deflection);
         let length = self.model.scenario.lower_contact_position();
-        let offset_change =
-            self.motion_at(reached.time_ns).gap_offset(length) - self.motion_at(start.time_ns).gap_offset(length);
+        let offset_change = reached_motion.gap_offset(length) - self.motion_at(start.time_ns).gap_offset(length);
         let supports = -(energies.inertial_potential - before.inertial_potential)
             + 0.5 * (start.contact_force + reached.contact_force) * offset_change;
         let bar = match self.modal.law {

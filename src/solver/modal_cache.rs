@@ -150,6 +150,8 @@ pub struct RunRows {
     /// The stress stations' rows ([`StationRows`]) with the bits of the divisors, allowables and
     /// groups they were made for (the allowables are per run: a run of others makes its own).
     pub stations: OnceLock<(Vec<u64>, Arc<StationRows>)>,
+    /// The deflection rows of the basis's shapes at every node ([`crate::simulation::Simulation::nodal_shapes`]).
+    pub nodal_shapes: OnceLock<Arc<DMatrix<f64>>>,
 }
 
 impl ModalCache {

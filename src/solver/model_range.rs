@@ -95,29 +95,27 @@ struct Rows {
     correction: Vec<[f64; LOADS]>,
     /// The nodes' positions, m from the support.
     positions: Vec<f64>,
-    /// max_r |shapes[r, j]| per coordinate.
-    bound: Vec<f64>,
-    /// max_r |correction[r][a]| per load.
-    correction_bound: [f64; LOADS],
     /// The value the rows are evaluated above (the range's limit).
     limit: f64,
 }
 
 impl Rows {
-    fn new(shapes: DMatrix<f64>, correction: Vec<[f64; LOADS]>, positions: Vec<f64>, limit: f64) -> Rows {
-        let bound = shapes.column_iter().map(|c| c.amax()).collect();
-        let correction_bound = std::array::from_fn(|a| correction.iter().map(|r| r[a].abs()).fold(0.0, f64::max));
-        Rows { shapes, correction, positions, bound, correction_bound, limit }
+    /// max_r |shapes[r, j]| per coordinate.
+    fn bound(&self) -> Vec<f64> {
+        self.shapes.column_iter().map(|c| c.amax()).collect()
     }
 
-    /// Raises `peak` by the rows at `q` (the beam's coordinates) with the load coefficients `loads`.
-    fn observe(&self, q: &[f64], loads: Option<&[f64; LOADS]>, time: f64, peak: &mut RangePeak) {
+    /// max_r |correction[r][a]| per load.
+    fn correction_bound(&self) -> [f64; LOADS] {
+        std::array::from_fn(|a| self.correction.iter().map(|r| r[a].abs()).fold(0.0, f64::max))
+    }
+
+    /// Raises `peak` by the rows at `q` (the beam's coordinates) with the load coefficients `loads`,
+    /// whose bound on every row's |value| is `bound` ([`BeamRows::bounds`]): the bound itself
+    /// below the limit, else the exact largest row.
+    fn observe(&self, bound: f64, q: &[f64], loads: Option<&[f64; LOADS]>, time: f64, peak: &mut RangePeak) {
         if self.positions.is_empty() {
             return;
-        }
-        let mut bound: f64 = self.bound.iter().zip(q).map(|(b, q)| b * q.abs()).sum();
-        if let Some(c) = loads {
-            bound += self.correction_bound.iter().zip(c).map(|(b, c)| b * c.abs()).sum::<f64>();
         }
         if bound.is_nan() || bound < self.limit {
             // Below the limit: the bound is an upper bound of every row (NaN: carried as it is).
@@ -145,6 +143,41 @@ struct BeamRows {
     coordinates: Range<usize>,
     deflection: Rows,
     rotation: Rows,
+    /// The deflections' and the rotations' max_r |shapes[r, j]| per coordinate, side by side
+    /// (one pass over the coordinates takes both bounds).
+    bound: Vec<[f64; 2]>,
+    /// Their max_r |correction[r][a]| per load.
+    correction_bound: [[f64; 2]; LOADS],
+}
+
+impl BeamRows {
+    fn new(coordinates: Range<usize>, deflection: Rows, rotation: Rows) -> BeamRows {
+        let bound = deflection.bound().into_iter().zip(rotation.bound()).map(|(d, r)| [d, r]).collect();
+        let (d, r) = (deflection.correction_bound(), rotation.correction_bound());
+        let correction_bound = std::array::from_fn(|a| [d[a], r[a]]);
+        BeamRows { coordinates, deflection, rotation, bound, correction_bound }
+    }
+
+    /// The deflections' and the rotations' bounds on every row's |value| at `q` (the beam's
+    /// coordinates) with the load coefficients `loads`: sum_j max_r |phi_rj| |q_j| + sum_a max_r
+    /// |R_ra| |c_a| (O(modes)). Each is the sum of its own terms in order, as a pass of its own
+    /// would take it (from -0.0, as `Iterator::sum`).
+    fn bounds(&self, q: &[f64], loads: Option<&[f64; LOADS]>) -> [f64; 2] {
+        let mut bound = [-0.0; 2];
+        for (b, q) in self.bound.iter().zip(q) {
+            let q = q.abs();
+            bound = [bound[0] + b[0] * q, bound[1] + b[1] * q];
+        }
+        if let Some(c) = loads {
+            let mut correction = [-0.0; 2];
+            for (b, c) in self.correction_bound.iter().zip(c) {
+                let c = c.abs();
+                correction = [correction[0] + b[0] * c, correction[1] + b[1] * c];
+            }
+            bound = [bound[0] + correction[0], bound[1] + correction[1]];
+        }
+        bound
+    }
 }
 
 /// Every node's deflection and rotation rows of both beams in the run's coordinates.
@@ -184,13 +217,13 @@ impl RangeRows {
                 } else {
                     picked.iter().map(|(i, _)| correction[*i]).collect()
                 };
-                Rows::new(block, correction, picked.iter().map(|p| p.1).collect(), limit)
+                Rows { shapes: block, correction, positions: picked.iter().map(|p| p.1).collect(), limit }
             };
-            BeamRows {
-                coordinates: range.clone(),
-                deflection: rows(elastic, |n| n.w, SMALL_DEFLECTION * lengths[b]),
-                rotation: rows(total, |n| n.theta, SMALL_ROTATION),
-            }
+            BeamRows::new(
+                range.clone(),
+                rows(elastic, |n| n.w, SMALL_DEFLECTION * lengths[b]),
+                rows(total, |n| n.theta, SMALL_ROTATION),
+            )
         };
         RangeRows { beams: [beam_rows(0), beam_rows(1)] }
     }
@@ -204,8 +237,9 @@ impl RangeRows {
             (upper, &mut range.upper_deflection, &mut range.upper_rotation),
         ] {
             let Some(q) = q.get(beam.coordinates.clone()) else { continue };
-            beam.deflection.observe(q, loads, time, deflection);
-            beam.rotation.observe(q, loads, time, rotation);
+            let [deflection_bound, rotation_bound] = beam.bounds(q, loads);
+            beam.deflection.observe(deflection_bound, q, loads, time, deflection);
+            beam.rotation.observe(rotation_bound, q, loads, time, rotation);
         }
     }
 }
@@ -319,6 +353,44 @@ impl RangeCheck {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::sea::components::SplitMix64;
+
+    /// `rows` observed as the range observes them: their bound from a beam's pass.
+    fn observe(rows: &Rows, q: &[f64], loads: Option<&[f64; LOADS]>, time: f64, peak: &mut RangePeak) {
+        let beam = BeamRows::new(0..q.len(), rows.clone(), rows.clone());
+        let [bound, _] = beam.bounds(q, loads);
+        rows.observe(bound, q, loads, time, peak);
+    }
+
+    /// A beam's one pass gives each block's bound to the bit of that block's own sums
+    /// (sum_j b_j |q_j|, plus sum_a R_a |c_a|), on random shapes, coordinates and loads.
+    #[test]
+    fn one_pass_bounds_are_each_blocks_own_sums_to_the_bit() {
+        let mut rng = SplitMix64::new(43);
+        let mut random = |scale: f64| (rng.next_f64() - 0.5) * scale;
+        for (nodes, coordinates) in [(1, 1), (7, 13), (31, 64), (12, 3)] {
+            let mut block = || Rows {
+                shapes: DMatrix::from_fn(nodes, coordinates, |_, _| random(2.0)),
+                correction: (0..nodes).map(|_| std::array::from_fn(|_| random(1e-3))).collect(),
+                positions: vec![0.0; nodes],
+                limit: 1.0,
+            };
+            let (deflection, rotation) = (block(), block());
+            let q: Vec<f64> = (0..coordinates).map(|_| random(1e-2)).collect();
+            let loads: [f64; LOADS] = std::array::from_fn(|_| random(1e4));
+            let beam = BeamRows::new(0..coordinates, deflection.clone(), rotation.clone());
+            for loads in [None, Some(&loads)] {
+                let bounds = beam.bounds(&q, loads);
+                for (rows, bound) in [(&deflection, bounds[0]), (&rotation, bounds[1])] {
+                    let mut own: f64 = rows.bound().iter().zip(&q).map(|(b, q)| b * q.abs()).sum();
+                    if let Some(c) = loads {
+                        own += rows.correction_bound().iter().zip(c).map(|(b, c)| b * c.abs()).sum::<f64>();
+                    }
+                    assert_eq!(bound.to_bits(), own.to_bits(), "{nodes} x {coordinates}");
+                }
+            }
+        }
+    }
 
     /// The arrestor's positions are from its first support, a clamp or a pin (issue 45): a
     /// deflection of 1.2 m on a 6 m beam (20 %, beyond the 10 % limit) at midspan is reported "at
@@ -350,16 +422,16 @@ mod tests {
     fn rows_report_the_bound_below_the_limit_and_the_exact_value_above() {
         // Two rows over two coordinates: values 0.5 q0 + 0.25 q1 and -q0 + 0.5 q1.
         let shapes = DMatrix::from_row_slice(2, 2, &[0.5, 0.25, -1.0, 0.5]);
-        let rows = Rows::new(shapes, Vec::new(), vec![1.0, 2.0], 1.0);
+        let rows = Rows { shapes, correction: Vec::new(), positions: vec![1.0, 2.0], limit: 1.0 };
         let mut peak = RangePeak::default();
-        rows.observe(&[0.2, 0.4], None, 0.5, &mut peak);
+        observe(&rows, &[0.2, 0.4], None, 0.5, &mut peak);
         // Bound: 1.0 * 0.2 + 0.5 * 0.4 = 0.4 (< 1): the bound, no position.
         assert_eq!(peak, RangePeak { value: 0.4, position: None, time: 0.5 });
-        rows.observe(&[1.0, -1.0], None, 0.75, &mut peak);
+        observe(&rows, &[1.0, -1.0], None, 0.75, &mut peak);
         // Bound 1.5 >= 1: exact rows 0.25 and 1.5 (at x = 2).
         assert_eq!(peak, RangePeak { value: 1.5, position: Some(2.0), time: 0.75 });
         // A smaller later value leaves the peak.
-        rows.observe(&[0.1, 0.0], None, 1.0, &mut peak);
+        observe(&rows, &[0.1, 0.0], None, 1.0, &mut peak);
         assert_eq!(peak.time, 0.75);
     }
 
@@ -369,12 +441,12 @@ mod tests {
         let shapes = DMatrix::from_row_slice(1, 1, &[1.0]);
         let mut row = [0.0; LOADS];
         row[3] = 2.0;
-        let rows = Rows::new(shapes, vec![row], vec![3.0], 1.0);
+        let rows = Rows { shapes, correction: vec![row], positions: vec![3.0], limit: 1.0 };
         let mut loads = [0.0; LOADS];
         loads[3] = -0.5;
         let mut peak = RangePeak::default();
         // 0.9 - 1.0 = -0.1 exactly, bound 0.9 + 1.0 = 1.9 >= 1: the exact |value| 0.1.
-        rows.observe(&[0.9], Some(&loads), 0.1, &mut peak);
+        observe(&rows, &[0.9], Some(&loads), 0.1, &mut peak);
         assert!((peak.value - 0.1).abs() < 1e-15 && peak.position == Some(3.0), "{peak:?}");
     }
 }

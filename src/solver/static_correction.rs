@@ -81,19 +81,10 @@ impl StaticCorrection {
     pub fn evaluate(&self, modal_gap: f64, modal_rate: f64, contact: bool, excitation: &Excitation) -> Correction {
         let gram = &self.gram;
         let loads = self.loads(modal_gap, modal_rate, contact, excitation);
-        let quadratic = |g: &[[f64; LOADS]; LOADS]| {
-            let mut sum = 0.0;
-            for a in 0..LOADS {
-                for b in 0..LOADS {
-                    sum += loads[a] * g[a][b] * loads[b];
-                }
-            }
-            0.5 * sum
-        };
         Correction {
             loads,
-            strain: quadratic(gram),
-            upper_strain: quadratic(&self.gram_upper),
+            strain: quadratic(gram, &loads),
+            upper_strain: quadratic(&self.gram_upper, &loads),
             gravity_potential: -row_dot(&gram[GRAVITY], &loads),
             inertial_potential: -[HINGE_HEAVE, CLAMP_HEAVE, CLAMP_ROTATION]
                 .iter()
@@ -158,6 +149,54 @@ fn external_loads(excitation: &Excitation) -> [f64; LOADS] {
     [1.0, f.upper, f.lower, 0.0, a[0], a[1], a[2]]
 }
 
+/// 1/2 c^T G c over the load coefficients `loads`: the terms c_a G_ab c_b in the order a, then b,
+/// less the rows of a zero coefficient (a free flight's contact load, a fixed tip's force). Their
+/// terms are each +-0 (finite G and c), which leave the sum as it is (it starts at +0 and a sum
+/// of terms never turns -0): the full double sum to the bit.
+fn quadratic(g: &[[f64; LOADS]; LOADS], loads: &[f64; LOADS]) -> f64 {
+    let mut sum = 0.0;
+    for a in 0..LOADS {
+        if loads[a] == 0.0 {
+            continue;
+        }
+        for b in 0..LOADS {
+            sum += loads[a] * g[a][b] * loads[b];
+        }
+    }
+    0.5 * sum
+}
+
 fn row_dot(row: &[f64; LOADS], loads: &[f64; LOADS]) -> f64 {
     row.iter().zip(loads).map(|(r, c)| r * c).sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::sea::components::SplitMix64;
+
+    /// The quadratic forms without the zero load coefficients' rows are the full double sums to the
+    /// bit, on random forms and coefficients with random zeros (signed too).
+    #[test]
+    fn quadratic_forms_without_the_zero_loads_are_the_full_sums_to_the_bit() {
+        let mut rng = SplitMix64::new(28);
+        for _ in 0..2000 {
+            let mut random = |scale: f64| (rng.next_f64() - 0.5) * scale;
+            let g: [[f64; LOADS]; LOADS] = std::array::from_fn(|_| std::array::from_fn(|_| random(2e-6)));
+            let mut loads: [f64; LOADS] = std::array::from_fn(|_| random(1e5));
+            let mask = (random(2.0) + 1.0) * 128.0;
+            for (a, load) in loads.iter_mut().enumerate() {
+                if (mask as u32 >> a) & 1 == 1 {
+                    *load = if a % 2 == 0 { 0.0 } else { -0.0 };
+                }
+            }
+            let mut full = 0.0;
+            for a in 0..LOADS {
+                for b in 0..LOADS {
+                    full += loads[a] * g[a][b] * loads[b];
+                }
+            }
+            assert_eq!(quadratic(&g, &loads).to_bits(), (0.5 * full).to_bits(), "{loads:?}");
+        }
+    }
 }
