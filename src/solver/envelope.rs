@@ -245,6 +245,14 @@ impl EnvelopeWork {
         self.scope
     }
 
+    /// Each envelope's peak, Pa ([`groups`]' order), where the peaks-only scope keeps it: never
+    /// below the largest running value of its stations, and above it only after a step left
+    /// untaken raised it and the state went back. None with every station's scope, or until a
+    /// step takes it ([`Self::forget`]).
+    pub fn peaks(&self) -> Option<&[f64; 4]> {
+        (self.scope == EnvelopeScope::Peaks && self.summarised).then_some(&self.peak)
+    }
+
     /// Every station's stress, Pa, at the end of the step [`StationRows::observe`] took last with
     /// [`EnvelopeScope::Stations`] (issue 44: the stations' histories for fatigue).
     pub fn values(&self) -> &[f64] {
@@ -1065,6 +1073,12 @@ mod tests {
             for k in 0..count {
                 assert!(running[1].0[k] <= running[0].0[k], "step {step}, station {k}");
             }
+            // The peaks-only scope's own peaks are the envelopes' (what the tangent reads).
+            let own = works[1].peaks().expect("kept by the peaks-only scope");
+            for (g, p) in peaks.iter().enumerate() {
+                assert_eq!(own[g].to_bits(), p.0.to_bits(), "step {step}, envelope {g}'s peak");
+            }
+            assert_eq!(works[0].peaks(), None);
         }
         // Both ways taken: chunks skipped and chunks evaluated (every station's scope asks none).
         let work = &works[1];
