@@ -747,9 +747,9 @@ fn weighted_magnitude_sum(a: &[f64], modes: usize, q: &[f64], loads: Option<&[f6
 /// values and rates: `inputs`, each its own coordinates and load coefficients, of the same
 /// length and the same basis), into `outs` (one value per station each): the same sums to the
 /// bit (each station's terms added one after the other from 0, the modes' columns in order,
-/// then the loads'), but each eight stations' sums held in registers over all the columns, and
-/// each column read once for the `N` states (the envelope's products were a tenth of a
-/// campaign's time).
+/// then the loads'), but each sixteen (then eight) stations' sums held in registers over all
+/// the columns, and each column read once for the `N` states (the envelope's products were a
+/// tenth of a campaign's time).
 #[inline(always)]
 fn chunk_products<const N: usize>(
     block: &Block,
@@ -761,49 +761,62 @@ fn chunk_products<const N: usize>(
     let kept = block.modes.start.min(length)..block.modes.end.min(length);
     let loads = inputs[0].1.is_some();
     let m = local.len();
-    let mode = |j: usize| &block.column(j)[local.clone()];
-    let load = |a: usize| &block.column(block.modes.len() + a)[local.clone()];
-    let lanes = m - m % 8;
-    for k in (0..lanes).step_by(8) {
-        let mut sums = [[0.0f64; 8]; N];
-        let mut add = |column: &[f64], weights: [f64; N]| {
-            let c: &[f64; 8] = column[k..k + 8].try_into().expect("eight stations");
-            for (sum, w) in sums.iter_mut().zip(weights) {
-                for i in 0..8 {
-                    sum[i] += c[i] * w;
-                }
-            }
-        };
-        for (j, i) in kept.clone().enumerate() {
-            add(mode(j), inputs.map(|(x, _)| x[i]));
+    let mut k = 0;
+    while k + 16 <= m {
+        let sums = station_sums::<N, 16>(block, local.start + k, kept.clone(), inputs, loads);
+        for (out, sum) in outs.iter_mut().zip(&sums) {
+            out[k..k + 16].copy_from_slice(sum);
         }
-        if loads {
-            for a in 0..LOADS {
-                add(load(a), inputs.map(|(_, c)| c.map_or(0.0, |c| c[a])));
-            }
-        }
+        k += 16;
+    }
+    while k + 8 <= m {
+        let sums = station_sums::<N, 8>(block, local.start + k, kept.clone(), inputs, loads);
         for (out, sum) in outs.iter_mut().zip(&sums) {
             out[k..k + 8].copy_from_slice(sum);
         }
+        k += 8;
     }
-    for k in lanes..m {
-        let mut sums = [0.0f64; N];
-        for (j, i) in kept.clone().enumerate() {
-            let c = mode(j)[k];
-            for (sum, (x, _)) in sums.iter_mut().zip(inputs) {
-                *sum += c * x[i];
-            }
+    while k < m {
+        let sums = station_sums::<N, 1>(block, local.start + k, kept.clone(), inputs, loads);
+        for (out, sum) in outs.iter_mut().zip(&sums) {
+            out[k] = sum[0];
         }
-        if loads {
-            for a in 0..LOADS {
-                let c = load(a)[k];
-                for (sum, (_, l)) in sums.iter_mut().zip(inputs) {
-                    *sum += c * l.map_or(0.0, |l| l[a]);
-                }
-            }
+        k += 1;
+    }
+}
+
+/// The sums of [`chunk_products`] at `W` stations of `block` from its station `from` on, for
+/// each of the `N` states: the modes `kept` (indices into the states' coordinates) column by
+/// column, then the loads' (if `loads`), each column's `W` values read once.
+#[inline(always)]
+fn station_sums<const N: usize, const W: usize>(
+    block: &Block,
+    from: usize,
+    kept: Range<usize>,
+    inputs: [(&[f64], Option<&[f64; LOADS]>); N],
+    loads: bool,
+) -> [[f64; W]; N] {
+    let rows = block.stations.len();
+    let mut sums = [[0.0f64; W]; N];
+    let weights = inputs.map(|(x, _)| &x[kept.clone()]);
+    let column = |j: usize| -> &[f64; W] { block.columns[j * rows + from..][..W].try_into().expect("W stations") };
+    for j in 0..kept.len() {
+        add_column(&mut sums, column(j), std::array::from_fn(|s| weights[s][j]));
+    }
+    if loads {
+        for a in 0..LOADS {
+            add_column(&mut sums, column(block.modes.len() + a), inputs.map(|(_, c)| c.map_or(0.0, |c| c[a])));
         }
-        for (out, sum) in outs.iter_mut().zip(sums) {
-            out[k] = sum;
+    }
+    sums
+}
+
+/// Adds a column's `W` values times each state's weight `w` to its `W` sums.
+#[inline(always)]
+fn add_column<const N: usize, const W: usize>(sums: &mut [[f64; W]; N], column: &[f64; W], w: [f64; N]) {
+    for (sum, w) in sums.iter_mut().zip(w) {
+        for i in 0..W {
+            sum[i] += column[i] * w;
         }
     }
 }
