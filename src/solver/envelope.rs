@@ -371,7 +371,10 @@ impl StationRows {
         work.values.resize(self.count, 0.0);
         if work.scope == EnvelopeScope::Stations {
             self.stresses(q, loads, &mut work.values);
-            raise(&work.values, running.max, running.times, time);
+            for from in (0..self.count).step_by(CHUNK) {
+                let to = (from + CHUNK).min(self.count);
+                raise(&work.values[from..to], &mut running.max[from..to], &mut running.times[from..to], time);
+            }
             return;
         }
         self.summarise(work, running.max);
@@ -398,9 +401,8 @@ impl StationRows {
                 let values = &mut work.values[chunk.stations.clone()];
                 chunk_product(&self.blocks[chunk.block], chunk.local.clone(), q, loads, values);
                 let stations = chunk.stations.clone();
-                let before = Held::of(&running.max[stations.clone()]);
-                raise(values, &mut running.max[stations.clone()], &mut running.times[stations], time);
-                self.summarise_raised(work, chunk, &before, running.max);
+                let raised = raise(values, &mut running.max[stations.clone()], &mut running.times[stations], time);
+                self.summarise_raised(work, chunk, raised, running.max);
             }
         }
     }
@@ -550,9 +552,8 @@ impl StationRows {
                 let (y0, r0) = (&work.start_values[stations.clone()], &work.start_rates[stations.clone()]);
                 let (y1, r1) = (&work.values[stations.clone()], &work.rates[stations]);
                 let floor = chunk.floor(work.peak[g], work.utilisation[g]);
-                let before = Held::of(running_chunk.max);
-                raise_over_step(y0, r0, y1, r1, running_chunk, (start_time, end_time), h, floor);
-                self.summarise_raised(work, chunk, &before, running.max);
+                let raised = raise_chunk_over_step(y0, r0, y1, r1, running_chunk, (start_time, end_time), h, floor);
+                self.summarise_raised(work, chunk, raised, running.max);
             }
         }
         work.end_bounds = std::mem::replace(&mut work.start_bounds, end_bounds);
@@ -572,20 +573,15 @@ impl StationRows {
         work.summarised = true;
     }
 
-    /// [`Self::summarise_chunk`] after the chunk `span`'s running values were raised from
-    /// `before`: by the stations raised only. The others' values and utilisations are within the
+    /// [`Self::summarise_chunk`] after the chunk `span`'s running values were raised at the
+    /// stations `raised` marks: by those only. The others' values and utilisations are within the
     /// summary already (it covers every station since [`Self::summarise`], and a division is
     /// monotone), so it is the same to the bit, without a division per station (a fifth of the
     /// envelope's own work a step).
-    fn summarise_raised(&self, work: &mut EnvelopeWork, span: &Span, before: &Held, max: &[f64]) {
-        let Some(before) = before.values(span.stations.len()) else {
-            return self.summarise_chunk(work, span, max);
-        };
+    fn summarise_raised(&self, work: &mut EnvelopeWork, span: &Span, raised: [bool; CHUNK], max: &[f64]) {
         let g = span.group as usize;
-        for (k, old) in span.stations.clone().zip(before) {
-            if max[k].to_bits() == old.to_bits() {
-                continue;
-            }
+        for i in marked(raised) {
+            let k = span.stations.start + i;
             work.peak[g] = work.peak[g].max(max[k]);
             if self.allowables[k] > 0.0 {
                 work.utilisation[g] = work.utilisation[g].max(max[k] / self.allowables[k]);
@@ -623,38 +619,33 @@ impl StationRows {
     }
 }
 
-/// A chunk's running values before a step raises them ([`StationRows::summarise_raised`]); none
-/// for a span longer than a chunk.
-struct Held {
-    values: [f64; CHUNK],
-    len: Option<usize>,
+/// The stations (indices into a chunk) that `flags` marks, in order: one byte each of a word,
+/// so that a chunk's sixteen flags are tested at once.
+fn marked(flags: [bool; CHUNK]) -> impl Iterator<Item = usize> {
+    const { assert!(CHUNK <= 16) };
+    let mut bytes = [0u8; 16];
+    for (byte, flag) in bytes.iter_mut().zip(flags) {
+        *byte = flag.into();
+    }
+    let mut word = u128::from_le_bytes(bytes);
+    std::iter::from_fn(move || {
+        let i = (word != 0).then(|| word.trailing_zeros() as usize / 8)?;
+        word &= !(0xff << (8 * i));
+        Some(i)
+    })
 }
 
-impl Held {
-    fn of(max: &[f64]) -> Held {
-        let mut values = [0.0; CHUNK];
-        let len = values.get_mut(..max.len()).map(|v| {
-            v.copy_from_slice(max);
-            max.len()
-        });
-        Held { values, len }
-    }
-
-    /// The values held, if `len` of them.
-    fn values(&self, len: usize) -> Option<&[f64]> {
-        self.len.filter(|&n| n == len).map(|n| &self.values[..n])
-    }
-}
-
-/// Raises each running value (`max`, with `times`) by its station's `values` at `time` s:
-/// branch-free, in the CPU's widest vectors.
+/// Raises each running value (`max`, with `times`) of at most [`CHUNK`] stations by its
+/// station's `values` at `time` s, branch-free in the CPU's widest vectors: which it raised.
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn raise(values: &[f64], max: &mut [f64], times: &mut [f64], time: f64) {
-    for ((value, max), at) in values.iter().zip(max.iter_mut()).zip(times.iter_mut()) {
-        let (value, raised) = (value.abs(), value.abs() > *max);
-        *max = if raised { value } else { *max };
-        *at = if raised { time } else { *at };
+fn raise(values: &[f64], max: &mut [f64], times: &mut [f64], time: f64) -> [bool; CHUNK] {
+    let mut raised = [false; CHUNK];
+    for (((value, max), at), raised) in values.iter().zip(max.iter_mut()).zip(times.iter_mut()).zip(&mut raised) {
+        *raised = value.abs() > *max;
+        *max = if *raised { value.abs() } else { *max };
+        *at = if *raised { time } else { *at };
     }
+    raised
 }
 
 /// Raises each running value over a step `h` s long by its station's end value `y1` and the
@@ -673,37 +664,49 @@ fn raise_over_step(
     h: f64,
     floor: f64,
 ) {
-    // The floor less the bounds' round-off margin: a cubic left unsought stays below it by more
-    // than a division's rounding.
-    let floor = floor / BOUND_MARGIN;
     let m = [y0.len(), r0.len(), y1.len(), r1.len(), running.max.len(), running.times.len()].into_iter().min();
-    let m = m.unwrap_or(0);
-    for from in (0..m).step_by(CHUNK) {
-        let to = (from + CHUNK).min(m);
-        let reaches = raise_ends(
-            (&y0[from..to], &r0[from..to], &y1[from..to], &r1[from..to]),
-            (&mut running.max[from..to], &mut running.times[from..to]),
-            end_time,
-            h,
-            floor,
-        );
-        for (k, _) in reaches.iter().enumerate().filter(|(_, r)| **r) {
-            let k = from + k;
-            let (d0, d1) = (h * r0[k], h * r1[k]);
-            let (value, s) = crate::solver::step_extrema::cubic_extremum(y0[k], y1[k], d0, d1, 1.0);
-            if value > running.max[k] {
-                running.max[k] = value;
-                // Never past the step's end by round-off (a restored state's times are checked).
-                running.times[k] = (start_time + s * h).min(end_time);
-            }
-        }
+    for from in (0..m.unwrap_or(0)).step_by(CHUNK) {
+        let to = (from + CHUNK).min(m.unwrap_or(0));
+        let chunk = Running { max: &mut running.max[from..to], times: &mut running.times[from..to] };
+        let ends = (&y0[from..to], &r0[from..to], &y1[from..to], &r1[from..to]);
+        raise_chunk_over_step(ends.0, ends.1, ends.2, ends.3, chunk, (start_time, end_time), h, floor);
     }
 }
 
-/// [`raise_over_step`]'s first pass over at most [`CHUNK`] stations, branch-free in the CPU's
-/// widest vectors: raises each running value (`max`, with `times`) by its station's end value
-/// `y1` at `end_time`, and says whether its cubic's bound reaches the raised value and `floor`
-/// (the cubic then sought).
+/// [`raise_over_step`] over at most [`CHUNK`] stations: which it raised.
+#[allow(clippy::too_many_arguments)]
+fn raise_chunk_over_step(
+    y0: &[f64],
+    r0: &[f64],
+    y1: &[f64],
+    r1: &[f64],
+    running: Running,
+    (start_time, end_time): (f64, f64),
+    h: f64,
+    floor: f64,
+) -> [bool; CHUNK] {
+    // The floor less the bounds' round-off margin: a cubic left unsought stays below it by more
+    // than a division's rounding.
+    let floor = floor / BOUND_MARGIN;
+    let (mut raised, reaches) =
+        raise_ends((y0, r0, y1, r1), (&mut *running.max, &mut *running.times), end_time, h, floor);
+    for k in marked(reaches) {
+        let (d0, d1) = (h * r0[k], h * r1[k]);
+        let (value, s) = crate::solver::step_extrema::cubic_extremum(y0[k], y1[k], d0, d1, 1.0);
+        if value > running.max[k] {
+            running.max[k] = value;
+            // Never past the step's end by round-off (a restored state's times are checked).
+            running.times[k] = (start_time + s * h).min(end_time);
+            raised[k] = true;
+        }
+    }
+    raised
+}
+
+/// [`raise_chunk_over_step`]'s first pass over at most [`CHUNK`] stations, branch-free in the
+/// CPU's widest vectors: raises each running value (`max`, with `times`) by its station's end
+/// value `y1` at `end_time`, and says which it raised and whose cubic's bound reaches the raised
+/// value and `floor` (the cubic then sought).
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
 fn raise_ends(
     (y0, r0, y1, r1): (&[f64], &[f64], &[f64], &[f64]),
@@ -711,20 +714,19 @@ fn raise_ends(
     end_time: f64,
     h: f64,
     floor: f64,
-) -> [bool; CHUNK] {
-    let mut reaches = [false; CHUNK];
+) -> ([bool; CHUNK], [bool; CHUNK]) {
+    let (mut raised, mut reaches) = ([false; CHUNK], [false; CHUNK]);
     let ends = y1.iter().zip(r1).zip(y0.iter().zip(r0));
-    for ((((&y1, &r1), (&y0, &r0)), (max, at)), reach) in
-        ends.zip(max.iter_mut().zip(times.iter_mut())).zip(reaches.iter_mut())
-    {
-        let raised = y1.abs() > *max;
-        *max = if raised { y1.abs() } else { *max };
-        *at = if raised { end_time } else { *at };
+    let flags = raised.iter_mut().zip(reaches.iter_mut());
+    for ((((&y1, &r1), (&y0, &r0)), (max, at)), (raised, reach)) in ends.zip(max.iter_mut().zip(times.iter_mut())).zip(flags) {
+        *raised = y1.abs() > *max;
+        *max = if *raised { y1.abs() } else { *max };
+        *at = if *raised { end_time } else { *at };
         let (d0, d1) = (h * r0, h * r1);
         // |H00 y0 + H01 y1| <= max(|y0|, |y1|) and |H10|, |H11| <= 4/27 on [0, 1].
         *reach = y0.abs().max(y1.abs()) + 4.0 / 27.0 * (d0.abs() + d1.abs()) > max.max(floor);
     }
-    reaches
+    (raised, reaches)
 }
 
 /// Each station's envelope index (see [`StationRows::new`]) in the order of
