@@ -768,7 +768,8 @@ fn weighted_magnitude_sum(a: &[f64], modes: usize, q: &[f64], loads: Option<&[f6
     let (ca, cq) = (a.chunks_exact(8), q.chunks_exact(8));
     let mut tail: f64 = ca.remainder().iter().zip(cq.remainder()).map(|(x, y)| x * y.abs()).sum();
     if let Some(loads) = loads {
-        tail += load_columns.iter().zip(loads).map(|(x, y)| x * y.abs()).sum::<f64>();
+        let columns: &[f64; LOADS] = load_columns.try_into().expect("a column per load");
+        tail += columns.iter().zip(loads).map(|(x, y)| x * y.abs()).sum::<f64>();
     }
     for (x, y) in ca.zip(cq) {
         for l in 0..8 {
