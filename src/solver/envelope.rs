@@ -718,7 +718,9 @@ fn raise_ends(
     let (mut raised, mut reaches) = ([false; CHUNK], [false; CHUNK]);
     let ends = y1.iter().zip(r1).zip(y0.iter().zip(r0));
     let flags = raised.iter_mut().zip(reaches.iter_mut());
-    for ((((&y1, &r1), (&y0, &r0)), (max, at)), (raised, reach)) in ends.zip(max.iter_mut().zip(times.iter_mut())).zip(flags) {
+    for ((((&y1, &r1), (&y0, &r0)), (max, at)), (raised, reach)) in
+        ends.zip(max.iter_mut().zip(times.iter_mut())).zip(flags)
+    {
         *raised = y1.abs() > *max;
         *max = if *raised { y1.abs() } else { *max };
         *at = if *raised { end_time } else { *at };
@@ -836,6 +838,8 @@ fn station_sums<const N: usize, const W: usize>(
     let mut sums = [[0.0f64; W]; N];
     let weights = inputs.map(|(x, _)| &x[kept.clone()]);
     let column = |j: usize| -> &[f64; W] { block.columns[j * rows + from..][..W].try_into().expect("W stations") };
+    // Column j weighs each state's coordinate j (of its kept ones).
+    #[allow(clippy::needless_range_loop)]
     for j in 0..kept.len() {
         add_column(&mut sums, column(j), std::array::from_fn(|s| weights[s][j]));
     }
@@ -1084,7 +1088,11 @@ mod tests {
                     block.magnitudes(&q, loads, &mut magnitudes);
                     let (from_weights, from_magnitudes) = (span.bound_at(block, &q, loads), span.bound(&magnitudes));
                     let difference = (from_weights - from_magnitudes).abs();
-                    assert!(difference <= 1e-14 * from_magnitudes, "{:?}: {from_weights} {from_magnitudes}", span.stations);
+                    assert!(
+                        difference <= 1e-14 * from_magnitudes,
+                        "{:?}: {from_weights} {from_magnitudes}",
+                        span.stations
+                    );
                     checked += 1;
                 }
             }
