@@ -377,9 +377,15 @@ impl<S: Stepper> Simulation<S> {
         }
         for g in 0..4 {
             // The envelope only rises: its group's peak is the one taken unless a station of
-            // the group now exceeds it (a vectorised maximum first; the station only then).
+            // the group now exceeds it. The peaks-only envelope's own peak first (never below its
+            // stations' largest value, which is never below the one taken: where they are equal,
+            // so is that largest value), else a vectorised maximum; the station only then.
             let range = t.groups[g].clone();
-            if self.state.envelope.get(range.clone()).is_some_and(|values| largest(values) == r.envelope[g].0) {
+            let largest = match self.envelope_work.peaks() {
+                Some(peaks) => Some(peaks[g]),
+                None => self.state.envelope.get(range.clone()).map(largest),
+            };
+            if largest == Some(r.envelope[g].0) {
                 continue;
             }
             match self.group_peak(range) {
