@@ -840,8 +840,8 @@ impl ModalStepper {
             contact_advance::<false>(m.q, m.v, m.a, work, m.inputs, coefficients, bar_force);
         }
         let mut end_acceleration = 0.0;
-        for i in 0..n {
-            end_acceleration += b[i] * m.a[i];
+        for (bi, ai) in b.iter().zip(m.a.iter()) {
+            end_acceleration += bi * ai;
         }
         self.last_dissipation = Some(dissipated);
         // The quintic through the force's second derivatives at the ends against the cubic.
