@@ -76,7 +76,8 @@ pub struct ModalStepper {
     exact_last: usize,
     /// Exact steps taken so far: the clock of [`ExactStage::last_used`].
     exact_clock: u64,
-    /// The damping's work over the last exact step, J (None for the linear acceleration method).
+    /// The damping's work over the last exact step, J (None for the linear acceleration method;
+    /// 0 without an energy account, but for a nonlinear law's contact steps).
     last_dissipation: Option<f64>,
     /// The estimated departure of the bar's force from the cubic the last exact contact step
     /// assumed, N.
@@ -839,8 +840,8 @@ impl ModalStepper {
             contact_advance::<false>(m.q, m.v, m.a, work, m.inputs, coefficients, bar_force);
         }
         let mut end_acceleration = 0.0;
-        for i in 0..n {
-            end_acceleration += b[i] * m.a[i];
+        for (bi, ai) in b.iter().zip(m.a.iter()) {
+            end_acceleration += bi * ai;
         }
         self.last_dissipation = Some(dissipated);
         // The quintic through the force's second derivatives at the ends against the cubic.
@@ -1175,9 +1176,14 @@ impl Stepper for ModalStepper {
         } else {
             0.0
         };
-        let (q, v) = (&state.displacement, &state.velocity);
-        for i in 0..q.len() {
-            state.acceleration[i] = load[i] - s.omega2[i] * q[i] - s.damping[i] * v[i] - bar * s.contact[i];
+        // Plain slices of one length: the loop runs in vectors, without bounds checks.
+        let n = state.displacement.len();
+        let (q, v) = (&state.displacement.as_slice()[..n], &state.velocity.as_slice()[..n]);
+        let a = &mut state.acceleration.as_mut_slice()[..n];
+        let (load, omega2, damping, b) =
+            (&load.as_slice()[..n], &s.omega2.as_slice()[..n], &s.damping.as_slice()[..n], &s.contact.as_slice()[..n]);
+        for i in 0..n {
+            a[i] = load[i] - omega2[i] * q[i] - damping[i] * v[i] - bar * b[i];
         }
     }
 
