@@ -1100,6 +1100,58 @@ mod tests {
         assert!(checked >= 100, "{checked}");
     }
 
+    /// A chunk's branch-free raise over a step ([`raise_chunk_over_step`]) and at its end alone
+    /// ([`raise`]) give the running values and times of the plain loops, to the bit, and mark
+    /// exactly the stations whose values changed; for random values, rates and floors, chunks of
+    /// every length up to [`CHUNK`], and running values both below and above the values.
+    #[test]
+    fn a_chunks_raise_is_the_plain_loops_and_marks_the_raised_stations() {
+        let mut random = uniform(5);
+        let (start_time, end_time, h) = (0.25, 0.25 + 1e-3, 1e-3);
+        for length in 0..=CHUNK {
+            for _ in 0..50 {
+                let mut draw = |scale: f64| -> Vec<f64> { (0..length).map(|_| scale * (random() - 0.5)).collect() };
+                let (y0, y1, r0, r1) = (draw(2.0), draw(2.0), draw(4e3), draw(4e3));
+                let (max, times) = (draw(1.6).iter().map(|m| m.abs()).collect::<Vec<_>>(), draw(0.2));
+                let floor = 0.5 * random();
+                // The plain loops.
+                let (mut plain_max, mut plain_times) = (max.clone(), times.clone());
+                for k in 0..length {
+                    if y1[k].abs() > plain_max[k] {
+                        (plain_max[k], plain_times[k]) = (y1[k].abs(), end_time);
+                    }
+                    let (d0, d1) = (h * r0[k], h * r1[k]);
+                    let bound = y0[k].abs().max(y1[k].abs()) + 4.0 / 27.0 * (d0.abs() + d1.abs());
+                    if bound > plain_max[k].max(floor / BOUND_MARGIN) {
+                        let (value, s) = crate::solver::step_extrema::cubic_extremum(y0[k], y1[k], d0, d1, 1.0);
+                        if value > plain_max[k] {
+                            (plain_max[k], plain_times[k]) = (value, (start_time + s * h).min(end_time));
+                        }
+                    }
+                }
+                let (mut new_max, mut new_times) = (max.clone(), times.clone());
+                let running = Running { max: &mut new_max, times: &mut new_times };
+                let raised = raise_chunk_over_step(&y0, &r0, &y1, &r1, running, (start_time, end_time), h, floor);
+                let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+                assert_eq!((bits(&new_max), bits(&new_times)), (bits(&plain_max), bits(&plain_times)), "{length}");
+                let changed: Vec<usize> = (0..length).filter(|&k| plain_max[k] != max[k]).collect();
+                assert_eq!(marked(raised).collect::<Vec<_>>(), changed, "{length}");
+                // The end alone.
+                let (mut end_max, mut end_times) = (max.clone(), times.clone());
+                let raised = raise(&y1, &mut end_max, &mut end_times, end_time);
+                let changed: Vec<usize> = (0..length).filter(|&k| y1[k].abs() > max[k]).collect();
+                for k in 0..length {
+                    let expected = if changed.contains(&k) { (y1[k].abs(), end_time) } else { (max[k], times[k]) };
+                    assert_eq!(
+                        (end_max[k].to_bits(), end_times[k].to_bits()),
+                        (expected.0.to_bits(), expected.1.to_bits())
+                    );
+                }
+                assert_eq!(marked(raised).collect::<Vec<_>>(), changed, "{length}");
+            }
+        }
+    }
+
     /// Each envelope's (value, first station, time) and worst (utilisation, first station) from
     /// running values, as [`crate::results::StationEnvelope::peak`] takes them.
     fn envelope_peaks(
