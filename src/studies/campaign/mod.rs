@@ -31,8 +31,8 @@ pub use summary::{CellSummary, Options};
 /// The fields a campaign's grid may vary: the sea state's.
 pub const CELL_FIELDS: [&str; 3] = ["sea.significant_wave_height", "sea.peak_period", "sea.heading"];
 
-/// Most runs (cells x events) a campaign makes unless told more (`--max-events`): about 15
-/// minutes on two cores at the example vessel's 17.5 ms of a core per 3 s event (measured,
+/// Most runs (cells x events) a campaign makes unless told more (`--max-events`): about 17
+/// minutes on two cores at the example vessel's 20.5 ms of a core per 3 s event (measured,
 /// docs/operability.md).
 pub const DEFAULT_MAX_EVENTS: u64 = 100_000;
 
@@ -111,10 +111,10 @@ impl Campaign {
         if total > max_events {
             return Err(Error::Other(format!(
                 "campaign of {grid} cells x {} events = {total} runs, more than --max-events {max_events}: lower the \
-                 grid or --events, or raise --max-events (at the example vessel's 17.5 ms of a core per 3 s event, {:.0} \
+                 grid or --events, or raise --max-events (at the example vessel's 20.5 ms of a core per 3 s event, {:.0} \
                  min on two cores)",
                 events.len(),
-                total as f64 * 0.0175 / 2.0 / 60.0
+                total as f64 * 0.0205 / 2.0 / 60.0
             )));
         }
         let mut axes = cell_axes.clone();
