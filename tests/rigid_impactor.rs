@@ -131,6 +131,20 @@ fn a_mass_on_the_arrestor_reports_every_sub_impact_in_order() {
     assert!(a.quality.checks.energy.is_some_and(|c| c.pass), "{:?}", a.quality.reasons);
 }
 
+/// A rigid impactor has no bridge mesh: the converged answer's line names each run's arrestor
+/// elements alone, not the bridge's counts the scenario carries unused (`56 + 56/56`).
+#[test]
+fn a_mass_impactors_converged_line_names_the_arrestors_elements_alone() {
+    let a = run("drop_height = 0.2\nduration = 0.05\n[upper]\nkind = \"mass\"\nmass = 500.0\n");
+    let table = answer::table(&a);
+    let line = table.lines().find(|l| l.starts_with("Converged answer")).unwrap();
+    assert!(line.contains("printed: 56 elements, ") && line.contains("check: 28 elements, "), "{line}");
+    assert!(!line.contains(" + "), "{line}");
+    // A beam keeps its three counts.
+    let beam = answer::table(&run("duration = 0.05\n"));
+    assert!(beam.contains("printed: 56 + 56/56 elements, "), "{beam}");
+}
+
 /// A grid of speeds 0.1-10 m/s and masses 0.01 kg-1000 t on the arrestor, linear and Hertz:
 /// a result or a one-line error, never a panic, and finite sub-impacts.
 #[test]
