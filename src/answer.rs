@@ -1310,7 +1310,7 @@ pub fn table(answer: &Answer) -> String {
             Some(c) => format!("modes up to {c:.0} rad/s ({} of {} coordinates)", run.modes[0], run.modes[1]),
             None => format!("full modal basis ({} coordinates)", run.modes[1]),
         };
-        format!("{}, {cut}", crate::discretise::elements_label(r.upper.kind, run.elements))
+        format!("{} elements, {cut}", crate::discretise::element_counts(r.upper.kind, run.elements))
     };
     let _ = writeln!(
         s,

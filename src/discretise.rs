@@ -135,16 +135,17 @@ pub fn struck_frequency(omega: &[f64], contact: &[f64], k: f64) -> f64 {
 
 /// A resolved scenario's mesh as the tables print it: `7 + 7/1 elements`.
 pub fn describe(s: &Scenario) -> String {
-    elements_label(s.upper.kind, [s.lower.elements, s.upper.elements_to_contact, s.upper.elements_beyond_contact])
+    let counts = [s.lower.elements, s.upper.elements_to_contact, s.upper.elements_beyond_contact];
+    format!("{} elements", element_counts(s.upper.kind, counts))
 }
 
 /// A mesh's element counts (arrestor, bridge to and beyond the contact) as the tables print them:
-/// `7 + 7/1 elements`, or the arrestor's alone for a rigid impactor (issue 45), whose bridge counts
-/// mesh nothing.
-pub fn elements_label(kind: ImpactorKind, [lower, to_contact, beyond_contact]: [u32; 3]) -> String {
+/// `7 + 7/1`, or the arrestor's alone for a rigid impactor (issue 45), whose bridge counts mesh
+/// nothing.
+pub fn element_counts(kind: ImpactorKind, [lower, to_contact, beyond_contact]: [u32; 3]) -> String {
     match kind {
-        ImpactorKind::Mass => format!("{lower} elements"),
-        ImpactorKind::Beam => format!("{lower} + {to_contact}/{beyond_contact} elements"),
+        ImpactorKind::Mass => lower.to_string(),
+        ImpactorKind::Beam => format!("{lower} + {to_contact}/{beyond_contact}"),
     }
 }
 

@@ -143,6 +143,15 @@ fn a_mass_impactors_converged_line_names_the_arrestors_elements_alone() {
     // A beam keeps its three counts.
     let beam = answer::table(&run("duration = 0.05\n"));
     assert!(beam.contains("printed: 56 + 56/56 elements, "), "{beam}");
+    // So does `verify`'s ladder: the mass's rungs are 56, 112 and 224 arrestor elements.
+    let s = Scenario::from_toml("drop_height = 0.2\nduration = 0.05\n[upper]\nkind = \"mass\"\nmass = 500.0\n", "t")
+        .unwrap();
+    let ladder = beam_impact::studies::verify::table(&beam_impact::studies::verify::verify(&s, 0.01).unwrap());
+    let rung = |label: &str| ladder.lines().find(|l| l.trim_start().starts_with(label)).unwrap().to_string();
+    for (label, elements) in [("base", "56"), ("2x elements", "112"), ("4x elements", "224")] {
+        let line = rung(label);
+        assert!(line.split_whitespace().any(|w| w == elements) && !line.contains(" + "), "{line}\n{ladder}");
+    }
 }
 
 /// A grid of speeds 0.1-10 m/s and masses 0.01 kg-1000 t on the arrestor, linear and Hertz:

@@ -118,6 +118,13 @@ impl Mesh {
     }
 }
 
+impl Mesh {
+    /// The counts as the table prints them (a rigid impactor's: the arrestor's alone).
+    fn counts(&self, kind: crate::model::scenario::ImpactorKind) -> String {
+        crate::discretise::element_counts(kind, [self.lower, self.upper_to_contact, self.upper_beyond_contact])
+    }
+}
+
 impl std::fmt::Display for Mesh {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "{} + {}/{}", self.lower, self.upper_to_contact, self.upper_beyond_contact)
@@ -522,7 +529,7 @@ pub fn table(v: &Verification) -> String {
         let _ = writeln!(
             s,
             "  {label:<12} {:>16} {:>14} {:>22} {:>9}  {:<11} {:>7.2}",
-            v.meshes.as_array()[k].to_string(),
+            v.meshes.as_array()[k].counts(v.scenario.upper.kind),
             v.modal_cutoffs.as_array()[k].map_or("full basis".to_string(), |c| format!("{c:.0}")),
             format!("{:e} / {:e}", steps.free, steps.contact),
             v.steps.as_array()[k],
