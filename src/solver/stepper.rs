@@ -1316,30 +1316,75 @@ fn mode_coefficients(
     let n = omega2.len();
     let contact = cubic[0].len() == n;
     let mut sums = BarSums::default();
-    for i in 0..n {
-        let (w2, c) = (omega2[i], damping[i]);
-        let (mode, responses) = ModeStep::with_responses(w2, c, dt);
-        let values = [mode.q, mode.v, mode.integral];
-        for (k, column) in columns.iter_mut().enumerate() {
-            column[i] = values[k / 4][k % 4];
+    // A whole chunk of modes' coefficients as [column][mode], then stored a column at a time
+    // (one index check a column and chunk, not one a value); the last modes short of a chunk
+    // each straight into the columns.
+    let mut values = [[0.0; CHUNK]; 12];
+    let mut contact_values = [[0.0; CHUNK]; 18];
+    for start in (0..n).step_by(CHUNK) {
+        let modes = (n - start).min(CHUNK);
+        let whole = modes == CHUNK;
+        for l in 0..modes {
+            let i = start + l;
+            let (w2, c) = (omega2[i], damping[i]);
+            let (mode, responses) = ModeStep::with_responses(w2, c, dt);
+            if whole {
+                for (column, value) in values.iter_mut().zip(mode_values(&mode)) {
+                    column[l] = value;
+                }
+            } else {
+                for (column, value) in columns.iter_mut().zip(mode_values(&mode)) {
+                    column[i] = value;
+                }
+            }
+            if contact {
+                let step = match responses {
+                    Some(psi) => CubicStep::from_responses(c, dt, &psi),
+                    None => CubicStep::new(w2, c, dt, &mode),
+                };
+                if whole {
+                    for (column, value) in contact_values.iter_mut().zip(cubic_values(&step)) {
+                        column[l] = value;
+                    }
+                } else {
+                    set_cubic(cubic, i, &step);
+                }
+                sums.add(b[i], (w2, c), &mode, &step);
+            }
         }
-        if contact {
-            let step = match responses {
-                Some(psi) => CubicStep::from_responses(c, dt, &psi),
-                None => CubicStep::new(w2, c, dt, &mode),
-            };
-            set_cubic(cubic, i, &step);
-            sums.add(b[i], (w2, c), &mode, &step);
+        if whole {
+            store_chunk(columns, start, &values);
+            if contact {
+                store_chunk(cubic, start, &contact_values);
+            }
         }
     }
     sums
 }
 
-/// Mode `i`'s contact coefficients into the eighteen columns of [`ExactStage::cubic_columns`].
+/// Modes whose coefficients [`mode_coefficients`] gathers before it stores them.
+const CHUNK: usize = 4;
+
+/// `values` ([column][mode]) of the [`CHUNK`] modes from `start` on into `columns`.
 #[inline(always)]
-fn set_cubic(columns: &mut [Vec<f64>; 18], i: usize, c: &CubicStep) {
+fn store_chunk<const K: usize>(columns: &mut [Vec<f64>; K], start: usize, values: &[[f64; CHUNK]; K]) {
+    for (column, chunk) in columns.iter_mut().zip(values) {
+        column[start..start + CHUNK].copy_from_slice(chunk);
+    }
+}
+
+/// A mode's coefficients in the order of [`ExactStage::columns`].
+#[inline(always)]
+fn mode_values(m: &ModeStep) -> [f64; 12] {
+    let [q, v, i] = [m.q, m.v, m.integral];
+    [q[0], q[1], q[2], q[3], v[0], v[1], v[2], v[3], i[0], i[1], i[2], i[3]]
+}
+
+/// A mode's contact coefficients in the order of [`ExactStage::cubic_columns`].
+#[inline(always)]
+fn cubic_values(c: &CubicStep) -> [f64; 18] {
     let [m0, m1] = c.moments;
-    let values = [
+    [
         c.q[0],
         c.q[1],
         c.v[0],
@@ -1358,8 +1403,13 @@ fn set_cubic(columns: &mut [Vec<f64>; 18], i: usize, c: &CubicStep) {
         m1[3],
         m1[4],
         m1[5],
-    ];
-    for (column, value) in columns.iter_mut().zip(values) {
+    ]
+}
+
+/// Mode `i`'s contact coefficients into the eighteen columns of [`ExactStage::cubic_columns`].
+#[inline(always)]
+fn set_cubic(columns: &mut [Vec<f64>; 18], i: usize, c: &CubicStep) {
+    for (column, value) in columns.iter_mut().zip(cubic_values(c)) {
         column[i] = value;
     }
 }
