@@ -1949,6 +1949,46 @@ mod tests {
         }
     }
 
+    /// The coefficients gathered a chunk of modes at a time and stored a column at a time are
+    /// each mode's own ([`ModeStep::with_responses`], [`CubicStep`]) in its place, to the bit,
+    /// and the bar's sums those added mode by mode: counts of modes with and without a tail
+    /// short of a chunk, modes in the series, the closed form and overdamped, free and contact.
+    #[test]
+    fn the_chunked_coefficients_are_each_modes_own_in_its_place() {
+        let dt = 2e-5;
+        for n in [1, 3, 4, 5, 8, 9, 46] {
+            let omega2: Vec<f64> =
+                (0..n).map(|i| (1e2 * 1.9f64.powi(i as i32)).powi(2) * (i > 0) as u8 as f64).collect();
+            let damping: Vec<f64> = (0..n).map(|i| [0.0, 3.0, 1e-3 * omega2[i], 4e5][i % 4]).collect();
+            let b: Vec<f64> = (0..n).map(|i| 0.3 + (i as f64 * 0.7).sin()).collect();
+            for contact in [false, true] {
+                let mut columns: [Vec<f64>; 12] = std::array::from_fn(|_| vec![f64::NAN; n]);
+                let mut cubic: [Vec<f64>; 18] = std::array::from_fn(|_| vec![f64::NAN; if contact { n } else { 0 }]);
+                let sums = mode_coefficients((&omega2, &damping, &b), dt, &mut columns, &mut cubic);
+                let mut own = BarSums::default();
+                for i in 0..n {
+                    let (w2, c) = (omega2[i], damping[i]);
+                    let (mode, responses) = ModeStep::with_responses(w2, c, dt);
+                    for (k, value) in mode_values(&mode).into_iter().enumerate() {
+                        assert_eq!(columns[k][i].to_bits(), value.to_bits(), "n {n}, mode {i}, column {k}");
+                    }
+                    if contact {
+                        let step = match responses {
+                            Some(psi) => CubicStep::from_responses(c, dt, &psi),
+                            None => CubicStep::new(w2, c, dt, &mode),
+                        };
+                        for (k, value) in cubic_values(&step).into_iter().enumerate() {
+                            assert_eq!(cubic[k][i].to_bits(), value.to_bits(), "n {n}, mode {i}, contact column {k}");
+                        }
+                        own.add(b[i], (w2, c), &mode, &step);
+                    }
+                }
+                let bits = |s: &BarSums| [s.fr, s.vr, s.f2, s.f3, s.v2, s.v3, s.ar, s.a2, s.a3, s.bb].map(f64::to_bits);
+                assert_eq!(bits(&sums), bits(&own), "n {n}, contact {contact}");
+            }
+        }
+    }
+
     #[test]
     fn the_probes_dots_side_by_side_are_each_columns_dot_to_the_bit() {
         // Lengths with and without a tail of the four lanes, x shorter than the rows.
