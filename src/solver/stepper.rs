@@ -217,11 +217,9 @@ impl ExactStage {
         for column in &mut self.columns {
             column.resize(n, 0.0);
         }
+        // Each value is written below: a column already of the length keeps it (no zero fill).
         for column in &mut self.cubic_columns {
-            column.clear();
-            if contact {
-                column.resize(n, 0.0);
-            }
+            column.resize(if contact { n } else { 0 }, 0.0);
         }
         let modes = (&s.omega2.as_slice()[..n], &s.damping.as_slice()[..n], &s.contact.as_slice()[..n]);
         let sums = mode_coefficients(modes, dt, &mut self.columns, &mut self.cubic_columns);
