@@ -217,11 +217,9 @@ impl ExactStage {
         for column in &mut self.columns {
             column.resize(n, 0.0);
         }
+        // Each value is written below: a column already of the length keeps it (no zero fill).
         for column in &mut self.cubic_columns {
-            column.clear();
-            if contact {
-                column.resize(n, 0.0);
-            }
+            column.resize(if contact { n } else { 0 }, 0.0);
         }
         let modes = (&s.omega2.as_slice()[..n], &s.damping.as_slice()[..n], &s.contact.as_slice()[..n]);
         let sums = mode_coefficients(modes, dt, &mut self.columns, &mut self.cubic_columns);
@@ -1316,30 +1314,75 @@ fn mode_coefficients(
     let n = omega2.len();
     let contact = cubic[0].len() == n;
     let mut sums = BarSums::default();
-    for i in 0..n {
-        let (w2, c) = (omega2[i], damping[i]);
-        let (mode, responses) = ModeStep::with_responses(w2, c, dt);
-        let values = [mode.q, mode.v, mode.integral];
-        for (k, column) in columns.iter_mut().enumerate() {
-            column[i] = values[k / 4][k % 4];
+    // A whole chunk of modes' coefficients as [column][mode], then stored a column at a time
+    // (one index check a column and chunk, not one a value); the last modes short of a chunk
+    // each straight into the columns.
+    let mut values = [[0.0; CHUNK]; 12];
+    let mut contact_values = [[0.0; CHUNK]; 18];
+    for start in (0..n).step_by(CHUNK) {
+        let modes = (n - start).min(CHUNK);
+        let whole = modes == CHUNK;
+        for l in 0..modes {
+            let i = start + l;
+            let (w2, c) = (omega2[i], damping[i]);
+            let (mode, responses) = ModeStep::with_responses(w2, c, dt);
+            if whole {
+                for (column, value) in values.iter_mut().zip(mode_values(&mode)) {
+                    column[l] = value;
+                }
+            } else {
+                for (column, value) in columns.iter_mut().zip(mode_values(&mode)) {
+                    column[i] = value;
+                }
+            }
+            if contact {
+                let step = match responses {
+                    Some(psi) => CubicStep::from_responses(c, dt, &psi),
+                    None => CubicStep::new(w2, c, dt, &mode),
+                };
+                if whole {
+                    for (column, value) in contact_values.iter_mut().zip(cubic_values(&step)) {
+                        column[l] = value;
+                    }
+                } else {
+                    set_cubic(cubic, i, &step);
+                }
+                sums.add(b[i], (w2, c), &mode, &step);
+            }
         }
-        if contact {
-            let step = match responses {
-                Some(psi) => CubicStep::from_responses(c, dt, &psi),
-                None => CubicStep::new(w2, c, dt, &mode),
-            };
-            set_cubic(cubic, i, &step);
-            sums.add(b[i], (w2, c), &mode, &step);
+        if whole {
+            store_chunk(columns, start, &values);
+            if contact {
+                store_chunk(cubic, start, &contact_values);
+            }
         }
     }
     sums
 }
 
-/// Mode `i`'s contact coefficients into the eighteen columns of [`ExactStage::cubic_columns`].
+/// Modes whose coefficients [`mode_coefficients`] gathers before it stores them.
+const CHUNK: usize = 4;
+
+/// `values` ([column][mode]) of the [`CHUNK`] modes from `start` on into `columns`.
 #[inline(always)]
-fn set_cubic(columns: &mut [Vec<f64>; 18], i: usize, c: &CubicStep) {
+fn store_chunk<const K: usize>(columns: &mut [Vec<f64>; K], start: usize, values: &[[f64; CHUNK]; K]) {
+    for (column, chunk) in columns.iter_mut().zip(values) {
+        column[start..start + CHUNK].copy_from_slice(chunk);
+    }
+}
+
+/// A mode's coefficients in the order of [`ExactStage::columns`].
+#[inline(always)]
+fn mode_values(m: &ModeStep) -> [f64; 12] {
+    let [q, v, i] = [m.q, m.v, m.integral];
+    [q[0], q[1], q[2], q[3], v[0], v[1], v[2], v[3], i[0], i[1], i[2], i[3]]
+}
+
+/// A mode's contact coefficients in the order of [`ExactStage::cubic_columns`].
+#[inline(always)]
+fn cubic_values(c: &CubicStep) -> [f64; 18] {
     let [m0, m1] = c.moments;
-    let values = [
+    [
         c.q[0],
         c.q[1],
         c.v[0],
@@ -1358,8 +1401,13 @@ fn set_cubic(columns: &mut [Vec<f64>; 18], i: usize, c: &CubicStep) {
         m1[3],
         m1[4],
         m1[5],
-    ];
-    for (column, value) in columns.iter_mut().zip(values) {
+    ]
+}
+
+/// Mode `i`'s contact coefficients into the eighteen columns of [`ExactStage::cubic_columns`].
+#[inline(always)]
+fn set_cubic(columns: &mut [Vec<f64>; 18], i: usize, c: &CubicStep) {
+    for (column, value) in columns.iter_mut().zip(cubic_values(c)) {
         column[i] = value;
     }
 }
@@ -1896,6 +1944,46 @@ mod tests {
                 "mode {i}: {} against {q1}",
                 own.displacement[i]
             );
+        }
+    }
+
+    /// The coefficients gathered a chunk of modes at a time and stored a column at a time are
+    /// each mode's own ([`ModeStep::with_responses`], [`CubicStep`]) in its place, to the bit,
+    /// and the bar's sums those added mode by mode: counts of modes with and without a tail
+    /// short of a chunk, modes in the series, the closed form and overdamped, free and contact.
+    #[test]
+    fn the_chunked_coefficients_are_each_modes_own_in_its_place() {
+        let dt = 2e-5;
+        for n in [1, 3, 4, 5, 8, 9, 46] {
+            let omega2: Vec<f64> =
+                (0..n).map(|i| (1e2 * 1.9f64.powi(i as i32)).powi(2) * (i > 0) as u8 as f64).collect();
+            let damping: Vec<f64> = (0..n).map(|i| [0.0, 3.0, 1e-3 * omega2[i], 4e5][i % 4]).collect();
+            let b: Vec<f64> = (0..n).map(|i| 0.3 + (i as f64 * 0.7).sin()).collect();
+            for contact in [false, true] {
+                let mut columns: [Vec<f64>; 12] = std::array::from_fn(|_| vec![f64::NAN; n]);
+                let mut cubic: [Vec<f64>; 18] = std::array::from_fn(|_| vec![f64::NAN; if contact { n } else { 0 }]);
+                let sums = mode_coefficients((&omega2, &damping, &b), dt, &mut columns, &mut cubic);
+                let mut own = BarSums::default();
+                for i in 0..n {
+                    let (w2, c) = (omega2[i], damping[i]);
+                    let (mode, responses) = ModeStep::with_responses(w2, c, dt);
+                    for (k, value) in mode_values(&mode).into_iter().enumerate() {
+                        assert_eq!(columns[k][i].to_bits(), value.to_bits(), "n {n}, mode {i}, column {k}");
+                    }
+                    if contact {
+                        let step = match responses {
+                            Some(psi) => CubicStep::from_responses(c, dt, &psi),
+                            None => CubicStep::new(w2, c, dt, &mode),
+                        };
+                        for (k, value) in cubic_values(&step).into_iter().enumerate() {
+                            assert_eq!(cubic[k][i].to_bits(), value.to_bits(), "n {n}, mode {i}, contact column {k}");
+                        }
+                        own.add(b[i], (w2, c), &mode, &step);
+                    }
+                }
+                let bits = |s: &BarSums| [s.fr, s.vr, s.f2, s.f3, s.v2, s.v3, s.ar, s.a2, s.a3, s.bb].map(f64::to_bits);
+                assert_eq!(bits(&sums), bits(&own), "n {n}, contact {contact}");
+            }
         }
     }
 
