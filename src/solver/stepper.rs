@@ -56,6 +56,13 @@ pub struct ModalStepper {
     /// The static correction's gap shift b^T R f_ext for `load_excitation`, m (0 for a full basis).
     shift: f64,
     load_excitation: Option<Excitation>,
+    /// The modal load and the supports' load of `next_excitation`, computed ahead of the steps
+    /// under it ([`Stepper::equilibrium_acceleration`] where the load jumps: a sea's record
+    /// row): the next step's [`ModalStepper::refresh_load`] takes them instead of computing
+    /// them again, and a measurement under it reads the supports' load from here.
+    next_load: DVector<f64>,
+    next_support_load: DVector<f64>,
+    next_excitation: Option<Excitation>,
     /// Work vectors: z of Eq. (8) and D^-1 f.
     z: DVector<f64>,
     y: DVector<f64>,
@@ -320,6 +327,9 @@ impl ModalStepper {
             support_load: DVector::zeros(n),
             shift: 0.0,
             load_excitation: None,
+            next_load: DVector::zeros(n),
+            next_support_load: DVector::zeros(n),
+            next_excitation: None,
             z: DVector::zeros(n),
             y: DVector::zeros(n),
             w: DVector::zeros(n),
@@ -610,12 +620,18 @@ impl StageInverse {
 impl ModalStepper {
     /// The modal load F = Phi^T (F_g + F_ext + sum_j a_j x_j), the supports' share and the
     /// static correction's gap shift of `excitation`, computed anew only when the tip forces or
-    /// the supports' accelerations changed, into the stepper's own vectors.
+    /// the supports' accelerations changed, into the stepper's own vectors (or taken from those
+    /// computed ahead for it: `next_load`, the same bits).
     fn refresh_load(&mut self, excitation: &Excitation) {
         if !self.load_excitation.is_some_and(|e| e.same_load(excitation)) {
             let s = &self.system;
-            s.load_into(excitation, &mut self.load);
-            s.support_load_into(excitation, &mut self.support_load);
+            if self.next_excitation.take().is_some_and(|e| e.same_load(excitation)) {
+                std::mem::swap(&mut self.load, &mut self.next_load);
+                std::mem::swap(&mut self.support_load, &mut self.next_support_load);
+            } else {
+                s.load_into(excitation, &mut self.load);
+                s.support_load_into(excitation, &mut self.support_load);
+            }
             self.shift = s.correction.gap_shift(excitation);
             self.load_excitation = Some(*excitation);
         }
@@ -1037,6 +1053,8 @@ impl ModalStepper {
             // another instant: a step's start, an output time).
             e.inertial_potential = if self.load_excitation.is_some_and(|l| l.same_load(excitation)) {
                 -dot(&self.support_load.as_slice()[..n], q)
+            } else if self.next_excitation.is_some_and(|l| l.same_load(excitation)) {
+                -self.next_support_load.dot(&state.displacement)
             } else {
                 -s.support_load(excitation).dot(&state.displacement)
             };
@@ -1163,11 +1181,14 @@ impl Stepper for ModalStepper {
         // In modal coordinates M = I: a = F - diag(omega^2) q - diag(c) v - kappa b (b . q + s + d),
         // or + b P for a nonlinear law.
         let law = self.law_force(state, stage, excitation);
-        // The load into the third work vector (free between steps), not the stepper's own: the
-        // energies measured before the next step keep reading the last step's (the same bits).
+        // The load, and the supports' share, ahead into their own vectors, not the stepper's: the
+        // energies measured before the next step keep reading the last step's where it is the
+        // same (the same bits), and the next step takes them ([`Self::refresh_load`]).
         let s = &self.system;
-        s.load_into(excitation, &mut self.w);
-        let load = &self.w;
+        s.load_into(excitation, &mut self.next_load);
+        s.support_load_into(excitation, &mut self.next_support_load);
+        self.next_excitation = Some(*excitation);
+        let load = &self.next_load;
         let bar = if let Some(law) = law {
             -law.force
         } else if stage.is_contact() {
