@@ -1155,8 +1155,8 @@ impl Stepper for ModalStepper {
         true
     }
 
-    fn tangent_step(&self, delta: &mut Kinematics, stage: Stage, dt: f64, work: &mut TangentWork) -> bool {
-        self.exact_tangent_step(delta, stage, dt, work)
+    fn tangent_step(&self, start: &Kinematics, delta: &mut Kinematics, stage: Stage, dt: f64, work: &mut TangentWork) -> bool {
+        self.exact_tangent_step(start, delta, stage, dt, work)
     }
 
     fn free_fourth_derivatives(&mut self, state: &Kinematics) -> Option<[f64; PROBES]> {
@@ -1448,8 +1448,9 @@ pub struct TangentWork {
 }
 
 impl ModalStepper {
-    /// Advances `delta`, a difference of two states (the derivative of the state times a
-    /// nudge), over the step of `dt` in `stage` that the stepper has just taken: the exact
+    /// Advances `start`, a difference of two states (the derivative of the state times a
+    /// nudge), into `delta` (of the same size: all of it written) over the step of `dt` in
+    /// `stage` that the stepper has just taken: the exact
     /// advance's very coefficients applied to `delta` under no load, no support offset and no
     /// static gap shift (they cancel in a difference), the bar's force in contact the cubic of
     /// its own difference. The exact step is affine in the state for a given stage and step,
@@ -1463,12 +1464,23 @@ impl ModalStepper {
     /// keeps of its steps changes (its dissipation, its force error, its coefficients' cache and
     /// hit counts). Returns false where there is no such tangent: the linear acceleration
     /// method, or a nonlinear contact law.
-    pub fn exact_tangent_step(&self, delta: &mut Kinematics, stage: Stage, dt: f64, work: &mut TangentWork) -> bool {
+    pub fn exact_tangent_step(
+        &self,
+        start: &Kinematics,
+        delta: &mut Kinematics,
+        stage: Stage,
+        dt: f64,
+        work: &mut TangentWork,
+    ) -> bool {
         let s = &self.system;
         if !self.exact || s.law.is_some() {
             return false;
         }
         let n = delta.displacement.len().min(s.omega2.len()).min(s.damping.len()).min(s.contact.len());
+        let sizes = |k: &Kinematics| [k.displacement.len(), k.velocity.len(), k.acceleration.len()];
+        if sizes(start) != sizes(delta) {
+            return false;
+        }
         let contact = stage.is_contact();
         let ready =
             |c: &ExactStage| c.dt == dt && c.columns[0].len() == n && (!contact || c.cubic_columns[0].len() == n);
@@ -1490,6 +1502,11 @@ impl ModalStepper {
                 (work.own.as_deref().expect("just set"), None)
             }
         };
+        if n < delta.displacement.len() {
+            // Coordinates beyond the modes' (none in a run's tangent) stay as they were.
+            delta.copy_from(start);
+        }
+        let (q0, v0) = (&start.displacement.as_slice()[..n], &start.velocity.as_slice()[..n]);
         let q = &mut delta.displacement.as_mut_slice()[..n];
         let v = &mut delta.velocity.as_mut_slice()[..n];
         let a = &mut delta.acceleration.as_mut_slice()[..n];
@@ -1499,7 +1516,7 @@ impl ModalStepper {
             b: &s.contact.as_slice()[..n],
         };
         if !contact {
-            free_tangent_advance(q, v, a, modes, &coefficients.columns);
+            free_tangent_advance((q0, v0), q, v, a, modes, &coefficients.columns);
             return true;
         }
         // `contact_step` with no load and no offset: the bar's force is k b^T delta q at both
@@ -1507,7 +1524,7 @@ impl ModalStepper {
         let k = s.bar_stiffness;
         let bar = coefficients.bar;
         let inv_dt = 1.0 / dt;
-        let [free_gap, free_rate, start_gap, start_rate] = tangent_contact_sums(q, v, modes.b, &coefficients.columns);
+        let [free_gap, free_rate, start_gap, start_rate] = tangent_contact_sums(q0, v0, modes.b, &coefficients.columns);
         let ramps = match ramp {
             Some((at, sums)) if *at == dt => *sums,
             Some((at, sums)) => {
@@ -1531,7 +1548,7 @@ impl ModalStepper {
         let (alpha, beta) = (p0_step - change, force_step - change);
         // Mode i's forcing per b_i: -P0 at the start, the chord's and the cubic's departure from it.
         let forcing = [-p0, (p0 - force - alpha) * inv_dt, 2.0 * alpha + beta, -(alpha + beta), -force];
-        contact_tangent_advance(q, v, a, modes, &coefficients.columns, &coefficients.cubic_columns, forcing);
+        contact_tangent_advance((q0, v0), q, v, a, modes, &coefficients.columns, &coefficients.cubic_columns, forcing);
         true
     }
 }
@@ -1548,15 +1565,23 @@ struct TangentModes<'a> {
 /// The tangent's exact step out of contact ([`ModalStepper::exact_tangent_step`]): under no
 /// force each mode's end is q(h) = C0 q0 + C1 v0, v(h) = C4 q0 + C5 v0 (the step's own columns;
 /// `free_exact_step`'s terms in f0 and r vanish), its acceleration the free equilibrium. In the
-/// CPU's widest vectors (no fused multiply-add: the same bits whichever runs).
+/// CPU's widest vectors (no fused multiply-add: the same bits whichever runs). From the start
+/// `(q0, v0)` into `q`, `v` and `a` (another state: the start stays as it was, no copy of it).
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn free_tangent_advance(q: &mut [f64], v: &mut [f64], a: &mut [f64], m: TangentModes, columns: &[Vec<f64>; 12]) {
+fn free_tangent_advance(
+    (q0, v0): (&[f64], &[f64]),
+    q: &mut [f64],
+    v: &mut [f64],
+    a: &mut [f64],
+    m: TangentModes,
+    columns: &[Vec<f64>; 12],
+) {
     let n = q.len();
-    let (v, a) = (&mut v[..n], &mut a[..n]);
+    let (q0, v0, v, a) = (&q0[..n], &v0[..n], &mut v[..n], &mut a[..n]);
     let (omega2, damping) = (&m.omega2[..n], &m.damping[..n]);
     let (c0, c1, c4, c5) = (&columns[0][..n], &columns[1][..n], &columns[4][..n], &columns[5][..n]);
     for i in 0..n {
-        let (q0, v0) = (q[i], v[i]);
+        let (q0, v0) = (q0[i], v0[i]);
         let q1 = c0[i] * q0 + c1[i] * v0;
         let v1 = c4[i] * q0 + c5[i] * v0;
         q[i] = q1;
@@ -1617,9 +1642,11 @@ fn response_dot(b: &[f64], [c0, c1]: [&[f64]; 2], q: &[f64], v: &[f64]) -> f64 {
 /// value, ramp per second, s^2 and s^3 coefficients, end value] (see
 /// [`ModalStepper::exact_tangent_step`]; `contact_advance`'s terms without the damping's work),
 /// its acceleration the end's equilibrium. In the CPU's widest vectors (no fused multiply-add:
-/// the same bits whichever runs).
+/// the same bits whichever runs). From the start `(q0, v0)` into `q`, `v` and `a`.
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+#[allow(clippy::too_many_arguments)]
 fn contact_tangent_advance(
+    (q0, v0): (&[f64], &[f64]),
     q: &mut [f64],
     v: &mut [f64],
     a: &mut [f64],
@@ -1629,13 +1656,13 @@ fn contact_tangent_advance(
     f: [f64; 5],
 ) {
     let n = q.len();
-    let (v, a) = (&mut v[..n], &mut a[..n]);
+    let (q0, v0, v, a) = (&q0[..n], &v0[..n], &mut v[..n], &mut a[..n]);
     let (omega2, damping, b) = (&m.omega2[..n], &m.damping[..n], &m.b[..n]);
     let c: [&[f64]; 8] = std::array::from_fn(|k| &columns[k][..n]);
     let cu: [&[f64]; 4] = std::array::from_fn(|k| &cubic[k][..n]);
     let [start, ramp, g2, g3, end] = f;
     for i in 0..n {
-        let (q0, v0) = (q[i], v[i]);
+        let (q0, v0) = (q0[i], v0[i]);
         let x = start * c[2][i] + ramp * c[3][i] + g2 * cu[0][i] + g3 * cu[1][i];
         let y = start * c[6][i] + ramp * c[7][i] + g2 * cu[2][i] + g3 * cu[3][i];
         let q1 = c[0][i] * q0 + c[1][i] * v0 + b[i] * x;
@@ -1897,15 +1924,15 @@ mod tests {
         };
         let mut kept = TangentWork::default();
         let (mut first, mut second, mut fresh) = (delta.clone(), delta.clone(), delta.clone());
-        assert!(stepper.exact_tangent_step(&mut first, Stage::Contact, dt, &mut kept));
-        assert!(stepper.exact_tangent_step(&mut second, Stage::Contact, dt, &mut kept));
-        assert!(stepper.exact_tangent_step(&mut fresh, Stage::Contact, dt, &mut TangentWork::default()));
+        assert!(stepper.exact_tangent_step(&delta, &mut first, Stage::Contact, dt, &mut kept));
+        assert!(stepper.exact_tangent_step(&delta, &mut second, Stage::Contact, dt, &mut kept));
+        assert!(stepper.exact_tangent_step(&delta, &mut fresh, Stage::Contact, dt, &mut TangentWork::default()));
         assert_eq!(bits(&first), bits(&second));
         assert_eq!(bits(&first), bits(&fresh));
         // A size the stepper never took: the tangent's own coefficients.
         let mut own = delta.clone();
         let unseen = 1.7e-5;
-        assert!(stepper.exact_tangent_step(&mut own, Stage::Free, unseen, &mut kept));
+        assert!(stepper.exact_tangent_step(&delta, &mut own, Stage::Free, unseen, &mut kept));
         let s = stepper.system();
         let scale = delta.displacement.amax() + delta.velocity.amax() / s.omega2.max().sqrt();
         for i in 0..n {
