@@ -1155,7 +1155,14 @@ impl Stepper for ModalStepper {
         true
     }
 
-    fn tangent_step(&self, start: &Kinematics, delta: &mut Kinematics, stage: Stage, dt: f64, work: &mut TangentWork) -> bool {
+    fn tangent_step(
+        &self,
+        start: &Kinematics,
+        delta: &mut Kinematics,
+        stage: Stage,
+        dt: f64,
+        work: &mut TangentWork,
+    ) -> bool {
         self.exact_tangent_step(start, delta, stage, dt, work)
     }
 
