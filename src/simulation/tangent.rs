@@ -408,19 +408,20 @@ impl<S: Stepper> Simulation<S> {
                 _ => {}
             }
         }
-        let result = self.state.result;
+        let result = &self.state.result;
         let (peaks, times) = (result.peaks.as_array(), self.state.peak_times.as_array());
         let previous_peaks = previous.peaks.as_array();
-        let step_values: [(f64, f64); 5] = std::array::from_fn(|k| match extremes {
-            Some(e) => (e[k].0, at(k, e[k].1)),
-            None => (peaks[k], d1[k]),
-        });
         for k in 0..5 {
             if peaks[k] != previous_peaks[k] {
                 r.whole[k] = (peaks[k], at(k, times[k]));
             }
         }
         if first_open {
+            // The step's largest values and their differences (the first contact's alone reads them).
+            let step_values: [(f64, f64); 5] = std::array::from_fn(|k| match extremes {
+                Some(e) => (e[k].0, at(k, e[k].1)),
+                None => (peaks[k], d1[k]),
+            });
             let now = self.state.first_contact.peaks.as_array();
             let before = first_before.0.as_array();
             let raising = result.contact || !r.seen_contact;
