@@ -1523,7 +1523,7 @@ impl ModalStepper {
             b: &s.contact.as_slice()[..n],
         };
         if !contact {
-            free_tangent_advance((q0, v0), q, v, a, modes, &coefficients.columns);
+            free_tangent_advance(q0, v0, q, v, a, modes, &coefficients.columns);
             return true;
         }
         // `contact_step` with no load and no offset: the bar's force is k b^T delta q at both
@@ -1555,7 +1555,7 @@ impl ModalStepper {
         let (alpha, beta) = (p0_step - change, force_step - change);
         // Mode i's forcing per b_i: -P0 at the start, the chord's and the cubic's departure from it.
         let forcing = [-p0, (p0 - force - alpha) * inv_dt, 2.0 * alpha + beta, -(alpha + beta), -force];
-        contact_tangent_advance((q0, v0), q, v, a, modes, &coefficients.columns, &coefficients.cubic_columns, forcing);
+        contact_tangent_advance(q0, v0, q, v, a, modes, &coefficients.columns, &coefficients.cubic_columns, forcing);
         true
     }
 }
@@ -1573,10 +1573,12 @@ struct TangentModes<'a> {
 /// force each mode's end is q(h) = C0 q0 + C1 v0, v(h) = C4 q0 + C5 v0 (the step's own columns;
 /// `free_exact_step`'s terms in f0 and r vanish), its acceleration the free equilibrium. In the
 /// CPU's widest vectors (no fused multiply-add: the same bits whichever runs). From the start
-/// `(q0, v0)` into `q`, `v` and `a` (another state: the start stays as it was, no copy of it).
+/// `q0`, `v0` into `q`, `v` and `a` (another state: the start stays as it was, no copy of it;
+/// each array an argument of its own, as [`ModeArrays`] says why).
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
 fn free_tangent_advance(
-    (q0, v0): (&[f64], &[f64]),
+    q0: &[f64],
+    v0: &[f64],
     q: &mut [f64],
     v: &mut [f64],
     a: &mut [f64],
@@ -1649,11 +1651,12 @@ fn response_dot(b: &[f64], [c0, c1]: [&[f64]; 2], q: &[f64], v: &[f64]) -> f64 {
 /// value, ramp per second, s^2 and s^3 coefficients, end value] (see
 /// [`ModalStepper::exact_tangent_step`]; `contact_advance`'s terms without the damping's work),
 /// its acceleration the end's equilibrium. In the CPU's widest vectors (no fused multiply-add:
-/// the same bits whichever runs). From the start `(q0, v0)` into `q`, `v` and `a`.
+/// the same bits whichever runs). From the start `q0`, `v0` into `q`, `v` and `a`.
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
 #[allow(clippy::too_many_arguments)]
 fn contact_tangent_advance(
-    (q0, v0): (&[f64], &[f64]),
+    q0: &[f64],
+    v0: &[f64],
     q: &mut [f64],
     v: &mut [f64],
     a: &mut [f64],
