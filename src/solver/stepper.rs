@@ -1456,7 +1456,7 @@ pub struct TangentWork {
 
 impl ModalStepper {
     /// Advances `start`, a difference of two states (the derivative of the state times a
-    /// nudge), into `delta` (of the same size: all of it written) over the step of `dt` in
+    /// nudge), into `delta` (both of the modes' size: all of it written) over the step of `dt` in
     /// `stage` that the stepper has just taken: the exact
     /// advance's very coefficients applied to `delta` under no load, no support offset and no
     /// static gap shift (they cancel in a difference), the bar's force in contact the cubic of
@@ -1484,10 +1484,6 @@ impl ModalStepper {
             return false;
         }
         let n = delta.displacement.len().min(s.omega2.len()).min(s.damping.len()).min(s.contact.len());
-        let sizes = |k: &Kinematics| [k.displacement.len(), k.velocity.len(), k.acceleration.len()];
-        if sizes(start) != sizes(delta) {
-            return false;
-        }
         let contact = stage.is_contact();
         let ready =
             |c: &ExactStage| c.dt == dt && c.columns[0].len() == n && (!contact || c.cubic_columns[0].len() == n);
@@ -1509,10 +1505,6 @@ impl ModalStepper {
                 (work.own.as_deref().expect("just set"), None)
             }
         };
-        if n < delta.displacement.len() {
-            // Coordinates beyond the modes' (none in a run's tangent) stay as they were.
-            delta.copy_from(start);
-        }
         let (q0, v0) = (&start.displacement.as_slice()[..n], &start.velocity.as_slice()[..n]);
         let q = &mut delta.displacement.as_mut_slice()[..n];
         let v = &mut delta.velocity.as_mut_slice()[..n];
