@@ -1010,7 +1010,7 @@ impl<S: Stepper> Simulation<S> {
         let mut extremes = [(0.0, 0.0); 5];
         for (index, (probe, scale)) in outputs.into_iter().enumerate() {
             let k = probe as usize;
-            let floor = floors.map(|f| f[index]);
+            let floor = floors.as_ref().map(|f| f[index]);
             if let (Some(floor), None) = (floor, law) {
                 let reach =
                     (p0[k].abs().max(end[k].abs()) + 4.0 / 27.0 * dt * (r0[k].abs() + r1[k].abs())) * scale.abs();

@@ -121,7 +121,8 @@ pub(super) struct Tangent<W> {
     delta: Kinematics,
     work: W,
     record: Record,
-    /// The state and record before the latest step (a step left untaken is undone).
+    /// The state and record before the latest step (a step left untaken is undone; the step's
+    /// start, from which [`Simulation::tangent_advance`] steps `delta`).
     before: Option<(Kinematics, Record)>,
     /// Per envelope group (stations' order), per kept mode: the largest |row| / divisor over its
     /// stations; then the largest |correction row of the contact load| / divisor.
@@ -132,9 +133,10 @@ pub(super) struct Tangent<W> {
     groups: [std::ops::Range<usize>; 4],
     /// Why the tangent cannot stand for the twin (a step it could not follow).
     broken: bool,
-    /// The latest step's start and end measures, between [`Simulation::tangent_advance`] and
-    /// [`Simulation::tangent_after_step`].
-    taken: Option<(Measure, Measure)>,
+    /// The latest step was advanced and not yet followed: between [`Simulation::tangent_advance`]
+    /// and [`Simulation::tangent_after_step`] (its start's measure is `before`'s, its end's
+    /// `record`'s).
+    advanced: bool,
 }
 
 impl<S: Stepper> Simulation<S> {
@@ -199,7 +201,7 @@ impl<S: Stepper> Simulation<S> {
             envelope_loads,
             groups,
             broken: false,
-            taken: None,
+            advanced: false,
         };
         tangent.record.measure = self.tangent_measure(&tangent, &tangent.delta);
         let (values, _) = self.tangent_outputs(&tangent.record.measure, Stage::Free);
@@ -308,24 +310,25 @@ impl<S: Stepper> Simulation<S> {
                 }
             }
         }
+        // The start kept as `before`: its difference by a swap (the step writes the end into the
+        // other state, all of it), its record by a copy.
         match &mut t.before {
             Some((delta, record)) => {
-                delta.copy_from(&t.delta);
+                std::mem::swap(delta, &mut t.delta);
                 *record = t.record;
             }
             None => t.before = Some((t.delta.clone(), t.record)),
         }
         let h = seconds_of(step_ns);
-        let start = t.record.measure;
-        if !self.stepper.tangent_step(&mut t.delta, stage, h, &mut t.work) {
+        let start = &t.before.as_ref().expect("just kept").0;
+        if !self.stepper.tangent_step(start, &mut t.delta, stage, h, &mut t.work) {
             t.broken = true;
             self.tangent = Some(t);
             return;
         }
-        let end = self.tangent_measure(&t, &t.delta);
-        t.record.measure = end;
+        t.record.measure = self.tangent_measure(&t, &t.delta);
         t.record.time_ns = start_ns + step_ns;
-        t.taken = Some((start, end));
+        t.advanced = true;
         self.tangent = Some(t);
     }
 
@@ -343,18 +346,22 @@ impl<S: Stepper> Simulation<S> {
         first_before: (Peaks, bool),
     ) {
         let Some(mut t) = self.tangent.take() else { return };
-        let taken = t.taken.take();
-        let Some((start, end)) = taken.filter(|_| !t.broken && t.record.time_ns == previous.time_ns + step_ns) else {
+        let advanced = std::mem::take(&mut t.advanced);
+        let start = t.before.as_ref().map(|(_, record)| &record.measure);
+        let Some(start) = start.filter(|_| advanced && !t.broken && t.record.time_ns == previous.time_ns + step_ns)
+        else {
             t.broken = true;
             self.tangent = Some(t);
             return;
         };
+        let end = &t.record.measure;
         let h = seconds_of(step_ns);
         // The start's outputs in this step's stage (its q and v are the measure's).
-        let (d0, r0) = self.tangent_outputs(&start, stage);
-        let (d1, r1) = self.tangent_outputs(&end, stage);
-        let start_bounds = self.envelope_bounds(&t, &start, stage);
-        let end_bounds = self.envelope_bounds(&t, &end, stage);
+        let (d0, r0) = self.tangent_outputs(start, stage);
+        let (d1, r1) = self.tangent_outputs(end, stage);
+        let start_bounds = self.envelope_bounds(&t, start, stage);
+        let end_bounds = self.envelope_bounds(&t, end, stage);
+        let dgap = end.q[Probe::Gap as usize];
         let t0 = seconds_of(previous.time_ns);
         let at = |k: usize, time: f64| {
             let s = ((time - t0) / h).clamp(0.0, 1.0);
@@ -401,19 +408,20 @@ impl<S: Stepper> Simulation<S> {
                 _ => {}
             }
         }
-        let result = self.state.result;
+        let result = &self.state.result;
         let (peaks, times) = (result.peaks.as_array(), self.state.peak_times.as_array());
         let previous_peaks = previous.peaks.as_array();
-        let step_values: [(f64, f64); 5] = std::array::from_fn(|k| match extremes {
-            Some(e) => (e[k].0, at(k, e[k].1)),
-            None => (peaks[k], d1[k]),
-        });
         for k in 0..5 {
             if peaks[k] != previous_peaks[k] {
                 r.whole[k] = (peaks[k], at(k, times[k]));
             }
         }
         if first_open {
+            // The step's largest values and their differences (the first contact's alone reads them).
+            let step_values: [(f64, f64); 5] = std::array::from_fn(|k| match extremes {
+                Some(e) => (e[k].0, at(k, e[k].1)),
+                None => (peaks[k], d1[k]),
+            });
             let now = self.state.first_contact.peaks.as_array();
             let before = first_before.0.as_array();
             let raising = result.contact || !r.seen_contact;
@@ -443,7 +451,6 @@ impl<S: Stepper> Simulation<S> {
         // A step end close to the threshold in the stage it goes on in: a graze.
         let gap = self.state.gap;
         if contact::stage(gap) == stage {
-            let dgap = end.q[Probe::Gap as usize];
             let margin = (gap + contact::GAP_TOLERANCE).abs();
             let graze = if dgap == 0.0 { 0.0 } else { dgap.abs() / margin };
             r.graze = r.graze.max(graze);
@@ -576,12 +583,21 @@ fn envelope_sums(rows: &[[f64; 4]], q: &[f64], v: &[f64]) -> ([f64; 4], [f64; 4]
     let n = q.len().min(v.len()).min(rows.len());
     let (rows, q, v) = (&rows[..n], &q[..n], &v[..n]);
     let (mut envelope_q, mut envelope_v) = ([0.0; 4], [0.0; 4]);
-    for i in 0..n {
-        let (a, b, row) = (q[i].abs(), v[i].abs(), &rows[i]);
+    let mut add = |row: &[f64; 4], a: f64, b: f64| {
         for g in 0..4 {
             envelope_q[g] += row[g] * a;
             envelope_v[g] += row[g] * b;
         }
+    };
+    // Two modes an iteration (in their order: the same sums), half the loop's own instructions.
+    let (pairs, q_pairs, v_pairs) = (rows.chunks_exact(2), q.chunks_exact(2), v.chunks_exact(2));
+    let rest = (pairs.remainder(), q_pairs.remainder(), v_pairs.remainder());
+    for ((row, q), v) in pairs.zip(q_pairs).zip(v_pairs) {
+        add(&row[0], q[0].abs(), v[0].abs());
+        add(&row[1], q[1].abs(), v[1].abs());
+    }
+    for ((row, q), v) in rest.0.iter().zip(rest.1).zip(rest.2) {
+        add(row, q.abs(), v.abs());
     }
     (envelope_q, envelope_v)
 }

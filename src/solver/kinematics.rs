@@ -203,11 +203,18 @@ pub trait Stepper {
         false
     }
 
-    /// Advances a difference of two states over the step just taken (see
-    /// the modal stepper's `exact_tangent_step`); false where the stepper has no such
-    /// tangent (the default: the twin runs instead).
-    fn tangent_step(&self, delta: &mut Kinematics, stage: Stage, dt: f64, work: &mut Self::TangentWork) -> bool {
-        let _ = (delta, stage, dt, work);
+    /// Advances a difference of two states, `start`, over the step just taken into `delta` (of
+    /// the same size; see the modal stepper's `exact_tangent_step`); false where the stepper has
+    /// no such tangent (the default: the twin runs instead).
+    fn tangent_step(
+        &self,
+        start: &Kinematics,
+        delta: &mut Kinematics,
+        stage: Stage,
+        dt: f64,
+        work: &mut Self::TangentWork,
+    ) -> bool {
+        let _ = (start, delta, stage, dt, work);
         false
     }
 }

@@ -56,6 +56,13 @@ pub struct ModalStepper {
     /// The static correction's gap shift b^T R f_ext for `load_excitation`, m (0 for a full basis).
     shift: f64,
     load_excitation: Option<Excitation>,
+    /// The modal load and the supports' load of `next_excitation`, computed ahead of the steps
+    /// under it ([`Stepper::equilibrium_acceleration`] where the load jumps: a sea's record
+    /// row): the next step's [`ModalStepper::refresh_load`] takes them instead of computing
+    /// them again, and a measurement under it reads the supports' load from here.
+    next_load: DVector<f64>,
+    next_support_load: DVector<f64>,
+    next_excitation: Option<Excitation>,
     /// Work vectors: z of Eq. (8) and D^-1 f.
     z: DVector<f64>,
     y: DVector<f64>,
@@ -318,6 +325,9 @@ impl ModalStepper {
             support_load: DVector::zeros(n),
             shift: 0.0,
             load_excitation: None,
+            next_load: DVector::zeros(n),
+            next_support_load: DVector::zeros(n),
+            next_excitation: None,
             z: DVector::zeros(n),
             y: DVector::zeros(n),
             w: DVector::zeros(n),
@@ -608,12 +618,18 @@ impl StageInverse {
 impl ModalStepper {
     /// The modal load F = Phi^T (F_g + F_ext + sum_j a_j x_j), the supports' share and the
     /// static correction's gap shift of `excitation`, computed anew only when the tip forces or
-    /// the supports' accelerations changed, into the stepper's own vectors.
+    /// the supports' accelerations changed, into the stepper's own vectors (or taken from those
+    /// computed ahead for it: `next_load`, the same bits).
     fn refresh_load(&mut self, excitation: &Excitation) {
         if !self.load_excitation.is_some_and(|e| e.same_load(excitation)) {
             let s = &self.system;
-            s.load_into(excitation, &mut self.load);
-            s.support_load_into(excitation, &mut self.support_load);
+            if self.next_excitation.take().is_some_and(|e| e.same_load(excitation)) {
+                std::mem::swap(&mut self.load, &mut self.next_load);
+                std::mem::swap(&mut self.support_load, &mut self.next_support_load);
+            } else {
+                s.load_into(excitation, &mut self.load);
+                s.support_load_into(excitation, &mut self.support_load);
+            }
             self.shift = s.correction.gap_shift(excitation);
             self.load_excitation = Some(*excitation);
         }
@@ -1035,6 +1051,8 @@ impl ModalStepper {
             // another instant: a step's start, an output time).
             e.inertial_potential = if self.load_excitation.is_some_and(|l| l.same_load(excitation)) {
                 -dot(&self.support_load.as_slice()[..n], q)
+            } else if self.next_excitation.is_some_and(|l| l.same_load(excitation)) {
+                -self.next_support_load.dot(&state.displacement)
             } else {
                 -s.support_load(excitation).dot(&state.displacement)
             };
@@ -1135,8 +1153,15 @@ impl Stepper for ModalStepper {
         true
     }
 
-    fn tangent_step(&self, delta: &mut Kinematics, stage: Stage, dt: f64, work: &mut TangentWork) -> bool {
-        self.exact_tangent_step(delta, stage, dt, work)
+    fn tangent_step(
+        &self,
+        start: &Kinematics,
+        delta: &mut Kinematics,
+        stage: Stage,
+        dt: f64,
+        work: &mut TangentWork,
+    ) -> bool {
+        self.exact_tangent_step(start, delta, stage, dt, work)
     }
 
     fn free_fourth_derivatives(&mut self, state: &Kinematics) -> Option<[f64; PROBES]> {
@@ -1161,11 +1186,14 @@ impl Stepper for ModalStepper {
         // In modal coordinates M = I: a = F - diag(omega^2) q - diag(c) v - kappa b (b . q + s + d),
         // or + b P for a nonlinear law.
         let law = self.law_force(state, stage, excitation);
-        // The load into the third work vector (free between steps), not the stepper's own: the
-        // energies measured before the next step keep reading the last step's (the same bits).
+        // The load, and the supports' share, ahead into their own vectors, not the stepper's: the
+        // energies measured before the next step keep reading the last step's where it is the
+        // same (the same bits), and the next step takes them ([`Self::refresh_load`]).
         let s = &self.system;
-        s.load_into(excitation, &mut self.w);
-        let load = &self.w;
+        s.load_into(excitation, &mut self.next_load);
+        s.support_load_into(excitation, &mut self.next_support_load);
+        self.next_excitation = Some(*excitation);
+        let load = &self.next_load;
         let bar = if let Some(law) = law {
             -law.force
         } else if stage.is_contact() {
@@ -1475,8 +1503,9 @@ pub struct TangentWork {
 }
 
 impl ModalStepper {
-    /// Advances `delta`, a difference of two states (the derivative of the state times a
-    /// nudge), over the step of `dt` in `stage` that the stepper has just taken: the exact
+    /// Advances `start`, a difference of two states (the derivative of the state times a
+    /// nudge), into `delta` (both of the modes' size: all of it written) over the step of `dt` in
+    /// `stage` that the stepper has just taken: the exact
     /// advance's very coefficients applied to `delta` under no load, no support offset and no
     /// static gap shift (they cancel in a difference), the bar's force in contact the cubic of
     /// its own difference. The exact step is affine in the state for a given stage and step,
@@ -1490,7 +1519,14 @@ impl ModalStepper {
     /// keeps of its steps changes (its dissipation, its force error, its coefficients' cache and
     /// hit counts). Returns false where there is no such tangent: the linear acceleration
     /// method, or a nonlinear contact law.
-    pub fn exact_tangent_step(&self, delta: &mut Kinematics, stage: Stage, dt: f64, work: &mut TangentWork) -> bool {
+    pub fn exact_tangent_step(
+        &self,
+        start: &Kinematics,
+        delta: &mut Kinematics,
+        stage: Stage,
+        dt: f64,
+        work: &mut TangentWork,
+    ) -> bool {
         let s = &self.system;
         if !self.exact || s.law.is_some() {
             return false;
@@ -1517,6 +1553,7 @@ impl ModalStepper {
                 (work.own.as_deref().expect("just set"), None)
             }
         };
+        let (q0, v0) = (&start.displacement.as_slice()[..n], &start.velocity.as_slice()[..n]);
         let q = &mut delta.displacement.as_mut_slice()[..n];
         let v = &mut delta.velocity.as_mut_slice()[..n];
         let a = &mut delta.acceleration.as_mut_slice()[..n];
@@ -1526,7 +1563,7 @@ impl ModalStepper {
             b: &s.contact.as_slice()[..n],
         };
         if !contact {
-            free_tangent_advance(q, v, a, modes, &coefficients.columns);
+            free_tangent_advance(q0, v0, q, v, a, modes, &coefficients.columns);
             return true;
         }
         // `contact_step` with no load and no offset: the bar's force is k b^T delta q at both
@@ -1534,7 +1571,7 @@ impl ModalStepper {
         let k = s.bar_stiffness;
         let bar = coefficients.bar;
         let inv_dt = 1.0 / dt;
-        let [free_gap, free_rate, start_gap, start_rate] = tangent_contact_sums(q, v, modes.b, &coefficients.columns);
+        let [free_gap, free_rate, start_gap, start_rate] = tangent_contact_sums(q0, v0, modes.b, &coefficients.columns);
         let ramps = match ramp {
             Some((at, sums)) if *at == dt => *sums,
             Some((at, sums)) => {
@@ -1558,7 +1595,7 @@ impl ModalStepper {
         let (alpha, beta) = (p0_step - change, force_step - change);
         // Mode i's forcing per b_i: -P0 at the start, the chord's and the cubic's departure from it.
         let forcing = [-p0, (p0 - force - alpha) * inv_dt, 2.0 * alpha + beta, -(alpha + beta), -force];
-        contact_tangent_advance(q, v, a, modes, &coefficients.columns, &coefficients.cubic_columns, forcing);
+        contact_tangent_advance(q0, v0, q, v, a, modes, &coefficients.columns, &coefficients.cubic_columns, forcing);
         true
     }
 }
@@ -1575,15 +1612,25 @@ struct TangentModes<'a> {
 /// The tangent's exact step out of contact ([`ModalStepper::exact_tangent_step`]): under no
 /// force each mode's end is q(h) = C0 q0 + C1 v0, v(h) = C4 q0 + C5 v0 (the step's own columns;
 /// `free_exact_step`'s terms in f0 and r vanish), its acceleration the free equilibrium. In the
-/// CPU's widest vectors (no fused multiply-add: the same bits whichever runs).
+/// CPU's widest vectors (no fused multiply-add: the same bits whichever runs). From the start
+/// `q0`, `v0` into `q`, `v` and `a` (another state: the start stays as it was, no copy of it;
+/// each array an argument of its own, as [`ModeArrays`] says why).
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn free_tangent_advance(q: &mut [f64], v: &mut [f64], a: &mut [f64], m: TangentModes, columns: &[Vec<f64>; 12]) {
+fn free_tangent_advance(
+    q0: &[f64],
+    v0: &[f64],
+    q: &mut [f64],
+    v: &mut [f64],
+    a: &mut [f64],
+    m: TangentModes,
+    columns: &[Vec<f64>; 12],
+) {
     let n = q.len();
-    let (v, a) = (&mut v[..n], &mut a[..n]);
+    let (q0, v0, v, a) = (&q0[..n], &v0[..n], &mut v[..n], &mut a[..n]);
     let (omega2, damping) = (&m.omega2[..n], &m.damping[..n]);
     let (c0, c1, c4, c5) = (&columns[0][..n], &columns[1][..n], &columns[4][..n], &columns[5][..n]);
     for i in 0..n {
-        let (q0, v0) = (q[i], v[i]);
+        let (q0, v0) = (q0[i], v0[i]);
         let q1 = c0[i] * q0 + c1[i] * v0;
         let v1 = c4[i] * q0 + c5[i] * v0;
         q[i] = q1;
@@ -1644,9 +1691,12 @@ fn response_dot(b: &[f64], [c0, c1]: [&[f64]; 2], q: &[f64], v: &[f64]) -> f64 {
 /// value, ramp per second, s^2 and s^3 coefficients, end value] (see
 /// [`ModalStepper::exact_tangent_step`]; `contact_advance`'s terms without the damping's work),
 /// its acceleration the end's equilibrium. In the CPU's widest vectors (no fused multiply-add:
-/// the same bits whichever runs).
+/// the same bits whichever runs). From the start `q0`, `v0` into `q`, `v` and `a`.
 #[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+#[allow(clippy::too_many_arguments)]
 fn contact_tangent_advance(
+    q0: &[f64],
+    v0: &[f64],
     q: &mut [f64],
     v: &mut [f64],
     a: &mut [f64],
@@ -1656,13 +1706,13 @@ fn contact_tangent_advance(
     f: [f64; 5],
 ) {
     let n = q.len();
-    let (v, a) = (&mut v[..n], &mut a[..n]);
+    let (q0, v0, v, a) = (&q0[..n], &v0[..n], &mut v[..n], &mut a[..n]);
     let (omega2, damping, b) = (&m.omega2[..n], &m.damping[..n], &m.b[..n]);
     let c: [&[f64]; 8] = std::array::from_fn(|k| &columns[k][..n]);
     let cu: [&[f64]; 4] = std::array::from_fn(|k| &cubic[k][..n]);
     let [start, ramp, g2, g3, end] = f;
     for i in 0..n {
-        let (q0, v0) = (q[i], v[i]);
+        let (q0, v0) = (q0[i], v0[i]);
         let x = start * c[2][i] + ramp * c[3][i] + g2 * cu[0][i] + g3 * cu[1][i];
         let y = start * c[6][i] + ramp * c[7][i] + g2 * cu[2][i] + g3 * cu[3][i];
         let q1 = c[0][i] * q0 + c[1][i] * v0 + b[i] * x;
@@ -1924,15 +1974,15 @@ mod tests {
         };
         let mut kept = TangentWork::default();
         let (mut first, mut second, mut fresh) = (delta.clone(), delta.clone(), delta.clone());
-        assert!(stepper.exact_tangent_step(&mut first, Stage::Contact, dt, &mut kept));
-        assert!(stepper.exact_tangent_step(&mut second, Stage::Contact, dt, &mut kept));
-        assert!(stepper.exact_tangent_step(&mut fresh, Stage::Contact, dt, &mut TangentWork::default()));
+        assert!(stepper.exact_tangent_step(&delta, &mut first, Stage::Contact, dt, &mut kept));
+        assert!(stepper.exact_tangent_step(&delta, &mut second, Stage::Contact, dt, &mut kept));
+        assert!(stepper.exact_tangent_step(&delta, &mut fresh, Stage::Contact, dt, &mut TangentWork::default()));
         assert_eq!(bits(&first), bits(&second));
         assert_eq!(bits(&first), bits(&fresh));
         // A size the stepper never took: the tangent's own coefficients.
         let mut own = delta.clone();
         let unseen = 1.7e-5;
-        assert!(stepper.exact_tangent_step(&mut own, Stage::Free, unseen, &mut kept));
+        assert!(stepper.exact_tangent_step(&delta, &mut own, Stage::Free, unseen, &mut kept));
         let s = stepper.system();
         let scale = delta.displacement.amax() + delta.velocity.amax() / s.omega2.max().sqrt();
         for i in 0..n {
