@@ -1809,6 +1809,7 @@ impl<S: Stepper> Simulation<S> {
                     .step(u64::MAX, false)
                     .and_then(|_| self.record_samples(recorder, &saved.0, self.output.time_ns, &instants, peaks));
                 (self.state, self.backup, self.step_end) = saved;
+                self.envelope_work.forget();
                 self.sub_impacts.truncate(saved_impacts.0);
                 if let (Some(last), Some(kept)) = (self.sub_impacts.last_mut(), saved_impacts.1) {
                     *last = kept;
@@ -1851,6 +1852,7 @@ impl<S: Stepper> Simulation<S> {
             linear_acceleration_within(k0, k1, dt, tau)
         });
         (self.state, self.backup) = saved;
+        self.envelope_work.forget();
         kinematics
     }
 
@@ -1894,6 +1896,9 @@ impl<S: Stepper> Simulation<S> {
                     // The point falls inside this step: interpolate, and leave the step untaken.
                     (self.output, self.output_peak_times) = self.interpolate(&saved, target_ns, stage);
                     self.state = saved;
+                    // The envelope's kept peaks may be the untaken step's: taken again from the
+                    // restored state's running values.
+                    self.envelope_work.forget();
                     self.sub_impacts.truncate(saved_impacts.0);
                     if let (Some(last), Some(kept)) = (self.sub_impacts.last_mut(), saved_impacts.1) {
                         *last = kept;
@@ -2976,5 +2981,29 @@ mod tests {
         // Settled once: a second call changes nothing.
         settled.settle_details();
         assert_eq!(detailed.state(), settled.state());
+    }
+
+    /// A step left untaken at a communication point inside it leaves no peak of its own in the
+    /// peaks-only envelope's kept peaks (which skip stations): after each point they are
+    /// forgotten or those of the restored state's running values. The default scenario through
+    /// its first contacts, a point every 37 us (most inside a step, many in contact).
+    #[test]
+    fn an_untaken_step_leaves_the_kept_peaks_to_the_restored_state() {
+        let scenario = Scenario { duration: 0.1, ..Scenario::default() };
+        let mut sim = Simulation::new(&scenario).unwrap();
+        sim.set_envelope_scope(EnvelopeScope::Peaks);
+        let groups = crate::solver::envelope::groups(&sim.model);
+        let mut untaken = 0;
+        for target in (1..).map(|k| k * 37_000).take_while(|&t| t <= scenario.duration_ns()) {
+            sim.advance_outputs_to(target, &mut NullRecorder, false).unwrap();
+            untaken += u32::from(sim.state.result.time_ns < target);
+            let Some(peaks) = sim.envelope_work.peaks() else { continue };
+            for (g, peak) in peaks.iter().enumerate() {
+                let envelope = &sim.state.envelope;
+                let largest = (0..envelope.len()).filter(|&k| groups[k] as usize == g).map(|k| envelope[k]);
+                assert_eq!(peak.to_bits(), largest.fold(0.0, f64::max).to_bits(), "{target} ns, envelope {g}");
+            }
+        }
+        assert!(untaken > 1000, "{untaken} steps left untaken");
     }
 }

@@ -252,10 +252,10 @@ impl EnvelopeWork {
         self.scope
     }
 
-    /// Each envelope's peak, Pa ([`groups`]' order), where the peaks-only scope keeps it: never
-    /// below the largest running value of its stations, and above it only after a step left
-    /// untaken raised it and the state went back. None with every station's scope, or until a
-    /// step takes it ([`Self::forget`]).
+    /// Each envelope's peak, Pa ([`groups`]' order), where the peaks-only scope keeps it: the
+    /// largest running value of its stations (a state restored forgets it, [`Self::forget`], or a
+    /// step left untaken would leave its own peaks to skip stations by). None with every
+    /// station's scope, or until a step takes it.
     pub fn peaks(&self) -> Option<&[f64; 4]> {
         (self.scope == EnvelopeScope::Peaks && self.summarised).then_some(&self.peak)
     }
@@ -1263,6 +1263,48 @@ mod tests {
         let work = &works[1];
         assert!(work.skipped > work.asked / 10 && work.skipped < work.asked, "{} of {}", work.skipped, work.asked);
         assert_eq!(works[0].asked, 0);
+    }
+
+    /// A restored state forgets the peaks-only scope's kept peaks ([`EnvelopeWork::forget`]): a
+    /// step left untaken raised them ten thousand times above the restored running values, and a
+    /// later step three times above them must still raise each envelope's peak to its largest
+    /// station's value (that station examined again, not skipped against the untaken step's
+    /// peaks), the kept peaks then those of the running values. Converged printed rung, a random
+    /// state.
+    #[test]
+    fn a_forgotten_peak_leaves_no_station_skipped_by_an_untaken_step() {
+        let mut uniform = uniform(4343);
+        let resolved = crate::discretise::printed(&Scenario::default()).unwrap();
+        let model = Model::new(&resolved).unwrap();
+        let system = ModalSystem::new(&model).unwrap().for_run(&model).unwrap();
+        let divisors: Vec<f64> = model.stations.all().map(|s| s.divisor).collect();
+        let rows = StationRows::new(&system, &divisors, &vec![0.0; divisors.len()], groups(&model));
+        let q: Vec<f64> = (0..system.dofs()).map(|i| (uniform() - 0.5) / (1.0 + system.omega2[i])).collect();
+        let loads: [f64; LOADS] = std::array::from_fn(|_| 1e-3 * (uniform() - 0.5));
+        let scaled = |s: f64| (q.iter().map(|x| s * x).collect::<Vec<f64>>(), loads.map(|c| s * c));
+        let mut work = EnvelopeWork::default();
+        work.set_scope(EnvelopeScope::Peaks);
+        let (mut max, mut times) = (vec![0.0; rows.len()], vec![0.0; rows.len()]);
+        rows.observe(&mut work, &q, Some(&loads), 1.0, Running { max: &mut max, times: &mut times });
+        let saved = (max.clone(), times.clone());
+        let (untaken, untaken_loads) = scaled(1e4);
+        rows.observe(&mut work, &untaken, Some(&untaken_loads), 2.0, Running { max: &mut max, times: &mut times });
+        (max, times) = saved;
+        work.forget();
+        assert_eq!(work.peaks(), None);
+        let (later, later_loads) = scaled(3.0);
+        rows.observe(&mut work, &later, Some(&later_loads), 2.0, Running { max: &mut max, times: &mut times });
+        let mut values = vec![0.0; rows.len()];
+        rows.stresses(&later, Some(&later_loads), &mut values);
+        let groups = groups(&model);
+        let largest = |g: usize, of: &[f64]| {
+            (0..of.len()).filter(|&k| groups[k] as usize == g).map(|k| of[k].abs()).fold(0.0, f64::max)
+        };
+        let own = work.peaks().expect("taken again by the step");
+        for (g, peak) in own.iter().enumerate() {
+            assert_eq!(largest(g, &max).to_bits(), largest(g, &values).to_bits(), "envelope {g}'s stations");
+            assert_eq!(peak.to_bits(), largest(g, &max).to_bits(), "envelope {g}'s kept peak");
+        }
     }
 
     /// A log's per-step stresses are the envelope's values: their running largest |value| over

@@ -163,11 +163,12 @@ impl BeamRows {
     /// |R_ra| |c_a| (O(modes)). Each is the sum of its own terms in order, as a pass of its own
     /// would take it (from -0.0, as `Iterator::sum`).
     fn bounds(&self, q: &[f64], loads: Option<&[f64; LOADS]>) -> [f64; 2] {
-        let mut bound = [-0.0; 2];
-        for (b, q) in self.bound.iter().zip(q) {
-            let q = q.abs();
-            bound = [bound[0] + b[0] * q, bound[1] + b[1] * q];
-        }
+        self.add_correction_bounds(coordinate_bounds(&self.bound, q), loads)
+    }
+
+    /// `bound` (the coordinates' terms) plus the load coefficients' `loads`, as
+    /// [`Self::bounds`] adds them.
+    fn add_correction_bounds(&self, mut bound: [f64; 2], loads: Option<&[f64; LOADS]>) -> [f64; 2] {
         if let Some(c) = loads {
             let mut correction = [-0.0; 2];
             for (b, c) in self.correction_bound.iter().zip(c) {
@@ -178,6 +179,44 @@ impl BeamRows {
         }
         bound
     }
+}
+
+/// The coordinates' terms of [`BeamRows::bounds`]: sum_j bound_j |q_j| for the deflections and
+/// the rotations side by side, each from -0.0 in order.
+fn coordinate_bounds(bound: &[[f64; 2]], q: &[f64]) -> [f64; 2] {
+    let mut sums = [-0.0; 2];
+    for (b, q) in bound.iter().zip(q) {
+        let q = q.abs();
+        sums = [sums[0] + b[0] * q, sums[1] + b[1] * q];
+    }
+    sums
+}
+
+/// [`coordinate_bounds`] of both beams (`lower`, `ql`; `upper`, `qu`) at once, in the CPU's
+/// widest vectors: their four sums side by side over the coordinates both beams have, then each
+/// beam's own on; each sum's terms in the same order, to the bit.
+#[multiversion::multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn both_coordinate_bounds(lower: &[[f64; 2]], ql: &[f64], upper: &[[f64; 2]], qu: &[f64]) -> [[f64; 2]; 2] {
+    let (n, m) = (lower.len().min(ql.len()), upper.len().min(qu.len()));
+    let common = n.min(m);
+    let mut sums = [-0.0f64; 4];
+    for (((l, a), u), b) in lower[..common].iter().zip(&ql[..common]).zip(&upper[..common]).zip(&qu[..common]) {
+        let (a, b) = (a.abs(), b.abs());
+        let (bounds, weights) = ([l[0], l[1], u[0], u[1]], [a, a, b, b]);
+        for i in 0..4 {
+            sums[i] += bounds[i] * weights[i];
+        }
+    }
+    let mut out = [[sums[0], sums[1]], [sums[2], sums[3]]];
+    for (out, (bound, q)) in
+        out.iter_mut().zip([(&lower[common..n], &ql[common..n]), (&upper[common..m], &qu[common..m])])
+    {
+        for (b, q) in bound.iter().zip(q) {
+            let q = q.abs();
+            *out = [out[0] + b[0] * q, out[1] + b[1] * q];
+        }
+    }
+    out
 }
 
 /// Every node's deflection and rotation rows of both beams in the run's coordinates.
@@ -232,12 +271,24 @@ impl RangeRows {
     /// `loads` (None: a full basis), at `time` s.
     pub fn observe(&self, q: &[f64], loads: Option<&[f64; LOADS]>, time: f64, range: &mut ModelRange) {
         let [lower, upper] = &self.beams;
-        for (beam, deflection, rotation) in [
-            (lower, &mut range.lower_deflection, &mut range.lower_rotation),
-            (upper, &mut range.upper_deflection, &mut range.upper_rotation),
-        ] {
-            let Some(q) = q.get(beam.coordinates.clone()) else { continue };
-            let [deflection_bound, rotation_bound] = beam.bounds(q, loads);
+        let coordinates = [lower, upper].map(|beam| q.get(beam.coordinates.clone()));
+        // Both beams' bounds in one pass where both have coordinates (each its own sums).
+        let bounds = match coordinates {
+            [Some(ql), Some(qu)] => {
+                let [l, u] = both_coordinate_bounds(&lower.bound, ql, &upper.bound, qu);
+                [Some(lower.add_correction_bounds(l, loads)), Some(upper.add_correction_bounds(u, loads))]
+            }
+            _ => [0, 1].map(|b| coordinates[b].map(|q| self.beams[b].bounds(q, loads))),
+        };
+        for ((beam, (deflection, rotation)), (q, bounds)) in [lower, upper]
+            .into_iter()
+            .zip([
+                (&mut range.lower_deflection, &mut range.lower_rotation),
+                (&mut range.upper_deflection, &mut range.upper_rotation),
+            ])
+            .zip(coordinates.into_iter().zip(bounds))
+        {
+            let (Some(q), Some([deflection_bound, rotation_bound])) = (q, bounds) else { continue };
             beam.deflection.observe(deflection_bound, q, loads, time, deflection);
             beam.rotation.observe(rotation_bound, q, loads, time, rotation);
         }
@@ -389,6 +440,24 @@ mod tests {
                     assert_eq!(bound.to_bits(), own.to_bits(), "{nodes} x {coordinates}");
                 }
             }
+        }
+    }
+
+    /// Both beams' bounds in one pass ([`both_coordinate_bounds`]) are each beam's own
+    /// ([`coordinate_bounds`]) to the bit, on random bounds and coordinates, with the arrestor's
+    /// coordinates fewer, as many and more than the bridge's (and none).
+    #[test]
+    fn both_beams_bounds_in_one_pass_are_each_beams_own_to_the_bit() {
+        let mut rng = SplitMix64::new(44);
+        let mut random = |scale: f64| (rng.next_f64() - 0.5) * scale;
+        for (n, m) in [(0, 5), (1, 1), (13, 40), (40, 40), (41, 9), (3, 0)] {
+            let lower: Vec<[f64; 2]> = (0..n).map(|_| [random(2.0).abs(), random(2.0).abs()]).collect();
+            let upper: Vec<[f64; 2]> = (0..m).map(|_| [random(2.0).abs(), random(2.0).abs()]).collect();
+            let ql: Vec<f64> = (0..n).map(|_| random(1e-2)).collect();
+            let qu: Vec<f64> = (0..m).map(|_| random(1e-2)).collect();
+            let both = both_coordinate_bounds(&lower, &ql, &upper, &qu);
+            let own = [coordinate_bounds(&lower, &ql), coordinate_bounds(&upper, &qu)];
+            assert_eq!(both.map(|b| b.map(f64::to_bits)), own.map(|b| b.map(f64::to_bits)), "{n} and {m}");
         }
     }
 
