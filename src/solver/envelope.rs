@@ -664,9 +664,10 @@ fn raise_over_step(
     h: f64,
     floor: f64,
 ) {
-    let m = [y0.len(), r0.len(), y1.len(), r1.len(), running.max.len(), running.times.len()].into_iter().min();
-    for from in (0..m.unwrap_or(0)).step_by(CHUNK) {
-        let to = (from + CHUNK).min(m.unwrap_or(0));
+    let m =
+        [y0.len(), r0.len(), y1.len(), r1.len(), running.max.len(), running.times.len()].into_iter().min().unwrap_or(0);
+    for from in (0..m).step_by(CHUNK) {
+        let to = (from + CHUNK).min(m);
         let chunk = Running { max: &mut running.max[from..to], times: &mut running.times[from..to] };
         let ends = (&y0[from..to], &r0[from..to], &y1[from..to], &r1[from..to]);
         raise_chunk_over_step(ends.0, ends.1, ends.2, ends.3, chunk, (start_time, end_time), h, floor);
