@@ -27,7 +27,7 @@ use std::time::{Duration, Instant};
 use serde::Serialize;
 
 use crate::error::{Error, Result};
-use crate::model::scenario::MAX_ELEMENTS;
+use crate::model::scenario::{ImpactorKind, MAX_ELEMENTS};
 use crate::model::{Scenario, TimeStep};
 use crate::record::{Recorder, RunInfo};
 use crate::results::{seconds, ContactEvent, StepResult, Summary, TimeSteps};
@@ -99,13 +99,26 @@ impl Mesh {
         }
     }
 
-    /// Every segment times `factor`, each capped at [`MAX_ELEMENTS`].
-    fn refined(self, factor: u32) -> Mesh {
-        let f = |n: u32| n.saturating_mul(factor).min(MAX_ELEMENTS);
+    /// Every meshed segment times `factor`, each capped at [`MAX_ELEMENTS`]: a rigid impactor's
+    /// bridge counts mesh nothing and stay as they are, so that a refinement is finer only where
+    /// the arrestor's count grows.
+    fn refined(self, factor: u32, kind: ImpactorKind) -> Mesh {
+        self.scaled(kind, |n| n.saturating_mul(factor).min(MAX_ELEMENTS))
+    }
+
+    /// The mesh refined by `factor` without the cap.
+    fn uncapped(self, factor: u32, kind: ImpactorKind) -> Mesh {
+        self.scaled(kind, |n| n.saturating_mul(factor))
+    }
+
+    /// Each meshed segment's count through `f` (the arrestor's alone for a rigid impactor).
+    fn scaled(self, kind: ImpactorKind, f: impl Fn(u32) -> u32) -> Mesh {
+        let beam = kind == ImpactorKind::Beam;
+        let upper = |n: u32| if beam { f(n) } else { n };
         Mesh {
             lower: f(self.lower),
-            upper_to_contact: f(self.upper_to_contact),
-            upper_beyond_contact: f(self.upper_beyond_contact),
+            upper_to_contact: upper(self.upper_to_contact),
+            upper_beyond_contact: upper(self.upper_beyond_contact),
         }
     }
 
@@ -120,7 +133,7 @@ impl Mesh {
 
 impl Mesh {
     /// The counts as the table prints them (a rigid impactor's: the arrestor's alone).
-    fn counts(&self, kind: crate::model::scenario::ImpactorKind) -> String {
+    fn counts(&self, kind: ImpactorKind) -> String {
         crate::discretise::element_counts(kind, [self.lower, self.upper_to_contact, self.upper_beyond_contact])
     }
 }
@@ -248,7 +261,8 @@ impl Plan {
             ..scenario.clone()
         };
         let mesh = Mesh::of(scenario);
-        let Refinement { mesh_2x, mesh_4x, mesh_capped, mesh_change_between } = Refinement::of(mesh)?;
+        let Refinement { mesh_2x, mesh_4x, mesh_capped, mesh_change_between } =
+            Refinement::of(mesh, scenario.upper.kind)?;
         let refined = |m: Mesh, factor: f64| Scenario {
             step_free: TimeStep::Auto,
             step_contact: TimeStep::Auto,
@@ -362,33 +376,30 @@ struct Refinement {
 }
 
 impl Refinement {
-    /// An error when the base mesh is at the cap in every segment (nothing finer to run).
-    fn of(mesh: Mesh) -> Result<Refinement> {
-        let (mesh_2x, mesh_4x) = (mesh.refined(2), mesh.refined(4));
+    /// An error when the base mesh is at the cap in every meshed segment (nothing finer to run);
+    /// a rigid impactor's meshes are named by the arrestor's count alone.
+    fn of(mesh: Mesh, kind: ImpactorKind) -> Result<Refinement> {
+        let (mesh_2x, mesh_4x) = (mesh.refined(2, kind), mesh.refined(4, kind));
+        let name = |m: &Mesh| m.counts(kind);
         if mesh_2x == mesh {
             return Err(Error::Other(format!(
-                "verify: the mesh {mesh} is already at the largest allowed, {MAX_ELEMENTS} elements per segment: no \
-                 finer mesh to compare with"
+                "verify: the mesh {} is already at the largest allowed, {MAX_ELEMENTS} elements per segment: no \
+                 finer mesh to compare with",
+                name(&mesh)
             )));
         }
         let mesh_change_between = if mesh_4x == mesh_2x { ["base", "mesh_2x"] } else { ["mesh_2x", "mesh_4x"] };
-        let mesh_capped = (mesh_4x != uncapped(mesh, 4)).then(|| {
+        let mesh_capped = (mesh_4x != mesh.uncapped(4, kind)).then(|| {
             format!(
-                "refined meshes capped at {MAX_ELEMENTS} elements per segment: 2x is {mesh_2x}, 4x is {mesh_4x} (base \
-                 {mesh}); the refinement is not uniform, so no Richardson estimate{}",
+                "refined meshes capped at {MAX_ELEMENTS} elements per segment: 2x is {}, 4x is {} (base {}); the \
+                 refinement is not uniform, so no Richardson estimate{}",
+                name(&mesh_2x),
+                name(&mesh_4x),
+                name(&mesh),
                 if mesh_4x == mesh_2x { "; mesh_change compares the base and 2x meshes" } else { "" }
             )
         });
         Ok(Refinement { mesh_2x, mesh_4x, mesh_capped, mesh_change_between })
-    }
-}
-
-/// The mesh refined by `factor` without the cap.
-fn uncapped(mesh: Mesh, factor: u32) -> Mesh {
-    Mesh {
-        lower: mesh.lower.saturating_mul(factor),
-        upper_to_contact: mesh.upper_to_contact.saturating_mul(factor),
-        upper_beyond_contact: mesh.upper_beyond_contact.saturating_mul(factor),
     }
 }
 
@@ -608,7 +619,8 @@ mod tests {
     /// The paper mesh refines uniformly: 2x and 4x, compared with each other, no note.
     #[test]
     fn paper_mesh_refines_uniformly_without_a_note() {
-        let r = Refinement::of(Mesh { lower: 7, upper_to_contact: 7, upper_beyond_contact: 7 }).unwrap();
+        let r = Refinement::of(Mesh { lower: 7, upper_to_contact: 7, upper_beyond_contact: 7 }, ImpactorKind::Beam)
+            .unwrap();
         assert_eq!(r.mesh_2x, Mesh { lower: 14, upper_to_contact: 14, upper_beyond_contact: 14 });
         assert_eq!(r.mesh_4x, Mesh { lower: 28, upper_to_contact: 28, upper_beyond_contact: 28 });
         assert_eq!((r.mesh_capped, r.mesh_change_between), (None, ["mesh_2x", "mesh_4x"]));
@@ -619,7 +631,7 @@ mod tests {
     #[test]
     fn refinement_past_the_cap_is_capped_per_segment_and_noted() {
         let m = Mesh { lower: 7, upper_to_contact: 100, upper_beyond_contact: 90 };
-        let r = Refinement::of(m).unwrap();
+        let r = Refinement::of(m, ImpactorKind::Beam).unwrap();
         assert_eq!(r.mesh_2x, Mesh { lower: 14, upper_to_contact: 200, upper_beyond_contact: 180 });
         assert_eq!(r.mesh_4x, Mesh { lower: 28, upper_to_contact: MAX_ELEMENTS, upper_beyond_contact: MAX_ELEMENTS });
         assert_eq!(r.mesh_change_between, ["mesh_2x", "mesh_4x"]);
@@ -629,21 +641,46 @@ mod tests {
         assert!(note.contains(&cap) && note.contains(&mesh), "{note}");
 
         let at_cap = Mesh { lower: 7, upper_to_contact: 200, upper_beyond_contact: MAX_ELEMENTS };
-        let r = Refinement::of(at_cap).unwrap();
+        let r = Refinement::of(at_cap, ImpactorKind::Beam).unwrap();
         assert_eq!(r.mesh_2x.upper_to_contact, MAX_ELEMENTS);
         assert_eq!(r.mesh_4x, Mesh { lower: 28, ..r.mesh_2x }, "only the arrestor refines further");
         assert_eq!(r.mesh_change_between, ["mesh_2x", "mesh_4x"]);
 
         let two_only =
             Mesh { lower: MAX_ELEMENTS / 2, upper_to_contact: MAX_ELEMENTS, upper_beyond_contact: MAX_ELEMENTS };
-        let r = Refinement::of(two_only).unwrap();
+        let r = Refinement::of(two_only, ImpactorKind::Beam).unwrap();
         assert_eq!(r.mesh_4x, r.mesh_2x);
         assert_eq!(r.mesh_change_between, ["base", "mesh_2x"]);
         assert!(r.mesh_capped.unwrap().contains("compares the base and 2x"));
 
         let full = Mesh { lower: MAX_ELEMENTS, upper_to_contact: MAX_ELEMENTS, upper_beyond_contact: MAX_ELEMENTS };
-        let e = Refinement::of(full).unwrap_err().to_string();
+        let e = Refinement::of(full, ImpactorKind::Beam).unwrap_err().to_string();
         assert!(e.contains("already at the largest allowed"), "{e}");
+    }
+
+    /// A rigid impactor's bridge counts mesh nothing: its refinements grow the arrestor's count
+    /// alone, and at the cap that count says so (an error, or base against 2x with a note), rather
+    /// than comparing two runs whose only difference is the unused counts (a false "converged").
+    #[test]
+    fn a_mass_impactors_refinement_is_finer_only_in_the_arrestor() {
+        let kind = ImpactorKind::Mass;
+        let r = Refinement::of(Mesh { lower: 7, upper_to_contact: 200, upper_beyond_contact: 300 }, kind).unwrap();
+        assert_eq!(r.mesh_2x, Mesh { lower: 14, upper_to_contact: 200, upper_beyond_contact: 300 });
+        assert_eq!(r.mesh_4x, Mesh { lower: 28, upper_to_contact: 200, upper_beyond_contact: 300 });
+        assert_eq!((r.mesh_capped, r.mesh_change_between), (None, ["mesh_2x", "mesh_4x"]));
+
+        let half = Mesh { lower: MAX_ELEMENTS / 2, upper_to_contact: 7, upper_beyond_contact: 7 };
+        let r = Refinement::of(half, kind).unwrap();
+        assert_eq!(r.mesh_4x, r.mesh_2x);
+        assert_eq!(r.mesh_change_between, ["base", "mesh_2x"]);
+        let note = r.mesh_capped.expect("capped");
+        assert!(note.contains(&format!("4x is {MAX_ELEMENTS} (base {})", MAX_ELEMENTS / 2)), "{note}");
+
+        let at_cap = Mesh { lower: MAX_ELEMENTS, upper_to_contact: 7, upper_beyond_contact: 7 };
+        let e = Refinement::of(at_cap, kind).unwrap_err().to_string();
+        assert!(e.contains(&format!("the mesh {MAX_ELEMENTS} is already at the largest")), "{e}");
+        // The same counts for a beam refine the bridge and are no error.
+        assert!(Refinement::of(at_cap, ImpactorKind::Beam).is_ok());
     }
 
     /// The tolerance is a fraction: 1 (meaning 1 %?) and 0 are refused with the rule.
