@@ -150,8 +150,22 @@ fn bad_campaigns_are_refused_in_one_line_naming_the_value() {
     let dir = folder(&scenario(""));
     let d = dir.path();
     std::fs::write(d.join("plain.toml"), "duration = 0.5\n").unwrap();
-    let cases: [(&[&str], &str); 6] = [
+    let cases: [(&[&str], &str); 11] = [
         (&["--target", "0"], "--target must be a probability between 0 and 1 (exclusive), got 0"),
+        // A grid value its field's rule refuses is an error, not a refused cell that would end
+        // its column of the operability table (and so lower the limit of the valid ones).
+        (
+            &["--vary", "sea.significant_wave_height=-1,1,2"],
+            "campaign --vary: sea.significant_wave_height must be > 0 m, at most 20 m, got -1",
+        ),
+        (&["--vary", "sea.heading=90,450"], "campaign --vary: sea.heading must be between 0 and 360 deg, got 450"),
+        (&["--vary", "sea.significant_wave_height=1,2,1"], "campaign --vary sea.significant_wave_height: 1 is given twice"),
+        (&["--vary", "sea.heading=0,180,360"], "campaign --vary sea.heading: 0 is given twice (0 and 360 deg are one heading)"),
+        // Nothing to run: every cell breaks (Hs 12 and 13 m at Tp 8 s).
+        (
+            &["--vary", "sea.significant_wave_height=12,13"],
+            "campaign: every cell of the grid is refused, nothing to run; the first: sea.significant_wave_height = 12 m",
+        ),
         (&["--target", "1.5"], "got 1.5"),
         (&["--vary", "drop_height=0.5,1"], "campaign --vary drop_height: a campaign's grid is of sea states"),
         (&["--events", "50", "--max-events", "10"], "50 runs, more than --max-events 10"),
@@ -171,6 +185,25 @@ fn bad_campaigns_are_refused_in_one_line_naming_the_value() {
     assert!(stderr.contains("the scenario has no [sea] section"), "{stderr}");
 }
 
+/// Without `--seeds`, fewer events than the default 20 records take one record each (not an
+/// error about an option never given); a `sea.time_shift`, which each event draws, is named as
+/// not used.
+#[test]
+fn a_small_campaign_takes_a_record_an_event_and_names_the_time_shift_it_sets_aside() {
+    let dir = folder(&scenario(""));
+    let d = dir.path();
+    let o = campaign(d, &["--events", "3", "--record-length", "300", "--set", "sea.time_shift=100", "--out", "s.csv"]);
+    let stderr = String::from_utf8(o.stderr).unwrap();
+    assert!(o.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("warning: sea.time_shift = 100 s is not used: each event's instant is drawn over its record"),
+        "{stderr}"
+    );
+    let rows = rows(&d.join("s.csv"));
+    let seeds: std::collections::BTreeSet<&str> = rows.iter().map(|r| r["seed"].as_str()).collect();
+    assert_eq!((rows.len(), seeds.len()), (3, 3), "{seeds:?}");
+}
+
 /// Ctrl-C (SIGINT) stops the campaign between events: the rows run so far are written, the
 /// statistics printed are of them, the message says so, exit code 130.
 #[test]
@@ -179,6 +212,7 @@ fn ctrl_c_keeps_the_rows_run_so_far() {
     let d = dir.path();
     let mut child = beam_impact()
         .args(["campaign", "s.toml", "--events", "5000", "--seeds", "10", "--jobs", "1", "--out", "k.csv"])
+        .args(["--json", "k.json"])
         .current_dir(d)
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped())
@@ -205,6 +239,38 @@ fn ctrl_c_keeps_the_rows_run_so_far() {
     assert!(stderr.contains(&format!("interrupted: {n} of 5000 events run and written to k.csv")), "{stderr}");
     let text = String::from_utf8(o.stdout).unwrap();
     assert!(text.contains(&format!("{n} events on")), "{text}");
+    // The statistics document says it is of a part: the events run of those planned.
+    let c = &json(&d.join("k.json"))["campaign"];
+    assert_eq!(
+        (c["interrupted"].as_bool(), c["events_run"].as_u64(), c["events_planned"].as_u64()),
+        (Some(true), Some(n as u64), Some(5000))
+    );
+}
+
+/// A scheduler's SIGTERM (or a closed session's SIGHUP) stops the campaign as Ctrl-C does: the
+/// rows run so far are written to the CSV itself (not left in a partial file) and said so.
+#[test]
+fn sigterm_keeps_the_rows_run_so_far_as_ctrl_c_does() {
+    let dir = folder(&scenario(""));
+    let d = dir.path();
+    let child = beam_impact()
+        .args(["campaign", "s.toml", "--events", "5000", "--seeds", "10", "--jobs", "1", "--out", "t.csv"])
+        .current_dir(d)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_secs(3));
+    // SAFETY: kill(2) with the child's own pid and SIGTERM.
+    unsafe {
+        libc::kill(child.id() as i32, libc::SIGTERM);
+    }
+    let o = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8(o.stderr).unwrap();
+    assert_eq!(o.status.code(), Some(130), "{stderr}");
+    let n = rows(&d.join("t.csv")).len();
+    assert!((1..5000).contains(&n), "{n} rows");
+    assert!(stderr.contains(&format!("interrupted: {n} of 5000 events run and written to t.csv")), "{stderr}");
 }
 
 /// `bench`'s campaign line runs its events (all converged, none failed) and prints the projection

@@ -150,7 +150,7 @@ def campaign(
     scenario: Any,
     *,
     events: int = 1000,
-    seeds: int = 20,
+    seeds: int | None = None,
     record_length: float = 10800.0,
     vary: Any = None,
     set: Any = None,  # noqa: A002 (the CLI's --set)
@@ -167,7 +167,8 @@ def campaign(
     occurrence: "str | os.PathLike | None" = None,
 ) -> CampaignResult:
     """`beam-impact campaign SCENARIO --events N --seeds S ...`: `events` losses of the support
-    at instants drawn across `seeds` records of `record_length` s of the scenario's sea state (it
+    at instants drawn across `seeds` records (default 20, or `events` if fewer) of `record_length` s
+    of the scenario's sea state (it
     must have a `[sea]`), for each cell of the grid `vary` (sea states only:
     `sea.significant_wave_height`, `sea.peak_period`, `sea.heading`), each a converged run with
     its verdict; returns a `CampaignResult` (`rows`, `summary`, `table`, `text`, `figures(dir)`).
@@ -207,6 +208,10 @@ def campaign(
         if count is not None and (isinstance(count, bool) or not isinstance(count, numbers.Integral)
                                   or not 0 <= count < 2**64):
             raise ValueError(f"{what} must be a whole number from 1 to 2**64 - 1, got {count!r}"[:300])
+    if seeds is None and isinstance(events, numbers.Integral) and not isinstance(events, bool) and events >= 1:
+        seeds = min(_native.CAMPAIGN_DEFAULT_SEEDS, int(events))
+    elif seeds is None:
+        seeds = _native.CAMPAIGN_DEFAULT_SEEDS
     name, toml, raos_path, raos_text = _native.campaign_sources(path, text)
     if occurrence is not None and not fatigue:
         raise ValueError("occurrence= weights the events' fatigue: give fatigue=True too")
@@ -223,12 +228,14 @@ def campaign(
         fatigue=bool(fatigue), occurrence=table,
     )
     native = _native.Campaign(**arguments)
+    import warnings
+
+    for note in native.notes():
+        warnings.warn(note, RuntimeWarning, stacklevel=2)
     for cell_name, (_, refused) in zip(native.cell_names(), native.cells()):
         if refused is not None:
-            import warnings
-
             warnings.warn(f"{cell_name}: refused, its events not run: {refused}", RuntimeWarning, stacklevel=2)
-    note = f"{events} events per cell over {seeds} records of {float(record_length):g} s; {name}"
+    planned = f"{events} events per cell over {seeds} records of {float(record_length):g} s"
     if client is None:
         if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
             raise ValueError(f"jobs must be a whole number of threads >= 1, got {jobs!r}"[:300])
@@ -239,6 +246,10 @@ def campaign(
     rows = [[*json.loads(head), *_cells(json.loads(results)).values()] for _, head, results, _ in done]
     rows = [[math.nan if v is None else v for v in row] for row in rows]
     outcomes = [(index, outcome) for index, _, _, outcome in done]
+    if interrupted:
+        note = f"interrupted: {len(rows)} of {len(native)} events run ({planned}); {name}"
+    else:
+        note = f"{planned}; {name}"
     result = CampaignResult(native, rows, outcomes, interrupted, note)
     if interrupted:
         raise CampaignInterrupted(result)

@@ -314,9 +314,10 @@ pub struct CampaignArgs {
     /// Losses of the support per sea state (cell of the grid).
     #[arg(long, default_value_t = 1000, value_parser = clap::value_parser!(u64).range(1..))]
     pub events: u64,
-    /// Records (seeds sea.seed, sea.seed + 1, ...) the events are spread over.
-    #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u64).range(1..))]
-    pub seeds: u64,
+    /// Records (seeds sea.seed, sea.seed + 1, ...) the events are spread over [default: 20, or
+    /// --events if fewer].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    pub seeds: Option<u64>,
     /// Length of each record, s: the instants are drawn over [0, T - duration].
     #[arg(long, value_name = "T", default_value_t = 10_800.0)]
     pub record_length: f64,

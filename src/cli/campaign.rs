@@ -24,7 +24,7 @@ pub fn campaign(args: &CampaignArgs) -> Result<Outcome> {
     apply_settings(&mut base, &parse_settings(&args.set)?)?;
     let options = Options {
         events: args.events,
-        seeds: args.seeds,
+        seeds: args.seeds.unwrap_or_else(|| beam_impact::studies::campaign::default_seeds(args.events)),
         record_length: args.record_length,
         target: args.target,
         confidence: args.confidence,
@@ -64,7 +64,11 @@ pub fn campaign(args: &CampaignArgs) -> Result<Outcome> {
     let mut json = args.json.as_deref().map(|p| OutputFile::create(p, true, "cannot create")).transpose()?;
     csv.write_all(campaign.csv_header().as_bytes()).map_err(|e| io("cannot write", &args.out, e))?;
 
-    // Ctrl-C: no new event starts; the rows done are written and kept.
+    for note in &campaign.notes {
+        warn(note);
+    }
+    // Ctrl-C, and the SIGTERM or SIGHUP of a scheduler or a closed session: no new event starts;
+    // the rows done are written and kept.
     let interrupted = Arc::new(AtomicBool::new(false));
     {
         let flag = Arc::clone(&interrupted);
@@ -136,13 +140,18 @@ pub fn campaign(args: &CampaignArgs) -> Result<Outcome> {
     }
     let mut written = Vec::new();
     if let Some(dir) = &args.figures {
-        let note = format!(
-            "{} events per cell over {} records of {} s; {}",
-            options.events,
-            options.seeds,
-            options.record_length,
-            shown(&args.file)
-        );
+        let planned =
+            format!("{} events per cell over {} records of {} s", options.events, options.seeds, options.record_length);
+        let note = if stopped {
+            format!(
+                "interrupted: {} of {} events run ({planned}); {}",
+                tally.scenarios,
+                campaign.len(),
+                shown(&args.file)
+            )
+        } else {
+            format!("{planned}; {}", shown(&args.file))
+        };
         let figures = beam_impact::replay::operability_figure::operability_figures(&table_cells, &options, &note);
         written = beam_impact::replay::operability_figure::write_operability_figures(&figures, dir)?;
     }

@@ -51,7 +51,7 @@ pub fn operability_figures(cells: &[TableCell], options: &Options, note: &str) -
                 caption: format!("Operability: overload probability per loss of the support, heading {heading} deg"),
                 subtitle: vec![
                     format!(
-                        "green: {} below the target {}; red: not; grey: a sea the model refuses (breaking). The line: \
+                        "green: {} below the target {}; red: not; grey: a sea the model refuses (breaking) or not run. The line: \
                          the largest Hs up to which every cell is green.",
                         if options.on_upper_bound {
                             format!("the {} % upper bound", 100.0 * options.confidence)
@@ -70,7 +70,7 @@ pub fn operability_figures(cells: &[TableCell], options: &Options, note: &str) -
                             Ok(_) => OVERLOADING,
                             Err(_) => REFUSED,
                         };
-                        (c.significant_wave_height, c.peak_period, color, cell_text(&c.outcome))
+                        (c.significant_wave_height, c.peak_period, color, cell_text(&c.outcome, options.on_upper_bound))
                     })
                     .collect(),
                 limits: all_limits

@@ -221,12 +221,23 @@ def test_the_gumbel_fits_and_intervals_are_scipys_on_the_same_samples(one_cell):
     ({"target": 0.0}, SCENARIO, "--target"),
     ({}, ROOT / "examples" / "arrestor.toml", "[sea]"),
     ({"vary": {"drop_height": [0.5, 1.0]}}, SCENARIO, "drop_height"),
-], ids=["target-above-1", "target-0", "no-sea", "vary-not-the-sea"])
+    # A grid value its field refuses is an error, not a refused cell (which would end its column).
+    ({"vary": {"sea.significant_wave_height": [-1, 1]}}, SCENARIO, "sea.significant_wave_height must be > 0 m"),
+], ids=["target-above-1", "target-0", "no-sea", "vary-not-the-sea", "vary-value-out-of-range"])
 def test_bad_input_is_one_line_naming_the_value(kwargs, scenario, named):
     with pytest.raises(ValueError) as e:
         beam_impact.campaign(scenario, events=4, seeds=2, progress=False, **kwargs)
     message = str(e.value)
     assert named in message and "\n" not in message, message
+
+
+def test_a_small_campaign_takes_a_record_an_event_and_warns_of_the_time_shift_it_sets_aside():
+    """Without seeds=, fewer events than the default 20 records take one record each, as the CLI
+    does; a sea.time_shift (each event draws its own instant) is named in a RuntimeWarning."""
+    with pytest.warns(RuntimeWarning, match="sea.time_shift = 100 s is not used"):
+        r = beam_impact.campaign(SCENARIO, events=3, set={**SET, "sea.time_shift": 100}, progress=False)
+    assert len(r.rows) == 3 and r.rows["seed"].nunique() == 3
+    assert r.summary["campaign"]["records_per_cell"] == 3
 
 
 def test_ctrl_c_stops_the_campaign_and_keeps_the_rows_done(tmp_path):
@@ -247,7 +258,8 @@ def test_ctrl_c_stops_the_campaign_and_keeps_the_rows_done(tmp_path):
         except beam_impact.CampaignInterrupted as e:
             r = e.result
             print(json.dumps({{"rows": len(r.rows), "planned": r.planned, "events": r.rows["event"].tolist(),
-                              "summarised": r.summary["cells"][0]["events"], "interrupted": r.interrupted}}))
+                              "summarised": r.summary["cells"][0]["events"], "interrupted": r.interrupted,
+                              "document": r.summary["campaign"]}}))
             sys.exit(3)
     """))
     process = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
@@ -261,6 +273,9 @@ def test_ctrl_c_stops_the_campaign_and_keeps_the_rows_done(tmp_path):
     assert got["interrupted"] and got["planned"] == 10000 and 0 < got["rows"] < 10000, got
     assert got["events"] == list(range(got["rows"])), got
     assert got["summarised"] == got["rows"], got
+    document = got["document"]
+    assert document["interrupted"] and document["events_run"] == got["rows"], document
+    assert document["events_planned"] == 10000, document
 
 
 def test_ctrl_c_stops_a_cluster_campaign_and_keeps_the_events_finished(tmp_path):

@@ -180,6 +180,11 @@ impl Campaign {
         self.inner.cells.iter().map(|c| (c.values.clone(), c.refused.clone())).collect()
     }
 
+    /// What the campaign sets aside of the scenario (a `sea.time_shift`), for a warning.
+    fn notes(&self) -> Vec<String> {
+        self.inner.notes.clone()
+    }
+
     /// The cells' names as messages give them (`Hs 2.5 m, Tp 8 s`).
     fn cell_names(&self) -> Vec<String> {
         (0..self.inner.cells.len()).map(|c| self.inner.cell_name(c)).collect()

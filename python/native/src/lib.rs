@@ -464,6 +464,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(campaign::occurrence_text, m)?)?;
     m.add_class::<campaign::Campaign>()?;
     m.add("CAMPAIGN_MAX_EVENTS", beam_impact::studies::campaign::DEFAULT_MAX_EVENTS)?;
+    m.add("CAMPAIGN_DEFAULT_SEEDS", beam_impact::studies::campaign::DEFAULT_SEEDS)?;
     m.add("MAX_FMU_BYTES", MAX_FMU_BYTES)?;
     m.add("MAX_STEPS", beam_impact::model::scenario::MAX_STEPS)?;
     // One name per quantity: the step channel's columns as `report --csv` names them.

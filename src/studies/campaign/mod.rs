@@ -36,6 +36,16 @@ pub const CELL_FIELDS: [&str; 3] = ["sea.significant_wave_height", "sea.peak_per
 /// docs/operability.md).
 pub const DEFAULT_MAX_EVENTS: u64 = 100_000;
 
+/// Records a campaign spreads its events over unless told (`--seeds`), or the events' number if
+/// fewer ([`default_seeds`]).
+pub const DEFAULT_SEEDS: u64 = 20;
+
+/// The records of a campaign of `events` events when `--seeds` is not given: [`DEFAULT_SEEDS`],
+/// or one per event if there are fewer events.
+pub fn default_seeds(events: u64) -> u64 {
+    DEFAULT_SEEDS.min(events).max(1)
+}
+
 /// One cell of the grid: its values (one per grid axis) and, for a sea state the model refuses (a
 /// breaking sea, a range outside the RAO file), the reason; its events are then not run.
 #[derive(Clone, Debug, PartialEq)]
@@ -63,6 +73,9 @@ pub struct Campaign {
     index: Vec<(usize, usize)>,
     /// The modes of [`Campaign::run_event`]'s runs (one geometry: computed once).
     cache: std::sync::Arc<crate::solver::ModalCache>,
+    /// What the campaign sets aside of the scenario, for the user to be told (a `sea.time_shift`,
+    /// which each event draws).
+    pub notes: Vec<String>,
 }
 
 /// One event's row: where it is, the supports' motion at its instant and the run's results.
@@ -104,7 +117,29 @@ impl Campaign {
                 )));
             }
         }
+        for axis in &cell_axes {
+            // A value given twice would run its cell's events twice and print one row of them.
+            let heading = axis.field.name == "sea.heading";
+            let mut values: Vec<f64> =
+                axis.values.iter().map(|&v| if heading && v == 360.0 { 0.0 } else { v }).collect();
+            values.sort_by(f64::total_cmp);
+            if let Some(w) = values.windows(2).find(|w| w[0] == w[1]) {
+                return Err(Error::Other(format!(
+                    "campaign --vary {}: {} is given twice{} (each cell once)",
+                    axis.field.name,
+                    crate::error::number(w[0]),
+                    if heading { " (0 and 360 deg are one heading)" } else { "" }
+                )));
+            }
+        }
         options.check()?;
+        let mut notes = Vec::new();
+        if sea.time_shift != 0.0 {
+            notes.push(format!(
+                "sea.time_shift = {} s is not used: each event's instant is drawn over its record (the rows' `instant`)",
+                crate::error::number(sea.time_shift)
+            ));
+        }
         let events = plan(options.events, options.seeds, sea.seed, options.record_length, base.duration)?;
         let grid = sweep::grid_len(&cell_axes)?;
         let total = (grid as u64).saturating_mul(events.len() as u64);
@@ -132,7 +167,13 @@ impl Campaign {
                 let sea = s.sea.as_ref().ok_or_else(|| Error::Other("no [sea]".into()))?;
                 sea.record().map(|_| ())
             });
-            let refused = check.err().map(|e| e.to_string());
+            let refused = match check {
+                Ok(()) => None,
+                // A value the field's rule refuses is the user's to mend, not a sea state the
+                // model cannot take (a breaking sea, a range outside the RAO file).
+                Err(e) if names_a_field(&e, &cell_axes) => return Err(Error::Other(format!("campaign --vary: {e}"))),
+                Err(e) => Some(e.to_string()),
+            };
             if refused.is_none() {
                 for (k, e) in events.iter().enumerate() {
                     let mut point = values.clone();
@@ -143,8 +184,17 @@ impl Campaign {
             }
             cells.push(Cell { values, refused });
         }
+        if let Some(why) =
+            cells.iter().map(|c| c.refused.as_ref()).collect::<Option<Vec<_>>>().and_then(|w| w.first().copied())
+        {
+            return Err(Error::Other(if cells.len() == 1 {
+                format!("campaign: the sea state is refused: {why}")
+            } else {
+                format!("campaign: every cell of the grid is refused, nothing to run; the first: {why}")
+            }));
+        }
         let sweep = Sweep::of_points(base, axes, points, max_steps)?;
-        Ok(Campaign { cell_axes, cells, events, options, sweep, index, cache: Default::default() })
+        Ok(Campaign { cell_axes, cells, events, options, sweep, index, cache: Default::default(), notes })
     }
 
     /// Runs to make (the accepted cells' events).
@@ -215,7 +265,8 @@ impl Campaign {
 
     /// The operability table's cells from the cells' summaries (those of [`Campaign::summaries`]): each
     /// cell's Hs, Tp and heading (the grid's values, else the scenario's sea's), with its summary or
-    /// why it is refused; an accepted cell without events is left out.
+    /// why it is refused; an accepted cell without events (an interrupted campaign's) as
+    /// [`operability::NOT_RUN`].
     pub fn table_cells<'a>(&'a self, summaries: &'a [Option<CellSummary>]) -> Vec<operability::TableCell<'a>> {
         let sea = self.sweep.base.sea.as_ref();
         let value_of = |c: usize, name: &str, default: f64| {
@@ -225,13 +276,13 @@ impl Campaign {
             .iter()
             .zip(summaries)
             .enumerate()
-            .filter_map(|(c, (cell, summary))| {
+            .map(|(c, (cell, summary))| {
                 let outcome = match (&cell.refused, summary) {
                     (Some(why), _) => Err(why.as_str()),
                     (None, Some(s)) => Ok(s),
-                    (None, None) => return None,
+                    (None, None) => Err(operability::NOT_RUN),
                 };
-                Some(operability::TableCell {
+                operability::TableCell {
                     significant_wave_height: value_of(
                         c,
                         "sea.significant_wave_height",
@@ -240,7 +291,7 @@ impl Campaign {
                     peak_period: value_of(c, "sea.peak_period", sea.map_or(f64::NAN, |s| s.peak_period)),
                     heading: value_of(c, "sea.heading", sea.map_or(f64::NAN, |s| s.heading)),
                     outcome,
-                })
+                }
             })
             .collect()
     }
@@ -355,6 +406,15 @@ impl Campaign {
     }
 }
 
+/// Whether `e` is (or holds) a rule broken by one of the grid's own fields.
+fn names_a_field(e: &Error, axes: &[Axis]) -> bool {
+    match e {
+        Error::InvalidParameter { name, .. } => axes.iter().any(|a| a.field.name == name),
+        Error::Invalid(errors) => errors.iter().any(|e| names_a_field(e, axes)),
+        _ => false,
+    }
+}
+
 /// An event's damage (its worst station's Miner sum), if its run ran with fatigue.
 pub fn event_damage(row: &EventRow) -> Option<f64> {
     row.row.outcome.as_ref().ok().and_then(|r| r.fatigue).map(|f| f.damage)
@@ -398,10 +458,15 @@ pub fn summary_document(
         .iter()
         .map(|l| json!({"heading": l.heading, "peak_period": l.peak_period, "significant_wave_height": l.significant_wave_height}))
         .collect();
+    // Each run cell's events, failed ones included: fewer than planned when interrupted.
+    let run: usize = summaries.iter().flatten().map(|s| s.events).sum();
     json!({
         "campaign": {
             "events_per_cell": options.events,
             "records_per_cell": options.seeds,
+            "events_planned": campaign.len(),
+            "events_run": run,
+            "interrupted": run < campaign.len(),
             "record_length": options.record_length,
             "first_seed": campaign.events.first().map(|e| e.seed),
             "target": options.target,

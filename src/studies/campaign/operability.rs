@@ -63,7 +63,8 @@ pub fn limits(cells: &[TableCell]) -> Vec<Limit> {
             for &hs in &heights {
                 match find(cells, heading, tp, hs).map(|c| &c.outcome) {
                     Some(Ok(s)) if s.operable => limit = Some(hs),
-                    None => continue,
+                    // A cell not assessed (not run, refused) or failing ends the column: the limit
+                    // never passes over a sea state nothing vouches for.
                     _ => break,
                 }
             }
@@ -73,20 +74,41 @@ pub fn limits(cells: &[TableCell]) -> Vec<Limit> {
     out
 }
 
-/// A cell's text: the overload probability (`<` its upper bound when no event overloads), `ok`
-/// or `x`; `breaking` or `refused` for a sea state the model refuses.
-pub fn cell_text(outcome: &std::result::Result<&CellSummary, &str>) -> String {
+/// The outcome of a cell whose events were not run (the campaign was interrupted first).
+pub const NOT_RUN: &str = "not run: the campaign was interrupted before its events";
+
+/// A cell's text: the number its verdict compares with the target, `ok` or `x`, and `!` where
+/// failed or untrusted events count as overloads in it: the judged probability's upper bound
+/// (`<1.4e-2`, the probability is below it at the stated confidence; `on_upper_bound`) or its
+/// estimate; `breaking`, `refused` or `not run` for a sea state not assessed.
+pub fn cell_text(outcome: &std::result::Result<&CellSummary, &str>, on_upper_bound: bool) -> String {
     match outcome {
-        Ok(s) if s.overload.events == 0 => "no events".into(),
+        Ok(s) if s.judged_on.events == 0 => "no events".into(),
         Ok(s) => {
-            let i = s.overload.interval;
-            let p =
-                if s.overload.exceeding == 0 { format!("<{:.1e}", i.high) } else { format!("{:.1e}", i.probability) };
+            let i = s.judged_on.interval;
+            let p = match (on_upper_bound, i.probability) {
+                (true, _) => format!("<{:.1e}", i.high),
+                (false, 0.0) => "0".into(),
+                (false, p) => format!("{p:.1e}"),
+            };
             let doubt = if s.failed > 0 || s.untrusted > 0 { "!" } else { "" };
             format!("{p} {}{doubt}", if s.operable { "ok" } else { "x" })
         }
         Err(why) if why.contains("steeper than a sea can be") => "breaking".into(),
+        Err(why) if *why == NOT_RUN => "not run".into(),
         Err(_) => "refused".into(),
+    }
+}
+
+/// A grid value as the table's rows and columns name it: at most four decimals, trailing zeros
+/// dropped (`1.6667` for a range's 5/3, which would not fit its column in full; `2.5`, `8`).
+fn label(v: f64) -> String {
+    let text = format!("{v:.4}");
+    let text = text.trim_end_matches('0').trim_end_matches('.');
+    if text == "-0" {
+        "0".into()
+    } else {
+        text.into()
     }
 }
 
@@ -108,23 +130,24 @@ pub fn table(cells: &[TableCell], options: &Options) -> String {
         options.target
     );
     for &heading in &headings {
-        let _ = writeln!(s, "heading {heading} deg");
+        let _ = writeln!(s, "heading {} deg", label(heading));
         let _ = write!(s, "{:<14}", "Hs [m] \\ Tp [s]");
         for tp in &periods {
-            let _ = write!(s, "{:>width$}", format!("{tp}"));
+            let _ = write!(s, "{:>width$}", label(*tp));
         }
         s.push('\n');
         for &hs in heights.iter().rev() {
-            let _ = write!(s, "{:<14}", format!("{hs}"));
+            let _ = write!(s, "{:<14}", label(hs));
             for &tp in &periods {
-                let text = find(cells, heading, tp, hs).map_or("-".to_string(), |c| cell_text(&c.outcome));
+                let text = find(cells, heading, tp, hs)
+                    .map_or("-".to_string(), |c| cell_text(&c.outcome, options.on_upper_bound));
                 let _ = write!(s, "{text:>width$}");
             }
             s.push('\n');
         }
         let _ = write!(s, "{:<14}", "limit Hs [m]");
         for l in limits.iter().filter(|l| l.heading == heading) {
-            let text = l.significant_wave_height.map_or("none".to_string(), |h| format!("{h}"));
+            let text = l.significant_wave_height.map_or("none".to_string(), label);
             let _ = write!(s, "{text:>width$}");
         }
         s.push('\n');
@@ -186,7 +209,11 @@ mod tests {
         assert_eq!((failed.overload.exceeding, failed.overload.events), (0, 95));
         assert_eq!((failed.judged_on.exceeding, failed.judged_on.events), (5, 100));
         assert!(failed.warnings.iter().any(|w| w.contains("5 of 100 events failed")), "{:?}", failed.warnings);
-        assert_eq!(cell_text(&Ok(&failed)), "<3.8e-2 x!");
+        // The cell prints the number its verdict compares: the judged 5 of 100 (0.05, not below
+        // 0.05), not the 95 that ran (none overloading, below 3.8e-2); on the upper bound, the
+        // judged one's (Clopper-Pearson 95 % of 5 / 100: 0.1128).
+        assert_eq!(cell_text(&Ok(&failed), false), "5.0e-2 x!");
+        assert_eq!(cell_text(&Ok(&failed), true), "<1.1e-1 x!");
         // Four failed and one untrusted: judged the same.
         outcomes[0].results = outcomes[9].results.map(|r| EventResults { trusted: false, ..r });
         let doubtful = summarise(&outcomes, &options);
@@ -198,6 +225,33 @@ mod tests {
             o.results = fine;
         }
         assert!(summarise(&outcomes, &options).operable);
+    }
+
+    /// A grid value takes at most four decimals in the table, so that a range's thirds keep their
+    /// column.
+    #[test]
+    fn grid_values_are_labelled_in_at_most_four_decimals() {
+        assert_eq!(
+            [label(5.0 / 3.0), label(2.5), label(8.0), label(0.0), label(180.0)],
+            ["1.6667", "2.5", "8", "0", "180"]
+        );
+    }
+
+    /// A cell not run (an interrupted campaign's) ends its column as a failing one does: the
+    /// limit never passes over a sea state no event vouches for; the table says `not run`.
+    #[test]
+    fn a_cell_not_run_ends_the_column_and_is_printed_so() {
+        let ok = summary(0, 100);
+        let options = Options { target: 0.05, on_upper_bound: true, ..Options::default() };
+        let cell =
+            |hs: f64, outcome| TableCell { significant_wave_height: hs, peak_period: 8.0, heading: 180.0, outcome };
+        let cells = vec![cell(1.0, Ok(&ok)), cell(2.0, Err(NOT_RUN)), cell(3.0, Ok(&ok))];
+        assert_eq!(limits(&cells)[0].significant_wave_height, Some(1.0));
+        let text = table(&cells, &options);
+        assert!(text.contains("not run"), "{text}");
+        // No overload in 100 on the upper bound: below 1 - 0.025^(1/100) = 3.6e-2, ok.
+        assert_eq!(cell_text(&Ok(&ok), true), "<3.6e-2 ok");
+        assert_eq!(cell_text(&Ok(&ok), false), "0 ok");
     }
 
     /// The limit is the largest Hs up to which every cell is operable: a failing cell (or a
