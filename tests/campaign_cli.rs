@@ -150,7 +150,7 @@ fn bad_campaigns_are_refused_in_one_line_naming_the_value() {
     let dir = folder(&scenario(""));
     let d = dir.path();
     std::fs::write(d.join("plain.toml"), "duration = 0.5\n").unwrap();
-    let cases: [(&[&str], &str); 11] = [
+    let cases: [(&[&str], &str); 12] = [
         (&["--target", "0"], "--target must be a probability between 0 and 1 (exclusive), got 0"),
         // A grid value its field's rule refuses is an error, not a refused cell that would end
         // its column of the operability table (and so lower the limit of the valid ones).
@@ -159,6 +159,7 @@ fn bad_campaigns_are_refused_in_one_line_naming_the_value() {
             "campaign --vary: sea.significant_wave_height must be > 0 m, at most 20 m, got -1",
         ),
         (&["--vary", "sea.heading=90,450"], "campaign --vary: sea.heading must be between 0 and 360 deg, got 450"),
+        (&["--json", "-"], "campaign --json -: standard output carries the campaign's statistics and table"),
         (&["--vary", "sea.significant_wave_height=1,2,1"], "campaign --vary sea.significant_wave_height: 1 is given twice"),
         (&["--vary", "sea.heading=0,180,360"], "campaign --vary sea.heading: 0 is given twice (0 and 360 deg are one heading)"),
         // Nothing to run: every cell breaks (Hs 12 and 13 m at Tp 8 s).

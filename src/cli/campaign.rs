@@ -20,6 +20,14 @@ use super::common::{emit, io, read_scenario, units_sidecars, warn, write_units_s
 use super::Outcome;
 
 pub fn campaign(args: &CampaignArgs) -> Result<Outcome> {
+    // Standard output carries the statistics and the table: the files need names of their own.
+    for (flag, path) in [("--out", Some(args.out.as_path())), ("--json", args.json.as_deref())] {
+        if path.is_some_and(|p| p.as_os_str() == "-") {
+            return Err(Error::Other(format!(
+                "campaign {flag} -: standard output carries the campaign's statistics and table; give a file name"
+            )));
+        }
+    }
     let mut base = read_scenario(&args.file)?;
     apply_settings(&mut base, &parse_settings(&args.set)?)?;
     let options = Options {

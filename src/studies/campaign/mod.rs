@@ -46,6 +46,21 @@ pub fn default_seeds(events: u64) -> u64 {
     DEFAULT_SEEDS.min(events).max(1)
 }
 
+/// A 3 s event of the example vessel costs about this much of a core, s (docs/operability.md,
+/// measured): the `--max-events` message's estimate, scaled by the run's duration.
+const EVENT_CORE_SECONDS: f64 = 0.0205;
+
+/// A wall time for a message: seconds under two minutes, minutes under two hours, else hours.
+fn duration_text(seconds: f64) -> String {
+    if seconds < 120.0 {
+        format!("{seconds:.0} s")
+    } else if seconds < 7200.0 {
+        format!("{:.0} min", seconds / 60.0)
+    } else {
+        format!("{:.1} h", seconds / 3600.0)
+    }
+}
+
 /// One cell of the grid: its values (one per grid axis) and, for a sea state the model refuses (a
 /// breaking sea, a range outside the RAO file), the reason; its events are then not run.
 #[derive(Clone, Debug, PartialEq)]
@@ -146,10 +161,11 @@ impl Campaign {
         if total > max_events {
             return Err(Error::Other(format!(
                 "campaign of {grid} cells x {} events = {total} runs, more than --max-events {max_events}: lower the \
-                 grid or --events, or raise --max-events (at the example vessel's 20.5 ms of a core per 3 s event, {:.0} \
-                 min on two cores)",
+                 grid or --events, or raise --max-events (about {} on two cores at the example vessel's 20.5 ms of a \
+                 core per 3 s event, here {} s)",
                 events.len(),
-                total as f64 * 0.0205 / 2.0 / 60.0
+                duration_text(total as f64 * EVENT_CORE_SECONDS * base.duration / 3.0 / 2.0),
+                crate::error::number(base.duration)
             )));
         }
         let mut axes = cell_axes.clone();
@@ -481,4 +497,19 @@ pub fn summary_document(
         "cells": cells,
         "operability": {"limits": limits},
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The `--max-events` message's estimate reads as a person would say it: seconds, minutes or
+    /// hours, never "0 min".
+    #[test]
+    fn a_wall_time_is_said_in_seconds_minutes_or_hours() {
+        assert_eq!(
+            [duration_text(0.3), duration_text(90.0), duration_text(600.0), duration_text(10_800.0)],
+            ["0 s", "90 s", "10 min", "3.0 h"]
+        );
+    }
 }
