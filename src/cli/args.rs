@@ -311,14 +311,15 @@ pub struct SweepArgs {
 pub struct CampaignArgs {
     /// Scenario file (TOML) with a `[sea]` section (examples/vessel-sea.toml).
     pub file: PathBuf,
-    /// Losses of the support per sea state (cell of the grid).
+    /// Losses of the support per sea state (cell of the grid), 1 to 1 000 000.
     #[arg(long, default_value_t = 1000, value_parser = clap::value_parser!(u64).range(1..))]
     pub events: u64,
     /// Records (seeds sea.seed, sea.seed + 1, ...) the events are spread over [default: 20, or
     /// --events if fewer].
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
     pub seeds: Option<u64>,
-    /// Length of each record, s: the instants are drawn over [0, T - duration].
+    /// Length of each record, s (longer than the run's duration, at most 1e6): the instants are
+    /// drawn over [0, T - duration].
     #[arg(long, value_name = "T", default_value_t = 10_800.0)]
     pub record_length: f64,
     /// A sea-state axis of the grid, KEY=SPEC as `sweep --vary` (sea.significant_wave_height,
@@ -337,16 +338,17 @@ pub struct CampaignArgs {
     /// Also draw the operability figure(s), SVG and PNG, into DIR.
     #[arg(long, value_name = "DIR")]
     pub figures: Option<PathBuf>,
-    /// The overload probability per loss of the support a sea state must stay below.
+    /// The overload probability per loss of the support a sea state must stay below, between 0
+    /// and 1 (exclusive).
     #[arg(long, default_value_t = 0.01)]
     pub target: f64,
-    /// Confidence of the intervals (two-sided).
+    /// Confidence of the intervals (two-sided), from 0.5 to below 1.
     #[arg(long, default_value_t = 0.95)]
     pub confidence: f64,
     /// Judge a cell on the overload probability's estimate rather than its upper bound.
     #[arg(long)]
     pub on_estimate: bool,
-    /// Events the most probable maximum is of [default: 1 / target].
+    /// Events the most probable maximum is of, 1 to 1e15 [default: 1 / target].
     #[arg(long, value_name = "N")]
     pub exposure: Option<f64>,
     /// Events run at once [default: every core].
