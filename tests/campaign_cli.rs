@@ -151,7 +151,10 @@ fn bad_campaigns_are_refused_in_one_line_naming_the_value() {
     let d = dir.path();
     std::fs::write(d.join("plain.toml"), "duration = 0.5\n").unwrap();
     let cases: [(&[&str], &str); 6] = [
-        (&["--target", "0"], "--target must be a probability between 0 and 1 (exclusive), got 0"),
+        (
+            &["--target", "0"],
+            "--target must be a probability from 1e-15 to 1 (exclusive; 1 / target is the default --exposure), got 0",
+        ),
         (&["--target", "1.5"], "got 1.5"),
         (&["--vary", "drop_height=0.5,1"], "campaign --vary drop_height: a campaign's grid is of sea states"),
         (&["--events", "50", "--max-events", "10"], "50 runs, more than --max-events 10"),
