@@ -260,10 +260,10 @@ pub fn summarise(outcomes: &[EventOutcome], options: &Options) -> CellSummary {
     let untrusted = ok.iter().filter(|(_, r)| !r.trusted).count();
     if untrusted > 0 {
         warnings.push(format!(
-            "{untrusted} of {} {} not trusted (column quality.trusted): the verdict counts {} as overloads",
+            "{untrusted} of {} {} not trusted (column quality.trusted): the verdict counts {}",
             counted(n, "event", "events"),
             if untrusted == 1 { "is" } else { "are" },
-            if untrusted == 1 { "it" } else { "them" }
+            if untrusted == 1 { "it as an overload" } else { "them as overloads" }
         ));
     }
     if failed > 0 {
@@ -799,6 +799,18 @@ mod tests {
         assert!(t.starts_with("c: 1 event on 1 record (0 failed, 0 not trusted)"), "{t}");
         assert!(t.contains("1 event cannot show"), "{t}");
         assert_eq!(counted(2, "event", "events"), "2 events");
+        let mut untrusted = cell(5, 1, 0, 0);
+        if let Some(r) = untrusted[0].results.as_mut() {
+            r.trusted = false;
+        }
+        let s = summarise(&untrusted, &options());
+        assert!(
+            s.warnings
+                .iter()
+                .any(|w| w.starts_with("1 of 5 events is not trusted") && w.ends_with("counts it as an overload")),
+            "{:?}",
+            s.warnings
+        );
     }
 
     /// Four significant digits at most; plain from 1e-4 to 1e6, an exponent outside.
