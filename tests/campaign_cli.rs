@@ -151,7 +151,10 @@ fn bad_campaigns_are_refused_in_one_line_naming_the_value() {
     let d = dir.path();
     std::fs::write(d.join("plain.toml"), "duration = 0.5\n").unwrap();
     let cases: [(&[&str], &str); 12] = [
-        (&["--target", "0"], "--target must be a probability between 0 and 1 (exclusive), got 0"),
+        (
+            &["--target", "0"],
+            "--target must be a probability from 1e-15 to 1 (exclusive; 1 / target is the default --exposure), got 0",
+        ),
         // A grid value its field's rule refuses is an error, not a refused cell that would end
         // its column of the operability table (and so lower the limit of the valid ones).
         (

@@ -12,6 +12,7 @@ mod answer;
 mod benchmarks;
 mod campaign_cli;
 mod campaign_fatigue;
+mod campaign_notes;
 mod campaign_sharing;
 mod campaign_statistics;
 mod cli;

@@ -191,7 +191,7 @@ def campaign(
     (docs/operability.md).
 
     ValueError with the crate's one-line message for what the CLI refuses (a target outside
-    (0, 1), a scenario without `[sea]`, a varied field that is not the sea's, ...). Ctrl-C:
+    [1e-15, 1), a scenario without `[sea]`, a varied field that is not the sea's, ...). Ctrl-C:
     `CampaignInterrupted`, whose `.result` holds the rows done.
     """
     from . import _native

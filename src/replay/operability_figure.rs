@@ -58,7 +58,7 @@ pub fn operability_figures(cells: &[TableCell], options: &Options, note: &str) -
                         } else {
                             "the estimate".into()
                         },
-                        options.target
+                        crate::studies::campaign::summary::significant(options.target)
                     ),
                     note.to_string(),
                 ],

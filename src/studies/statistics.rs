@@ -5,7 +5,7 @@
 //! - [`clopper_pearson`] (exact, the interval a campaign states) and [`wilson`] (score) for the
 //!   probability that one event exceeds a threshold, from k exceeding events among n;
 //! - [`events_needed`]: the fewest events, none beyond, that show p < target (the "sample too small"
-//!   warning);
+//!   warning), and [`events_at_rate`]: how many would if the observed rate held;
 //! - [`Gumbel`]: the type I extreme value distribution of maxima, fitted by maximum likelihood
 //!   (as `scipy.stats.gumbel_r.fit`) or by moments, and its most probable maximum over an exposure;
 //! - [`Empirical`]: the sorted sample, its exceedance count and its quantiles (Weibull plotting
@@ -192,6 +192,59 @@ pub fn events_needed(target: f64, confidence: f64) -> u64 {
         n -= 1;
     }
     n
+}
+
+/// The most events [`events_at_rate`] counts to: beyond, statrs' ln-gamma differences in the
+/// incomplete beta function lose their digits (their absolute error, an ulp of ln Gamma(n) ~
+/// n ln n, is 4e-3 at 1e12 events: 0.4 % of the tail probability; 4 at 1e15).
+pub const MAX_COUNTED_EVENTS: u64 = 1_000_000_000_000;
+
+/// The fewest events n, at least `events`, whose one-sided Clopper-Pearson upper bound at
+/// `confidence` falls below `target` if the overloads keep their observed rate r = k/n0
+/// (k = `exceeding` of n0 = `events`): B^-1(confidence; r n + 1, n - r n) < target, the bound
+/// of [`clopper_pearson`] with the count r n (continuous between whole counts, exact where r n is
+/// whole; n0 itself gives the observed interval). By the Beta-binomial duality the bound is below
+/// the target exactly when I_target(r n + 1, n - r n) > confidence, which is checked at each n
+/// (doubling from n0, then bisection): the bound falls as n grows at a fixed rate. With no
+/// overload (r = 0) this is [`events_needed`], in closed form. None when no count can show it:
+/// a rate at or above the target, no events, arguments outside their ranges, or more than
+/// [`MAX_COUNTED_EVENTS`] (for k > 0) or `u64::MAX` (for k = 0) events.
+pub fn events_at_rate(exceeding: u64, events: u64, target: f64, confidence: f64) -> Option<u64> {
+    if events == 0 || !valid(exceeding, events, confidence) || check_probability("target", target).is_err() {
+        return None;
+    }
+    if exceeding == 0 {
+        return Some(events_needed(target, confidence)).filter(|n| *n < u64::MAX);
+    }
+    let rate = exceeding as f64 / events as f64;
+    if rate >= target {
+        return None;
+    }
+    let shows = |n: u64| {
+        let (n, k) = (n as f64, rate * n as f64);
+        checked_beta_reg(k + 1.0, n - k, target).is_ok_and(|p| p > confidence)
+    };
+    if shows(events) {
+        return Some(events);
+    }
+    // lo does not show it, hi does.
+    let (mut lo, mut hi) = (events, events.saturating_mul(2));
+    while !shows(hi) {
+        if hi >= MAX_COUNTED_EVENTS {
+            return None;
+        }
+        lo = hi;
+        hi = hi.saturating_mul(2).min(MAX_COUNTED_EVENTS);
+    }
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        if shows(mid) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    Some(hi)
 }
 
 /// The Gumbel (type I extreme value, maxima) distribution: F(x) = exp(-exp(-(x - location)/scale)),
@@ -405,5 +458,63 @@ impl Empirical {
     /// The sample standard deviation, n - 1 in the denominator (NaN for fewer than 2 samples).
     pub fn std(&self) -> f64 {
         mean_std(&self.sorted).1
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// With no overload the count is the closed form's: 368 events for 1e-2 at 97.5 % one-sided
+    /// (the two-sided 95 % bound the campaign judges), 3688 for 1e-3, at any events run so far.
+    #[test]
+    fn events_at_rate_without_overloads_is_events_needed() {
+        assert_eq!(events_at_rate(0, 60, 0.01, 0.975), Some(368));
+        assert_eq!(events_at_rate(0, 1, 0.001, 0.975), Some(events_needed(0.001, 0.975)));
+        assert_eq!(events_at_rate(0, 1, 0.001, 0.975), Some(3688));
+    }
+
+    /// 1 overload in 200 events (rate 5e-3, target 1e-2): at every 200 events of the returned
+    /// count's neighbourhood the rate is a whole count, and there the verdict's own interval
+    /// ([`clopper_pearson`], two-sided 95 %) is at or above the target below the count and below
+    /// it from the count on; the continuous bound crosses the target between the count's
+    /// predecessor and the count.
+    #[test]
+    fn events_at_rate_puts_the_verdicts_bound_below_the_target_at_the_observed_rate() {
+        let (k, n0, target) = (1, 200, 0.01);
+        let m = events_at_rate(k, n0, target, 0.975).unwrap();
+        let below = |n: u64| clopper_pearson(n / 200, n, 0.95).high < target;
+        let (whole_before, whole_from) = (m / 200 * 200, m.div_ceil(200) * 200);
+        assert!(!below(whole_before) && below(whole_from), "count {m}");
+        let bound = |n: u64| {
+            let k = n as f64 / 200.0;
+            beta_quantile(k + 1.0, n as f64 - k, 0.975)
+        };
+        assert!(bound(m) < target && bound(m - 1) >= target, "count {m}: {} .. {}", bound(m - 1), bound(m));
+    }
+
+    /// Events whose bound is already below the target need no more; more overloads at the same
+    /// events (a rate nearer the target) need more events; a rate at or above the target, no
+    /// events and arguments outside their ranges give no count.
+    #[test]
+    fn events_at_rate_grows_towards_the_target_and_has_none_at_or_above_it() {
+        assert!(clopper_pearson(3, 1000, 0.95).high < 0.01 && clopper_pearson(4, 1000, 0.95).high >= 0.01);
+        assert_eq!(events_at_rate(3, 1000, 0.01, 0.975), Some(1000));
+        let counts: Vec<u64> = (4..=9).map(|k| events_at_rate(k, 1000, 0.01, 0.975).unwrap()).collect();
+        assert!(counts[0] > 1000 && counts.windows(2).all(|w| w[0] < w[1]), "{counts:?}");
+        assert_eq!(events_at_rate(10, 1000, 0.01, 0.975), None);
+        assert_eq!(events_at_rate(22, 150, 0.01, 0.975), None);
+        assert_eq!(events_at_rate(0, 0, 0.01, 0.975), None);
+        assert_eq!(events_at_rate(1, 100, f64::NAN, 0.975), None);
+        assert_eq!(events_at_rate(2, 1, 0.01, 0.975), None);
+    }
+
+    /// A target too small for 64 bits (below about 1e-19) gives no count, never `u64::MAX` as
+    /// one; a rate so near the target that the count passes [`MAX_COUNTED_EVENTS`] neither.
+    #[test]
+    fn events_at_rate_gives_no_count_beyond_what_it_can_count() {
+        assert_eq!(events_needed(1e-300, 0.975), u64::MAX);
+        assert_eq!(events_at_rate(0, 5, 1e-300, 0.975), None);
+        assert_eq!(events_at_rate(999_999, 100_000_000, 0.01, 0.975), None);
     }
 }

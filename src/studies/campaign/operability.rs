@@ -127,7 +127,7 @@ pub fn table(cells: &[TableCell], options: &Options) -> String {
         s,
         "operability: the probability that losing the support overloads the gangway (any utilisation > 1), per loss; \
          a cell is ok when {criterion} is below the target {}",
-        options.target
+        super::summary::significant(options.target)
     );
     for &heading in &headings {
         let _ = writeln!(s, "heading {} deg", label(heading));
