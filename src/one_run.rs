@@ -87,6 +87,9 @@ impl Recorder for FinishLater<'_> {
     fn sample(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()> {
         self.inner.sample(result, modal_coordinates)
     }
+    fn deflection_peak_strain(&mut self, upper_strain: f64) -> Result<()> {
+        self.inner.deflection_peak_strain(upper_strain)
+    }
     fn contact_event(&mut self, event: &ContactEvent) -> Result<()> {
         self.inner.contact_event(event)
     }

@@ -789,7 +789,8 @@ impl<S: Stepper> Simulation<S> {
     /// tip velocities ([`Recorder::wants_details`], a fifth of a step's cost) and the stations'
     /// load coefficients, is computed here for the steps the recorder keeps ([`Recorder::keeps`])
     /// and those it may record later (`must`: the step before a contact event, the last of an
-    /// advance, a stop point).
+    /// advance, a stop point). The run's E_def,b as of the step goes first
+    /// ([`Recorder::deflection_peak_strain`]).
     fn record(
         &self,
         recorder: &mut dyn Recorder,
@@ -797,6 +798,7 @@ impl<S: Stepper> Simulation<S> {
         kinematics: &Kinematics,
         must: bool,
     ) -> Result<()> {
+        recorder.deflection_peak_strain(self.state.upper_strain_at_peak)?;
         if !(must || recorder.keeps(result)) {
             return recorder.step(result, kinematics.displacement.as_slice());
         }
@@ -940,7 +942,8 @@ impl<S: Stepper> Simulation<S> {
     }
 
     /// Raises the running peaks by the latest step: its end values, or with `within_step` (the
-    /// converged method) the largest |value| of each output over the step and when it was reached.
+    /// converged method) the largest |value| of each output over the step and when it was reached;
+    /// `upper_strain` is the bridge's strain energy where the arrestor's deflection peaks.
     fn update_peaks(&mut self, upper_strain: f64, within_step: Option<[(f64, f64); 5]>) {
         let r = &mut self.state.result;
         let extremes = match within_step {
@@ -961,6 +964,28 @@ impl<S: Stepper> Simulation<S> {
         }
         r.peaks = Peaks::from_array(peaks);
         self.state.peak_times = Peaks::from_array(times);
+    }
+
+    /// The bridge's strain energy (J) at the instant of the arrestor's largest deflection over the
+    /// step just taken from `previous` (E_def,b where the deflection peaks): with `within_step`
+    /// (the converged method) at the instant inside the step where it peaks, from the state there
+    /// ([`Self::point_kinematics`], the state the log's row at that instant holds), else at the
+    /// step's end (`end`'s). Only evaluated inside the step when that raises the running peak.
+    fn upper_strain_at_deflection_peak(
+        &mut self,
+        previous: &StepResult,
+        stage: Stage,
+        within_step: Option<&[(f64, f64); 5]>,
+        end: &Energies,
+    ) -> f64 {
+        let Some(&(value, at)) = within_step.map(|e| &e[0]) else { return end.upper_strain };
+        let at_ns = (at * 1e9).round() as u64;
+        let inside = at_ns > previous.time_ns && at_ns < self.state.result.time_ns;
+        if !(inside && value > previous.peaks.lower_tip_deflection) {
+            return end.upper_strain;
+        }
+        let kinematics = self.point_kinematics(previous.time_ns, at_ns, stage);
+        self.stepper.measure(&kinematics, stage, &self.excitation_at(at_ns)).1.upper_strain
     }
 
     /// Whether the running peaks are the largest |value| over each internal step (the converged
@@ -1385,7 +1410,8 @@ impl<S: Stepper> Simulation<S> {
         let force_peak = within_step.map_or((result.contact_force.abs(), result.time), |e| e[4]);
         let first_before =
             self.tangent.as_ref().map(|_| (self.state.first_contact.peaks, self.state.first_contact.ended));
-        self.update_peaks(energies.upper_strain, within_step);
+        let upper_strain = self.upper_strain_at_deflection_peak(&previous, stage, within_step.as_ref(), &energies);
+        self.update_peaks(upper_strain, within_step);
         if let Some(first_before) = first_before {
             self.tangent_after_step(stage, &previous, step_ns, within_step.as_ref(), first_before);
         }
@@ -2137,6 +2163,18 @@ impl<S: Stepper> Simulation<S> {
             if let Some(feed) = self.feed.listened() {
                 feed.set_loads(self.correction_loads(own(&kinematics), stage, &self.excitation_at(at_ns)));
             }
+            // E_def,b as of this row: its own where its deflection is the largest so far (at the
+            // step's peak instant the very state and sums the step took it from), else the step's
+            // once its peak is passed, else the run's before.
+            let deflection = row.peaks.lower_tip_deflection;
+            let strain = if deflection > before.result.peaks.lower_tip_deflection && reached[0] >= deflection {
+                self.stepper.measure(&kinematics, stage, &self.excitation_at(at_ns)).1.upper_strain
+            } else if when[0] > seconds(start_ns) && when[0] <= at {
+                self.state.upper_strain_at_peak
+            } else {
+                before.upper_strain_at_peak
+            };
+            recorder.deflection_peak_strain(strain)?;
             recorder.sample(&row, kinematics.displacement.as_slice())?;
         }
         Ok(())
@@ -2574,9 +2612,10 @@ impl<S: Stepper> Simulation<S> {
             peaks: last.peaks,
             peak_times: self.last_peaks().1,
             upper_strain_at_peak_deflection: s.upper_strain_at_peak,
-            contact_windows: s.contact_windows.clone(),
+            contact_windows: self.windows_to(&last),
             final_energy_residual: last.energy.residual,
-            max_energy_residual: s.max_residual,
+            // The last record's too: a stop point's, which no step's end booked.
+            max_energy_residual: s.max_residual.max(last.energy.residual.abs()),
             energy_method: self.energy_method,
             modes: self.mode_table(5),
             quality: self.quality_within(&model_range),
@@ -2588,6 +2627,16 @@ impl<S: Stepper> Simulation<S> {
             model_range,
             sub_impacts: self.sub_impacts.clone(),
         }
+    }
+
+    /// The contact windows up to the run's last record `last`: one still open there (a stop point
+    /// inside a step taken in contact) ends at it, not at the last step's end before it.
+    fn windows_to(&self, last: &StepResult) -> Vec<ContactWindow> {
+        let mut windows = self.state.contact_windows.clone();
+        if let (true, Some(w)) = (last.contact, windows.last_mut()) {
+            w.end = w.end.max(last.time);
+        }
+        windows
     }
 
     /// Keeps no energy account from here on: the modal stepper's measurements leave the energy

@@ -117,6 +117,19 @@ fn mutations_of_a_real_log_exit_0_or_2() {
     assert!(ok > 0 && refused > 0, "{ok} reported, {refused} refused");
 }
 
+/// A byte in the middle of the first chunk record at or after byte `from` of the log `bytes` (its
+/// records walked from the magic), so that a change of the log's layout keeps it inside a chunk.
+fn inside_chunk(bytes: &[u8], from: usize) -> usize {
+    let mut at = 8;
+    loop {
+        let len = u64::from_le_bytes(bytes[at + 1..at + 9].try_into().unwrap()) as usize;
+        if bytes[at] == 0x06 && at >= from {
+            return at + 9 + len / 2;
+        }
+        at += 9 + len;
+    }
+}
+
 #[test]
 fn truncated_real_logs_report_every_complete_chunk() {
     let real = real_log_bytes();
@@ -136,7 +149,7 @@ fn truncated_real_logs_report_every_complete_chunk() {
     }
     // A bit flipped inside a chunk: the chunk's CRC refuses it; the chunks before it are reported.
     let mut flipped = real.clone();
-    flipped[real.len() / 2] ^= 0x10;
+    flipped[inside_chunk(&real, real.len() / 2)] ^= 0x10;
     let log = beam_impact::replay::report::read_log_bytes(&flipped, Path::new("flipped")).unwrap();
     assert!(log.damaged, "{:?}", log.problem);
     let (code, stdout, _) = report(dir.path(), "flipped.mcap", &flipped);

@@ -78,6 +78,7 @@ mod one_run;
 mod paper;
 mod rayleigh_damping;
 mod reactions;
+mod replay_bridge_strain;
 mod report_csv;
 mod rigid_impactor;
 mod robust_meshes;

@@ -15,6 +15,8 @@
     log.problem, log.damaged   where the reading stopped, and whether at damaged bytes
     log.stopped_early       why the log ended before the run (its size cap), "" if it did not
     log.rollbacks           FMU states restored: the steps they superseded are left out, as `report` does
+    log.upper_strain_at_peak_deflection   the FEM bridge strain energy at the largest arrestor deflection, J, as
+                            the run printed it (`report`'s line), or None for a log written before logs held it
     log.answer              the run's verdict and checks as `beam-impact run` stored them (dict), or None
     log.motion_csv          the support-motion table the run used (the log's `motion.csv`), or None
     log.motion              that table as a pandas.DataFrame (`time`, then its columns), or None
@@ -133,6 +135,10 @@ class Log:
     stopped_early: str = ""
     #: FMU states restored during the run: the steps each superseded are left out.
     rollbacks: int = 0
+    #: The FEM bridge strain energy at the largest arrestor deflection, J, as the run printed it
+    #: (stored with that row's modal coordinates); None when the log does not hold it (written
+    #: before it was stored, without /beam/modes, or rolled back past that row).
+    upper_strain_at_peak_deflection: float | None = None
     #: The run's answer with its checks as `beam-impact run` stored it (`quality`, `design`,
     #: `discretisation`, as in `run --json`); None when the log holds none (an FMU's log, or
     #: one written before it was stored) or it does not parse.
@@ -329,6 +335,7 @@ def _from_native(raw: dict) -> Log:
         damaged=raw["damaged"],
         stopped_early=raw["stopped_early"],
         rollbacks=raw["rollbacks"],
+        upper_strain_at_peak_deflection=raw.get("upper_strain_at_peak_deflection"),
         answer=_answer(raw["answer_json"]),
         motion_csv=raw["motion_csv"],
         envelope_raw=raw["envelope"],
@@ -400,8 +407,12 @@ def main(argv: list[str]) -> int:
                     )
     starts = [e["time"] for e in log.events if e["start"]]
     print(f"{len(log.events)} contact events, first contact at t = {starts[0] if starts else float('nan'):.6f} s")
-    # The deflected shape at the largest deflection, from the modal coordinates of that step.
+    # The deflected shape at the largest deflection, from the modal coordinates of that row (its
+    # step and time: a step's dense-output samples share its number; a log without that row's own
+    # message: its step's last).
     rows = np.flatnonzero(log.modal_steps == s["step"][peak])
+    own = rows[log.modal_times[rows] == s["time"][peak]]
+    rows = own if own.size else rows
     if rows.size:
         w = log.nodal_shapes @ log.modal_coordinates[rows[-1]]
         print(f"bridge nodal deflections at the largest arrestor deflection, m: {np.array2string(w[len(log.lower_nodes):], precision=3)}")

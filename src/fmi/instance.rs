@@ -267,6 +267,9 @@ impl Recorder for Tap<'_> {
     fn sample(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> crate::Result<()> {
         self.send(|r| r.sample(result, modal_coordinates))
     }
+    fn deflection_peak_strain(&mut self, upper_strain: f64) -> crate::Result<()> {
+        self.send(|r| r.deflection_peak_strain(upper_strain))
+    }
     fn contact_event(&mut self, event: &ContactEvent) -> crate::Result<()> {
         self.events.push(*event);
         self.send(|r| r.contact_event(event))

@@ -44,6 +44,9 @@ impl Recorder for Cancellable<'_> {
         }
         self.inner.sample(result, modal_coordinates)
     }
+    fn deflection_peak_strain(&mut self, upper_strain: f64) -> Result<()> {
+        self.inner.deflection_peak_strain(upper_strain)
+    }
     fn contact_event(&mut self, event: &ContactEvent) -> Result<()> {
         self.inner.contact_event(event)
     }

@@ -108,6 +108,10 @@ pub struct McapRecorder {
     /// change or the end: one message per tick, not one per rising step).
     peak: Option<(u64, u64)>,
     peak_coordinates: Vec<f64>,
+    /// The run's bridge strain energy at the latest deflection peak (`peak`'s row), J, and as of
+    /// the next row ([`Recorder::deflection_peak_strain`]).
+    peak_strain: f64,
+    next_peak_strain: f64,
     next_scene_ns: u64,
     next_modes_ns: u64,
     /// The next multiple of the sample interval at or after which an internal step's end is
@@ -225,6 +229,8 @@ impl McapRecorder {
             coordinates_sent: false,
             peak: None,
             peak_coordinates: Vec::new(),
+            peak_strain: f64::NAN,
+            next_peak_strain: f64::NAN,
             next_scene_ns: 0,
             next_modes_ns: 0,
             next_sample_ns: 0,
@@ -314,6 +320,7 @@ impl McapRecorder {
             self.peak = Some((result.step, result.time_ns));
             self.peak_coordinates.clear();
             self.peak_coordinates.extend_from_slice(modal_coordinates);
+            self.peak_strain = self.next_peak_strain;
         }
         let scene = self.has_scene && result.time_ns >= self.next_scene_ns;
         if scene {
@@ -354,12 +361,16 @@ impl McapRecorder {
         self.batch.items.push(item);
     }
 
-    /// Queues the modal coordinates of `previous` (held in `self.coordinates`).
+    /// Queues the modal coordinates of `previous` (held in `self.coordinates`); when it is the
+    /// latest deflection peak's row (its step and time: a step's samples share its number), they
+    /// are the peak's, with its strain energy.
     fn push_modes(&mut self, log: bool, scene: bool) {
         let Some(r) = self.previous else { return };
-        self.batch.push_modes(&self.coordinates, r.step, r.time_ns, r.time_ns, log, scene, self.loads);
+        let at_peak = log && self.peak == Some((r.step, r.time_ns));
+        let strain = at_peak.then_some(self.peak_strain);
+        self.batch.push_modes(&self.coordinates, r.step, r.time_ns, r.time_ns, log, scene, self.loads, strain);
         self.coordinates_sent |= log;
-        if log && self.peak.is_some_and(|(step, _)| step == r.step) {
+        if at_peak {
             self.peak = None;
         }
     }
@@ -370,8 +381,9 @@ impl McapRecorder {
         if let Some((step, time_ns)) = self.peak.take() {
             // Written now, stamped now: log times never decrease; the message says its step.
             let log_time_ns = self.previous.map_or(time_ns, |p| p.time_ns.max(time_ns));
-            self.batch.push_modes(&self.peak_coordinates, step, time_ns, log_time_ns, true, false, None);
-            if self.previous.is_some_and(|p| p.step == step) {
+            let strain = Some(self.peak_strain);
+            self.batch.push_modes(&self.peak_coordinates, step, time_ns, log_time_ns, true, false, None, strain);
+            if self.previous.is_some_and(|p| (p.step, p.time_ns) == (step, time_ns)) {
                 self.coordinates_sent = true;
             }
         }
@@ -583,6 +595,11 @@ impl Recorder for McapRecorder {
 
     fn step(&mut self, result: &StepResult, modal_coordinates: &[f64]) -> Result<()> {
         self.observe(result, modal_coordinates, false)
+    }
+
+    fn deflection_peak_strain(&mut self, upper_strain: f64) -> Result<()> {
+        self.next_peak_strain = upper_strain;
+        Ok(())
     }
 
     fn attach(&mut self, name: &str, media_type: &str, data: &[u8]) -> Result<()> {

@@ -49,6 +49,14 @@ pub trait Recorder {
         let _ = (result, modal_coordinates);
         Ok(())
     }
+    /// The bridge's strain energy at the arrestor's largest deflection so far as of the row just
+    /// handed over ([`Recorder::step`] or [`Recorder::sample`]), J, sent after each row that raised
+    /// that deflection's running peak: the run's E_def,b there, the value it prints (the log keeps
+    /// it with that row's modal coordinates, so that `report` replays it).
+    fn deflection_peak_strain(&mut self, upper_strain: f64) -> Result<()> {
+        let _ = upper_strain;
+        Ok(())
+    }
     /// A contact stage starts or ends.
     fn contact_event(&mut self, event: &ContactEvent) -> Result<()>;
     /// The run was rolled back (an FMU state was restored) to `result`: the steps after it that

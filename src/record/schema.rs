@@ -409,7 +409,8 @@ mod tests {
                 ("step", 1, Uint64, o),
                 ("time_ns", 2, Uint64, o),
                 ("time", 3, Double, o),
-                ("coordinates", 4, Double, Label::Repeated)
+                ("coordinates", 4, Double, Label::Repeated),
+                ("upper_strain_at_peak", 5, Double, o)
             ]
         );
         let names: Vec<&str> = fields(&types[".beam_impact.EnergyAccount"]).iter().map(|f| f.0).collect();
@@ -510,12 +511,19 @@ mod tests {
         assert_eq!(f32::from_bits(decoded["lower_bending"] as u32), -2.5);
         assert_eq!(f32::from_bits(decoded["upper_shear"] as u32), 0.25);
 
-        let modes = ModalCoordinatesMessage { step: 7, time_ns: 8, time: 3.5, coordinates: vec![1.0, 4.5] };
+        let modes = ModalCoordinatesMessage {
+            step: 7,
+            time_ns: 8,
+            time: 3.5,
+            coordinates: vec![1.0, 4.5],
+            upper_strain_at_peak: Some(510.5),
+        };
         let decoded = decode_by_schema(&types, ".beam_impact.ModalCoordinates", &modes.encode_to_vec());
         assert_eq!(decoded["step"], 7);
         assert_eq!(decoded["time_ns"], 8);
         assert_eq!(f64::from_bits(decoded["time"]), 3.5);
         assert_eq!(f64::from_bits(decoded["coordinates"]), 4.5);
+        assert_eq!(f64::from_bits(decoded["upper_strain_at_peak"]), 510.5);
     }
 
     #[test]

@@ -86,7 +86,8 @@ pub(super) enum Item {
     /// logged on the modes topic at log time `log_time_ns` (`log`; later than `time_ns` for a
     /// peak's coordinates written at the end of their interval, so log times never decrease)
     /// and/or drawn as a scene (`scene`, coloured by the stations' utilisation under the
-    /// correction's `loads`).
+    /// correction's `loads`); at a row that raised the arrestor's deflection peak, with the run's
+    /// bridge strain energy there (`strain`, J).
     Modes {
         step: u64,
         time_ns: u64,
@@ -96,6 +97,7 @@ pub(super) enum Item {
         log: bool,
         scene: bool,
         loads: Option<[f64; LOADS]>,
+        strain: Option<f64>,
     },
     /// The stresses at every station of `step` at `time_ns`, from the modal coordinates
     /// `batch.coordinates[offset..offset + len]` and the correction's `loads` (`/beam/stations`).
@@ -142,10 +144,12 @@ impl Batch {
         log: bool,
         scene: bool,
         loads: Option<[f64; LOADS]>,
+        strain: Option<f64>,
     ) {
         let offset = self.coordinates.len();
+        let len = q.len();
         self.coordinates.extend_from_slice(q);
-        self.items.push(Item::Modes { step, time_ns, log_time_ns, offset, len: q.len(), log, scene, loads });
+        self.items.push(Item::Modes { step, time_ns, log_time_ns, offset, len, log, scene, loads, strain });
     }
 
     /// Queues the stations' stresses of `step` from its modal coordinates `q` (see [`Item::Stations`]).
@@ -275,9 +279,9 @@ impl LogWriter {
             match item {
                 Item::Start(start) => self.start(start)?,
                 &Item::Step(ref result, sample) => self.write_step(result, sample)?,
-                &Item::Modes { step, time_ns, log_time_ns, offset, len, log, scene, loads } => {
+                &Item::Modes { step, time_ns, log_time_ns, offset, len, log, scene, loads, strain } => {
                     let q = &batch.coordinates[offset..offset + len];
-                    self.write_modes(step, time_ns, log_time_ns, q, log, scene.then_some(loads))?;
+                    self.write_modes((step, time_ns, log_time_ns), q, strain, log, scene.then_some(loads))?;
                 }
                 &Item::Stations { step, time_ns, offset, len, loads, maxima } => {
                     let q = &batch.coordinates[offset..offset + len];
@@ -411,14 +415,14 @@ impl LogWriter {
         self.write_buffer(self.channels.stations, time_ns)
     }
 
-    /// Writes the modal coordinates `q` of `step` (`log`) and/or the scene of them (`scene`:
-    /// Some with the correction's loads, from which the stations' utilisation colours follow).
+    /// Writes the modal coordinates `q` of `step` at `time_ns` (`log`, at `log_time_ns`, with the
+    /// bridge's `strain` at a deflection peak) and/or the scene of them (`scene`: Some with the
+    /// correction's loads, from which the stations' utilisation colours follow).
     fn write_modes(
         &mut self,
-        step: u64,
-        time_ns: u64,
-        log_time_ns: u64,
+        (step, time_ns, log_time_ns): (u64, u64, u64),
         q: &[f64],
+        strain: Option<f64>,
         log: bool,
         scene: Option<Option<[f64; LOADS]>>,
     ) -> Result<()> {
@@ -428,6 +432,7 @@ impl LogWriter {
             self.modes.time = crate::results::seconds(time_ns);
             self.modes.coordinates.clear();
             self.modes.coordinates.extend_from_slice(q);
+            self.modes.upper_strain_at_peak = strain;
             let started = self.options.timing.then(Instant::now);
             encode_into(&mut self.buffer, &self.modes);
             lap(started, &mut self.timing.encode);

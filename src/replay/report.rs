@@ -48,10 +48,19 @@ pub struct LogData {
     pub model: Option<ModelMessage>,
     /// Every step, in order.
     pub steps: Vec<StepResult>,
-    /// Modal coordinates of the step at which the arrestor's deflection peaked.
+    /// Whether each of `steps` is a sample of the dense output inside its step (issue 41), not
+    /// a step's end.
+    pub samples: Vec<bool>,
+    /// Modal coordinates of the row at which the arrestor's deflection peaked (a log that lacks
+    /// that row's: the first of its step's, as logs before the row's own were read).
     pub peak_deflection_coordinates: Vec<f64>,
     /// Step index of `peak_deflection_coordinates`.
     pub peak_deflection_step: u64,
+    /// Time of the row at which the arrestor's deflection peaked, ns.
+    pub peak_deflection_time_ns: u64,
+    /// The run's bridge strain energy at that row as it printed it, J, when the log holds it
+    /// (`ModalCoordinates.upper_strain_at_peak` of the row's own message).
+    pub peak_deflection_strain: Option<f64>,
     /// How often the run was rolled back (an FMU state restored): each time, the steps and
     /// events after the restored step are superseded and dropped here.
     pub rollbacks: u64,
@@ -489,11 +498,13 @@ impl ReadState {
                             data.rollbacks += 1;
                             let keep = data.steps.partition_point(|r| r.step < result.step);
                             data.steps.truncate(keep);
+                            data.samples.truncate(keep);
                             while data.events.last().is_some_and(|e| e.step > result.step) {
                                 data.events.pop();
                             }
                             if data.peak_deflection_step >= result.step {
                                 data.peak_deflection_coordinates.clear();
+                                data.peak_deflection_strain = None;
                             }
                             data.stations.roll_back(result.step);
                         }
@@ -507,6 +518,8 @@ impl ReadState {
                             data.peak_deflection_coordinates
                                 .extend(self.step.modal_coordinates.iter().map(|&q| f64::from(q)));
                             data.peak_deflection_step = result.step;
+                            data.peak_deflection_time_ns = result.time_ns;
+                            data.peak_deflection_strain = None;
                         }
                         if self.history && !self.step.modal_coordinates.is_empty() {
                             self.keep(8 * self.step.modal_coordinates.len() + 16, at, "step message")?;
@@ -515,6 +528,7 @@ impl ReadState {
                             data.history.push(step, time_ns, row).map_err(|e| format!("step message at {at}: {e}"))?;
                         }
                         data.steps.push(result);
+                        data.samples.push(sample);
                     }
                     MODES_TOPIC => {
                         data.monotonic &= !decreasing;
@@ -526,12 +540,16 @@ impl ReadState {
                                 .push(m.step, m.time_ns, row)
                                 .map_err(|e| format!("modes message at {at}: {e}"))?;
                         }
-                        // Kept only at the arrestor's peak deflection (the summary's E_def,b).
-                        let at_peak =
+                        // Kept only at the arrestor's peak deflection (the summary's E_def,b): the
+                        // row's own message (its step and time: a step's samples share its number),
+                        // else, until it comes, the first of its step.
+                        let own = (m.step, m.time_ns) == (data.peak_deflection_step, data.peak_deflection_time_ns);
+                        let same_step =
                             data.peak_deflection_coordinates.is_empty() && m.step == data.peak_deflection_step;
-                        if at_peak {
+                        if own || same_step {
                             self.keep(8 * m.coordinates.len(), at, "modes message")?;
                             data.peak_deflection_coordinates = m.coordinates;
+                            data.peak_deflection_strain = m.upper_strain_at_peak.filter(|_| own);
                         }
                     }
                     STATIONS_TOPIC => {
@@ -667,8 +685,13 @@ pub fn summary_from_log(data: &LogData, simulation: &Simulation) -> Result<Summa
     let mut max_residual = 0.0f64;
     let (mut max_strain, mut max_work) = (0.0f64, 0.0f64);
     let mut first_contact = FirstContact::default();
-    for r in &data.steps {
+    for (k, r) in data.steps.iter().enumerate() {
         first_contact.observe(r);
+        // The run's energy check is over its steps' ends: a sample books the damping's work as a
+        // trapezoid, not the exact advance's, and its residual is not the run's.
+        if data.samples.get(k) == Some(&true) {
+            continue;
+        }
         max_strain = max_strain.max(r.energy.strain);
         max_work = max_work.max(r.energy.external_work.abs());
         max_residual = max_residual.max(r.energy.residual.abs());
@@ -696,8 +719,13 @@ pub fn summary_from_log(data: &LogData, simulation: &Simulation) -> Result<Summa
         .skip(modal.lower_dofs)
         .map(|(i, q)| 0.5 * modal.omega2.get(i).copied().unwrap_or(0.0) * q * q)
         .sum();
-    // After a rollback past the peak the shape at the peak is no longer in the log.
-    let upper_strain = if data.peak_deflection_coordinates.is_empty() { f64::NAN } else { upper_strain };
+    // After a rollback past the peak the shape at the peak is no longer in the log. The run's own
+    // value where the log holds it (the kept modes' sum leaves out a truncated basis's correction).
+    let upper_strain = match data.peak_deflection_strain {
+        Some(printed) => printed,
+        None if data.peak_deflection_coordinates.is_empty() => f64::NAN,
+        None => upper_strain,
+    };
     Ok(Summary {
         steps: last.step,
         time: last.time,

@@ -272,3 +272,17 @@ def test_a_log_of_the_required_topics_alone_loads_and_reports(tmp_path):
     with pytest.raises(ValueError, match='log.channels: unknown topic "foo"; known: model, step'):
         beam_impact.run(fields={"duration": 0.01}, log=tmp_path / "bad.mcap", log_channels="step,foo")
     assert not (tmp_path / "bad.mcap").exists()
+
+
+def test_load_log_holds_the_bridge_strain_at_the_largest_deflection_that_run_printed(tmp_path):
+    """The converged method's deflection peaks inside an internal step: the log holds the run's
+    E_def,b there to the bit, as `report` prints it."""
+    import beam_impact
+
+    log, summary = tmp_path / "arrestor.mcap", tmp_path / "summary.json"
+    scenario = ROOT / "examples" / "arrestor.toml"
+    subprocess.run([binary(), "run", str(scenario), "--set", "duration=0.45", "--mcap", str(log), "--json",
+                    str(summary)], check=True, capture_output=True, cwd=tmp_path)
+    printed = json.loads(summary.read_text())["summary"]["upper_strain_at_peak_deflection"]
+    assert printed > 0
+    assert beam_impact.load_log(str(log)).upper_strain_at_peak_deflection == printed

@@ -24,6 +24,10 @@ impl Recorder for Tee<'_> {
         self.0.sample(result, q)?;
         self.1.sample(result, q)
     }
+    fn deflection_peak_strain(&mut self, upper_strain: f64) -> beam_impact::Result<()> {
+        self.0.deflection_peak_strain(upper_strain)?;
+        self.1.deflection_peak_strain(upper_strain)
+    }
     fn contact_event(&mut self, event: &ContactEvent) -> beam_impact::Result<()> {
         self.0.contact_event(event)?;
         self.1.contact_event(event)

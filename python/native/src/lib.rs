@@ -138,6 +138,7 @@ fn to_python<'py>(py: Python<'py>, data: &LogData) -> PyResult<Bound<'py, PyDict
     out.set_item("problem", data.problem.clone().unwrap_or_default())?;
     out.set_item("stopped_early", data.stopped_early.clone().unwrap_or_default())?;
     out.set_item("rollbacks", data.rollbacks)?;
+    out.set_item("upper_strain_at_peak_deflection", data.peak_deflection_strain)?;
     out.set_item("log_format", data.log_format)?;
     out.set_item("answer_json", data.answer_json.clone())?;
     out.set_item("motion_csv", data.motion_csv.clone())?;

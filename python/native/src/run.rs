@@ -117,6 +117,9 @@ impl Recorder for Outputs {
     fn sample(&mut self, result: &StepResult, q: &[f64]) -> beam_impact::Result<()> {
         self.log.as_mut().map_or(Ok(()), |l| l.sample(result, q))
     }
+    fn deflection_peak_strain(&mut self, upper_strain: f64) -> beam_impact::Result<()> {
+        self.log.as_mut().map_or(Ok(()), |l| l.deflection_peak_strain(upper_strain))
+    }
     fn contact_event(&mut self, event: &ContactEvent) -> beam_impact::Result<()> {
         self.log.as_mut().map_or(Ok(()), |l| l.contact_event(event))
     }
