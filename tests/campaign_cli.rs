@@ -208,25 +208,22 @@ fn a_small_campaign_takes_a_record_an_event_and_names_the_time_shift_it_sets_asi
     assert_eq!((rows.len(), seeds.len()), (3, 3), "{seeds:?}");
 }
 
-/// Ctrl-C (SIGINT) stops the campaign between events: the rows run so far are written, the
-/// statistics printed are of them, the message says so, exit code 130.
-#[test]
-fn ctrl_c_keeps_the_rows_run_so_far() {
-    let dir = folder(&scenario(""));
-    let d = dir.path();
+/// A campaign of 5 000 half-second events in `d`, rows to `out` and statistics to `json`, sent
+/// `signal` after 3 s (a few events' time: the modes and the first records come first); its
+/// output once it stopped, and the number of rows its CSV holds.
+fn interrupted_campaign(d: &Path, signal: i32, out: &str, json: &str) -> (std::process::Output, usize) {
     let mut child = beam_impact()
-        .args(["campaign", "s.toml", "--events", "5000", "--seeds", "10", "--jobs", "1", "--out", "k.csv"])
-        .args(["--json", "k.json"])
+        .args(["campaign", "s.toml", "--events", "5000", "--seeds", "10", "--jobs", "1", "--out", out])
+        .args(["--json", json])
         .current_dir(d)
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped())
         .spawn()
         .unwrap();
-    // A few events' time (the modes and the first records come first).
     std::thread::sleep(std::time::Duration::from_secs(3));
-    // SAFETY: kill(2) with the child's own pid and SIGINT.
+    // SAFETY: kill(2) with the child's own pid and a signal number.
     unsafe {
-        libc::kill(child.id() as i32, libc::SIGINT);
+        libc::kill(child.id() as i32, signal);
     }
     let started = std::time::Instant::now();
     let o = loop {
@@ -236,14 +233,24 @@ fn ctrl_c_keeps_the_rows_run_so_far() {
         assert!(started.elapsed().as_secs() < 60, "the campaign did not stop");
         std::thread::sleep(std::time::Duration::from_millis(50));
     };
+    let n = rows(&d.join(out)).len();
+    (o, n)
+}
+
+/// Ctrl-C (SIGINT) stops the campaign between events: the rows run so far are written, the
+/// statistics printed are of them, the message says so, exit code 130; the statistics document
+/// says it is of a part.
+#[test]
+fn ctrl_c_keeps_the_rows_run_so_far() {
+    let dir = folder(&scenario(""));
+    let d = dir.path();
+    let (o, n) = interrupted_campaign(d, libc::SIGINT, "k.csv", "k.json");
     let stderr = String::from_utf8(o.stderr).unwrap();
     assert_eq!(o.status.code(), Some(130), "{stderr}");
-    let n = rows(&d.join("k.csv")).len();
     assert!((1..5000).contains(&n), "{n} rows");
     assert!(stderr.contains(&format!("interrupted: {n} of 5000 events run and written to k.csv")), "{stderr}");
     let text = String::from_utf8(o.stdout).unwrap();
     assert!(text.contains(&format!("{n} events on")), "{text}");
-    // The statistics document says it is of a part: the events run of those planned.
     let c = &json(&d.join("k.json"))["campaign"];
     assert_eq!(
         (c["interrupted"].as_bool(), c["events_run"].as_u64(), c["events_planned"].as_u64()),
@@ -257,24 +264,12 @@ fn ctrl_c_keeps_the_rows_run_so_far() {
 fn sigterm_keeps_the_rows_run_so_far_as_ctrl_c_does() {
     let dir = folder(&scenario(""));
     let d = dir.path();
-    let child = beam_impact()
-        .args(["campaign", "s.toml", "--events", "5000", "--seeds", "10", "--jobs", "1", "--out", "t.csv"])
-        .current_dir(d)
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(std::time::Duration::from_secs(3));
-    // SAFETY: kill(2) with the child's own pid and SIGTERM.
-    unsafe {
-        libc::kill(child.id() as i32, libc::SIGTERM);
-    }
-    let o = child.wait_with_output().unwrap();
+    let (o, n) = interrupted_campaign(d, libc::SIGTERM, "t.csv", "t.json");
     let stderr = String::from_utf8(o.stderr).unwrap();
     assert_eq!(o.status.code(), Some(130), "{stderr}");
-    let n = rows(&d.join("t.csv")).len();
     assert!((1..5000).contains(&n), "{n} rows");
     assert!(stderr.contains(&format!("interrupted: {n} of 5000 events run and written to t.csv")), "{stderr}");
+    assert_eq!(json(&d.join("t.json"))["campaign"]["events_run"].as_u64(), Some(n as u64));
 }
 
 /// `bench`'s campaign line runs its events (all converged, none failed) and prints the projection
