@@ -549,7 +549,10 @@ impl ReadState {
                         if own || same_step {
                             self.keep(8 * m.coordinates.len(), at, "modes message")?;
                             data.peak_deflection_coordinates = m.coordinates;
-                            data.peak_deflection_strain = m.upper_strain_at_peak.filter(|_| own);
+                            // A strain energy is finite and not negative: a log's other value is
+                            // not taken (the kept modes' sum stands for it).
+                            data.peak_deflection_strain =
+                                m.upper_strain_at_peak.filter(|e| own && e.is_finite() && *e >= 0.0);
                         }
                     }
                     STATIONS_TOPIC => {
